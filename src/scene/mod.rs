@@ -1,0 +1,78 @@
+//! Everything a frame is made of: volume, transfer function, camera, lights and
+//! the settings of renderers, as loaded from a scene file or built procedurally.
+
+pub mod camera;
+pub mod geometry;
+pub mod light;
+pub mod transfer;
+pub mod volume;
+
+pub use camera::{Camera, Projection, RayBasis};
+pub use geometry::VolumeBox;
+pub use light::{Falloff, Light, LightKind};
+pub use transfer::{ControlPoint, TransferFunction, TransferLut};
+pub use volume::{Volume, VoxelData};
+
+use glam::Vec3;
+
+/// Which ground-truth optical model (docs/optical-model.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpticalModel {
+    /// (i) Emission-absorption plus single scattering of every light, attenuated by
+    /// the transmittance of a shadow ray (selective-light paper, eq. 1-2).
+    SingleScattering,
+    /// (ii) As (i), but the light reaching a sample also carries the emission of
+    /// the media between it and the light (IPSVI paper, eq. 1-3).
+    EmissiveScattering,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    pub width: u32,
+    pub height: u32,
+    /// Ray-marching step in voxels (of the smallest spacing).
+    pub step_voxels: f32,
+    /// Linear RGB seen where rays leave the volume.
+    pub background: Vec3,
+    /// Emission scale: the medium emits `emission * rgb(s)` (the ambient term).
+    pub emission: f32,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceSettings {
+    pub model: OpticalModel,
+    /// View-ray step in voxels.
+    pub step_voxels: f32,
+    /// Shadow-ray step in voxels.
+    pub shadow_step_voxels: f32,
+    /// View rays stop once their transmittance falls below this (0 disables).
+    pub min_transmittance: f32,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhongSettings {
+    pub ambient: f32,
+    pub diffuse: f32,
+    pub specular: f32,
+    pub shininess: f32,
+}
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub volume: Volume,
+    pub transfer: TransferFunction,
+    pub camera: Camera,
+    pub lights: Vec<Light>,
+    pub render: RenderSettings,
+    pub reference: ReferenceSettings,
+    pub phong: PhongSettings,
+    /// Parameter tables of the illumination techniques (`[ipsvi]`, `[lightvolume]`,
+    /// ...), read by each technique's own module.
+    pub techniques: toml::Table,
+}
+
+impl Scene {
+    pub fn volume_box(&self) -> VolumeBox {
+        VolumeBox::new(self.volume.dims, self.volume.spacing)
+    }
+}
