@@ -4,6 +4,7 @@
 //! transfer functions, camera, lights, scene files), the renderers ([`dvr`]
 //! baselines, [`reference`] ground truth), and [`metrics`].
 
+pub mod linear_image;
 pub mod scene;
 
 /// SPIR-V of every `glsl/*.comp`, compiled by build.rs.
