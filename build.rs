@@ -28,8 +28,8 @@ fn main() {
 
 fn link_debian_glslang() {
     println!("cargo:rerun-if-env-changed=SHADERC_LIB_DIR");
-    let dir = env::var("SHADERC_LIB_DIR")
-        .unwrap_or_else(|_| "/usr/lib/x86_64-linux-gnu".to_string());
+    let dir =
+        env::var("SHADERC_LIB_DIR").unwrap_or_else(|_| "/usr/lib/x86_64-linux-gnu".to_string());
     let mut missing = Vec::new();
     for name in ["shaderc_combined"].iter().chain(GLSLANG_SPIRV_ARCHIVES) {
         let path = Path::new(&dir).join(format!("lib{name}.a"));

@@ -1,11 +1,16 @@
 //! sweeplab: volume illumination on raw Vulkan with explicit synchronization.
 //!
 //! Layers, bottom up: [`vk`] (thin layer over ash), [`scene`] (volumes, loaders,
-//! transfer functions, camera, lights, scene files), the renderers ([`dvr`]
-//! baselines, [`reference`] ground truth), and [`metrics`].
+//! transfer functions, camera, lights, scene files), [`render`] (what all GPU
+//! techniques share), one module per technique ([`dvr`] baselines, [`reference`]
+//! ground truth), and [`metrics`].
 
+pub mod dvr;
 pub mod linear_image;
+pub mod reference;
+pub mod render;
 pub mod scene;
+pub mod vk;
 
 /// SPIR-V of every `glsl/*.comp`, compiled by build.rs.
 pub mod shaders {

@@ -38,7 +38,11 @@ impl TransferFunction {
         for w in p.windows(2) {
             if s <= w[1].value {
                 let span = w[1].value - w[0].value;
-                let t = if span > 0.0 { (s - w[0].value) / span } else { 1.0 };
+                let t = if span > 0.0 {
+                    (s - w[0].value) / span
+                } else {
+                    1.0
+                };
                 let mut out = [0.0; 4];
                 for (c, o) in out.iter_mut().enumerate() {
                     *o = w[0].rgba[c] + (w[1].rgba[c] - w[0].rgba[c]) * t;

@@ -1,0 +1,93 @@
+//! Baselines: unshaded emission-absorption DVR and gradient Blinn-Phong, one
+//! dispatch each (glsl/raycast.comp, variant chosen by specialization constant).
+
+use crate::render::frame_params::{frame_params, MarchSteps};
+use crate::render::technique::FrameResult;
+use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::shaders;
+use crate::vk::commands::submit_and_wait;
+use crate::vk::descriptors::{BindingKind, Resource};
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::{Buffer, Profiler};
+use ash::vk;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    Unshaded,
+    BlinnPhong,
+}
+
+impl Shading {
+    pub fn pass_name(self) -> &'static str {
+        match self {
+            Shading::Unshaded => "dvr",
+            Shading::BlinnPhong => "phong",
+        }
+    }
+}
+
+const BINDINGS: [BindingKind; 5] = [
+    BindingKind::UniformBuffer,
+    BindingKind::SampledImage,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageImage,
+];
+
+pub fn render(
+    gpu: &GpuScene,
+    shading: Shading,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+) -> Result<FrameResult, RenderError> {
+    let ctx = gpu.ctx;
+    let name = shading.pass_name();
+    let params = frame_params(
+        gpu.scene,
+        width,
+        height,
+        gpu.lut_size,
+        MarchSteps::render(gpu.scene),
+    );
+    let frame = Buffer::with_data(
+        ctx,
+        "frame params",
+        &[params],
+        vk::BufferUsageFlags::UNIFORM_BUFFER,
+    )?;
+    let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
+    let mut pipeline = ComputePipeline::new(
+        ctx,
+        &ComputePipelineDesc {
+            name,
+            spirv: shaders::RAYCAST,
+            bindings: &BINDINGS,
+            push_constant_bytes: 0,
+            specialization: &[(0, if shading == Shading::BlinnPhong { 1 } else { 0 })],
+            max_sets: 1,
+        },
+    )?;
+    let set = pipeline.create_set(&[
+        Resource::UniformBuffer(&frame),
+        Resource::SampledImage(&gpu.volume, &gpu.sampler),
+        Resource::StorageBuffer(&gpu.lut),
+        Resource::StorageBuffer(&gpu.lights),
+        Resource::StorageImage(&output.image),
+    ])?;
+    let readback = output.readback_buffer(ctx)?;
+    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
+        output.prepare_for_compute_write(rec);
+        let scope = profiler.begin(rec, name)?;
+        rec.bind(&pipeline, set);
+        rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
+        profiler.end(rec, scope)?;
+        output.record_readback(rec, &readback);
+        Ok((rec.dispatch_count, rec.barrier_count))
+    })?;
+    Ok(FrameResult {
+        image: output.read(&readback)?,
+        dispatches,
+        barriers,
+    })
+}

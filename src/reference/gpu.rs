@@ -1,0 +1,181 @@
+//! Ground truth on the GPU (glsl/reference.comp): every view sample traces a
+//! brute-force shadow ray to every light. llvmpipe silently ends an invocation
+//! after 65,535 loop iterations, so the view rays are marched in chunks of
+//! samples, one dispatch per chunk, each within a loop budget; the partial sums
+//! travel between dispatches through a ping-pong pair of images.
+
+use crate::render::frame_params::{frame_params, MarchSteps};
+use crate::render::technique::FrameResult;
+use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::scene::OpticalModel;
+use crate::shaders;
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::commands::submit_and_wait;
+use crate::vk::descriptors::{BindingKind, Resource};
+use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::{Buffer, Profiler};
+use ash::vk;
+
+/// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
+pub const LOOP_BUDGET: u64 = 60_000;
+
+const BINDINGS: [BindingKind; 6] = [
+    BindingKind::UniformBuffer,
+    BindingKind::SampledImage,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+];
+
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct ChunkPush {
+    first_sample: u32,
+    sample_count: u32,
+    is_first: u32,
+    is_last: u32,
+}
+
+/// How the view rays are split into dispatches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ChunkPlan {
+    /// Most view samples any ray can take.
+    pub max_view_samples: u64,
+    /// Most shadow samples any shadow ray can take.
+    pub max_shadow_samples: u64,
+    pub samples_per_chunk: u64,
+    pub chunks: u64,
+}
+
+impl ChunkPlan {
+    pub fn new(
+        diagonal_voxels: f64,
+        view_step_voxels: f64,
+        shadow_step_voxels: f64,
+        lights: u64,
+    ) -> ChunkPlan {
+        // +1: ceil of a length that is itself rounded in f32 on the GPU.
+        let max_view_samples = (diagonal_voxels / view_step_voxels).ceil() as u64 + 1;
+        let max_shadow_samples = (diagonal_voxels / shadow_step_voxels).ceil() as u64 + 1;
+        // Per view sample: the sample itself, and per light the box test (3) and the shadow march.
+        let per_sample = 1 + lights * (max_shadow_samples + 3);
+        let samples_per_chunk = (LOOP_BUDGET / per_sample).max(1);
+        ChunkPlan {
+            max_view_samples,
+            max_shadow_samples,
+            samples_per_chunk,
+            chunks: max_view_samples.div_ceil(samples_per_chunk),
+        }
+    }
+
+    /// Loop iterations of one invocation in one dispatch, at most.
+    pub fn iterations_per_dispatch(&self, lights: u64) -> u64 {
+        self.samples_per_chunk * (1 + lights * (self.max_shadow_samples + 3))
+    }
+}
+
+pub fn plan_for(gpu: &GpuScene) -> ChunkPlan {
+    let bx = gpu.scene.volume_box();
+    let diagonal_voxels = (2.0 * bx.half_extent.length() / bx.voxel_length) as f64;
+    ChunkPlan::new(
+        diagonal_voxels,
+        gpu.scene.reference.step_voxels as f64,
+        gpu.scene.reference.shadow_step_voxels as f64,
+        gpu.scene.lights.len() as u64,
+    )
+}
+
+pub fn render(
+    gpu: &GpuScene,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+) -> Result<FrameResult, RenderError> {
+    let ctx = gpu.ctx;
+    let scene = gpu.scene;
+    let params = frame_params(
+        scene,
+        width,
+        height,
+        gpu.lut_size,
+        MarchSteps::reference(scene),
+    );
+    let frame = Buffer::with_data(
+        ctx,
+        "frame params",
+        &[params],
+        vk::BufferUsageFlags::UNIFORM_BUFFER,
+    )?;
+    let accum = [
+        OutputImage::new(ctx, "reference accum a", width, height)?,
+        OutputImage::new(ctx, "reference accum b", width, height)?,
+    ];
+    let model = match scene.reference.model {
+        OpticalModel::SingleScattering => 0,
+        OpticalModel::EmissiveScattering => 1,
+    };
+    let mut pipeline = ComputePipeline::new(
+        ctx,
+        &ComputePipelineDesc {
+            name: "reference",
+            spirv: shaders::REFERENCE,
+            bindings: &BINDINGS,
+            push_constant_bytes: 16,
+            specialization: &[(0, model)],
+            max_sets: 2,
+        },
+    )?;
+    let mut sets = Vec::new();
+    for (src, dst) in [(0, 1), (1, 0)] {
+        sets.push(pipeline.create_set(&[
+            Resource::UniformBuffer(&frame),
+            Resource::SampledImage(&gpu.volume, &gpu.sampler),
+            Resource::StorageBuffer(&gpu.lut),
+            Resource::StorageBuffer(&gpu.lights),
+            Resource::StorageImage(&accum[src].image),
+            Resource::StorageImage(&accum[dst].image),
+        ])?);
+    }
+    let plan = plan_for(gpu);
+    let readback = accum[0].readback_buffer(ctx)?;
+    let mut last_written = 0;
+    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
+        for a in &accum {
+            a.prepare_for_compute_read_write(rec);
+        }
+        let scope = profiler.begin(rec, "reference")?;
+        for chunk in 0..plan.chunks {
+            if chunk > 0 {
+                // The next chunk reads what this one wrote, and overwrites what the
+                // one before read: a write->read and read->write dependency.
+                rec.barrier(&Barrier::memory(
+                    "accum_write_to_next_chunk_read",
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ_WRITE,
+                ));
+            }
+            let detail = profiler.begin_detail(rec, "reference_chunk")?;
+            let set_index = (chunk % 2) as usize;
+            rec.bind(&pipeline, sets[set_index]);
+            let push = ChunkPush {
+                first_sample: (chunk * plan.samples_per_chunk) as u32,
+                sample_count: plan.samples_per_chunk as u32,
+                is_first: (chunk == 0) as u32,
+                is_last: (chunk + 1 == plan.chunks) as u32,
+            };
+            rec.push(&pipeline, push_bytes(&push));
+            rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
+            profiler.end(rec, detail)?;
+            last_written = 1 - set_index;
+        }
+        profiler.end(rec, scope)?;
+        accum[last_written].record_readback(rec, &readback);
+        Ok((rec.dispatch_count, rec.barrier_count))
+    })?;
+    Ok(FrameResult {
+        image: accum[last_written].read(&readback)?,
+        dispatches,
+        barriers,
+    })
+}

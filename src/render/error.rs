@@ -1,0 +1,9 @@
+use crate::vk::VkError;
+
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error(transparent)]
+    Vk(#[from] VkError),
+    #[error("{0}")]
+    Invalid(String),
+}

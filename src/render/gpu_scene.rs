@@ -1,0 +1,140 @@
+//! The scene on the GPU, uploaded once and shared by every technique of a run:
+//! the volume (3D image, linear sampler), the baked transfer LUT and the lights.
+
+use super::error::RenderError;
+use super::frame_params::{gpu_lights, GpuLight};
+use crate::scene::{Scene, TransferLut, VoxelData};
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::commands::submit_and_wait;
+use crate::vk::resources::{as_bytes, ImageDesc, Sampler};
+use crate::vk::{Buffer, Context, Image, VkError};
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+
+pub struct GpuScene<'a> {
+    pub ctx: &'a Context,
+    pub scene: &'a Scene,
+    pub volume: Image,
+    pub volume_format: vk::Format,
+    pub sampler: Sampler,
+    pub lut: Buffer,
+    pub lut_size: usize,
+    /// At least one record, so the binding is valid with no lights.
+    pub lights: Buffer,
+}
+
+impl<'a> GpuScene<'a> {
+    pub fn upload(ctx: &'a Context, scene: &'a Scene) -> Result<GpuScene<'a>, RenderError> {
+        let v = &scene.volume;
+        if v.data.len() != v.voxel_count() || v.voxel_count() == 0 {
+            return Err(RenderError::Invalid(format!(
+                "volume {} has {} voxels for dims {}",
+                v.name,
+                v.data.len(),
+                v.dims
+            )));
+        }
+        let (format, bytes) = volume_texels(ctx, &v.data)?;
+        let extent = vk::Extent3D {
+            width: v.dims.x,
+            height: v.dims.y,
+            depth: v.dims.z,
+        };
+        let volume = Image::new(
+            ctx,
+            &format!("volume {}", v.name),
+            ImageDesc {
+                image_type: vk::ImageType::TYPE_3D,
+                format,
+                extent,
+                usage: vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST,
+            },
+        )?;
+        let staging = Buffer::staging(
+            ctx,
+            "volume staging",
+            bytes.len() as u64,
+            vk::BufferUsageFlags::TRANSFER_SRC,
+            MemoryLocation::CpuToGpu,
+        )?;
+        let mut staging = staging;
+        staging.write_bytes(0, &bytes)?;
+        submit_and_wait(ctx, "upload_volume", |rec| {
+            rec.barrier(&Barrier::image(
+                "volume_discard_to_upload_write",
+                &volume,
+                Access::NONE,
+                Access::TRANSFER_WRITE,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            ));
+            rec.copy_buffer_to_image(&staging, &volume);
+            rec.barrier(&Barrier::image(
+                "volume_upload_write_to_shader_read",
+                &volume,
+                Access::TRANSFER_WRITE,
+                Access::COMPUTE_READ,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
+            ));
+            Ok(())
+        })?;
+        drop(staging);
+
+        let lut_table: TransferLut = scene.transfer.bake(TransferLut::DEFAULT_SIZE);
+        let lut = Buffer::with_data(
+            ctx,
+            "transfer lut",
+            &lut_table.texels,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+        )?;
+        let mut lights_data = gpu_lights(scene);
+        if lights_data.is_empty() {
+            lights_data.push(GpuLight::default());
+        }
+        let lights = Buffer::with_data(
+            ctx,
+            "lights",
+            &lights_data,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+        )?;
+        let sampler = Sampler::linear_clamp(ctx, "volume sampler")?;
+        Ok(GpuScene {
+            ctx,
+            scene,
+            volume,
+            volume_format: format,
+            sampler,
+            lut,
+            lut_size: lut_table.texels.len(),
+            lights,
+        })
+    }
+}
+
+/// Picks r8/r16 unorm or r32 float by the voxel type, falling back to r32 float
+/// where the device cannot filter the narrower format linearly.
+fn volume_texels(ctx: &Context, data: &VoxelData) -> Result<(vk::Format, Vec<u8>), VkError> {
+    let need = vk::FormatFeatureFlags::SAMPLED_IMAGE
+        | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
+        | vk::FormatFeatureFlags::TRANSFER_DST;
+    let native = match data {
+        VoxelData::U8(v) => Some((vk::Format::R8_UNORM, as_bytes(v).to_vec())),
+        VoxelData::U16(v) => Some((vk::Format::R16_UNORM, as_bytes(v).to_vec())),
+        VoxelData::F32(_) => None,
+    };
+    if let Some((format, bytes)) = native {
+        if ctx.format_supports(format, need) {
+            return Ok((format, bytes));
+        }
+    }
+    if !ctx.format_supports(vk::Format::R32_SFLOAT, need) {
+        return Err(VkError::NoFormat {
+            kind: "volume",
+            candidates: "R8_UNORM, R16_UNORM, R32_SFLOAT".into(),
+            usage: "linear filtering",
+        });
+    }
+    let floats: Vec<f32> = (0..data.len()).map(|i| data.normalized(i)).collect();
+    Ok((vk::Format::R32_SFLOAT, as_bytes(&floats).to_vec()))
+}

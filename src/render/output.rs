@@ -1,0 +1,109 @@
+//! The RGBA32F storage image a technique writes its frame into, and its readback
+//! into a [`LinearImage`].
+
+use super::error::RenderError;
+use crate::linear_image::LinearImage;
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::resources::ImageDesc;
+use crate::vk::{Buffer, Context, Image, Recorder};
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+
+pub struct OutputImage {
+    pub image: Image,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl OutputImage {
+    pub fn new(
+        ctx: &Context,
+        name: &str,
+        width: u32,
+        height: u32,
+    ) -> Result<OutputImage, RenderError> {
+        let image = Image::new(
+            ctx,
+            name,
+            ImageDesc {
+                image_type: vk::ImageType::TYPE_2D,
+                format: vk::Format::R32G32B32A32_SFLOAT,
+                extent: vk::Extent3D {
+                    width,
+                    height,
+                    depth: 1,
+                },
+                usage: vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC,
+            },
+        )?;
+        Ok(OutputImage {
+            image,
+            width,
+            height,
+        })
+    }
+
+    /// Before the first write of a frame: old contents are discarded.
+    pub fn prepare_for_compute_write(&self, rec: &mut Recorder) {
+        rec.barrier(&Barrier::image(
+            "output_discard_to_compute_write",
+            &self.image,
+            Access::NONE,
+            Access::COMPUTE_WRITE,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::GENERAL,
+        ));
+    }
+
+    /// Like `prepare_for_compute_write` for an image that shaders also bind for
+    /// reading (one side of a ping-pong pair).
+    pub fn prepare_for_compute_read_write(&self, rec: &mut Recorder) {
+        rec.barrier(&Barrier::image(
+            "pingpong_discard_to_compute_access",
+            &self.image,
+            Access::NONE,
+            Access::COMPUTE_READ_WRITE,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::GENERAL,
+        ));
+    }
+
+    /// Host-visible buffer big enough for the image.
+    pub fn readback_buffer(&self, ctx: &Context) -> Result<Buffer, RenderError> {
+        let size = self.width as u64 * self.height as u64 * 16;
+        Ok(Buffer::staging(
+            ctx,
+            "output readback",
+            size,
+            vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuToCpu,
+        )?)
+    }
+
+    /// Copies the finished frame (written by compute shaders) into `readback`.
+    pub fn record_readback(&self, rec: &mut Recorder, readback: &Buffer) {
+        rec.barrier(&Barrier::image(
+            "output_compute_write_to_readback_copy",
+            &self.image,
+            Access::COMPUTE_WRITE,
+            Access::TRANSFER_READ,
+            vk::ImageLayout::GENERAL,
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+        ));
+        rec.copy_image_to_buffer(&self.image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, readback);
+        rec.barrier(&Barrier::memory(
+            "readback_copy_to_host_read",
+            Access::TRANSFER_WRITE,
+            Access::HOST_READ,
+        ));
+    }
+
+    pub fn read(&self, readback: &Buffer) -> Result<LinearImage, RenderError> {
+        let texels: Vec<[f32; 4]> = readback.read(self.width as usize * self.height as usize)?;
+        Ok(LinearImage {
+            width: self.width,
+            height: self.height,
+            pixels: texels.into_iter().map(|t| [t[0], t[1], t[2]]).collect(),
+        })
+    }
+}

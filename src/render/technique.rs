@@ -1,0 +1,106 @@
+//! The techniques a user can name, and one entry point that renders any of them
+//! into a [`LinearImage`] with its GPU profile.
+
+use super::error::RenderError;
+use super::gpu_scene::GpuScene;
+use crate::linear_image::LinearImage;
+use crate::vk::{ProfileReport, Profiler};
+use std::fmt;
+use std::str::FromStr;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Technique {
+    /// Unshaded emission-absorption ray casting (one dispatch).
+    Dvr,
+    /// Gradient Blinn-Phong ray casting, no shadows (one dispatch).
+    Phong,
+    /// Ground truth on the GPU: brute-force shadow rays per sample.
+    Reference,
+}
+
+impl Technique {
+    pub const ALL: [Technique; 3] = [Technique::Dvr, Technique::Phong, Technique::Reference];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Technique::Dvr => "dvr",
+            Technique::Phong => "phong",
+            Technique::Reference => "reference",
+        }
+    }
+}
+
+impl fmt::Display for Technique {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Technique {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Technique::ALL
+            .into_iter()
+            .find(|t| t.name() == s)
+            .ok_or_else(|| {
+                format!(
+                    "unknown technique {s:?}; known: {}",
+                    Technique::ALL.map(|t| t.name()).join(", ")
+                )
+            })
+    }
+}
+
+pub struct RenderOutput {
+    pub technique: Technique,
+    pub image: LinearImage,
+    pub profile: ProfileReport,
+    /// Compute dispatches and pipeline barriers recorded for the frame.
+    pub dispatches: u32,
+    pub barriers: u32,
+}
+
+/// What a technique module returns before the profile is resolved.
+pub struct FrameResult {
+    pub image: LinearImage,
+    pub dispatches: u32,
+    pub barriers: u32,
+}
+
+/// Renders one frame of `technique` at `width` x `height`.
+pub fn render(
+    gpu: &GpuScene,
+    technique: Technique,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+) -> Result<RenderOutput, RenderError> {
+    if width == 0 || height == 0 {
+        return Err(RenderError::Invalid(format!(
+            "image size {width}x{height} is empty"
+        )));
+    }
+    gpu.ctx.memory.reset_peak();
+    profiler.reset();
+    let frame = match technique {
+        Technique::Dvr => {
+            crate::dvr::render(gpu, crate::dvr::Shading::Unshaded, width, height, profiler)?
+        }
+        Technique::Phong => crate::dvr::render(
+            gpu,
+            crate::dvr::Shading::BlinnPhong,
+            width,
+            height,
+            profiler,
+        )?,
+        Technique::Reference => crate::reference::gpu::render(gpu, width, height, profiler)?,
+    };
+    let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
+    Ok(RenderOutput {
+        technique,
+        image: frame.image,
+        profile,
+        dispatches: frame.dispatches,
+        barriers: frame.barriers,
+    })
+}

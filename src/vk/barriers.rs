@@ -1,0 +1,147 @@
+//! Synchronization2 barriers, written where they matter and named for the hazard
+//! they prevent (`accum_write_to_next_chunk_read`). The name goes into the command
+//! buffer as a debug label, so RenderDoc shows the same words as the code.
+
+use super::resources::{color_range, Image};
+use ash::vk;
+
+/// One side of a dependency: pipeline stages and the memory accesses in them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Access {
+    pub stage: vk::PipelineStageFlags2,
+    pub access: vk::AccessFlags2,
+}
+
+impl Access {
+    pub const NONE: Access = Access {
+        stage: vk::PipelineStageFlags2::NONE,
+        access: vk::AccessFlags2::NONE,
+    };
+    pub const COMPUTE_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::SHADER_STORAGE_READ.as_raw()
+                | vk::AccessFlags2::SHADER_SAMPLED_READ.as_raw()
+                | vk::AccessFlags2::UNIFORM_READ.as_raw(),
+        ),
+    };
+    pub const COMPUTE_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
+        access: vk::AccessFlags2::SHADER_STORAGE_WRITE,
+    };
+    pub const COMPUTE_READ_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
+        access: vk::AccessFlags2::from_raw(
+            Access::COMPUTE_READ.access.as_raw() | vk::AccessFlags2::SHADER_STORAGE_WRITE.as_raw(),
+        ),
+    };
+    pub const TRANSFER_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::COPY,
+        access: vk::AccessFlags2::TRANSFER_READ,
+    };
+    pub const TRANSFER_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::COPY,
+        access: vk::AccessFlags2::TRANSFER_WRITE,
+    };
+    /// After `vkCmdFillBuffer`: ALL_TRANSFER, not CLEAR (a false positive of the
+    /// validation layer version we run with).
+    pub const FILL_WRITE: Access = Access {
+        stage: vk::PipelineStageFlags2::ALL_TRANSFER,
+        access: vk::AccessFlags2::TRANSFER_WRITE,
+    };
+    pub const HOST_READ: Access = Access {
+        stage: vk::PipelineStageFlags2::HOST,
+        access: vk::AccessFlags2::HOST_READ,
+    };
+}
+
+/// A barrier about to be recorded: a global memory barrier or an image barrier
+/// (possibly with a layout transition).
+#[derive(Clone, Copy, Debug)]
+pub struct Barrier {
+    pub name: &'static str,
+    pub(crate) kind: BarrierKind,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum BarrierKind {
+    Memory {
+        src: Access,
+        dst: Access,
+    },
+    Image {
+        image: vk::Image,
+        src: Access,
+        dst: Access,
+        old_layout: vk::ImageLayout,
+        new_layout: vk::ImageLayout,
+    },
+}
+
+impl Barrier {
+    /// Global memory barrier: every write of `src` made visible to `dst`.
+    pub fn memory(name: &'static str, src: Access, dst: Access) -> Barrier {
+        Barrier {
+            name,
+            kind: BarrierKind::Memory { src, dst },
+        }
+    }
+
+    /// Image barrier on the whole (single-level) colour image.
+    pub fn image(
+        name: &'static str,
+        image: &Image,
+        src: Access,
+        dst: Access,
+        old_layout: vk::ImageLayout,
+        new_layout: vk::ImageLayout,
+    ) -> Barrier {
+        Barrier {
+            name,
+            kind: BarrierKind::Image {
+                image: image.raw,
+                src,
+                dst,
+                old_layout,
+                new_layout,
+            },
+        }
+    }
+
+    pub(crate) fn record(&self, device: &ash::Device, cb: vk::CommandBuffer) {
+        match self.kind {
+            BarrierKind::Memory { src, dst } => {
+                let b = [vk::MemoryBarrier2::default()
+                    .src_stage_mask(src.stage)
+                    .src_access_mask(src.access)
+                    .dst_stage_mask(dst.stage)
+                    .dst_access_mask(dst.access)];
+                let dep = vk::DependencyInfo::default().memory_barriers(&b);
+                // SAFETY: cb is in the recording state (Recorder owns it).
+                unsafe { device.cmd_pipeline_barrier2(cb, &dep) };
+            }
+            BarrierKind::Image {
+                image,
+                src,
+                dst,
+                old_layout,
+                new_layout,
+            } => {
+                let b = [vk::ImageMemoryBarrier2::default()
+                    .src_stage_mask(src.stage)
+                    .src_access_mask(src.access)
+                    .dst_stage_mask(dst.stage)
+                    .dst_access_mask(dst.access)
+                    .old_layout(old_layout)
+                    .new_layout(new_layout)
+                    .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                    .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                    .image(image)
+                    .subresource_range(color_range())];
+                let dep = vk::DependencyInfo::default().image_memory_barriers(&b);
+                // SAFETY: cb is in the recording state (Recorder owns it).
+                unsafe { device.cmd_pipeline_barrier2(cb, &dep) };
+            }
+        }
+    }
+}

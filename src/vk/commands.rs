@@ -1,0 +1,212 @@
+//! Command recording: a [`Recorder`] wraps one command buffer in the recording
+//! state; [`submit_and_wait`] owns begin, record, end, submit and the fence.
+
+use super::barriers::Barrier;
+use super::context::Context;
+use super::error::{VkError, VkResultExt};
+use super::pipeline::ComputePipeline;
+use super::resources::{color_layers, Buffer, Image};
+use ash::vk;
+use std::ffi::CString;
+
+pub struct Recorder<'a> {
+    pub ctx: &'a Context,
+    pub cb: vk::CommandBuffer,
+    /// Barriers recorded so far (tests and reports count them).
+    pub barrier_count: u32,
+    pub dispatch_count: u32,
+}
+
+impl<'a> Recorder<'a> {
+    pub fn device(&self) -> &ash::Device {
+        &self.ctx.device
+    }
+
+    pub fn begin_label(&self, name: &str) {
+        if let Some(du) = &self.ctx.debug_utils {
+            let Ok(name) = CString::new(name) else { return };
+            let label = vk::DebugUtilsLabelEXT::default().label_name(&name);
+            // SAFETY: cb is recording; labels have no effect on execution.
+            unsafe { du.cmd_begin_debug_utils_label(self.cb, &label) };
+        }
+    }
+
+    pub fn end_label(&self) {
+        if let Some(du) = &self.ctx.debug_utils {
+            // SAFETY: paired with begin_label by the profiler's scopes.
+            unsafe { du.cmd_end_debug_utils_label(self.cb) };
+        }
+    }
+
+    fn insert_label(&self, name: &str) {
+        if let Some(du) = &self.ctx.debug_utils {
+            let Ok(name) = CString::new(name) else { return };
+            let label = vk::DebugUtilsLabelEXT::default().label_name(&name);
+            // SAFETY: cb is recording; labels have no effect on execution.
+            unsafe { du.cmd_insert_debug_utils_label(self.cb, &label) };
+        }
+    }
+
+    /// Records `barrier`, labelled with its name.
+    pub fn barrier(&mut self, barrier: &Barrier) {
+        self.insert_label(barrier.name);
+        barrier.record(&self.ctx.device, self.cb);
+        self.barrier_count += 1;
+    }
+
+    pub fn bind(&self, pipeline: &ComputePipeline, set: vk::DescriptorSet) {
+        // SAFETY: pipeline, layout and set belong to this device; cb is recording.
+        unsafe {
+            self.ctx.device.cmd_bind_pipeline(
+                self.cb,
+                vk::PipelineBindPoint::COMPUTE,
+                pipeline.raw,
+            );
+            self.ctx.device.cmd_bind_descriptor_sets(
+                self.cb,
+                vk::PipelineBindPoint::COMPUTE,
+                pipeline.layout,
+                0,
+                &[set],
+                &[],
+            );
+        }
+    }
+
+    /// Push constants as raw bytes (the caller's `#[repr(C)]` struct, see `push_bytes`).
+    pub fn push(&self, pipeline: &ComputePipeline, bytes: &[u8]) {
+        // SAFETY: the layout declares a compute push-constant range covering `bytes`
+        // (checked when the pipeline was created).
+        unsafe {
+            self.ctx.device.cmd_push_constants(
+                self.cb,
+                pipeline.layout,
+                vk::ShaderStageFlags::COMPUTE,
+                0,
+                bytes,
+            )
+        };
+    }
+
+    pub fn dispatch(&mut self, x: u32, y: u32, z: u32) {
+        // SAFETY: a compute pipeline and its descriptor set are bound by the caller.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_dispatch(self.cb, x.max(1), y.max(1), z.max(1))
+        };
+        self.dispatch_count += 1;
+    }
+
+    pub fn copy_buffer_to_image(&self, src: &Buffer, dst: &Image) {
+        let region = [vk::BufferImageCopy::default()
+            .image_subresource(color_layers())
+            .image_extent(dst.extent())];
+        // SAFETY: dst is in TRANSFER_DST_OPTIMAL (the caller's barrier) and src holds
+        // at least extent * texel size bytes.
+        unsafe {
+            self.ctx.device.cmd_copy_buffer_to_image(
+                self.cb,
+                src.raw,
+                dst.raw,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &region,
+            )
+        };
+    }
+
+    pub fn copy_image_to_buffer(&self, src: &Image, layout: vk::ImageLayout, dst: &Buffer) {
+        let region = [vk::BufferImageCopy::default()
+            .image_subresource(color_layers())
+            .image_extent(src.extent())];
+        // SAFETY: src is in `layout` (GENERAL or TRANSFER_SRC) and dst is large enough.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_copy_image_to_buffer(self.cb, src.raw, layout, dst.raw, &region)
+        };
+    }
+
+    pub fn fill_buffer(&self, dst: &Buffer, value: u32) {
+        // SAFETY: dst was created with TRANSFER_DST usage.
+        unsafe {
+            self.ctx
+                .device
+                .cmd_fill_buffer(self.cb, dst.raw, 0, vk::WHOLE_SIZE, value)
+        };
+    }
+}
+
+/// Records one primary command buffer with `record`, submits it and waits for it.
+pub fn submit_and_wait<R>(
+    ctx: &Context,
+    name: &str,
+    record: impl FnOnce(&mut Recorder) -> Result<R, VkError>,
+) -> Result<R, VkError> {
+    let device = &ctx.device;
+    let pool_info = vk::CommandPoolCreateInfo::default()
+        .queue_family_index(ctx.queue_family)
+        .flags(vk::CommandPoolCreateFlags::TRANSIENT);
+    // SAFETY: valid device and queue family.
+    let pool =
+        unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
+    let guard = PoolGuard { device, pool };
+    let alloc = vk::CommandBufferAllocateInfo::default()
+        .command_pool(pool)
+        .level(vk::CommandBufferLevel::PRIMARY)
+        .command_buffer_count(1);
+    // SAFETY: pool is valid.
+    let cb =
+        unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?[0];
+    ctx.set_name(cb, name);
+    let begin =
+        vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+    // SAFETY: cb is freshly allocated, in the initial state.
+    unsafe { device.begin_command_buffer(cb, &begin) }.call("vkBeginCommandBuffer")?;
+    let mut rec = Recorder {
+        ctx,
+        cb,
+        barrier_count: 0,
+        dispatch_count: 0,
+    };
+    rec.begin_label(name);
+    let result = record(&mut rec)?;
+    rec.end_label();
+    // SAFETY: cb is recording.
+    unsafe { device.end_command_buffer(cb) }.call("vkEndCommandBuffer")?;
+    // SAFETY: valid device.
+    let fence = unsafe { device.create_fence(&vk::FenceCreateInfo::default(), None) }
+        .call("vkCreateFence")?;
+    let cbs = [cb];
+    let submit = [vk::SubmitInfo::default().command_buffers(&cbs)];
+    // SAFETY: cb is executable; the queue is used from this thread only; we wait on
+    // the fence before the pool (and the command buffer) is destroyed.
+    let waited = unsafe {
+        device
+            .queue_submit(ctx.queue, &submit, fence)
+            .call("vkQueueSubmit")
+            .and_then(|_| {
+                device
+                    .wait_for_fences(&[fence], true, u64::MAX)
+                    .call("vkWaitForFences")
+            })
+    };
+    // SAFETY: the fence is signalled or the submission failed; either way it is unused now.
+    unsafe { device.destroy_fence(fence, None) };
+    waited?;
+    drop(guard);
+    Ok(result)
+}
+
+struct PoolGuard<'a> {
+    device: &'a ash::Device,
+    pool: vk::CommandPool,
+}
+
+impl Drop for PoolGuard<'_> {
+    fn drop(&mut self) {
+        // SAFETY: the pool's command buffers finished executing (or never ran): a
+        // failed wait makes the device lost, where destruction is still allowed.
+        unsafe { self.device.destroy_command_pool(self.pool, None) };
+    }
+}

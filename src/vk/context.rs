@@ -1,0 +1,446 @@
+//! Instance, device selection, validation and the one compute queue.
+
+use super::device_info::{self, DeviceInfo};
+use super::error::{VkError, VkResultExt};
+use super::memory::GpuMemory;
+use super::validation::{self, ValidationLog};
+use ash::vk;
+use std::ffi::{CStr, CString};
+use std::sync::Arc;
+
+pub const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
+/// Environment variable that names the device (like `--device`).
+pub const DEVICE_ENV: &str = "SWEEPLAB_DEVICE";
+/// Environment variable that turns validation on (like `--validate`) when set to 1.
+pub const VALIDATE_ENV: &str = "SWEEPLAB_VALIDATE";
+
+#[derive(Clone, Debug, Default)]
+pub struct ContextOptions {
+    /// Device index or name substring; `None` picks the best (GPU before CPU).
+    pub device: Option<String>,
+    /// Khronos validation with synchronization validation, messages collected.
+    pub validate: bool,
+}
+
+impl ContextOptions {
+    /// Options with the environment overrides applied where the caller gave none.
+    pub fn with_env(mut self) -> Self {
+        if self.device.is_none() {
+            self.device = std::env::var(DEVICE_ENV)
+                .ok()
+                .filter(|s| !s.trim().is_empty());
+        }
+        if !self.validate {
+            self.validate = std::env::var(VALIDATE_ENV)
+                .map(|v| v == "1" || v.eq_ignore_ascii_case("true"))
+                .unwrap_or(false);
+        }
+        self
+    }
+}
+
+pub struct Context {
+    pub entry: ash::Entry,
+    pub instance: ash::Instance,
+    debug_instance: Option<ash::ext::debug_utils::Instance>,
+    messenger: vk::DebugUtilsMessengerEXT,
+    validation: Option<ValidationLog>,
+    pub physical_device: vk::PhysicalDevice,
+    pub info: DeviceInfo,
+    pub limits: vk::PhysicalDeviceLimits,
+    pub device: ash::Device,
+    /// Object names and command labels; present whenever VK_EXT_debug_utils is.
+    pub debug_utils: Option<ash::ext::debug_utils::Device>,
+    pub queue: vk::Queue,
+    pub queue_family: u32,
+    pub memory: Arc<GpuMemory>,
+}
+
+struct Candidate {
+    physical_device: vk::PhysicalDevice,
+    info: DeviceInfo,
+    queue_family: Option<u32>,
+    api_version: u32,
+    device_type: vk::PhysicalDeviceType,
+}
+
+fn load_entry() -> Result<ash::Entry, VkError> {
+    // SAFETY: loading libvulkan runs its initialisers; nothing else touches it yet.
+    unsafe { ash::Entry::load() }.map_err(|e| VkError::Loader(e.to_string()))
+}
+
+fn has_layer(entry: &ash::Entry, name: &CStr) -> Result<bool, VkError> {
+    // SAFETY: plain enumeration call on a loaded entry.
+    let layers = unsafe { entry.enumerate_instance_layer_properties() }
+        .call("vkEnumerateInstanceLayerProperties")?;
+    Ok(layers
+        .iter()
+        .any(|l| l.layer_name_as_c_str().map(|n| n == name).unwrap_or(false)))
+}
+
+fn has_instance_extension(
+    entry: &ash::Entry,
+    layer: Option<&CStr>,
+    name: &CStr,
+) -> Result<bool, VkError> {
+    // SAFETY: plain enumeration call on a loaded entry.
+    let exts = unsafe { entry.enumerate_instance_extension_properties(layer) }
+        .call("vkEnumerateInstanceExtensionProperties")?;
+    Ok(exts.iter().any(|e| {
+        e.extension_name_as_c_str()
+            .map(|n| n == name)
+            .unwrap_or(false)
+    }))
+}
+
+fn create_instance(
+    entry: &ash::Entry,
+    validate: bool,
+    debug_utils: bool,
+) -> Result<ash::Instance, VkError> {
+    let app_name = CString::new("sweeplab").unwrap_or_default();
+    let app = vk::ApplicationInfo::default()
+        .application_name(&app_name)
+        .engine_name(&app_name)
+        .api_version(vk::API_VERSION_1_3);
+    let mut layers = Vec::new();
+    let mut extensions = Vec::new();
+    if debug_utils {
+        extensions.push(ash::ext::debug_utils::NAME.as_ptr());
+    }
+    let mut validation_features_ext = false;
+    if validate {
+        if !has_layer(entry, VALIDATION_LAYER)? {
+            return Err(VkError::NoValidationLayer);
+        }
+        layers.push(VALIDATION_LAYER.as_ptr());
+        if has_instance_extension(
+            entry,
+            Some(VALIDATION_LAYER),
+            ash::ext::validation_features::NAME,
+        )? {
+            extensions.push(ash::ext::validation_features::NAME.as_ptr());
+            validation_features_ext = true;
+        }
+    }
+    let enables = [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION];
+    let mut features = vk::ValidationFeaturesEXT::default().enabled_validation_features(&enables);
+    let mut info = vk::InstanceCreateInfo::default()
+        .application_info(&app)
+        .enabled_layer_names(&layers)
+        .enabled_extension_names(&extensions);
+    if validation_features_ext {
+        info = info.push_next(&mut features);
+    }
+    // SAFETY: every pointer in `info` refers to locals that outlive the call.
+    unsafe { entry.create_instance(&info, None) }.call("vkCreateInstance")
+}
+
+fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
+    // SAFETY: instance is valid; enumeration has no other preconditions.
+    let physical =
+        unsafe { instance.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
+    let mut out = Vec::new();
+    for (index, pd) in physical.into_iter().enumerate() {
+        let mut driver = vk::PhysicalDeviceDriverProperties::default();
+        let mut props2 = vk::PhysicalDeviceProperties2::default().push_next(&mut driver);
+        // SAFETY: pd comes from this instance; the chained struct lives on the stack.
+        unsafe { instance.get_physical_device_properties2(pd, &mut props2) };
+        let props = props2.properties;
+        // SAFETY: pd comes from this instance.
+        let families = unsafe { instance.get_physical_device_queue_family_properties(pd) };
+        let queue_family = families
+            .iter()
+            .position(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE))
+            .map(|i| i as u32);
+        let valid_bits = queue_family
+            .map(|q| families[q as usize].timestamp_valid_bits)
+            .unwrap_or(0);
+        let info = DeviceInfo {
+            index,
+            name: props
+                .device_name_as_c_str()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            device_type: device_info::type_name(props.device_type).to_string(),
+            api_version: device_info::version_string(props.api_version),
+            driver_name: driver
+                .driver_name_as_c_str()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            driver_info: driver
+                .driver_info_as_c_str()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default(),
+            timestamp_period_ns: props.limits.timestamp_period,
+            timestamp_valid_bits: if props.limits.timestamp_compute_and_graphics == vk::TRUE
+                || valid_bits > 0
+            {
+                valid_bits
+            } else {
+                0
+            },
+        };
+        out.push(Candidate {
+            physical_device: pd,
+            info,
+            queue_family,
+            api_version: props.api_version,
+            device_type: props.device_type,
+        });
+    }
+    Ok(out)
+}
+
+/// Lists the Vulkan devices without creating one.
+pub fn list_devices() -> Result<Vec<DeviceInfo>, VkError> {
+    let entry = load_entry()?;
+    let instance = create_instance(&entry, false, false)?;
+    let result = candidates(&instance).map(|c| c.into_iter().map(|c| c.info).collect());
+    // SAFETY: no object created from this instance survives.
+    unsafe { instance.destroy_instance(None) };
+    result
+}
+
+impl Context {
+    pub fn new(options: &ContextOptions) -> Result<Context, VkError> {
+        let entry = load_entry()?;
+        let debug_utils_ext =
+            has_instance_extension(&entry, None, ash::ext::debug_utils::NAME)? || options.validate;
+        let instance = create_instance(&entry, options.validate, debug_utils_ext)?;
+
+        let (debug_instance, messenger, validation) = if debug_utils_ext {
+            let di = ash::ext::debug_utils::Instance::new(&entry, &instance);
+            if options.validate {
+                let log = ValidationLog::default();
+                let info = vk::DebugUtilsMessengerCreateInfoEXT::default()
+                    .message_severity(validation::reported_severities())
+                    .message_type(
+                        vk::DebugUtilsMessageTypeFlagsEXT::GENERAL
+                            | vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION
+                            | vk::DebugUtilsMessageTypeFlagsEXT::PERFORMANCE,
+                    )
+                    .pfn_user_callback(Some(validation::messenger_callback))
+                    .user_data(log.as_user_data());
+                // SAFETY: the user data (the log's Arc) is kept in `self` until after the
+                // messenger is destroyed in Drop.
+                let messenger = unsafe { di.create_debug_utils_messenger(&info, None) }
+                    .call("vkCreateDebugUtilsMessengerEXT")?;
+                (Some(di), messenger, Some(log))
+            } else {
+                (Some(di), vk::DebugUtilsMessengerEXT::null(), None)
+            }
+        } else {
+            (None, vk::DebugUtilsMessengerEXT::null(), None)
+        };
+
+        let cleanup_instance = |msg: VkError| {
+            // SAFETY: only the messenger exists on this instance at this point.
+            unsafe {
+                if let Some(di) = &debug_instance {
+                    if messenger != vk::DebugUtilsMessengerEXT::null() {
+                        di.destroy_debug_utils_messenger(messenger, None);
+                    }
+                }
+                instance.destroy_instance(None);
+            }
+            msg
+        };
+
+        let all = candidates(&instance).map_err(cleanup_instance)?;
+        let chosen = match choose(&all, options.device.as_deref()) {
+            Ok(c) => c,
+            Err(e) => return Err(cleanup_instance(e)),
+        };
+        let cand = &all[chosen];
+        let queue_family = match cand.queue_family {
+            Some(q) => q,
+            None => {
+                return Err(cleanup_instance(VkError::MissingFeature {
+                    device: cand.info.name.clone(),
+                    missing: "a compute queue".into(),
+                }))
+            }
+        };
+        if cand.api_version < vk::API_VERSION_1_3 {
+            return Err(cleanup_instance(VkError::MissingFeature {
+                device: cand.info.name.clone(),
+                missing: format!("Vulkan 1.3 (it reports {})", cand.info.api_version),
+            }));
+        }
+        let device = match create_device(&instance, cand, queue_family) {
+            Ok(d) => d,
+            Err(e) => return Err(cleanup_instance(e)),
+        };
+        // SAFETY: the family was requested with one queue at creation.
+        let queue = unsafe { device.get_device_queue(queue_family, 0) };
+        // SAFETY: limits are plain data of a valid physical device.
+        let limits =
+            unsafe { instance.get_physical_device_properties(cand.physical_device) }.limits;
+        let memory = match GpuMemory::new(&instance, &device, cand.physical_device) {
+            Ok(m) => Arc::new(m),
+            Err(e) => {
+                // SAFETY: nothing was created on the device yet.
+                unsafe { device.destroy_device(None) };
+                return Err(cleanup_instance(e));
+            }
+        };
+        let debug_utils = debug_instance
+            .as_ref()
+            .map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
+        Ok(Context {
+            entry,
+            instance,
+            debug_instance,
+            messenger,
+            validation,
+            physical_device: cand.physical_device,
+            info: cand.info.clone(),
+            limits,
+            device,
+            debug_utils,
+            queue,
+            queue_family,
+            memory,
+        })
+    }
+
+    /// Validation messages collected so far (empty when validation is off).
+    pub fn validation_messages(&self) -> Vec<String> {
+        self.validation
+            .as_ref()
+            .map(|v| v.messages())
+            .unwrap_or_default()
+    }
+
+    /// Takes the validation messages collected so far.
+    pub fn take_validation_messages(&self) -> Vec<String> {
+        self.validation
+            .as_ref()
+            .map(|v| v.take())
+            .unwrap_or_default()
+    }
+
+    pub fn validation_enabled(&self) -> bool {
+        self.validation.is_some()
+    }
+
+    pub fn timestamps_supported(&self) -> bool {
+        self.info.timestamp_valid_bits > 0 && self.info.timestamp_period_ns > 0.0
+    }
+
+    /// Gives a Vulkan object a debug-utils name (RenderDoc, Nsight, validation).
+    pub fn set_name<H: vk::Handle>(&self, handle: H, name: &str) {
+        if let Some(du) = &self.debug_utils {
+            let Ok(name) = CString::new(name) else { return };
+            let info = vk::DebugUtilsObjectNameInfoEXT::default()
+                .object_handle(handle)
+                .object_name(&name);
+            // SAFETY: the handle belongs to this device; naming has no other effect.
+            let _ = unsafe { du.set_debug_utils_object_name(&info) };
+        }
+    }
+
+    pub fn wait_idle(&self) -> Result<(), VkError> {
+        // SAFETY: the device is valid for the life of the context.
+        unsafe { self.device.device_wait_idle() }.call("vkDeviceWaitIdle")
+    }
+
+    /// Whether `format` supports `features` with optimal tiling.
+    pub fn format_supports(&self, format: vk::Format, features: vk::FormatFeatureFlags) -> bool {
+        // SAFETY: a query on a valid physical device.
+        let props = unsafe {
+            self.instance
+                .get_physical_device_format_properties(self.physical_device, format)
+        };
+        props.optimal_tiling_features.contains(features)
+    }
+}
+
+fn choose(all: &[Candidate], wanted: Option<&str>) -> Result<usize, VkError> {
+    if all.is_empty() {
+        return Err(VkError::NoDevice);
+    }
+    if let Some(w) = wanted {
+        let infos: Vec<DeviceInfo> = all.iter().map(|c| c.info.clone()).collect();
+        return device_info::pick(w, &infos).ok_or_else(|| VkError::DeviceNotFound {
+            wanted: w.to_string(),
+            available: infos
+                .iter()
+                .map(|d| format!("{}: {}", d.index, d.name))
+                .collect::<Vec<_>>()
+                .join(", "),
+        });
+    }
+    let best = (0..all.len())
+        .filter(|&i| all[i].queue_family.is_some() && all[i].api_version >= vk::API_VERSION_1_3)
+        .min_by_key(|&i| device_info::type_rank(all[i].device_type))
+        .unwrap_or(0);
+    Ok(best)
+}
+
+fn create_device(
+    instance: &ash::Instance,
+    cand: &Candidate,
+    queue_family: u32,
+) -> Result<ash::Device, VkError> {
+    let mut have12 = vk::PhysicalDeviceVulkan12Features::default();
+    let mut have13 = vk::PhysicalDeviceVulkan13Features::default();
+    let mut have = vk::PhysicalDeviceFeatures2::default()
+        .push_next(&mut have12)
+        .push_next(&mut have13);
+    // SAFETY: the chained structs live on the stack for the call.
+    unsafe { instance.get_physical_device_features2(cand.physical_device, &mut have) };
+    let mut missing = Vec::new();
+    if have13.synchronization2 != vk::TRUE {
+        missing.push("synchronization2");
+    }
+    if have12.host_query_reset != vk::TRUE {
+        missing.push("hostQueryReset");
+    }
+    if have12.timeline_semaphore != vk::TRUE {
+        missing.push("timelineSemaphore");
+    }
+    if !missing.is_empty() {
+        return Err(VkError::MissingFeature {
+            device: cand.info.name.clone(),
+            missing: missing.join(", "),
+        });
+    }
+    let mut want12 = vk::PhysicalDeviceVulkan12Features::default()
+        .host_query_reset(true)
+        .timeline_semaphore(true);
+    let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true);
+    let priorities = [1.0f32];
+    let queues = [vk::DeviceQueueCreateInfo::default()
+        .queue_family_index(queue_family)
+        .queue_priorities(&priorities)];
+    let info = vk::DeviceCreateInfo::default()
+        .queue_create_infos(&queues)
+        .push_next(&mut want12)
+        .push_next(&mut want13);
+    // SAFETY: all pointers in `info` refer to locals that outlive the call.
+    unsafe { instance.create_device(cand.physical_device, &info, None) }.call("vkCreateDevice")
+}
+
+impl Drop for Context {
+    fn drop(&mut self) {
+        // SAFETY: we wait for the device to be idle, free the allocator, then destroy
+        // device, messenger and instance in reverse order of creation.
+        unsafe {
+            let _ = self.device.device_wait_idle();
+            if Arc::strong_count(&self.memory) > 1 {
+                eprintln!("sweeplab: GPU resources outlive the Vulkan context; leaking the device instead of destroying it under them");
+                return;
+            }
+            self.memory.destroy_allocator();
+            self.device.destroy_device(None);
+            if let Some(di) = &self.debug_instance {
+                if self.messenger != vk::DebugUtilsMessengerEXT::null() {
+                    di.destroy_debug_utils_messenger(self.messenger, None);
+                }
+            }
+            self.instance.destroy_instance(None);
+        }
+    }
+}

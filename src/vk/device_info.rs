@@ -1,0 +1,59 @@
+//! What `sweeplab devices` prints, and how `--device` picks one.
+
+use ash::vk;
+use serde::Serialize;
+
+#[derive(Clone, Debug, Serialize)]
+pub struct DeviceInfo {
+    pub index: usize,
+    pub name: String,
+    pub device_type: String,
+    pub api_version: String,
+    pub driver_name: String,
+    pub driver_info: String,
+    pub timestamp_period_ns: f32,
+    /// Valid bits of timestamps on the chosen compute queue family (0: none).
+    pub timestamp_valid_bits: u32,
+}
+
+pub fn version_string(v: u32) -> String {
+    format!(
+        "{}.{}.{}",
+        vk::api_version_major(v),
+        vk::api_version_minor(v),
+        vk::api_version_patch(v)
+    )
+}
+
+pub fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
+    match t {
+        vk::PhysicalDeviceType::DISCRETE_GPU => "discrete GPU",
+        vk::PhysicalDeviceType::INTEGRATED_GPU => "integrated GPU",
+        vk::PhysicalDeviceType::VIRTUAL_GPU => "virtual GPU",
+        vk::PhysicalDeviceType::CPU => "CPU",
+        _ => "other",
+    }
+}
+
+/// Preference when no device is named: real GPUs before software rasterizers.
+pub fn type_rank(t: vk::PhysicalDeviceType) -> u32 {
+    match t {
+        vk::PhysicalDeviceType::DISCRETE_GPU => 0,
+        vk::PhysicalDeviceType::INTEGRATED_GPU => 1,
+        vk::PhysicalDeviceType::VIRTUAL_GPU => 2,
+        vk::PhysicalDeviceType::CPU => 3,
+        _ => 4,
+    }
+}
+
+/// Resolves a `--device` value: an index into the list, or a case-insensitive
+/// substring of the device name.
+pub fn pick(wanted: &str, devices: &[DeviceInfo]) -> Option<usize> {
+    if let Ok(i) = wanted.trim().parse::<usize>() {
+        return devices.iter().position(|d| d.index == i);
+    }
+    let w = wanted.to_lowercase();
+    devices
+        .iter()
+        .position(|d| d.name.to_lowercase().contains(&w))
+}

@@ -1,0 +1,43 @@
+//! Errors of the Vulkan layer carry the failing call and its `vk::Result`.
+
+use ash::vk;
+
+#[derive(Debug, thiserror::Error)]
+pub enum VkError {
+    #[error("cannot load the Vulkan loader (libvulkan.so.1): {0}; install libvulkan1 and a driver (tools/setup.sh does)")]
+    Loader(String),
+    #[error("{call} failed: {result:?}")]
+    Call {
+        call: &'static str,
+        result: vk::Result,
+    },
+    #[error("no Vulkan device found; install mesa-vulkan-drivers (lavapipe) or a GPU driver")]
+    NoDevice,
+    #[error("no Vulkan device matches {wanted:?}; available: {available}")]
+    DeviceNotFound { wanted: String, available: String },
+    #[error("device {device} lacks {missing}")]
+    MissingFeature { device: String, missing: String },
+    #[error("validation layer VK_LAYER_KHRONOS_validation is not installed (apt-get install vulkan-validationlayers)")]
+    NoValidationLayer,
+    #[error("memory allocation for {name} failed: {message}")]
+    Allocation { name: String, message: String },
+    #[error("no {kind} format among {candidates} supports {usage} on this device")]
+    NoFormat {
+        kind: &'static str,
+        candidates: String,
+        usage: &'static str,
+    },
+    #[error("profiler misuse: {0}")]
+    Profiler(String),
+}
+
+/// Adds the name of the failing call to a raw `vk::Result`.
+pub trait VkResultExt<T> {
+    fn call(self, call: &'static str) -> Result<T, VkError>;
+}
+
+impl<T> VkResultExt<T> for Result<T, vk::Result> {
+    fn call(self, call: &'static str) -> Result<T, VkError> {
+        self.map_err(|result| VkError::Call { call, result })
+    }
+}

@@ -1,0 +1,23 @@
+//! A thin, explicit layer over ash. It knows nothing about volumes or techniques:
+//! renderers record through [`commands::Recorder`] and the barriers of
+//! [`barriers`], and every pass gets a debug label and a profiler scope of one name.
+
+pub mod barriers;
+pub mod commands;
+pub mod context;
+pub mod descriptors;
+pub mod device_info;
+pub mod error;
+pub mod memory;
+pub mod pipeline;
+pub mod profiler;
+pub mod resources;
+pub mod validation;
+
+pub use barriers::Barrier;
+pub use commands::Recorder;
+pub use context::{Context, ContextOptions};
+pub use error::VkError;
+pub use pipeline::{ComputePipeline, ComputePipelineDesc};
+pub use profiler::{ProfileReport, Profiler};
+pub use resources::{Buffer, Image};

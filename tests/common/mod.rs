@@ -1,0 +1,107 @@
+//! Helpers shared by the GPU tests: a validated context and small scenes built
+//! directly from the scene types.
+#![allow(dead_code)]
+
+use glam::{UVec3, Vec3};
+use sweeplab::scene::*;
+use sweeplab::vk::{Context, ContextOptions};
+
+/// A context with validation and synchronization validation on.
+pub fn validated_context() -> Context {
+    Context::new(&ContextOptions {
+        device: std::env::var("SWEEPLAB_DEVICE").ok(),
+        validate: true,
+    })
+    .expect("Vulkan context with validation")
+}
+
+/// Fails the test with every message the validation layer reported.
+pub fn assert_validation_clean(ctx: &Context) {
+    let messages = ctx.take_validation_messages();
+    assert!(
+        messages.is_empty(),
+        "validation reported {} message(s):\n{}",
+        messages.len(),
+        messages.join("\n")
+    );
+}
+
+/// A sphere of radius `r` (in voxels) in an n^3 U8 volume, with a soft edge.
+pub fn sphere_volume(n: u32, r: f32) -> Volume {
+    let c = (n as f32 - 1.0) * 0.5;
+    let mut data = Vec::with_capacity((n * n * n) as usize);
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                let d = Vec3::new(x as f32 - c, y as f32 - c, z as f32 - c).length();
+                data.push(((r - d + 0.5).clamp(0.0, 1.0) * 255.0) as u8);
+            }
+        }
+    }
+    Volume {
+        name: "sphere".into(),
+        dims: UVec3::splat(n),
+        spacing: Vec3::ONE,
+        data: VoxelData::U8(data),
+        value_range: (0.0, 255.0),
+    }
+}
+
+pub fn scene_with(volume: Volume, lights: Vec<Light>, width: u32, height: u32) -> Scene {
+    Scene {
+        volume,
+        transfer: TransferFunction {
+            points: vec![
+                ControlPoint {
+                    value: 0.0,
+                    rgba: [0.0, 0.0, 0.0, 0.0],
+                },
+                ControlPoint {
+                    value: 0.2,
+                    rgba: [0.9, 0.6, 0.3, 0.0],
+                },
+                ControlPoint {
+                    value: 1.0,
+                    rgba: [0.9, 0.8, 0.7, 0.3],
+                },
+            ],
+        },
+        camera: Camera::orbit(
+            Vec3::ZERO,
+            2.5,
+            30.0,
+            20.0,
+            Projection::Perspective { fov_y_deg: 30.0 },
+        ),
+        lights,
+        render: RenderSettings {
+            width,
+            height,
+            step_voxels: 0.5,
+            background: Vec3::new(0.05, 0.05, 0.08),
+            emission: 0.1,
+        },
+        reference: ReferenceSettings {
+            model: OpticalModel::SingleScattering,
+            step_voxels: 0.5,
+            shadow_step_voxels: 0.5,
+            min_transmittance: 1e-4,
+        },
+        phong: PhongSettings {
+            ambient: 0.2,
+            diffuse: 0.8,
+            specular: 0.3,
+            shininess: 32.0,
+        },
+        techniques: toml::Table::new(),
+    }
+}
+
+pub fn directional(direction: Vec3, intensity: f32) -> Light {
+    Light {
+        kind: LightKind::Directional { direction },
+        color: Vec3::ONE,
+        intensity,
+        falloff: Falloff::None,
+    }
+}

@@ -1,0 +1,37 @@
+mod common;
+
+use common::*;
+use glam::Vec3;
+use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::vk::Profiler;
+
+#[test]
+fn every_baseline_renders_validation_clean() {
+    let ctx = validated_context();
+    let scene = scene_with(
+        sphere_volume(24, 9.0),
+        vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)],
+        32,
+        32,
+    );
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 256).unwrap();
+    for t in Technique::ALL {
+        let out = render(&gpu, t, 32, 32, &mut profiler).unwrap();
+        assert!(out.image.all_finite());
+        let centre = out.image.get(16, 16);
+        let corner = out.image.get(0, 0);
+        assert!(
+            centre[0] > corner[0] + 0.05,
+            "{t}: centre {centre:?} corner {corner:?}"
+        );
+        println!(
+            "{t}: dispatches {} barriers {} centre {centre:?}\n{}",
+            out.dispatches,
+            out.barriers,
+            out.profile.table()
+        );
+    }
+    drop(gpu);
+    assert_validation_clean(&ctx);
+}
