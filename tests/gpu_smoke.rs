@@ -35,3 +35,33 @@ fn every_baseline_renders_validation_clean() {
     drop(gpu);
     assert_validation_clean(&ctx);
 }
+
+/// The barrier between reference chunks is load-bearing: recorded without it,
+/// synchronization validation must report the hazard.
+#[test]
+fn reference_without_chunk_barrier_is_reported_by_sync_validation() {
+    use sweeplab::reference::gpu::{plan_for, render_with, ChunkSync};
+    let ctx = validated_context();
+    let mut scene = scene_with(
+        sphere_volume(24, 9.0),
+        vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)],
+        16,
+        16,
+    );
+    // A fine shadow step forces several chunks.
+    scene.reference.shadow_step_voxels = 0.05;
+    scene.reference.step_voxels = 0.25;
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    assert!(plan_for(&gpu).chunks >= 3, "{:?}", plan_for(&gpu));
+    let mut profiler = Profiler::new(&ctx, 256).unwrap();
+    profiler.reset();
+    render_with(&gpu, 16, 16, &mut profiler, ChunkSync::Barrier).unwrap();
+    assert_validation_clean(&ctx);
+    profiler.reset();
+    render_with(&gpu, 16, 16, &mut profiler, ChunkSync::RacyNoBarrier).unwrap();
+    let messages = ctx.take_validation_messages();
+    assert!(
+        messages.iter().any(|m| m.contains("SYNC-HAZARD")),
+        "racy chunks were not reported: {messages:?}"
+    );
+}

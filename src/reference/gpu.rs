@@ -86,11 +86,30 @@ pub fn plan_for(gpu: &GpuScene) -> ChunkPlan {
     )
 }
 
+/// Whether consecutive chunks are separated by their barrier.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ChunkSync {
+    Barrier,
+    /// RACY: no barrier between chunks. Only for proving that synchronization
+    /// validation reports the missing barrier; its image is undefined.
+    RacyNoBarrier,
+}
+
 pub fn render(
     gpu: &GpuScene,
     width: u32,
     height: u32,
     profiler: &mut Profiler,
+) -> Result<FrameResult, RenderError> {
+    render_with(gpu, width, height, profiler, ChunkSync::Barrier)
+}
+
+pub fn render_with(
+    gpu: &GpuScene,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+    sync: ChunkSync,
 ) -> Result<FrameResult, RenderError> {
     let ctx = gpu.ctx;
     let scene = gpu.scene;
@@ -146,7 +165,7 @@ pub fn render(
         }
         let scope = profiler.begin(rec, "reference")?;
         for chunk in 0..plan.chunks {
-            if chunk > 0 {
+            if chunk > 0 && sync == ChunkSync::Barrier {
                 // The next chunk reads what this one wrote, and overwrites what the
                 // one before read: a write->read and read->write dependency.
                 rec.barrier(&Barrier::memory(

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs what sweeplab needs on a fresh Debian machine (as root), only where
+# missing, then builds. Safe to run again.
+#   Vulkan loader + lavapipe (CPU Vulkan) + Khronos validation layers,
+#   Debian's static shaderc/glslang/SPIRV-Tools (build.rs links them: no 12-minute
+#   source build), and a Rust toolchain if none is on PATH.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  libvulkan1 libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
+  libshaderc-dev glslang-dev spirv-tools
+  pkg-config gcc g++ ca-certificates curl
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "setup: run as root (or install these with sudo): ${missing[*]}" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+if ! command -v cargo >/dev/null 2>&1; then
+  if [ -x "$HOME/.cargo/bin/cargo" ]; then
+    export PATH="$HOME/.cargo/bin:$PATH"
+  else
+    echo "setup: installing Rust with rustup"
+    curl -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal
+    export PATH="$HOME/.cargo/bin:$PATH"
+  fi
+fi
+
+# lavapipe needs a runtime dir for its shader cache warnings to stay quiet.
+export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-/tmp}"
