@@ -2,8 +2,16 @@
 //! the settings of renderers, as loaded from a scene file or built procedurally.
 
 pub mod camera;
+pub mod default_scene;
 pub mod geometry;
 pub mod light;
+pub mod loaders;
+pub mod overrides;
+pub mod presets;
+pub mod scene_file;
+pub mod scene_schema;
+pub mod scene_spec;
+pub mod synthetic;
 pub mod transfer;
 pub mod volume;
 

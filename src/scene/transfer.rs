@@ -25,7 +25,44 @@ pub struct TransferFunction {
     pub points: Vec<ControlPoint>,
 }
 
+/// Why a list of control points is not a valid transfer function.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TransferError {
+    #[error("a transfer function needs at least one control point")]
+    Empty,
+    #[error("control point {index}: value and rgba must be finite and in [0, 1]")]
+    OutOfRange { index: usize },
+    #[error("control point {index}: value {value} is below the previous point's {previous}; points must be sorted by value")]
+    Unsorted {
+        index: usize,
+        value: f32,
+        previous: f32,
+    },
+}
+
 impl TransferFunction {
+    /// Checked constructor: at least one point, every component finite and in
+    /// [0, 1], values non-decreasing (equal neighbours make a step).
+    pub fn new(points: Vec<ControlPoint>) -> Result<TransferFunction, TransferError> {
+        if points.is_empty() {
+            return Err(TransferError::Empty);
+        }
+        for (index, p) in points.iter().enumerate() {
+            let in_unit = |x: f32| (0.0..=1.0).contains(&x);
+            if !in_unit(p.value) || !p.rgba.iter().all(|&c| in_unit(c)) {
+                return Err(TransferError::OutOfRange { index });
+            }
+            if index > 0 && p.value < points[index - 1].value {
+                return Err(TransferError::Unsorted {
+                    index,
+                    value: p.value,
+                    previous: points[index - 1].value,
+                });
+            }
+        }
+        Ok(TransferFunction { points })
+    }
+
     /// Piecewise-linear evaluation, constant beyond the first and last points.
     pub fn eval(&self, s: f32) -> [f32; 4] {
         let p = &self.points;
@@ -95,5 +132,53 @@ impl TransferLut {
     /// neither emit nor scatter, so renderers may skip their shadow rays.
     pub fn is_empty_at(&self, s: f64) -> bool {
         self.sample(s)[3] <= 0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(value: f32, a: f32) -> ControlPoint {
+        ControlPoint {
+            value,
+            rgba: [1.0, 0.5, 0.0, a],
+        }
+    }
+
+    #[test]
+    fn new_accepts_sorted_points_with_steps() {
+        let tf = TransferFunction::new(vec![
+            point(0.0, 0.0),
+            point(0.5, 0.0),
+            point(0.5, 1.0),
+            point(1.0, 1.0),
+        ]);
+        assert!(tf.is_ok());
+    }
+
+    #[test]
+    fn new_rejects_empty_unsorted_and_out_of_range_points() {
+        assert_eq!(TransferFunction::new(vec![]), Err(TransferError::Empty));
+        assert_eq!(
+            TransferFunction::new(vec![point(0.6, 0.0), point(0.4, 0.0)]),
+            Err(TransferError::Unsorted {
+                index: 1,
+                value: 0.4,
+                previous: 0.6
+            })
+        );
+        assert_eq!(
+            TransferFunction::new(vec![point(1.5, 0.0)]),
+            Err(TransferError::OutOfRange { index: 0 })
+        );
+        assert_eq!(
+            TransferFunction::new(vec![point(0.0, -0.1)]),
+            Err(TransferError::OutOfRange { index: 0 })
+        );
+        assert_eq!(
+            TransferFunction::new(vec![point(f32::NAN, 0.0)]),
+            Err(TransferError::OutOfRange { index: 0 })
+        );
     }
 }

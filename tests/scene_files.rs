@@ -1,0 +1,652 @@
+//! Scene files: the examples under tests/scenes, `--set` overrides, and the
+//! errors for bad files and arguments.
+
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+use sweeplab::scene::default_scene::volume_file_scene_spec;
+use sweeplab::scene::loaders::data_dir;
+use sweeplab::scene::scene_file::{
+    parse_scene_file, parse_scene_str, scene_from_toml_str, SceneError,
+};
+use sweeplab::scene::scene_spec::{
+    CameraPlacement, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource,
+};
+use sweeplab::scene::synthetic::{three_spheres, SyntheticKind};
+use sweeplab::scene::{Falloff, LightKind, OpticalModel};
+
+fn scenes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes")
+}
+
+fn example_paths() -> Vec<PathBuf> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(scenes_dir())
+        .expect("tests/scenes exists")
+        .map(|e| e.expect("readable directory entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    paths
+}
+
+fn example(name: &str, overrides: &[&str]) -> SceneSpec {
+    let path = scenes_dir().join(name);
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    parse_scene_file(&path, &overrides).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The error message for a scene given as text (origin "test.toml").
+fn error_of(text: &str, overrides: &[&str]) -> String {
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    match parse_scene_str(text, Path::new("/scenes"), "test.toml", &overrides) {
+        Ok(_) => panic!("expected an error for:\n{text}\nwith {overrides:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn assert_mentions(message: &str, parts: &[&str]) {
+    for part in parts {
+        assert!(
+            message.contains(part),
+            "message does not mention {part:?}: {message}"
+        );
+    }
+}
+
+const MINIMAL: &str = "[volume]\nsynthetic = \"noise\"\nsize = 8\n";
+
+#[test]
+fn every_example_scene_parses() {
+    let paths = example_paths();
+    let names: Vec<String> = paths
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    for expected in [
+        "phantom.toml",
+        "three-spheres.toml",
+        "cornell-box.toml",
+        "slab-under-sphere.toml",
+        "all-keys.toml",
+    ] {
+        assert!(
+            names.iter().any(|n| n == expected),
+            "{expected} missing from {names:?}"
+        );
+    }
+    for path in &paths {
+        if let Err(e) = parse_scene_file(path, &[]) {
+            panic!("{}: {e}", path.display());
+        }
+    }
+}
+
+#[test]
+fn synthetic_example_scenes_build() {
+    for path in example_paths() {
+        let spec = parse_scene_file(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
+        let VolumeSource::Synthetic { size, .. } = spec.volume else {
+            continue;
+        };
+        let scene = spec
+            .build()
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert_eq!(
+            scene.volume.dims,
+            glam::UVec3::splat(size),
+            "{}",
+            path.display()
+        );
+        assert!(!scene.transfer.points.is_empty());
+    }
+}
+
+#[test]
+fn data_example_scenes_load_their_volumes() {
+    let dir = data_dir();
+    for path in example_paths() {
+        let spec = parse_scene_file(&path, &[]).unwrap_or_else(|e| panic!("{e}"));
+        let VolumeSource::File(file) = &spec.volume else {
+            continue;
+        };
+        assert!(
+            file.starts_with(&dir),
+            "{}: data_file must resolve under {}",
+            path.display(),
+            dir.display()
+        );
+        assert!(
+            file.exists(),
+            "{}: {} is missing; the real data sets are found through SWEEPLAB_DATA (now {})",
+            path.display(),
+            file.display(),
+            dir.display()
+        );
+        let scene = spec.build().unwrap_or_else(|e| panic!("{e}"));
+        assert!(scene.volume.voxel_count() > 0);
+    }
+}
+
+#[test]
+fn examples_read_what_they_say() {
+    let spheres = example("three-spheres.toml", &[]);
+    assert_eq!(spheres.lights.len(), 2);
+    assert_eq!(
+        spheres.lights[0].kind,
+        LightKind::Point {
+            position: Vec3::new(-1.2, 0.2, 0.3)
+        }
+    );
+    assert_eq!(spheres.lights[1].color, Vec3::new(0.2, 0.4, 1.0));
+    assert_eq!(
+        spheres.techniques["lightvolume"]["resolution_scale"].as_float(),
+        Some(0.5)
+    );
+
+    let cornell = example("cornell-box.toml", &[]);
+    let LightKind::Spot {
+        direction,
+        inner_cone_deg,
+        outer_cone_deg,
+        ..
+    } = cornell.lights[0].kind
+    else {
+        panic!("cornell-box.toml: expected a spot light");
+    };
+    assert_eq!(
+        (direction, inner_cone_deg, outer_cone_deg),
+        (Vec3::NEG_Y, 50.0, 70.0)
+    );
+    assert_eq!(cornell.lights[0].falloff, Falloff::InverseSquare);
+    assert_eq!(
+        cornell.camera.projection,
+        ProjectionSpec::Perspective { fov_y_deg: 40.0 }
+    );
+
+    let voxel = example("single-voxel.toml", &[]);
+    assert!(voxel.lights.is_empty(), "`lights = []` means no lights");
+    assert_eq!(
+        voxel.camera.projection,
+        ProjectionSpec::Orthographic { height: Some(1.0) }
+    );
+
+    let noise = example("noise.toml", &[]);
+    assert_eq!(noise.transfer, TransferSpec::FromHistogram);
+    assert_eq!(noise.reference.model, OpticalModel::EmissiveScattering);
+    assert_eq!(
+        noise.volume,
+        VolumeSource::Synthetic {
+            kind: SyntheticKind::Noise,
+            size: 48,
+            seed: 7
+        }
+    );
+
+    let nucleon = example("nucleon.toml", &[]);
+    assert_eq!(
+        nucleon.camera.placement,
+        CameraPlacement::LookAt {
+            eye: Vec3::new(1.2, 0.8, 1.6),
+            target: Vec3::ZERO,
+            up: Vec3::Y
+        }
+    );
+    let TransferSpec::Given(tf) = &nucleon.transfer else {
+        panic!("nucleon.toml: expected explicit points")
+    };
+    assert_eq!(tf.points.len(), 4);
+    assert_eq!(tf.points[2].rgba, [0.9, 0.5, 0.2, 0.2]);
+}
+
+#[test]
+fn an_almost_empty_file_gets_the_documented_defaults() {
+    let spec = parse_scene_str(MINIMAL, Path::new(""), "minimal", &[]).unwrap();
+    assert_eq!(
+        (
+            spec.render.width,
+            spec.render.height,
+            spec.render.step_voxels
+        ),
+        (512, 512, 0.5)
+    );
+    assert_eq!(
+        (spec.render.background, spec.render.emission),
+        (Vec3::ZERO, 0.1)
+    );
+    assert_eq!(spec.reference.model, OpticalModel::SingleScattering);
+    assert_eq!(
+        (
+            spec.reference.step_voxels,
+            spec.reference.shadow_step_voxels
+        ),
+        (0.25, 0.5)
+    );
+    assert_eq!(spec.reference.min_transmittance, 1e-4);
+    assert_eq!(
+        (
+            spec.phong.ambient,
+            spec.phong.diffuse,
+            spec.phong.specular,
+            spec.phong.shininess
+        ),
+        (0.2, 0.8, 0.3, 32.0)
+    );
+    assert_eq!(
+        spec.camera.projection,
+        ProjectionSpec::Perspective { fov_y_deg: 30.0 }
+    );
+    assert_eq!(
+        spec.camera.placement,
+        CameraPlacement::Orbit {
+            target: Vec3::ZERO,
+            azimuth_deg: 30.0,
+            elevation_deg: 20.0,
+            distance: None
+        }
+    );
+    assert_eq!(spec.lights.len(), 1);
+    assert_eq!(
+        spec.lights[0].kind,
+        LightKind::Directional {
+            direction: Vec3::new(1.0, -1.0, -1.0).normalize()
+        }
+    );
+    assert_eq!(
+        (spec.lights[0].color, spec.lights[0].intensity),
+        (Vec3::ONE, 1.0)
+    );
+    assert!(spec.techniques.is_empty());
+    // The noise volume's own preset.
+    assert_eq!(
+        spec.transfer,
+        TransferSpec::Given(sweeplab::scene::presets::preset("grayscale-ramp").unwrap())
+    );
+}
+
+#[test]
+fn set_changes_the_named_fields() {
+    let before = example("phantom.toml", &[]);
+    let after = example(
+        "phantom.toml",
+        &[
+            "camera.azimuth=45",
+            "render.width=128",
+            "lights.0.intensity=5",
+            "ipsvi.line_width=4",
+            "camera.projection=orthographic",
+            "reference.model=emissive-scattering",
+            "volume.size=16",
+        ],
+    );
+    let azimuth = |s: &SceneSpec| match s.camera.placement {
+        CameraPlacement::Orbit { azimuth_deg, .. } => azimuth_deg,
+        CameraPlacement::LookAt { .. } => panic!("expected an orbit camera"),
+    };
+    assert_eq!((azimuth(&before), azimuth(&after)), (30.0, 45.0));
+    assert_eq!((before.render.width, after.render.width), (256, 128));
+    assert_eq!(after.render.height, 256, "other keys keep their values");
+    assert_eq!(
+        (before.lights[0].intensity, after.lights[0].intensity),
+        (1.0, 5.0)
+    );
+    assert!(before.techniques.is_empty());
+    assert_eq!(
+        after.techniques["ipsvi"]["line_width"].as_integer(),
+        Some(4)
+    );
+    assert_eq!(
+        after.camera.projection,
+        ProjectionSpec::Orthographic { height: None }
+    );
+    assert_eq!(after.reference.model, OpticalModel::EmissiveScattering);
+    assert_eq!(
+        after.volume,
+        VolumeSource::Synthetic {
+            kind: SyntheticKind::SheppLogan,
+            size: 16,
+            seed: 1
+        }
+    );
+    // The orbit camera is placed by the overridden azimuth.
+    let scene = after.build().unwrap();
+    let eye = scene.camera.eye;
+    assert!(
+        (eye.x / eye.z - 45f32.to_radians().tan()).abs() < 1e-5,
+        "eye {eye}"
+    );
+}
+
+#[test]
+fn set_applies_to_the_default_light_and_replaces_whole_tables() {
+    let spec = parse_scene_str(
+        MINIMAL,
+        Path::new(""),
+        "minimal",
+        &["lights.0.intensity=3".into()],
+    )
+    .unwrap();
+    assert_eq!(spec.lights[0].intensity, 3.0);
+
+    let spec = example(
+        "phantom.toml",
+        &[
+            "lights=[{type=\"point\", position=[0, 1, 0]}, {type=\"directional\"}]",
+            "transfer={auto=true}",
+        ],
+    );
+    assert_eq!(spec.lights.len(), 2);
+    assert_eq!(spec.lights[0].kind, LightKind::Point { position: Vec3::Y });
+    assert_eq!(spec.transfer, TransferSpec::FromHistogram);
+
+    // A later --set wins.
+    let spec = example("phantom.toml", &["render.width=100", "render.width=200"]);
+    assert_eq!(spec.render.width, 200);
+}
+
+#[test]
+fn volume_paths_resolve_against_the_scene_folder_and_the_data_folder() {
+    let text = "[volume]\nfile = \"sub/ct.nrrd\"\n";
+    let spec = parse_scene_str(text, Path::new("/scenes/here"), "s", &[]).unwrap();
+    assert_eq!(
+        spec.volume,
+        VolumeSource::File(PathBuf::from("/scenes/here/sub/ct.nrrd"))
+    );
+    assert_eq!(
+        spec.transfer,
+        TransferSpec::FromHistogram,
+        "file volumes default to the automatic transfer"
+    );
+
+    let text = "[volume]\nfile = \"/abs/ct.nrrd\"\n";
+    let spec = parse_scene_str(text, Path::new("/scenes/here"), "s", &[]).unwrap();
+    assert_eq!(
+        spec.volume,
+        VolumeSource::File(PathBuf::from("/abs/ct.nrrd"))
+    );
+
+    let spec = parse_scene_str(
+        "[volume]\ndata_file = \"engine.vti\"\n",
+        Path::new("/x"),
+        "s",
+        &[],
+    )
+    .unwrap();
+    assert_eq!(
+        spec.volume,
+        VolumeSource::File(data_dir().join("engine.vti"))
+    );
+
+    // parse_scene_file takes the folder of the file.
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("scene_files_relative");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene_path = dir.join("scene.toml");
+    std::fs::write(&scene_path, "[volume]\nfile = \"vol.raw\"\n").unwrap();
+    let spec = parse_scene_file(&scene_path, &[]).unwrap();
+    assert_eq!(spec.volume, VolumeSource::File(dir.join("vol.raw")));
+}
+
+#[test]
+fn a_missing_volume_file_is_an_error_naming_scene_and_volume() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("scene_files_missing");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene_path = dir.join("missing-volume.toml");
+    std::fs::write(&scene_path, "[volume]\nfile = \"no-such-volume.nrrd\"\n").unwrap();
+    let e = sweeplab::scene::scene_file::load_scene(&scene_path, &[]).unwrap_err();
+    assert!(matches!(e, SceneError::Volume { .. }), "{e:?}");
+    assert_mentions(
+        &e.to_string(),
+        &["missing-volume.toml", "no-such-volume.nrrd"],
+    );
+    assert!(
+        std::error::Error::source(&e).is_some(),
+        "the loader's error is kept as the source"
+    );
+}
+
+#[test]
+fn a_missing_or_malformed_scene_file_is_an_error_naming_it() {
+    let e = parse_scene_file(Path::new("/no/such/scene.toml"), &[]).unwrap_err();
+    assert!(matches!(e, SceneError::Read { .. }));
+    assert_mentions(&e.to_string(), &["/no/such/scene.toml"]);
+
+    let e = error_of("[volume]\nsynthetic = noise\n", &[]);
+    assert_mentions(&e, &["test.toml", "TOML", "line 2"]);
+}
+
+#[test]
+fn misspelt_keys_are_errors_naming_file_and_key() {
+    let e = error_of(&format!("{MINIMAL}[camera]\nazimth = 3.0\n"), &[]);
+    assert_mentions(&e, &["test.toml", "`camera`", "azimth"]);
+    let e = error_of(
+        &format!("{MINIMAL}[[lights]]\ntype = \"point\"\nintensty = 2.0\n"),
+        &[],
+    );
+    assert_mentions(&e, &["test.toml", "`lights.0`", "intensty"]);
+    let e = error_of(
+        &format!("{MINIMAL}[[lights]]\n[[lights]]\ncolour = [1, 1, 1]\n"),
+        &[],
+    );
+    assert_mentions(&e, &["`lights.1`", "colour"]);
+    let e = error_of(&format!("{MINIMAL}[render]\nwidht = 3\n"), &[]);
+    assert_mentions(&e, &["`render`", "widht"]);
+    let e = error_of("[volume]\nsynthetic = \"noise\"\nsise = 3\n", &[]);
+    assert_mentions(&e, &["`volume`", "sise"]);
+    let e = error_of(&format!("{MINIMAL}[camra]\nazimuth = 3.0\n"), &[]);
+    assert_mentions(&e, &["test.toml", "camra", "did you mean [camera]"]);
+    let e = error_of(&format!("width = 3\n{MINIMAL}"), &[]);
+    assert_mentions(&e, &["test.toml", "`width`", "not a scene setting"]);
+    // Misspelt through --set: caught the same way.
+    let e = error_of(MINIMAL, &["render.widht=3"]);
+    assert_mentions(&e, &["`render`", "widht"]);
+}
+
+#[test]
+fn values_of_the_wrong_type_or_name_are_errors_naming_the_key() {
+    let e = error_of(&format!("{MINIMAL}[render]\nwidth = \"big\"\n"), &[]);
+    assert_mentions(&e, &["test.toml", "`render.width`"]);
+    let e = error_of(
+        &format!("{MINIMAL}[camera]\nprojection = \"fisheye\"\n"),
+        &[],
+    );
+    assert_mentions(&e, &["`camera.projection`", "fisheye", "orthographic"]);
+    let e = error_of(&format!("{MINIMAL}[camera]\ntarget = [0, 0]\n"), &[]);
+    assert_mentions(&e, &["`camera.target`", "length"]);
+    let e = error_of(&format!("{MINIMAL}[[lights]]\ntype = \"area\"\n"), &[]);
+    assert_mentions(&e, &["`lights.0.type`", "area"]);
+    let e = error_of("[volume]\nsynthetic = \"sphere\"\n", &[]);
+    assert_mentions(&e, &["`volume.synthetic`", "sphere", "three-spheres"]);
+    let e = error_of(&format!("{MINIMAL}[transfer]\npreset = \"bone\"\n"), &[]);
+    assert_mentions(&e, &["`transfer.preset`", "bone", "ct-bone"]);
+    let e = error_of(&format!("{MINIMAL}lights = 3\n"), &[]);
+    assert_mentions(&e, &["`lights`"]);
+    let e = error_of("[volume]\nsynthetic = \"noise\"\nsize = -4\n", &[]);
+    assert_mentions(&e, &["`volume.size`"]);
+}
+
+#[test]
+fn out_of_range_values_are_errors_naming_the_key() {
+    let cases: &[(&str, &str)] = &[
+        ("[render]\nwidth = 0", "render.width"),
+        ("[render]\nheight = 16385", "render.height"),
+        ("[render]\nstep = 0.0", "render.step"),
+        ("[render]\nstep = -1.0", "render.step"),
+        ("[render]\nstep = nan", "render.step"),
+        ("[render]\nemission = -0.5", "render.emission"),
+        ("[render]\nbackground = [0, inf, 0]", "render.background"),
+        ("[camera]\nfov_y = 180.0", "camera.fov_y"),
+        ("[camera]\nfov_y = 0.0", "camera.fov_y"),
+        ("[camera]\nelevation = 100.0", "camera.elevation"),
+        ("[camera]\ndistance = 0.0", "camera.distance"),
+        (
+            "[camera]\nprojection = \"orthographic\"\northo_height = -1.0",
+            "camera.ortho_height",
+        ),
+        ("[camera]\neye = [0, 0, 0]", "camera.eye"),
+        ("[camera]\neye = [0, 2, 0]", "camera.up"),
+        ("[[lights]]\nintensity = -1.0", "lights.0.intensity"),
+        ("[[lights]]\nintensity = inf", "lights.0.intensity"),
+        ("[[lights]]\ndirection = [0, 0, 0]", "lights.0.direction"),
+        ("[[lights]]\ncolor = [1, -1, 1]", "lights.0.color"),
+        (
+            "[[lights]]\ntype = \"point\"\nposition = [nan, 0, 0]",
+            "lights.0.position",
+        ),
+        (
+            "[[lights]]\ntype = \"spot\"\ninner_cone = 30.0\nouter_cone = 30.0",
+            "lights.0.inner_cone",
+        ),
+        (
+            "[[lights]]\ntype = \"spot\"\ninner_cone = -1.0",
+            "lights.0.inner_cone",
+        ),
+        (
+            "[[lights]]\ntype = \"spot\"\nouter_cone = 190.0",
+            "lights.0.outer_cone",
+        ),
+        (
+            "[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]",
+            "lights.0.direction",
+        ),
+        (
+            "[reference]\nmin_transmittance = 1.0",
+            "reference.min_transmittance",
+        ),
+        ("[reference]\nshadow_step = 0.0", "reference.shadow_step"),
+        ("[phong]\nshininess = -2.0", "phong.shininess"),
+        ("[transfer]\npoints = []", "transfer.points"),
+        (
+            "[transfer]\npoints = [[0.5, 0, 0, 0, 0], [0.2, 0, 0, 0, 0]]",
+            "transfer.points.1",
+        ),
+        (
+            "[transfer]\npoints = [[0.0, 0, 0, 0, 0], [1.5, 0, 0, 0, 0]]",
+            "transfer.points.1",
+        ),
+        (
+            "[transfer]\npoints = [[0.0, 0, 0, 2, 0]]",
+            "transfer.points.0",
+        ),
+    ];
+    for (table, key) in cases {
+        let e = error_of(&format!("{MINIMAL}{table}\n"), &[]);
+        assert_mentions(&e, &["test.toml", &format!("`{key}`")]);
+    }
+    let many: Vec<String> = (0..=256)
+        .map(|i| format!("[{}, 0, 0, 0, 0]", i as f32 / 256.0))
+        .collect();
+    let e = error_of(
+        &format!("{MINIMAL}[transfer]\npoints = [{}]\n", many.join(", ")),
+        &[],
+    );
+    assert_mentions(&e, &["`transfer.points`", "257"]);
+    let e = error_of("[volume]\nsynthetic = \"noise\"\nsize = 0\n", &[]);
+    assert_mentions(&e, &["`volume.size`"]);
+    let e = error_of("[volume]\nsynthetic = \"noise\"\nsize = 513\n", &[]);
+    assert_mentions(&e, &["`volume.size`"]);
+}
+
+#[test]
+fn contradicting_keys_are_errors_naming_them() {
+    let cases: &[(&str, &str)] = &[
+        ("[volume]\nfile = \"a.raw\"\nsynthetic = \"noise\"\n", "volume"),
+        ("[volume]\n", "volume"),
+        ("[render]\nwidth = 8\n", "volume"),
+        ("[volume]\nfile = \"\"\n", "volume.file"),
+        ("[volume]\nfile = \"a.raw\"\nsize = 8\n", "volume.size"),
+        ("[volume]\nsynthetic = \"cornell-box\"\nseed = 3\n", "volume.seed"),
+        ("[volume]\nsynthetic = \"noise\"\n[transfer]\npreset = \"ct-bone\"\nauto = true\n", "transfer"),
+        ("[volume]\nsynthetic = \"noise\"\n[camera]\neye = [1, 1, 1]\nazimuth = 3.0\n", "camera.azimuth"),
+        ("[volume]\nsynthetic = \"noise\"\n[camera]\nup = [0, 0, 1]\n", "camera.up"),
+        ("[volume]\nsynthetic = \"noise\"\n[camera]\northo_height = 1.0\n", "camera.ortho_height"),
+        ("[volume]\nsynthetic = \"noise\"\n[camera]\nprojection = \"orthographic\"\nfov_y = 20.0\n", "camera.fov_y"),
+        ("[volume]\nsynthetic = \"noise\"\n[[lights]]\nposition = [0, 1, 0]\n", "lights.0.position"),
+        ("[volume]\nsynthetic = \"noise\"\n[[lights]]\ntype = \"point\"\ndirection = [0, 1, 0]\n", "lights.0.direction"),
+        ("[volume]\nsynthetic = \"noise\"\n[[lights]]\ntype = \"point\"\nouter_cone = 9.0\n", "lights.0.outer_cone"),
+        ("[volume]\nsynthetic = \"noise\"\n[[lights]]\nfalloff = \"inverse-square\"\n", "lights.0.falloff"),
+    ];
+    for (text, key) in cases {
+        let e = error_of(text, &[]);
+        assert_mentions(&e, &["test.toml", &format!("`{key}`")]);
+    }
+}
+
+#[test]
+fn bad_set_arguments_are_errors_naming_them() {
+    let e = error_of(MINIMAL, &["render.width"]);
+    assert_mentions(&e, &["test.toml", "--set `render.width`", "KEY=VALUE"]);
+    let e = error_of(MINIMAL, &["=5"]);
+    assert_mentions(&e, &["--set `=5`", "empty"]);
+    let e = error_of(MINIMAL, &["camera..azimuth=5"]);
+    assert_mentions(&e, &["--set `camera..azimuth=5`"]);
+    let e = error_of(MINIMAL, &["lights.1.intensity=5"]);
+    assert_mentions(
+        &e,
+        &[
+            "--set `lights.1.intensity=5`",
+            "index 1 is out of range",
+            "`lights` has 1 entries",
+        ],
+    );
+    let e = error_of(MINIMAL, &["lights.key.intensity=5"]);
+    assert_mentions(&e, &["--set `lights.key.intensity=5`", "index"]);
+    let e = error_of(MINIMAL, &["volume.size.x=5"]);
+    assert_mentions(
+        &e,
+        &["--set `volume.size.x=5`", "`volume.size` is an integer"],
+    );
+    // A well-formed --set with a bad value is caught by the checks, naming the key.
+    let e = error_of(MINIMAL, &["render.width=0"]);
+    assert_mentions(&e, &["test.toml", "`render.width`"]);
+    let e = error_of(MINIMAL, &["lights.0.type=laser"]);
+    assert_mentions(&e, &["`lights.0.type`", "laser"]);
+}
+
+#[test]
+fn scene_from_toml_str_builds_synthetic_scenes() {
+    let scene = scene_from_toml_str(
+        MINIMAL,
+        Path::new(""),
+        "minimal",
+        &["render.width=64".into()],
+    )
+    .unwrap();
+    assert_eq!(scene.volume.dims, glam::UVec3::splat(8));
+    assert_eq!(scene.render.width, 64);
+}
+
+#[test]
+fn volume_file_scene_frames_the_box_and_makes_the_background_clear() {
+    let spec = volume_file_scene_spec(Path::new("x.raw"), &["render.height=256".into()]).unwrap();
+    assert_eq!(spec.transfer, TransferSpec::FromHistogram);
+    let scene = spec.build_with_volume(three_spheres(32));
+    assert_eq!(
+        scene.transfer.eval(0.0)[3],
+        0.0,
+        "background (empty space) must be clear"
+    );
+    assert!(
+        scene.transfer.eval(1.0)[3] > 0.0,
+        "the spheres must be visible"
+    );
+    // Upper-left-front light.
+    let LightKind::Directional { direction } = scene.lights[0].kind else {
+        panic!("expected a directional light")
+    };
+    assert!(
+        direction.y < 0.0 && direction.x > 0.0 && direction.z < 0.0,
+        "{direction}"
+    );
+    // The whole box is inside the view: every corner projects inside the image.
+    let basis = scene.camera.basis(scene.render.width, scene.render.height);
+    for corner in scene.volume_box().corners() {
+        let d = corner - basis.origin;
+        let along = d.dot(basis.forward);
+        assert!(along > 0.0);
+        let x = d.dot(basis.right) / basis.right.length_squared() / along;
+        let y = d.dot(basis.up) / basis.up.length_squared() / along;
+        assert!(
+            x.abs() < 1.0 && y.abs() < 1.0,
+            "corner {corner} at ndc ({x}, {y})"
+        );
+    }
+}
