@@ -4,6 +4,7 @@
 pub mod camera;
 pub mod geometry;
 pub mod light;
+pub mod loaders;
 pub mod transfer;
 pub mod volume;
 
