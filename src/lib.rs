@@ -5,6 +5,7 @@
 //! baselines, [`reference`] ground truth), and [`metrics`].
 
 pub mod linear_image;
+pub mod reference;
 pub mod scene;
 
 /// SPIR-V of every `glsl/*.comp`, compiled by build.rs.

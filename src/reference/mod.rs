@@ -1,0 +1,20 @@
+//! Ground truth: the optical models of docs/optical-model.md integrated brute
+//! force on the CPU in f64, following the discretization written there (the
+//! contract shared with the GPU shaders) to the letter.
+//!
+//! Entry points: [`render_cpu`] for a whole image, [`render_pixel_cpu`] for one
+//! ray (tests check single rays against closed forms), or a [`CpuRenderer`] to
+//! render many pixels of one prepared scene.
+
+pub mod cpu;
+pub mod lights;
+pub mod medium;
+mod parallel;
+pub mod shadow;
+pub mod sources;
+pub mod validate;
+
+pub use cpu::{
+    render_cpu, render_pixel_cpu, CpuRenderKind, CpuRenderer, EARLY_TERMINATION_TRANSMITTANCE,
+};
+pub use validate::CpuRenderError;
