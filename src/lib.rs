@@ -5,6 +5,7 @@
 //! baselines, [`reference`] ground truth), and [`metrics`].
 
 pub mod linear_image;
+pub mod metrics;
 pub mod reference;
 pub mod scene;
 
