@@ -7,6 +7,7 @@
 
 pub mod dvr;
 pub mod linear_image;
+pub mod metrics;
 pub mod reference;
 pub mod render;
 pub mod scene;
