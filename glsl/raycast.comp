@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Baseline ray caster, one dispatch per frame: unshaded emission-absorption DVR
-// (SHADING = 0) or gradient Blinn-Phong (SHADING = 1), front to back.
+// Baseline ray caster, one dispatch per frame, front to back: unshaded
+// emission-absorption DVR (SHADING = 0), gradient Blinn-Phong (SHADING = 1), or
+// the emission term alone (SHADING = 2: what the illumination techniques render
+// for a scene without lights).
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint SHADING = 0;
@@ -32,8 +34,10 @@ vec3 blinn_phong(vec3 p, vec3 rgb, vec3 d) {
     for (int i = 0; i < count; ++i) {
         vec4 w = toward_light(lights[i], p);
         vec3 lit = lights[i].radiance.rgb * light_shape(lights[i], w);
-        vec3 h = normalize(w.xyz - d);
-        s += lit * (rgb * diffuse * max(dot(n, w.xyz), 0.0) + specular * pow(max(dot(n, h), 0.0), shininess));
+        // A light straight behind the view ray has no half vector: no highlight.
+        vec3 hw = w.xyz - d;
+        float spec = length(hw) > 1e-6 ? pow(max(dot(n, normalize(hw)), 0.0), shininess) : 0.0;
+        s += lit * (rgb * diffuse * max(dot(n, w.xyz), 0.0) + specular * spec);
     }
     return s;
 }
@@ -57,7 +61,7 @@ void main() {
             vec4 m = medium(p);
             float alpha = 1.0 - exp(-m.a * hv);
             if (alpha > 0.0) {
-                vec3 S = SHADING == 1 ? blinn_phong(p, m.rgb, r.dir) : m.rgb;
+                vec3 S = SHADING == 1 ? blinn_phong(p, m.rgb, r.dir) : SHADING == 2 ? m.rgb * frame.background.w : m.rgb;
                 C += T * alpha * S;
                 T *= 1.0 - alpha;
             }

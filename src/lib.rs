@@ -6,6 +6,7 @@
 //! ground truth), and [`metrics`].
 
 pub mod dvr;
+pub mod ipsvi;
 pub mod linear_image;
 pub mod metrics;
 pub mod reference;

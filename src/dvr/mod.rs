@@ -13,8 +13,10 @@ use ash::vk;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Shading {
-    Unshaded,
-    BlinnPhong,
+    Unshaded = 0,
+    BlinnPhong = 1,
+    /// The emission term `emission * rgb` alone: a lit technique with no lights.
+    EmissionOnly = 2,
 }
 
 impl Shading {
@@ -22,6 +24,7 @@ impl Shading {
         match self {
             Shading::Unshaded => "dvr",
             Shading::BlinnPhong => "phong",
+            Shading::EmissionOnly => "emission_only",
         }
     }
 }
@@ -64,7 +67,7 @@ pub fn render(
             spirv: shaders::RAYCAST,
             bindings: &BINDINGS,
             push_constant_bytes: 0,
-            specialization: &[(0, if shading == Shading::BlinnPhong { 1 } else { 0 })],
+            specialization: &[(0, shading as u32)],
             max_sets: 1,
         },
     )?;

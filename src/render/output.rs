@@ -33,7 +33,9 @@ impl OutputImage {
                     height,
                     depth: 1,
                 },
-                usage: vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC,
+                usage: vk::ImageUsageFlags::STORAGE
+                    | vk::ImageUsageFlags::TRANSFER_SRC
+                    | vk::ImageUsageFlags::TRANSFER_DST,
             },
         )?;
         Ok(OutputImage {

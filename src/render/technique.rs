@@ -16,16 +16,34 @@ pub enum Technique {
     Phong,
     /// Ground truth on the GPU: brute-force shadow rays per sample.
     Reference,
+    /// Image plane sweep volume illumination: one dispatch and barrier per line.
+    Ipsvi,
 }
 
 impl Technique {
-    pub const ALL: [Technique; 3] = [Technique::Dvr, Technique::Phong, Technique::Reference];
+    pub const ALL: [Technique; 4] = [
+        Technique::Dvr,
+        Technique::Phong,
+        Technique::Reference,
+        Technique::Ipsvi,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             Technique::Dvr => "dvr",
             Technique::Phong => "phong",
             Technique::Reference => "reference",
+            Technique::Ipsvi => "ipsvi",
+        }
+    }
+
+    /// The ground-truth model this technique approximates (docs/optical-model.md):
+    /// IPSVI carries emission along its light rays (model ii); the others are
+    /// compared with the model the scene names.
+    pub fn reference_model(self, scene: &crate::scene::Scene) -> crate::scene::OpticalModel {
+        match self {
+            Technique::Ipsvi => crate::scene::OpticalModel::EmissiveScattering,
+            _ => scene.reference.model,
         }
     }
 }
@@ -94,6 +112,7 @@ pub fn render(
             profiler,
         )?,
         Technique::Reference => crate::reference::gpu::render(gpu, width, height, profiler)?,
+        Technique::Ipsvi => crate::ipsvi::render(gpu, width, height, profiler)?,
     };
     let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
     Ok(RenderOutput {

@@ -43,9 +43,9 @@ impl Access {
         stage: vk::PipelineStageFlags2::COPY,
         access: vk::AccessFlags2::TRANSFER_WRITE,
     };
-    /// After `vkCmdFillBuffer`: ALL_TRANSFER, not CLEAR (a false positive of the
-    /// validation layer version we run with).
-    pub const FILL_WRITE: Access = Access {
+    /// Around `vkCmdFillBuffer` and `vkCmdClearColorImage`: ALL_TRANSFER, not
+    /// CLEAR (the validation layer version we run with reports a false hazard).
+    pub const CLEAR_WRITE: Access = Access {
         stage: vk::PipelineStageFlags2::ALL_TRANSFER,
         access: vk::AccessFlags2::TRANSFER_WRITE,
     };

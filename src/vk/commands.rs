@@ -127,6 +127,23 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// Clears a colour image that is in TRANSFER_DST_OPTIMAL.
+    pub fn clear_color_image(&self, image: &Image, rgba: [f32; 4]) {
+        let value = vk::ClearColorValue { float32: rgba };
+        let range = [super::resources::color_range()];
+        // SAFETY: the image is in TRANSFER_DST_OPTIMAL (the caller's barrier) and
+        // was created with TRANSFER_DST usage.
+        unsafe {
+            self.ctx.device.cmd_clear_color_image(
+                self.cb,
+                image.raw,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &value,
+                &range,
+            )
+        };
+    }
+
     pub fn fill_buffer(&self, dst: &Buffer, value: u32) {
         // SAFETY: dst was created with TRANSFER_DST usage.
         unsafe {

@@ -391,6 +391,7 @@ fn create_device(
         .push_next(&mut have13);
     // SAFETY: the chained structs live on the stack for the call.
     unsafe { instance.get_physical_device_features2(cand.physical_device, &mut have) };
+    let extended_formats = have.features.shader_storage_image_extended_formats;
     let mut missing = Vec::new();
     if have13.synchronization2 != vk::TRUE {
         missing.push("synchronization2");
@@ -400,6 +401,9 @@ fn create_device(
     }
     if have12.timeline_semaphore != vk::TRUE {
         missing.push("timelineSemaphore");
+    }
+    if extended_formats != vk::TRUE {
+        missing.push("shaderStorageImageExtendedFormats");
     }
     if !missing.is_empty() {
         return Err(VkError::MissingFeature {
@@ -411,12 +415,15 @@ fn create_device(
         .host_query_reset(true)
         .timeline_semaphore(true);
     let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true);
+    // r16ui / rgba16f storage images of the IPSVI cache.
+    let core = vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true);
     let priorities = [1.0f32];
     let queues = [vk::DeviceQueueCreateInfo::default()
         .queue_family_index(queue_family)
         .queue_priorities(&priorities)];
     let info = vk::DeviceCreateInfo::default()
         .queue_create_infos(&queues)
+        .enabled_features(&core)
         .push_next(&mut want12)
         .push_next(&mut want13);
     // SAFETY: all pointers in `info` refer to locals that outlive the call.

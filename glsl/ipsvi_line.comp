@@ -1,0 +1,168 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// One IPSVI line block (one dispatch; src/ipsvi/): invocations below
+// `pixel_count` ray-cast the block's pixels, reading the illumination cache as
+// it stands at the previous line (cache_in / front_in); the rest advance every
+// cache texel's light ray to this block's last line (cache_out / front_out).
+// Reads and writes go to different images of the ping-pong pair, so the block
+// has no race inside it, and a missing barrier before the next block is a
+// hazard that synchronization validation reports.
+
+layout(local_size_x = 64) in;
+layout(constant_id = 0) const bool EMISSIVE = true;  // model (ii): light carries emission
+layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-cone scattering
+
+#include "ipsvi_common.glsl"
+
+layout(set = 0, binding = 6, rgba16f) readonly uniform image2D cache_in;
+layout(set = 0, binding = 7, r16ui) readonly uniform uimage2D front_in;
+layout(set = 0, binding = 8, rgba16f) writeonly uniform image2D cache_out;
+layout(set = 0, binding = 9, r16ui) writeonly uniform uimage2D front_out;
+layout(set = 0, binding = 10, rgba32f) uniform image2D out_image;
+
+layout(push_constant) uniform Block {
+    uint line_first;
+    uint line_width;
+    uint span_start;
+    uint span_len;
+    uint columns;     // 1: lines are columns
+    uint zone;        // 0 all, 1 right, 2 left, 3 down, 4 up
+    uint plane;       // plane index of the block's last line
+    uint pixel_count; // line_width * span_len
+} block;
+
+const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;
+
+float zone_weight(vec2 c) {
+    if (block.zone == 0u) return 1.0;
+    vec2 d = c - sweep.anchor.xy;
+    float b = max(sweep.anchor.z, 1e-3);
+    vec4 m = vec4(d.x - abs(d.y), -d.x - abs(d.y), d.y - abs(d.x), -d.y - abs(d.x));
+    vec4 w = clamp(0.5 + m / (2.0 * b), 0.0, 1.0);
+    return w[block.zone - 1u] / max(w.x + w.y + w.z + w.w, 1e-6);
+}
+
+// Cache value (E / scale: rgb, transmittance: a) interpolated at continuous
+// coordinates c, and the front parameter of the nearest texel's ray.
+vec4 cache_bilinear(vec2 c) {
+    ivec2 n = ivec2(sweep.cache_size.x);
+    vec2 t = c - 0.5;
+    ivec2 i0 = ivec2(floor(t));
+    vec2 f = t - vec2(i0);
+    ivec2 a = clamp(i0, ivec2(0), n - 1);
+    ivec2 b = clamp(i0 + 1, ivec2(0), n - 1);
+    vec4 v00 = imageLoad(cache_in, ivec2(a.x, a.y));
+    vec4 v10 = imageLoad(cache_in, ivec2(b.x, a.y));
+    vec4 v01 = imageLoad(cache_in, ivec2(a.x, b.y));
+    vec4 v11 = imageLoad(cache_in, ivec2(b.x, b.y));
+    return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
+}
+
+// Light at sample p: (direct transmittance, emission arriving / scale).
+vec4 light_at(vec3 p) {
+    vec3 c = cache_coord(p);
+    vec4 cached = cache_bilinear(c.xy);
+    if ((sweep.cache_size.z & FLAG_PIECEWISE) == 0u) return vec4(cached.rgb, cached.a);
+    uvec2 k = uvec2(clamp(ivec2(floor(c.xy)), ivec2(0), ivec2(sweep.cache_size.x) - 1));
+    Ray r = cache_ray(k);
+    vec2 io = ray_in_box(r);
+    if (io.x > io.y) return cached;
+    float front = front_param(r, imageLoad(front_in, ivec2(k)).r, io);
+    // Piecewise integration: march from p toward the light back to the cache front.
+    vec4 seg = light_segment(p, to_light(p), c.z - front, sweep.cache_size.w, EMISSIVE);
+    float tr = exp(-seg.a);
+    return vec4(cached.rgb * tr + seg.rgb, cached.a * tr);
+}
+
+void shade_pixel(uint index) {
+    uint along = block.line_first + index / block.span_len;
+    uint across = block.span_start + index % block.span_len;
+    uvec2 px = block.columns != 0u ? uvec2(along, across) : uvec2(across, along);
+    if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
+    float w = zone_weight(vec2(px) + 0.5);
+    if (w <= 0.0) return;
+    bool first_light = (sweep.cache_size.z & FLAG_FIRST_LIGHT) != 0u;
+    Light light = lights[sweep.cache_size.y];
+    Ray r = camera_ray(px);
+    vec2 t = intersect_box(r.origin, r.dir);
+    vec3 C = vec3(0.0);
+    float T = 1.0;
+    if (t.x < t.y) {
+        float vl = frame.box_half.w;
+        float L = t.y - t.x;
+        float N = max(1.0, ceil(L / (frame.march.x * vl)));
+        float h = L / N;
+        float hv = h / vl;
+        int n = int(N);
+        bool ert = (sweep.cache_size.z & FLAG_EARLY_TERMINATION) != 0u;
+        for (int i = 0; i < n; ++i) {
+            vec3 p = r.origin + r.dir * (t.x + (float(i) + 0.5) * h);
+            vec4 m = medium(p);
+            float alpha = 1.0 - exp(-m.a * hv);
+            if (alpha > 0.0) {
+                vec4 l = light_at(p);
+                vec3 direct = light.radiance.rgb * light_shape(light, toward_light(light, p)) * l.a;
+                vec3 S = m.rgb * (direct + l.rgb * sweep.anchor.w + (first_light ? vec3(frame.background.w) : vec3(0.0)));
+                C += T * alpha * S;
+                T *= 1.0 - alpha;
+            }
+            if (ert && T < EARLY_TERMINATION_TRANSMITTANCE) break;
+        }
+    }
+    // Cleared to the background: the first light replaces it by what shows through.
+    if (first_light) C += (T - 1.0) * frame.background.rgb;
+    ivec2 ip = ivec2(px);
+    imageStore(out_image, ip, imageLoad(out_image, ip) + vec4(w * C, 0.0));
+}
+
+vec4 cone_average(uvec2 k, float radius) {
+    ivec2 n = ivec2(sweep.cache_size.x);
+    vec4 sum = imageLoad(cache_in, ivec2(k));
+    ivec2 r = ivec2(max(1.0, round(radius)));
+    sum += imageLoad(cache_in, clamp(ivec2(k) + ivec2(r.x, 0), ivec2(0), n - 1));
+    sum += imageLoad(cache_in, clamp(ivec2(k) - ivec2(r.x, 0), ivec2(0), n - 1));
+    sum += imageLoad(cache_in, clamp(ivec2(k) + ivec2(0, r.y), ivec2(0), n - 1));
+    sum += imageLoad(cache_in, clamp(ivec2(k) - ivec2(0, r.y), ivec2(0), n - 1));
+    return sum * 0.2;
+}
+
+void advance_texel(uint index) {
+    uint n = sweep.cache_size.x;
+    uvec2 k = uvec2(index % n, index / n);
+    vec4 cached = imageLoad(cache_in, ivec2(k));
+    uint code = imageLoad(front_in, ivec2(k)).r;
+    Ray r = cache_ray(k);
+    vec2 io = ray_in_box(r);
+    if (io.x <= io.y && code != FRONT_EXIT) {
+        float old_front = front_param(r, code, io);
+        float target = plane_hit(r, block.plane, old_front);
+        if (target > old_front) {
+            float new_front = min(target, io.y);
+            vec3 x = r.origin + r.dir * new_front;
+            // The segment from the old front to the new one, integrated from its far
+            // end toward the light, composited behind what the cache carried.
+            vec4 seg = light_segment(x, -r.dir, new_front - old_front, 4096u, EMISSIVE);
+            float tr = exp(-seg.a);
+            if (SCATTER) {
+                // Forward-cone scattering: the albedo share of the light arrives
+                // from a cone around the ray, i.e. from neighbouring texels.
+                float radius = sweep.scatter.y * (new_front - old_front) / max(sweep.cache_axis.w, 1e-9);
+                cached = mix(cached, cone_average(k, radius), sweep.scatter.x);
+            }
+            cached = vec4(cached.rgb * tr + seg.rgb, cached.a * tr);
+            code = new_front >= io.y ? FRONT_EXIT : block.plane;
+        }
+    }
+    imageStore(cache_out, ivec2(k), cached);
+    imageStore(front_out, ivec2(k), uvec4(code));
+}
+
+void main() {
+    uint id = gl_GlobalInvocationID.x;
+    if (id < block.pixel_count) {
+        shade_pixel(id);
+    } else {
+        uint texel = id - block.pixel_count;
+        if (texel < sweep.cache_size.x * sweep.cache_size.x) advance_texel(texel);
+    }
+}

@@ -1,0 +1,110 @@
+//! Command-line arguments (clap derive).
+
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "sweeplab",
+    version,
+    about = "Volume illumination with explicit Vulkan synchronization"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// List Vulkan devices with API version, driver and timestamp support.
+    Devices(DevicesArgs),
+    /// Render a scene (the embedded default scene without --scene/--volume).
+    Render(RenderArgs),
+    /// Render a technique and the ground truth; print error and GPU time.
+    Compare(CompareArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct DevicesArgs {
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Options every GPU command shares.
+#[derive(Args, Debug, Clone)]
+pub struct GpuArgs {
+    /// Vulkan device: index or name substring (also SWEEPLAB_DEVICE).
+    #[arg(long)]
+    pub device: Option<String>,
+    /// Khronos validation with synchronization validation; any message fails the
+    /// run (also SWEEPLAB_VALIDATE=1).
+    #[arg(long)]
+    pub validate: bool,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// TOML scene file.
+    #[arg(long, conflicts_with = "volume")]
+    pub scene: Option<PathBuf>,
+    /// Any volume file (.vti .mhd .mha .nrrd .nhdr .nii .nii.gz .vhdr) with default
+    /// transfer function, camera and light.
+    #[arg(long)]
+    pub volume: Option<PathBuf>,
+    /// Override a scene parameter, e.g. --set camera.azimuth=45 --set lights.0.intensity=3
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+    /// Image size, e.g. 512x512 (overrides render.width/height).
+    #[arg(long, value_name = "WxH")]
+    pub size: Option<String>,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    /// dvr | phong | reference
+    #[arg(long, default_value = "dvr")]
+    pub technique: String,
+    /// Output PNG (8-bit sRGB of the linear image).
+    #[arg(long, default_value = "sweeplab.png")]
+    pub out: PathBuf,
+    /// Per-pass GPU profile as JSON.
+    #[arg(long, value_name = "FILE")]
+    pub profile_json: Option<PathBuf>,
+    /// Chrome trace of the GPU scopes (opens in Perfetto).
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<PathBuf>,
+    /// Per-dispatch timestamps (adds a flush per dispatch on lavapipe).
+    #[arg(long)]
+    pub detail: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    /// Technique to compare against the ground truth.
+    #[arg(long)]
+    pub technique: String,
+    /// Ground truth on the gpu (brute-force shadow rays) or the cpu (f64).
+    #[arg(long, default_value = "gpu", value_parser = ["gpu", "cpu"])]
+    pub reference: String,
+    /// Write the figures as JSON.
+    #[arg(long, value_name = "FILE")]
+    pub json: Option<PathBuf>,
+    /// Write an error heat-map PNG.
+    #[arg(long, value_name = "FILE")]
+    pub heatmap: Option<PathBuf>,
+    /// Write the technique's image.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Write the reference image.
+    #[arg(long, value_name = "FILE")]
+    pub reference_out: Option<PathBuf>,
+}

@@ -1,0 +1,28 @@
+use super::args::DevicesArgs;
+use std::process::ExitCode;
+use sweeplab::vk::context::list_devices;
+
+pub fn run(args: &DevicesArgs) -> anyhow::Result<ExitCode> {
+    let devices = list_devices()?;
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&devices)?);
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!(
+        "{:<5} {:<36} {:<15} {:<8} {:<12} {:>12} {:>10}",
+        "index", "name", "type", "api", "driver", "ts period ns", "ts bits"
+    );
+    for d in &devices {
+        println!(
+            "{:<5} {:<36} {:<15} {:<8} {:<12} {:>12} {:>10}",
+            d.index,
+            d.name,
+            d.device_type,
+            d.api_version,
+            d.driver_name,
+            d.timestamp_period_ns,
+            d.timestamp_valid_bits
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,16 @@
+pub mod args;
+mod compare_cmd;
+mod devices_cmd;
+mod render_cmd;
+mod scene_args;
+mod session;
+
+use std::process::ExitCode;
+
+pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
+    match cli.command {
+        args::Command::Devices(a) => devices_cmd::run(&a),
+        args::Command::Render(a) => render_cmd::run(&a),
+        args::Command::Compare(a) => compare_cmd::run(&a),
+    }
+}

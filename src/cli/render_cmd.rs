@@ -1,0 +1,54 @@
+use super::args::RenderArgs;
+use super::{scene_args, session};
+use anyhow::Context as _;
+use std::path::Path;
+use std::process::ExitCode;
+use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::vk::Profiler;
+
+/// Scopes per frame the profiler can hold (per-dispatch detail included).
+pub const PROFILER_CAPACITY: u32 = 65_536;
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
+    let technique: Technique = args
+        .technique
+        .parse()
+        .map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
+    let scene = scene_args::load(&args.scene)?;
+    let ctx = session::open(&args.gpu)?;
+    let output = {
+        let gpu = GpuScene::upload(&ctx, &scene).context("uploading the scene")?;
+        let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
+        profiler.set_detail(args.detail);
+        render(
+            &gpu,
+            technique,
+            scene.render.width,
+            scene.render.height,
+            &mut profiler,
+        )
+        .with_context(|| format!("rendering {technique}"))?
+    };
+    output.image.save_png(&args.out)?;
+    print!("{}", output.profile.table());
+    println!(
+        "{technique}: {}x{} -> {} ({} dispatches, {} barriers)",
+        scene.render.width,
+        scene.render.height,
+        args.out.display(),
+        output.dispatches,
+        output.barriers
+    );
+    if let Some(path) = &args.profile_json {
+        write_json(path, &output.profile.to_json())?;
+    }
+    if let Some(path) = &args.trace {
+        write_json(path, &output.profile.chrome_trace())?;
+    }
+    Ok(session::finish(&ctx))
+}
+
+pub fn write_json(path: &Path, value: &serde_json::Value) -> anyhow::Result<()> {
+    let text = serde_json::to_string_pretty(value)?;
+    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+}

@@ -1,0 +1,43 @@
+//! Turns --scene / --volume / --set / --size into a `Scene`.
+
+use super::args::SceneArgs;
+use anyhow::{bail, Context as _};
+use sweeplab::scene::Scene;
+use sweeplab::scene::{default_scene, scene_file};
+
+pub fn load(args: &SceneArgs) -> anyhow::Result<Scene> {
+    let mut overrides = args.set.clone();
+    if let Some(size) = &args.size {
+        let (w, h) = parse_size(size)?;
+        overrides.push(format!("render.width={w}"));
+        overrides.push(format!("render.height={h}"));
+    }
+    let scene = if let Some(path) = &args.scene {
+        scene_file::load_scene(path, &overrides)?
+    } else if let Some(path) = &args.volume {
+        default_scene::scene_for_volume_file(path, &overrides)?
+    } else {
+        default_scene::default_scene(&overrides)?
+    };
+    Ok(scene)
+}
+
+pub fn parse_size(text: &str) -> anyhow::Result<(u32, u32)> {
+    let Some((w, h)) = text
+        .to_lowercase()
+        .split_once('x')
+        .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
+    else {
+        bail!("--size {text:?}: expected WIDTHxHEIGHT, e.g. 512x512");
+    };
+    let w: u32 = w
+        .parse()
+        .with_context(|| format!("--size {text:?}: width {w:?} is not a whole number"))?;
+    let h: u32 = h
+        .parse()
+        .with_context(|| format!("--size {text:?}: height {h:?} is not a whole number"))?;
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        bail!("--size {text:?}: width and height must be between 1 and 16384");
+    }
+    Ok((w, h))
+}

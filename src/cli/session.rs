@@ -1,0 +1,43 @@
+//! A Vulkan context for one command, and the validation verdict at its end.
+
+use super::args::GpuArgs;
+use anyhow::Context as _;
+use std::process::ExitCode;
+use sweeplab::vk::{Context, ContextOptions};
+
+pub fn open(gpu: &GpuArgs) -> anyhow::Result<Context> {
+    let options = ContextOptions {
+        device: gpu.device.clone(),
+        validate: gpu.validate,
+    }
+    .with_env();
+    let ctx = Context::new(&options).context("cannot start Vulkan")?;
+    eprintln!(
+        "device: {} ({}, Vulkan {}){}",
+        ctx.info.name,
+        ctx.info.driver_info,
+        ctx.info.api_version,
+        if ctx.validation_enabled() {
+            ", validation on"
+        } else {
+            ""
+        }
+    );
+    Ok(ctx)
+}
+
+/// Prints the validation messages, if any, and turns them into a failing exit code.
+pub fn finish(ctx: &Context) -> ExitCode {
+    let messages = ctx.take_validation_messages();
+    if messages.is_empty() {
+        if ctx.validation_enabled() {
+            eprintln!("validation: clean");
+        }
+        return ExitCode::SUCCESS;
+    }
+    eprintln!("validation: {} message(s)", messages.len());
+    for m in &messages {
+        eprintln!("{m}");
+    }
+    ExitCode::from(2)
+}

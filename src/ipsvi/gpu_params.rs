@@ -1,0 +1,96 @@
+//! Host mirrors of glsl/ipsvi_common.glsl's `Sweep` block and `Planes` buffer.
+
+use super::cache_geometry::CacheGeometry;
+use super::image_space::LightAnchor;
+use crate::scene::RayBasis;
+use crate::vk::resources::GpuData;
+use glam::{Vec3, Vec4};
+
+pub const FLAG_FIRST_LIGHT: u32 = 1;
+pub const FLAG_PIECEWISE: u32 = 2;
+pub const FLAG_EARLY_TERMINATION: u32 = 4;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SweepParams {
+    pub cache_origin: [f32; 4],
+    pub cache_axis: [f32; 4],
+    pub cache_u: [f32; 4],
+    pub cache_v: [f32; 4],
+    pub anchor: [f32; 4],
+    pub cache_size: [u32; 4],
+    pub scatter: [f32; 4],
+}
+
+impl GpuData for SweepParams {}
+
+/// Push constants of one line block (glsl/ipsvi_line.comp `Block`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BlockPush {
+    pub line_first: u32,
+    pub line_width: u32,
+    pub span_start: u32,
+    pub span_len: u32,
+    pub columns: u32,
+    pub zone: u32,
+    pub plane: u32,
+    pub pixel_count: u32,
+}
+
+pub struct SweepInputs<'a> {
+    pub geometry: &'a CacheGeometry,
+    pub anchor: LightAnchor,
+    pub blend_px: f32,
+    pub light_scale: f32,
+    pub light_index: u32,
+    pub flags: u32,
+    pub max_piecewise_steps: u32,
+    pub albedo: f32,
+    pub cone_angle_deg: f32,
+}
+
+pub fn sweep_params(s: &SweepInputs) -> SweepParams {
+    let g = s.geometry;
+    let anchor = match s.anchor {
+        LightAnchor::Source(p) | LightAnchor::Sink(p) => p,
+        LightAnchor::AtInfinity(_) => glam::Vec2::ZERO,
+    };
+    SweepParams {
+        cache_origin: g.origin.extend(g.projection as u32 as f32).to_array(),
+        cache_axis: g.axis.extend(g.texel).to_array(),
+        cache_u: g.u.extend(g.a0).to_array(),
+        cache_v: g.v.extend(g.b0).to_array(),
+        anchor: [anchor.x, anchor.y, s.blend_px, s.light_scale],
+        cache_size: [g.size, s.light_index, s.flags, s.max_piecewise_steps],
+        scatter: [s.albedo, s.cone_angle_deg.to_radians().tan(), 0.0, 0.0],
+    }
+}
+
+/// The plane of every sweep line through its pixel centres: rows 0..H, then
+/// columns 0..W, as (normal, d) with normal . x + d = 0.
+pub fn line_planes(basis: &RayBasis, width: u32, height: u32) -> Vec<[f32; 4]> {
+    let (o, f, r, u) = (basis.origin, basis.forward, basis.right, basis.up);
+    let plane = |n: Vec3, point: Vec3| -> [f32; 4] {
+        let n = n.normalize_or(Vec3::Y);
+        Vec4::from((n, -n.dot(point))).to_array()
+    };
+    let mut out = Vec::with_capacity((width + height) as usize);
+    for y in 0..height {
+        let ny = 1.0 - (y as f32 + 0.5) / height as f32 * 2.0;
+        out.push(if basis.orthographic {
+            plane(r.cross(f), o + u * ny)
+        } else {
+            plane(r.cross(f + u * ny), o)
+        });
+    }
+    for x in 0..width {
+        let nx = (x as f32 + 0.5) / width as f32 * 2.0 - 1.0;
+        out.push(if basis.orthographic {
+            plane(u.cross(f), o + r * nx)
+        } else {
+            plane(u.cross(f + r * nx), o)
+        });
+    }
+    out
+}

@@ -1,0 +1,16 @@
+//! Image plane sweep volume illumination (Sundén, Ynnerman, Ropinski 2011),
+//! approximating optical model (ii) of docs/optical-model.md; design and the
+//! ways it differs from the paper in docs/ipsvi.md.
+//!
+//! The host plans the sweep ([`sweep_plan`]); every line block is its own
+//! dispatch, followed by the barrier `cache_write_to_next_line_read`.
+
+pub mod cache_geometry;
+pub mod gpu_params;
+pub mod image_space;
+pub mod renderer;
+pub mod settings;
+pub mod sweep_plan;
+
+pub use renderer::{render, render_with, LineSync};
+pub use settings::IpsviSettings;

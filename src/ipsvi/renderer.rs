@@ -1,0 +1,408 @@
+//! Records one IPSVI frame: clear the output to the background, then per light
+//! and per sweep zone: initialise the cache, and one dispatch per line block,
+//! each followed by its barrier.
+
+use super::cache_geometry::CacheGeometry;
+use super::gpu_params::{
+    line_planes, sweep_params, BlockPush, SweepInputs, FLAG_EARLY_TERMINATION, FLAG_FIRST_LIGHT,
+    FLAG_PIECEWISE,
+};
+use super::image_space::ImageSpace;
+use super::settings::IpsviSettings;
+use super::sweep_plan::{plan, LineAxis, SweepPlan};
+use crate::render::frame_params::{frame_params, MarchSteps};
+use crate::render::technique::FrameResult;
+use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::shaders;
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::commands::submit_and_wait;
+use crate::vk::descriptors::{BindingKind, Resource};
+use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::resources::ImageDesc;
+use crate::vk::{Buffer, Image, Profiler};
+use ash::vk;
+
+/// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
+const LOOP_BUDGET: u32 = 60_000;
+
+/// Whether consecutive line blocks are separated by their barrier.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LineSync {
+    Barrier,
+    /// RACY: no barrier between line blocks, for proving the barrier is
+    /// load-bearing under synchronization validation. Its image is undefined.
+    RacyNoBarrier,
+}
+
+const LINE_BINDINGS: [BindingKind; 11] = [
+    BindingKind::UniformBuffer,
+    BindingKind::SampledImage,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageBuffer,
+    BindingKind::UniformBuffer,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+];
+
+const INIT_BINDINGS: [BindingKind; 10] = [
+    BindingKind::UniformBuffer,
+    BindingKind::SampledImage,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageBuffer,
+    BindingKind::UniformBuffer,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+];
+
+/// The ping-pong pair: illumination (E / scale, transmittance) and the position
+/// image (which sweep plane each light ray's front sits on).
+struct Cache {
+    light: [Image; 2],
+    front: [Image; 2],
+}
+
+impl Cache {
+    fn new(gpu: &GpuScene, size: u32) -> Result<Cache, RenderError> {
+        let image = |name: &str, format| {
+            Image::new(
+                gpu.ctx,
+                name,
+                ImageDesc {
+                    image_type: vk::ImageType::TYPE_2D,
+                    format,
+                    extent: vk::Extent3D {
+                        width: size,
+                        height: size,
+                        depth: 1,
+                    },
+                    usage: vk::ImageUsageFlags::STORAGE,
+                },
+            )
+        };
+        Ok(Cache {
+            light: [
+                image("ipsvi cache a", vk::Format::R16G16B16A16_SFLOAT)?,
+                image("ipsvi cache b", vk::Format::R16G16B16A16_SFLOAT)?,
+            ],
+            front: [
+                image("ipsvi front a", vk::Format::R16_UINT)?,
+                image("ipsvi front b", vk::Format::R16_UINT)?,
+            ],
+        })
+    }
+
+    fn images(&self) -> [&Image; 4] {
+        [
+            &self.light[0],
+            &self.light[1],
+            &self.front[0],
+            &self.front[1],
+        ]
+    }
+}
+
+/// Plans for every light, in light order.
+pub fn plans(gpu: &GpuScene, settings: &IpsviSettings, width: u32, height: u32) -> Vec<SweepPlan> {
+    let space = ImageSpace {
+        basis: gpu.scene.camera.basis(width, height),
+        width,
+        height,
+    };
+    let bbox = space.projected_box(&gpu.scene.volume_box());
+    gpu.scene
+        .lights
+        .iter()
+        .map(|l| {
+            plan(
+                bbox,
+                space.light_anchor(&l.kind),
+                settings.line_width,
+                settings.zone_blend_px,
+            )
+        })
+        .collect()
+}
+
+pub fn render(
+    gpu: &GpuScene,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+) -> Result<FrameResult, RenderError> {
+    render_with(
+        gpu,
+        &IpsviSettings::from_scene(gpu.scene)?,
+        width,
+        height,
+        profiler,
+        LineSync::Barrier,
+    )
+}
+
+pub fn render_with(
+    gpu: &GpuScene,
+    settings: &IpsviSettings,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+    sync: LineSync,
+) -> Result<FrameResult, RenderError> {
+    let scene = gpu.scene;
+    if scene.lights.is_empty() {
+        // No light, no sweep: emission-absorption ray casting, nothing else allocated.
+        return crate::dvr::render(
+            gpu,
+            crate::dvr::Shading::EmissionOnly,
+            width,
+            height,
+            profiler,
+        );
+    }
+    let ctx = gpu.ctx;
+    let space = ImageSpace {
+        basis: scene.camera.basis(width, height),
+        width,
+        height,
+    };
+    let bx = scene.volume_box();
+    let plans = plans(gpu, settings, width, height);
+
+    let params = frame_params(
+        scene,
+        width,
+        height,
+        gpu.lut_size,
+        MarchSteps::render(scene),
+    );
+    let frame = Buffer::with_data(
+        ctx,
+        "frame params",
+        &[params],
+        vk::BufferUsageFlags::UNIFORM_BUFFER,
+    )?;
+    let planes = Buffer::with_data(
+        ctx,
+        "ipsvi line planes",
+        &line_planes(&space.basis, width, height),
+        vk::BufferUsageFlags::STORAGE_BUFFER,
+    )?;
+    let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
+    let cache = Cache::new(gpu, settings.cache_size)?;
+
+    let diagonal_voxels = 2.0 * bx.half_extent.length() / bx.voxel_length;
+    let max_view_samples = (diagonal_voxels / scene.render.step_voxels).ceil() as u32 + 1;
+    let max_piecewise_steps = (LOOP_BUDGET / max_view_samples).saturating_sub(1).max(1);
+
+    let mut flags = 0;
+    if settings.piecewise {
+        flags |= FLAG_PIECEWISE;
+    }
+    if settings.early_termination {
+        flags |= FLAG_EARLY_TERMINATION;
+    }
+    let light_scale = |i: usize| {
+        scene.lights[i]
+            .radiance()
+            .max_element()
+            .max(scene.render.emission)
+            .max(1e-30)
+    };
+    let sweep_buffers: Vec<Buffer> = scene
+        .lights
+        .iter()
+        .enumerate()
+        .map(|(i, light)| {
+            let geometry = CacheGeometry::fit(&light.kind, &bx, settings.cache_size);
+            let p = sweep_params(&SweepInputs {
+                geometry: &geometry,
+                anchor: plans[i].anchor,
+                blend_px: settings.zone_blend_px,
+                light_scale: light_scale(i),
+                light_index: i as u32,
+                flags: flags | if i == 0 { FLAG_FIRST_LIGHT } else { 0 },
+                max_piecewise_steps,
+                albedo: settings.albedo,
+                cone_angle_deg: settings.cone_angle_deg,
+            });
+            Buffer::with_data(
+                ctx,
+                &format!("ipsvi sweep light {i}"),
+                &[p],
+                vk::BufferUsageFlags::UNIFORM_BUFFER,
+            )
+        })
+        .collect::<Result<_, _>>()?;
+
+    let emissive = scene.render.emission > 0.0;
+    let scatter = settings.albedo > 0.0;
+    let n_lights = scene.lights.len() as u32;
+    let mut init = ComputePipeline::new(
+        ctx,
+        &ComputePipelineDesc {
+            name: "ipsvi_cache_init",
+            spirv: shaders::IPSVI_CACHE_INIT,
+            bindings: &INIT_BINDINGS,
+            push_constant_bytes: 0,
+            specialization: &[],
+            max_sets: n_lights,
+        },
+    )?;
+    let mut line = ComputePipeline::new(
+        ctx,
+        &ComputePipelineDesc {
+            name: "ipsvi_line",
+            spirv: shaders::IPSVI_LINE,
+            bindings: &LINE_BINDINGS,
+            push_constant_bytes: std::mem::size_of::<BlockPush>() as u32,
+            specialization: &[(0, emissive as u32), (1, scatter as u32)],
+            max_sets: 2 * n_lights,
+        },
+    )?;
+    let common = |sweep| {
+        [
+            Resource::UniformBuffer(&frame),
+            Resource::SampledImage(&gpu.volume, &gpu.sampler),
+            Resource::StorageBuffer(&gpu.lut),
+            Resource::StorageBuffer(&gpu.lights),
+            Resource::UniformBuffer(sweep),
+            Resource::StorageBuffer(&planes),
+        ]
+    };
+    let mut init_sets = Vec::new();
+    let mut line_sets = Vec::new();
+    for sweep in &sweep_buffers {
+        let [a, b, c, d, e, f]: [Resource; 6] = common(sweep);
+        init_sets.push(init.create_set(&[
+            a,
+            b,
+            c,
+            d,
+            e,
+            f,
+            Resource::StorageImage(&cache.light[0]),
+            Resource::StorageImage(&cache.front[0]),
+            Resource::StorageImage(&cache.light[1]),
+            Resource::StorageImage(&cache.front[1]),
+        ])?);
+        let mut pair = Vec::new();
+        for (src, dst) in [(0, 1), (1, 0)] {
+            let [a, b, c, d, e, f] = common(sweep);
+            pair.push(line.create_set(&[
+                a,
+                b,
+                c,
+                d,
+                e,
+                f,
+                Resource::StorageImage(&cache.light[src]),
+                Resource::StorageImage(&cache.front[src]),
+                Resource::StorageImage(&cache.light[dst]),
+                Resource::StorageImage(&cache.front[dst]),
+                Resource::StorageImage(&output.image),
+            ])?);
+        }
+        line_sets.push(pair);
+    }
+
+    let readback = output.readback_buffer(ctx)?;
+    let bg = scene.render.background;
+    let texels = settings.cache_size * settings.cache_size;
+    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
+        rec.barrier(&Barrier::image(
+            "output_discard_to_clear",
+            &output.image,
+            Access::NONE,
+            Access::CLEAR_WRITE,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+        ));
+        rec.clear_color_image(&output.image, [bg.x, bg.y, bg.z, 1.0]);
+        rec.barrier(&Barrier::image(
+            "output_clear_to_line_accumulate",
+            &output.image,
+            Access::CLEAR_WRITE,
+            Access::COMPUTE_READ_WRITE,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            vk::ImageLayout::GENERAL,
+        ));
+        for image in cache.images() {
+            rec.barrier(&Barrier::image(
+                "cache_discard_to_init_write",
+                image,
+                Access::NONE,
+                Access::COMPUTE_READ_WRITE,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::GENERAL,
+            ));
+        }
+        let frame_scope = profiler.begin(rec, "ipsvi")?;
+        for (li, plan) in plans.iter().enumerate() {
+            for sweep in &plan.sweeps {
+                let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
+                rec.bind(&init, init_sets[li]);
+                rec.dispatch(
+                    settings.cache_size.div_ceil(8),
+                    settings.cache_size.div_ceil(8),
+                    1,
+                );
+                profiler.end(rec, init_scope)?;
+                rec.barrier(&Barrier::memory(
+                    "cache_init_write_to_first_line_read",
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ_WRITE,
+                ));
+                let sweep_scope =
+                    profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
+                for (bi, block) in sweep.blocks.iter().enumerate() {
+                    let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
+                    let columns = sweep.axis == LineAxis::Columns;
+                    let plane = if columns {
+                        height + block.last_line
+                    } else {
+                        block.last_line
+                    };
+                    let pixel_count = block.width * block.span_len;
+                    let push = BlockPush {
+                        line_first: block.first,
+                        line_width: block.width,
+                        span_start: block.span_start,
+                        span_len: block.span_len,
+                        columns: columns as u32,
+                        zone: sweep.zone as u32,
+                        plane,
+                        pixel_count,
+                    };
+                    rec.bind(&line, line_sets[li][bi % 2]);
+                    rec.push(&line, push_bytes(&push));
+                    rec.dispatch((pixel_count + texels).div_ceil(64), 1, 1);
+                    profiler.end(rec, line_scope)?;
+                    if sync == LineSync::Barrier {
+                        // This block's cache writes are the next block's reads; its reads
+                        // of the other image precede the next block's writes to it.
+                        rec.barrier(&Barrier::memory(
+                            "cache_write_to_next_line_read",
+                            Access::COMPUTE_WRITE,
+                            Access::COMPUTE_READ_WRITE,
+                        ));
+                    }
+                }
+                profiler.end(rec, sweep_scope)?;
+            }
+        }
+        profiler.end(rec, frame_scope)?;
+        output.record_readback(rec, &readback);
+        Ok((rec.dispatch_count, rec.barrier_count))
+    })?;
+    Ok(FrameResult {
+        image: output.read(&readback)?,
+        dispatches,
+        barriers,
+    })
+}

@@ -1,0 +1,105 @@
+//! IPSVI parameters from the scene file's `[ipsvi]` table (or `--set ipsvi.key=value`).
+
+use crate::render::RenderError;
+use crate::scene::Scene;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct IpsviSettings {
+    /// Lines per dispatch, 1..=32; the first block of a sweep is always one line.
+    pub line_width: u32,
+    /// The cache is cache_size x cache_size texels.
+    pub cache_size: u32,
+    /// Piecewise integration from each sample toward the cache front (section 4.4).
+    pub piecewise: bool,
+    /// Stop view rays once their transmittance is below 1e-4.
+    pub early_termination: bool,
+    /// Share of light scattered in the forward cone (equation 2's albedo), 0..=1.
+    pub albedo: f32,
+    /// Half-angle of the forward scattering cone, degrees.
+    pub cone_angle_deg: f32,
+    /// Width in pixels over which the four zones of a point light are blended.
+    pub zone_blend_px: f32,
+}
+
+impl Default for IpsviSettings {
+    fn default() -> Self {
+        IpsviSettings {
+            line_width: 1,
+            cache_size: 256,
+            piecewise: true,
+            early_termination: true,
+            albedo: 0.0,
+            cone_angle_deg: 15.0,
+            zone_blend_px: 2.0,
+        }
+    }
+}
+
+const KEYS: [&str; 7] = [
+    "line_width",
+    "cache_size",
+    "piecewise",
+    "early_termination",
+    "albedo",
+    "cone_angle",
+    "zone_blend",
+];
+
+impl IpsviSettings {
+    pub fn from_scene(scene: &Scene) -> Result<IpsviSettings, RenderError> {
+        let mut s = IpsviSettings::default();
+        let Some(value) = scene.techniques.get("ipsvi") else {
+            return Ok(s);
+        };
+        let table = value
+            .as_table()
+            .ok_or_else(|| bad("[ipsvi] must be a table"))?;
+        for (key, v) in table {
+            let number = || {
+                v.as_float()
+                    .or_else(|| v.as_integer().map(|i| i as f64))
+                    .ok_or_else(|| bad(&format!("ipsvi.{key} must be a number")))
+            };
+            let boolean = || {
+                v.as_bool()
+                    .ok_or_else(|| bad(&format!("ipsvi.{key} must be true or false")))
+            };
+            match key.as_str() {
+                "line_width" => s.line_width = whole(number()?, 1, 32, key)?,
+                "cache_size" => s.cache_size = whole(number()?, 16, 4096, key)?,
+                "piecewise" => s.piecewise = boolean()?,
+                "early_termination" => s.early_termination = boolean()?,
+                "albedo" => s.albedo = within(number()?, 0.0, 1.0, key)?,
+                "cone_angle" => s.cone_angle_deg = within(number()?, 0.0, 80.0, key)?,
+                "zone_blend" => s.zone_blend_px = within(number()?, 0.0, 64.0, key)?,
+                other => {
+                    return Err(bad(&format!(
+                        "unknown key ipsvi.{other}; known: {}",
+                        KEYS.join(", ")
+                    )))
+                }
+            }
+        }
+        Ok(s)
+    }
+}
+
+fn bad(message: &str) -> RenderError {
+    RenderError::Invalid(message.to_string())
+}
+
+fn whole(v: f64, lo: u32, hi: u32, key: &str) -> Result<u32, RenderError> {
+    if v.fract() != 0.0 || v < lo as f64 || v > hi as f64 {
+        return Err(bad(&format!(
+            "ipsvi.{key} = {v}: must be a whole number in {lo}..={hi}"
+        )));
+    }
+    Ok(v as u32)
+}
+
+fn within(v: f64, lo: f32, hi: f32, key: &str) -> Result<f32, RenderError> {
+    if !v.is_finite() || v < lo as f64 || v > hi as f64 {
+        return Err(bad(&format!("ipsvi.{key} = {v}: must be in {lo}..={hi}")));
+    }
+    Ok(v as f32)
+}
