@@ -41,6 +41,10 @@ pub struct GpuArgs {
     /// run (also SWEEPLAB_VALIDATE=1).
     #[arg(long)]
     pub validate: bool,
+    /// Store the volume as r32 float (exact trilinear filtering on lavapipe,
+    /// which filters 8-bit volumes with 8-bit weights).
+    #[arg(long)]
+    pub float_volume: bool,
 }
 
 #[derive(Args, Debug, Clone)]

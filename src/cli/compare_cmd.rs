@@ -19,7 +19,8 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     scene.reference.model = technique.reference_model(&scene);
     let (w, h) = (scene.render.width, scene.render.height);
     let ctx = session::open(&args.gpu)?;
-    let gpu = GpuScene::upload(&ctx, &scene).context("uploading the scene")?;
+    let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu))
+        .context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let tested = render(&gpu, technique, w, h, &mut profiler)
         .with_context(|| format!("rendering {technique}"))?;

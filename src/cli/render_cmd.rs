@@ -17,7 +17,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let scene = scene_args::load(&args.scene)?;
     let ctx = session::open(&args.gpu)?;
     let output = {
-        let gpu = GpuScene::upload(&ctx, &scene).context("uploading the scene")?;
+        let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu))
+            .context("uploading the scene")?;
         let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
         profiler.set_detail(args.detail);
         render(

@@ -3,6 +3,7 @@
 use super::args::GpuArgs;
 use anyhow::Context as _;
 use std::process::ExitCode;
+use sweeplab::render::VolumeTexels;
 use sweeplab::vk::{Context, ContextOptions};
 
 pub fn open(gpu: &GpuArgs) -> anyhow::Result<Context> {
@@ -40,4 +41,12 @@ pub fn finish(ctx: &Context) -> ExitCode {
         eprintln!("{m}");
     }
     ExitCode::from(2)
+}
+
+pub fn volume_texels(gpu: &GpuArgs) -> VolumeTexels {
+    if gpu.float_volume {
+        VolumeTexels::Float32
+    } else {
+        VolumeTexels::Native
+    }
 }

@@ -25,6 +25,14 @@ pub struct GpuScene<'a> {
 
 impl<'a> GpuScene<'a> {
     pub fn upload(ctx: &'a Context, scene: &'a Scene) -> Result<GpuScene<'a>, RenderError> {
+        GpuScene::upload_with(ctx, scene, VolumeTexels::Native)
+    }
+
+    pub fn upload_with(
+        ctx: &'a Context,
+        scene: &'a Scene,
+        texels: VolumeTexels,
+    ) -> Result<GpuScene<'a>, RenderError> {
         let v = &scene.volume;
         if v.data.len() != v.voxel_count() || v.voxel_count() == 0 {
             return Err(RenderError::Invalid(format!(
@@ -34,7 +42,7 @@ impl<'a> GpuScene<'a> {
                 v.dims
             )));
         }
-        let (format, bytes) = volume_texels(ctx, &v.data)?;
+        let (format, bytes) = volume_texels(ctx, &v.data, texels)?;
         let extent = vk::Extent3D {
             width: v.dims.x,
             height: v.dims.y,
@@ -112,9 +120,26 @@ impl<'a> GpuScene<'a> {
     }
 }
 
+/// How the volume is stored on the GPU.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum VolumeTexels {
+    /// r8 / r16 unorm or r32 float, as the data comes. Hardware filtering of the
+    /// narrow formats may use few sub-texel bits (lavapipe filters r8 with 8-bit
+    /// weights: about 1e-2 off the exact trilinear value on hard edges).
+    #[default]
+    Native,
+    /// Always r32 float: exact trilinear filtering on lavapipe, for comparisons
+    /// with the CPU f64 renderers.
+    Float32,
+}
+
 /// Picks r8/r16 unorm or r32 float by the voxel type, falling back to r32 float
 /// where the device cannot filter the narrower format linearly.
-fn volume_texels(ctx: &Context, data: &VoxelData) -> Result<(vk::Format, Vec<u8>), VkError> {
+fn volume_texels(
+    ctx: &Context,
+    data: &VoxelData,
+    texels: VolumeTexels,
+) -> Result<(vk::Format, Vec<u8>), VkError> {
     let need = vk::FormatFeatureFlags::SAMPLED_IMAGE
         | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
         | vk::FormatFeatureFlags::TRANSFER_DST;
@@ -123,7 +148,7 @@ fn volume_texels(ctx: &Context, data: &VoxelData) -> Result<(vk::Format, Vec<u8>
         VoxelData::U16(v) => Some((vk::Format::R16_UNORM, as_bytes(v).to_vec())),
         VoxelData::F32(_) => None,
     };
-    if let Some((format, bytes)) = native {
+    if let Some((format, bytes)) = native.filter(|_| texels == VolumeTexels::Native) {
         if ctx.format_supports(format, need) {
             return Ok((format, bytes));
         }

@@ -9,6 +9,6 @@ pub mod output;
 pub mod technique;
 
 pub use error::RenderError;
-pub use gpu_scene::GpuScene;
+pub use gpu_scene::{GpuScene, VolumeTexels};
 pub use output::OutputImage;
 pub use technique::{render, RenderOutput, Technique};
