@@ -105,7 +105,7 @@ pub enum SceneError {
     Volume {
         origin: String,
         path: PathBuf,
-        source: LoadError,
+        source: Box<LoadError>,
     },
 }
 

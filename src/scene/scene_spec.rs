@@ -133,7 +133,7 @@ impl SceneSpec {
                 loaders::load_volume(path).map_err(|source| SceneError::Volume {
                     origin: self.origin.clone(),
                     path: path.clone(),
-                    source,
+                    source: Box::new(source),
                 })
             }
             VolumeSource::Synthetic { kind, size, seed } => Ok(kind.generate(*size, *seed)),

@@ -36,6 +36,11 @@ pub fn reported_severities() -> vk::DebugUtilsMessageSeverityFlagsEXT {
     vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR
 }
 
+/// The debug-utils messenger callback.
+///
+/// # Safety
+/// Called by the Vulkan loader only: `data` is valid for the call and `user_data`
+/// is the message list of a live [`ValidationLog`].
 pub unsafe extern "system" fn messenger_callback(
     severity: vk::DebugUtilsMessageSeverityFlagsEXT,
     kind: vk::DebugUtilsMessageTypeFlagsEXT,
