@@ -5,6 +5,7 @@
 //! techniques share), one module per technique ([`dvr`] baselines, [`reference`]
 //! ground truth), and [`metrics`].
 
+pub mod bench;
 pub mod dvr;
 pub mod ipsvi;
 pub mod linear_image;
