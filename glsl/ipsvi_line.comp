@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // One IPSVI line block (one dispatch; src/ipsvi/): invocations below
 // `pixel_count` ray-cast the block's pixels, reading the illumination cache as
-// it stands at the previous line (cache_in / front_in); the rest advance every
-// cache texel's light ray to this block's last line (cache_out / front_out).
+// it stands at the previous line (cache_in / front_in); the rest advance the
+// light rays of the block's cache region to this block's last line and carry
+// the previous block's region forward (cache_out / front_out).
 // Reads and writes go to different images of the ping-pong pair, so the block
 // has no race inside it, and a missing barrier before the next block is a
 // hazard that synchronization validation reports.
@@ -29,6 +30,7 @@ layout(push_constant) uniform Block {
     uint zone;        // 0 all, 1 right, 2 left, 3 down, 4 up
     uint plane;       // plane index of the block's last line
     uint pixel_count; // line_width * span_len
+    uvec4 region;     // cache texels to advance: x0, y0, w, h
 } block;
 
 const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;
@@ -127,8 +129,7 @@ vec4 cone_average(uvec2 k, float radius) {
 }
 
 void advance_texel(uint index) {
-    uint n = sweep.cache_size.x;
-    uvec2 k = uvec2(index % n, index / n);
+    uvec2 k = block.region.xy + uvec2(index % block.region.z, index / block.region.z);
     vec4 cached = imageLoad(cache_in, ivec2(k));
     uint code = imageLoad(front_in, ivec2(k)).r;
     Ray r = cache_ray(k);
@@ -163,6 +164,6 @@ void main() {
         shade_pixel(id);
     } else {
         uint texel = id - block.pixel_count;
-        if (texel < sweep.cache_size.x * sweep.cache_size.x) advance_texel(texel);
+        if (texel < block.region.z * block.region.w) advance_texel(texel);
     }
 }

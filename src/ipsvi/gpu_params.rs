@@ -36,6 +36,8 @@ pub struct BlockPush {
     pub zone: u32,
     pub plane: u32,
     pub pixel_count: u32,
+    /// Cache texels this block advances (and carries forward): x0, y0, w, h.
+    pub region: [u32; 4],
 }
 
 pub struct SweepInputs<'a> {

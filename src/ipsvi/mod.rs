@@ -6,6 +6,7 @@
 //! dispatch, followed by the barrier `cache_write_to_next_line_read`.
 
 pub mod cache_geometry;
+pub mod cache_region;
 pub mod gpu_params;
 pub mod image_space;
 pub mod renderer;

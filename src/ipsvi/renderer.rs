@@ -3,6 +3,7 @@
 //! each followed by its barrier.
 
 use super::cache_geometry::CacheGeometry;
+use super::cache_region::{plane_region, TexelRect};
 use super::gpu_params::{
     line_planes, sweep_params, BlockPush, SweepInputs, FLAG_EARLY_TERMINATION, FLAG_FIRST_LIGHT,
     FLAG_PIECEWISE,
@@ -187,12 +188,6 @@ pub fn render_with(
         &[params],
         vk::BufferUsageFlags::UNIFORM_BUFFER,
     )?;
-    let planes = Buffer::with_data(
-        ctx,
-        "ipsvi line planes",
-        &line_planes(&space.basis, width, height),
-        vk::BufferUsageFlags::STORAGE_BUFFER,
-    )?;
     let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
     let cache = Cache::new(gpu, settings.cache_size)?;
 
@@ -207,6 +202,9 @@ pub fn render_with(
     if settings.early_termination {
         flags |= FLAG_EARLY_TERMINATION;
     }
+    let planes_host = line_planes(&space.basis, width, height);
+    let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+    let geometries: Vec<CacheGeometry> = scene.lights.iter().map(|l| CacheGeometry::fit(&l.kind, &bx, settings.cache_size)).collect();
     let light_scale = |i: usize| {
         scene.lights[i]
             .radiance()
@@ -218,10 +216,9 @@ pub fn render_with(
         .lights
         .iter()
         .enumerate()
-        .map(|(i, light)| {
-            let geometry = CacheGeometry::fit(&light.kind, &bx, settings.cache_size);
+        .map(|(i, _)| {
             let p = sweep_params(&SweepInputs {
-                geometry: &geometry,
+                geometry: &geometries[i],
                 anchor: plans[i].anchor,
                 blend_px: settings.zone_blend_px,
                 light_scale: light_scale(i),
@@ -313,7 +310,6 @@ pub fn render_with(
 
     let readback = output.readback_buffer(ctx)?;
     let bg = scene.render.background;
-    let texels = settings.cache_size * settings.cache_size;
     let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
         rec.barrier(&Barrier::image(
             "output_discard_to_clear",
@@ -360,6 +356,7 @@ pub fn render_with(
                 ));
                 let sweep_scope =
                     profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
+                let mut previous_region = TexelRect::default();
                 for (bi, block) in sweep.blocks.iter().enumerate() {
                     let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                     let columns = sweep.axis == LineAxis::Columns;
@@ -369,6 +366,9 @@ pub fn render_with(
                         block.last_line
                     };
                     let pixel_count = block.width * block.span_len;
+                    let region = plane_region(&geometries[li], &bx, planes_host[plane as usize]);
+                    let update = region.union(&previous_region);
+                    previous_region = region;
                     let push = BlockPush {
                         line_first: block.first,
                         line_width: block.width,
@@ -378,10 +378,11 @@ pub fn render_with(
                         zone: sweep.zone as u32,
                         plane,
                         pixel_count,
+                        region: [update.x0, update.y0, update.w, update.h],
                     };
                     rec.bind(&line, line_sets[li][bi % 2]);
                     rec.push(&line, push_bytes(&push));
-                    rec.dispatch((pixel_count + texels).div_ceil(64), 1, 1);
+                    rec.dispatch((pixel_count + update.count()).div_ceil(64), 1, 1);
                     profiler.end(rec, line_scope)?;
                     if sync == LineSync::Barrier {
                         // This block's cache writes are the next block's reads; its reads
