@@ -13,19 +13,12 @@ pub struct LinearImage {
 #[derive(Debug, thiserror::Error)]
 pub enum ImageWriteError {
     #[error("cannot write image {path}: {source}")]
-    Write {
-        path: String,
-        source: image::ImageError,
-    },
+    Write { path: String, source: image::ImageError },
 }
 
 impl LinearImage {
     pub fn new(width: u32, height: u32) -> Self {
-        LinearImage {
-            width,
-            height,
-            pixels: vec![[0.0; 3]; width as usize * height as usize],
-        }
+        LinearImage { width, height, pixels: vec![[0.0; 3]; width as usize * height as usize] }
     }
 
     pub fn get(&self, x: u32, y: u32) -> [f32; 3] {
@@ -42,10 +35,7 @@ impl LinearImage {
 
     /// Largest channel value in the image.
     pub fn max_value(&self) -> f32 {
-        self.pixels
-            .iter()
-            .flat_map(|p| p.iter().copied())
-            .fold(0.0, f32::max)
+        self.pixels.iter().flat_map(|p| p.iter().copied()).fold(0.0, f32::max)
     }
 
     /// 8-bit sRGB, values clamped to [0, 1] (no tone mapping: the scene's light
@@ -58,21 +48,12 @@ impl LinearImage {
     }
 
     pub fn save_png(&self, path: &Path) -> Result<(), ImageWriteError> {
-        self.to_srgb8()
-            .save(path)
-            .map_err(|source| ImageWriteError::Write {
-                path: path.display().to_string(),
-                source,
-            })
+        self.to_srgb8().save(path).map_err(|source| ImageWriteError::Write { path: path.display().to_string(), source })
     }
 }
 
 pub fn linear_to_srgb(c: f32) -> f32 {
-    let c = if c.is_finite() {
-        c.clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let c = if c.is_finite() { c.clamp(0.0, 1.0) } else { 0.0 };
     if c <= 0.003_130_8 {
         c * 12.92
     } else {

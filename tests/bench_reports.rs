@@ -4,15 +4,13 @@
 use std::path::PathBuf;
 
 use sweeplab::bench::{
-    plot_error_vs_time, plot_lines, render_error_vs_time, render_lines, AxisScale, BenchError,
-    BenchRow, BenchTable, BenchValue, Chart, Progress, Series,
+    plot_error_vs_time, plot_lines, render_error_vs_time, render_lines, AxisScale, BenchError, BenchRow, BenchTable,
+    BenchValue, Chart, Progress, Series,
 };
 
 /// A fresh directory per test under cargo's scratch space for integration tests.
 fn scratch_dir(test: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join("bench_reports")
-        .join(test);
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bench_reports").join(test);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("create scratch dir");
     dir
@@ -22,12 +20,7 @@ fn scratch_dir(test: &str) -> PathBuf {
 fn sample_table() -> BenchTable {
     let mut table = BenchTable::new();
     let mut first = BenchRow::new();
-    first
-        .set("strategy", "slices")
-        .set("line_width", 4)
-        .set("gpu_ms", 12.5)
-        .set("error", 0.0125)
-        .set("valid", true);
+    first.set("strategy", "slices").set("line_width", 4).set("gpu_ms", 12.5).set("error", 0.0125).set("valid", true);
     table.push(first);
     table.push(
         BenchRow::new()
@@ -36,13 +29,7 @@ fn sample_table() -> BenchTable {
             .with("gpu_ms", 3.25)
             .with("note", "said \"fast\"\nthen slow"),
     );
-    table.push(
-        BenchRow::new()
-            .with("gpu_ms", 0.1)
-            .with("strategy", "")
-            .with("cache_kib", 256_u32)
-            .with("error", 1e-7),
-    );
+    table.push(BenchRow::new().with("gpu_ms", 0.1).with("strategy", "").with("cache_kib", 256_u32).with("error", 1e-7));
     table
 }
 
@@ -71,10 +58,7 @@ fn parse_csv(text: &str) -> Vec<Vec<String>> {
         }
     }
     assert!(!in_quotes, "unterminated quote");
-    assert!(
-        field.is_empty() && record.is_empty(),
-        "last line lacks a newline"
-    );
+    assert!(field.is_empty() && record.is_empty(), "last line lacks a newline");
     records
 }
 
@@ -85,35 +69,13 @@ fn csv_has_the_union_of_keys_in_first_seen_order_and_round_trips() {
     sample_table().write_csv(&path).expect("write csv");
     let records = parse_csv(&std::fs::read_to_string(&path).expect("read csv"));
 
-    let header = [
-        "strategy",
-        "line_width",
-        "gpu_ms",
-        "error",
-        "valid",
-        "note",
-        "cache_kib",
-    ];
+    let header = ["strategy", "line_width", "gpu_ms", "error", "valid", "note", "cache_kib"];
     assert_eq!(records[0], header);
     assert_eq!(records.len(), 4);
     assert!(records.iter().all(|r| r.len() == header.len()));
 
-    assert_eq!(
-        records[1],
-        ["slices", "4", "12.5", "0.0125", "true", "", ""]
-    );
-    assert_eq!(
-        records[2],
-        [
-            "cache, big",
-            "8",
-            "3.25",
-            "",
-            "",
-            "said \"fast\"\nthen slow",
-            ""
-        ]
-    );
+    assert_eq!(records[1], ["slices", "4", "12.5", "0.0125", "true", "", ""]);
+    assert_eq!(records[2], ["cache, big", "8", "3.25", "", "", "said \"fast\"\nthen slow", ""]);
     assert_eq!(records[3][0], "");
     assert_eq!(records[3][2].parse::<f64>(), Ok(0.1));
     assert_eq!(records[3][3].parse::<f64>(), Ok(1e-7));
@@ -123,12 +85,7 @@ fn csv_has_the_union_of_keys_in_first_seen_order_and_round_trips() {
 #[test]
 fn csv_quotes_only_fields_that_need_it() {
     let mut table = BenchTable::new();
-    table.push(
-        BenchRow::new()
-            .with("plain", "abc")
-            .with("comma", "a,b")
-            .with("quote", "x\"y"),
-    );
+    table.push(BenchRow::new().with("plain", "abc").with("comma", "a,b").with("quote", "x\"y"));
     let text = table.to_csv();
     assert_eq!(text, "plain,comma,quote\nabc,\"a,b\",\"x\"\"y\"\n");
 }
@@ -149,10 +106,7 @@ fn json_is_an_array_of_objects_that_reads_back_in_order() {
     assert_eq!(rows[0]["gpu_ms"], 12.5);
     assert_eq!(rows[0]["valid"], true);
     assert_eq!(rows[1]["note"], "said \"fast\"\nthen slow");
-    assert!(
-        rows[1].get("error").is_none(),
-        "missing values stay missing"
-    );
+    assert!(rows[1].get("error").is_none(), "missing values stay missing");
 
     // Key order in the file follows the order the keys were set.
     let positions: Vec<usize> = ["\"gpu_ms\"", "\"strategy\"", "\"cache_kib\"", "\"error\""]
@@ -174,8 +128,7 @@ fn non_finite_floats_are_json_null_and_read_back_as_nan() {
     let mut table = BenchTable::new();
     table.push(BenchRow::new().with("error", f64::NAN).with("n", 1));
     table.write_json(&path).expect("write json");
-    let value: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&path).expect("read")).expect("json");
+    let value: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).expect("read")).expect("json");
     assert!(value[0]["error"].is_null());
     let back = BenchTable::read_json(&path).expect("read back");
     assert!(back.rows[0].get_f64("error").is_some_and(f64::is_nan));
@@ -198,17 +151,9 @@ fn file_errors_name_the_file() {
 
     let nested = dir.join("nested.json");
     std::fs::write(&nested, "[{\"a\": [1, 2]}]").expect("write");
-    assert!(matches!(
-        BenchTable::read_json(&nested),
-        Err(BenchError::Json { .. })
-    ));
+    assert!(matches!(BenchTable::read_json(&nested), Err(BenchError::Json { .. })));
 
-    let err = plot_lines(
-        dir.join("no_such_dir/plot.png"),
-        &Chart::new("t", "x", "y"),
-        &[],
-    )
-    .unwrap_err();
+    let err = plot_lines(dir.join("no_such_dir/plot.png"), &Chart::new("t", "x", "y"), &[]).unwrap_err();
     assert!(err.to_string().contains("plot.png"), "{err}");
 }
 
@@ -223,31 +168,14 @@ fn markdown_is_a_rectangular_table_with_readable_numbers() {
 
     // Every line has the same cells (escaped pipes do not count) and width.
     let cells = |line: &str| line.replace("\\|", "").matches('|').count();
-    assert!(lines
-        .iter()
-        .all(|l| l.starts_with("| ") && l.ends_with(" |")));
+    assert!(lines.iter().all(|l| l.starts_with("| ") && l.ends_with(" |")));
     assert!(lines.iter().all(|l| cells(l) == 7 + 1), "{markdown}");
     let width = lines[0].chars().count();
-    assert!(
-        lines.iter().all(|l| l.chars().count() == width),
-        "{markdown}"
-    );
+    assert!(lines.iter().all(|l| l.chars().count() == width), "{markdown}");
 
-    let rule: Vec<&str> = lines[1]
-        .trim_matches('|')
-        .split('|')
-        .map(str::trim)
-        .collect();
-    assert!(
-        rule[0].starts_with(':'),
-        "text column left-aligned: {}",
-        lines[1]
-    );
-    assert!(
-        rule[2].ends_with(':'),
-        "number column right-aligned: {}",
-        lines[1]
-    );
+    let rule: Vec<&str> = lines[1].trim_matches('|').split('|').map(str::trim).collect();
+    assert!(rule[0].starts_with(':'), "text column left-aligned: {}", lines[1]);
+    assert!(rule[2].ends_with(':'), "number column right-aligned: {}", lines[1]);
     assert!(lines[2].contains(" 12.35 |"), "{}", lines[2]);
     assert!(lines[4].contains("1e-7"), "{}", lines[4]);
     assert!(lines[3].contains("a\\|b"), "{}", lines[3]);
@@ -288,9 +216,7 @@ fn three_strategies() -> Vec<Series> {
 fn error_vs_time_chart_has_the_requested_size_and_every_series() {
     let dir = scratch_dir("scatter");
     let path = dir.join("error_vs_time.png");
-    let chart = Chart::new("Error against GPU time", "GPU time (ms)", "RMSE")
-        .y_scale(AxisScale::Log10)
-        .size(700, 450);
+    let chart = Chart::new("Error against GPU time", "GPU time (ms)", "RMSE").y_scale(AxisScale::Log10).size(700, 450);
     plot_error_vs_time(&path, &chart, &three_strategies()).expect("plot");
 
     let image = image::open(&path).expect("a readable PNG").to_rgb8();
@@ -298,13 +224,7 @@ fn error_vs_time_chart_has_the_requested_size_and_every_series() {
 
     // The legend shows each colour too, so compare with a chart whose series
     // have no points: the difference is the data markers alone.
-    let legend_only: Vec<Series> = three_strategies()
-        .into_iter()
-        .map(|s| Series {
-            points: vec![],
-            ..s
-        })
-        .collect();
+    let legend_only: Vec<Series> = three_strategies().into_iter().map(|s| Series { points: vec![], ..s }).collect();
     let legend_image = render_error_vs_time(&chart, &legend_only).expect("render");
     for color in [RED, GREEN, BLUE] {
         let data_pixels = count_color(&image, color) - count_color(&legend_image, color);
@@ -319,12 +239,7 @@ fn error_vs_time_chart_has_the_requested_size_and_every_series() {
 fn line_chart_on_a_log2_axis_draws_every_series() {
     let dir = scratch_dir("lines");
     let path = dir.join("time_vs_size.png");
-    let chart = Chart::new(
-        "GPU time against image size",
-        "image side (px)",
-        "GPU time (ms)",
-    )
-    .x_scale(AxisScale::Log2);
+    let chart = Chart::new("GPU time against image size", "image side (px)", "GPU time (ms)").x_scale(AxisScale::Log2);
     let series = vec![
         Series::new("slices", vec![(256.0, 1.0), (512.0, 3.8), (1024.0, 15.0)]).with_color(RED),
         Series::new("cache", vec![(1024.0, 9.0), (256.0, 0.8), (512.0, 2.5)]).with_color(BLUE),
@@ -332,13 +247,7 @@ fn line_chart_on_a_log2_axis_draws_every_series() {
     plot_lines(&path, &chart, &series).expect("plot");
     let image = image::open(&path).expect("a readable PNG").to_rgb8();
     assert_eq!(image.dimensions(), (900, 600));
-    let legend_only: Vec<Series> = series
-        .iter()
-        .map(|s| Series {
-            points: vec![],
-            ..s.clone()
-        })
-        .collect();
+    let legend_only: Vec<Series> = series.iter().map(|s| Series { points: vec![], ..s.clone() }).collect();
     let legend_image = render_lines(&chart, &legend_only).expect("render");
     for color in [RED, BLUE] {
         let data_pixels = count_color(&image, color) - count_color(&legend_image, color);
@@ -354,20 +263,9 @@ fn empty_and_unplottable_data_do_not_panic() {
     let cases: Vec<Vec<Series>> = vec![
         vec![],
         vec![Series::new("empty", vec![])],
-        vec![Series::new(
-            "bad",
-            vec![
-                (f64::NAN, 1.0),
-                (1.0, f64::INFINITY),
-                (2.0, 0.0),
-                (3.0, -1.0),
-            ],
-        )],
+        vec![Series::new("bad", vec![(f64::NAN, 1.0), (1.0, f64::INFINITY), (2.0, 0.0), (3.0, -1.0)])],
         vec![Series::new("one point", vec![(4.0, 0.5)])],
-        vec![Series::new(
-            "same x",
-            vec![(4.0, 0.5), (4.0, 0.25), (4.0, 0.5)],
-        )],
+        vec![Series::new("same x", vec![(4.0, 0.5), (4.0, 0.25), (4.0, 0.5)])],
     ];
     for (i, series) in cases.iter().enumerate() {
         let scatter = dir.join(format!("scatter_{i}.png"));
@@ -395,29 +293,17 @@ fn progress_without_a_terminal_prints_one_line_per_step() {
     let text = String::from_utf8(out).expect("utf-8");
     let lines: Vec<&str> = text.lines().collect();
     assert!(!text.contains('\r') && !text.contains('\x1b'), "{text:?}");
-    assert!(
-        lines[0].starts_with("[ 1/12] line_width=4 cache=256 ... "),
-        "{text}"
-    );
+    assert!(lines[0].starts_with("[ 1/12] line_width=4 cache=256 ... "), "{text}");
     assert!(lines[0].contains("(eta "), "{text}");
     assert!(lines.contains(&"note: validation is on"), "{text}");
     assert!(
-        lines.iter().any(
-            |l| l.starts_with("[ 2/12] line_width=8 cache=256 ... failed after")
-                && l.contains("device lost")
-        ),
-        "{text}"
-    );
-    assert!(
-        lines.iter().any(|l| l.starts_with("[ 3/12] line_width=16")),
-        "{text}"
-    );
-    assert!(
         lines
-            .last()
-            .is_some_and(|l| l.starts_with("3/12 steps in ")),
+            .iter()
+            .any(|l| l.starts_with("[ 2/12] line_width=8 cache=256 ... failed after") && l.contains("device lost")),
         "{text}"
     );
+    assert!(lines.iter().any(|l| l.starts_with("[ 3/12] line_width=16")), "{text}");
+    assert!(lines.last().is_some_and(|l| l.starts_with("3/12 steps in ")), "{text}");
 }
 
 #[test]

@@ -26,10 +26,7 @@ fn assert_user_error(o: &Output, must_mention: &str) {
     let err = stderr(o);
     assert!(!o.status.success(), "should fail: {err}");
     assert!(!err.contains("panicked"), "panicked: {err}");
-    assert!(
-        err.contains(must_mention),
-        "error does not mention {must_mention:?}: {err}"
-    );
+    assert!(err.contains(must_mention), "error does not mention {must_mention:?}: {err}");
 }
 
 #[test]
@@ -53,8 +50,7 @@ fn render_writes_png_profile_and_trace_validation_clean() {
     assert!(stderr(&o).contains("validation: clean"), "{}", stderr(&o));
     let img = image::open(&png).unwrap();
     assert_eq!((img.width(), img.height()), (48, 40));
-    let p: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let p: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     for key in ["device", "gpu_ms_total", "gpu_memory_bytes", "passes"] {
         assert!(p.get(key).is_some(), "profile JSON lacks {key}: {p}");
     }
@@ -62,8 +58,7 @@ fn render_writes_png_profile_and_trace_validation_clean() {
     assert_eq!(pass["name"], "phong");
     assert!(pass["gpu_ms"].as_f64().unwrap() > 0.0 && pass["count"] == 1);
     assert!(p["gpu_memory_bytes"].as_u64().unwrap() > 0);
-    let t: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&trace).unwrap()).unwrap();
+    let t: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&trace).unwrap()).unwrap();
     assert_eq!(t["traceEvents"][0]["ph"], "X");
 }
 
@@ -84,23 +79,12 @@ fn compare_reports_error_and_time_as_json() {
         heat.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let c: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    for key in [
-        "technique",
-        "rmse",
-        "max_abs",
-        "psnr",
-        "gpu_ms",
-        "reference_gpu_ms",
-    ] {
+    let c: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    for key in ["technique", "rmse", "max_abs", "psnr", "gpu_ms", "reference_gpu_ms"] {
         assert!(c.get(key).is_some(), "compare JSON lacks {key}: {c}");
     }
     assert_eq!(c["technique"], "dvr");
-    assert!(
-        c["rmse"].as_f64().unwrap() > 0.0,
-        "unshaded DVR cannot equal the lit reference"
-    );
+    assert!(c["rmse"].as_f64().unwrap() > 0.0, "unshaded DVR cannot equal the lit reference");
     assert!(image::open(&heat).is_ok());
 }
 
@@ -110,13 +94,7 @@ fn devices_lists_timestamp_properties() {
     assert!(o.status.success(), "{}", stderr(&o));
     let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let first = &d[0];
-    for key in [
-        "name",
-        "api_version",
-        "driver_name",
-        "timestamp_period_ns",
-        "timestamp_valid_bits",
-    ] {
+    for key in ["name", "api_version", "driver_name", "timestamp_period_ns", "timestamp_valid_bits"] {
         assert!(first.get(key).is_some(), "{key} missing: {first}");
     }
 }
@@ -125,59 +103,23 @@ fn devices_lists_timestamp_properties() {
 fn bad_input_gives_clear_errors_not_panics() {
     let dir = temp_dir("errors");
     let missing = dir.join("missing-scene.toml");
-    assert_user_error(
-        &sweeplab(&["render", "--scene", missing.to_str().unwrap()]),
-        "missing-scene.toml",
-    );
+    assert_user_error(&sweeplab(&["render", "--scene", missing.to_str().unwrap()]), "missing-scene.toml");
     let garbage = dir.join("garbage.vti");
-    std::fs::write(
-        &garbage,
-        b"<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 1",
-    )
-    .unwrap();
-    assert_user_error(
-        &sweeplab(&["render", "--volume", garbage.to_str().unwrap()]),
-        "garbage.vti",
-    );
+    std::fs::write(&garbage, b"<VTKFile type=\"ImageData\"><ImageData WholeExtent=\"0 1").unwrap();
+    assert_user_error(&sweeplab(&["render", "--volume", garbage.to_str().unwrap()]), "garbage.vti");
     let unknown = dir.join("volume.xyz");
     std::fs::write(&unknown, b"x").unwrap();
-    assert_user_error(
-        &sweeplab(&["render", "--volume", unknown.to_str().unwrap()]),
-        "volume.xyz",
-    );
+    assert_user_error(&sweeplab(&["render", "--volume", unknown.to_str().unwrap()]), "volume.xyz");
     assert_user_error(&sweeplab(&["render", "--size", "12"]), "--size");
     assert_user_error(&sweeplab(&["render", "--size", "0x5"]), "--size");
-    assert_user_error(
-        &sweeplab(&["render", "--technique", "raytrace"]),
-        "raytrace",
-    );
+    assert_user_error(&sweeplab(&["render", "--technique", "raytrace"]), "raytrace");
     assert_user_error(&sweeplab(&["render", "--set", "camera.azimut=3"]), "azimut");
     assert_user_error(&sweeplab(&["render", "--set", "novalue"]), "novalue");
     assert_user_error(
-        &sweeplab(&[
-            "render",
-            "--set",
-            "ipsvi.line_width=99",
-            "--technique",
-            "ipsvi",
-            "--size",
-            "8x8",
-        ]),
+        &sweeplab(&["render", "--set", "ipsvi.line_width=99", "--technique", "ipsvi", "--size", "8x8"]),
         "line_width",
     );
-    assert_user_error(
-        &sweeplab(&["render", "--device", "no-such-gpu"]),
-        "no-such-gpu",
-    );
+    assert_user_error(&sweeplab(&["render", "--device", "no-such-gpu"]), "no-such-gpu");
     let unwritable = dir.join("no-such-dir").join("out.png");
-    assert_user_error(
-        &sweeplab(&[
-            "render",
-            "--size",
-            "8x8",
-            "--out",
-            unwritable.to_str().unwrap(),
-        ]),
-        "out.png",
-    );
+    assert_user_error(&sweeplab(&["render", "--size", "8x8", "--out", unwritable.to_str().unwrap()]), "out.png");
 }

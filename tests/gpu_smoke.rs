@@ -8,12 +8,7 @@ use sweeplab::vk::Profiler;
 #[test]
 fn every_baseline_renders_validation_clean() {
     let ctx = validated_context();
-    let scene = scene_with(
-        sphere_volume(24, 9.0),
-        vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)],
-        32,
-        32,
-    );
+    let scene = scene_with(sphere_volume(24, 9.0), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)], 32, 32);
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 256).unwrap();
     for t in Technique::ALL {
@@ -21,10 +16,7 @@ fn every_baseline_renders_validation_clean() {
         assert!(out.image.all_finite());
         let centre = out.image.get(16, 16);
         let corner = out.image.get(0, 0);
-        assert!(
-            centre[0] > corner[0] + 0.05,
-            "{t}: centre {centre:?} corner {corner:?}"
-        );
+        assert!(centre[0] > corner[0] + 0.05, "{t}: centre {centre:?} corner {corner:?}");
         println!(
             "{t}: dispatches {} barriers {} centre {centre:?}\n{}",
             out.dispatches,
@@ -42,12 +34,7 @@ fn every_baseline_renders_validation_clean() {
 fn reference_without_chunk_barrier_is_reported_by_sync_validation() {
     use sweeplab::reference::gpu::{plan_for, render_with, ChunkSync};
     let ctx = validated_context();
-    let mut scene = scene_with(
-        sphere_volume(24, 9.0),
-        vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)],
-        16,
-        16,
-    );
+    let mut scene = scene_with(sphere_volume(24, 9.0), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)], 16, 16);
     // A fine shadow step forces several chunks.
     scene.reference.shadow_step_voxels = 0.05;
     scene.reference.step_voxels = 0.25;
@@ -60,8 +47,5 @@ fn reference_without_chunk_barrier_is_reported_by_sync_validation() {
     profiler.reset();
     render_with(&gpu, 16, 16, &mut profiler, ChunkSync::RacyNoBarrier).unwrap();
     let messages = ctx.take_validation_messages();
-    assert!(
-        messages.iter().any(|m| m.contains("SYNC-HAZARD")),
-        "racy chunks were not reported: {messages:?}"
-    );
+    assert!(messages.iter().any(|m| m.contains("SYNC-HAZARD")), "racy chunks were not reported: {messages:?}");
 }

@@ -17,10 +17,7 @@ fn gpu_and_cpu(
     scene: &Scene,
     technique: Technique,
     kind: CpuRenderKind,
-) -> (
-    sweeplab::linear_image::LinearImage,
-    sweeplab::linear_image::LinearImage,
-) {
+) -> (sweeplab::linear_image::LinearImage, sweeplab::linear_image::LinearImage) {
     let ctx = validated_context();
     let (w, h) = (scene.render.width, scene.render.height);
     let gpu_image = {
@@ -36,23 +33,13 @@ fn gpu_and_cpu(
 /// Smooth volumes: with hard edges, f32 and f64 sample positions may fall on
 /// either side of a discontinuity and a pixel legitimately flips.
 fn spheres_scene(n: u32, size: u32) -> Scene {
-    let mut scene = scene_with(
-        three_spheres(n),
-        vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)],
-        size,
-        size,
-    );
+    let mut scene = scene_with(three_spheres(n), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)], size, size);
     scene.transfer = sweeplab::scene::presets::preset("spheres").unwrap();
     scene
 }
 
 fn noise_scene(n: u32, size: u32) -> Scene {
-    let mut scene = scene_with(
-        noise(n, 7),
-        vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)],
-        size,
-        size,
-    );
+    let mut scene = scene_with(noise(n, 7), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)], size, size);
     scene.transfer = sweeplab::scene::presets::preset("grayscale-ramp").unwrap();
     scene
 }
@@ -82,18 +69,12 @@ fn gpu_phong_matches_cpu_f64_phong() {
     let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Phong, CpuRenderKind::Phong);
     let stats = compare(&gpu, &cpu).unwrap();
     let peak = cpu.max_value() as f64;
-    assert!(
-        stats.max_abs <= 5.0 * TIGHT * peak && stats.rmse <= 2e-4 * peak.max(1.0),
-        "{stats:?} peak {peak}"
-    );
+    assert!(stats.max_abs <= 5.0 * TIGHT * peak && stats.rmse <= 2e-4 * peak.max(1.0), "{stats:?} peak {peak}");
 }
 
 #[test]
 fn gpu_reference_matches_cpu_reference_for_every_light_type_and_both_models() {
-    for model in [
-        OpticalModel::SingleScattering,
-        OpticalModel::EmissiveScattering,
-    ] {
+    for model in [OpticalModel::SingleScattering, OpticalModel::EmissiveScattering] {
         let mut scene = scene_with(slab_under_sphere(24), vec![], 24, 24);
         scene.transfer = sweeplab::scene::presets::preset("slab-sphere").unwrap();
         scene.reference.model = model;
@@ -101,9 +82,7 @@ fn gpu_reference_matches_cpu_reference_for_every_light_type_and_both_models() {
         scene.lights = vec![
             directional(Vec3::new(0.2, -1.0, 0.1), 1.5),
             Light {
-                kind: LightKind::Point {
-                    position: Vec3::new(0.1, 0.2, 0.05),
-                },
+                kind: LightKind::Point { position: Vec3::new(0.1, 0.2, 0.05) },
                 color: Vec3::new(1.0, 0.6, 0.3),
                 intensity: 0.8,
                 falloff: Falloff::InverseSquare,
@@ -120,18 +99,11 @@ fn gpu_reference_matches_cpu_reference_for_every_light_type_and_both_models() {
                 falloff: Falloff::None,
             },
         ];
-        let (gpu, cpu) = gpu_and_cpu(
-            &scene,
-            Technique::Reference,
-            CpuRenderKind::Reference(model),
-        );
+        let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Reference, CpuRenderKind::Reference(model));
         let stats = compare(&gpu, &cpu).unwrap();
         let peak = cpu.max_value() as f64;
         assert!(peak > 0.05, "{model:?}: empty image");
-        assert!(
-            stats.max_abs <= TIGHT * peak && stats.rmse <= 2e-4 * peak,
-            "{model:?}: {stats:?} peak {peak}"
-        );
+        assert!(stats.max_abs <= TIGHT * peak && stats.rmse <= 2e-4 * peak, "{model:?}: {stats:?} peak {peak}");
     }
 }
 
@@ -139,12 +111,7 @@ fn gpu_reference_matches_cpu_reference_for_every_light_type_and_both_models() {
 /// llvmpipe's 65,535 loop iterations: the chunked GPU reference must still agree.
 #[test]
 fn gpu_reference_agrees_where_one_invocation_would_pass_the_loop_cap() {
-    let mut scene = scene_with(
-        slab_under_sphere(40),
-        vec![directional(Vec3::new(0.3, -1.0, 0.2), 1.5)],
-        12,
-        12,
-    );
+    let mut scene = scene_with(slab_under_sphere(40), vec![directional(Vec3::new(0.3, -1.0, 0.2), 1.5)], 12, 12);
     scene.transfer = sweeplab::scene::presets::preset("slab-sphere").unwrap();
     scene.reference.step_voxels = 0.25;
     scene.reference.shadow_step_voxels = 0.25;
@@ -153,21 +120,12 @@ fn gpu_reference_agrees_where_one_invocation_would_pass_the_loop_cap() {
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let plan = plan_for(&gpu);
     let unsplit = plan.max_view_samples * (1 + plan.max_shadow_samples);
-    assert!(
-        unsplit > 65_535,
-        "scene too small to exercise the cap: {unsplit} iterations"
-    );
-    assert!(
-        plan.chunks > 1 && plan.iterations_per_dispatch(1) < 65_535,
-        "{plan:?}"
-    );
+    assert!(unsplit > 65_535, "scene too small to exercise the cap: {unsplit} iterations");
+    assert!(plan.chunks > 1 && plan.iterations_per_dispatch(1) < 65_535, "{plan:?}");
     drop(gpu);
     drop(ctx);
-    let (gpu, cpu) = gpu_and_cpu(
-        &scene,
-        Technique::Reference,
-        CpuRenderKind::Reference(OpticalModel::SingleScattering),
-    );
+    let (gpu, cpu) =
+        gpu_and_cpu(&scene, Technique::Reference, CpuRenderKind::Reference(OpticalModel::SingleScattering));
     let stats = compare(&gpu, &cpu).unwrap();
     let peak = cpu.max_value() as f64;
     assert!(stats.max_abs <= TIGHT * peak, "{stats:?} peak {peak}");

@@ -36,9 +36,7 @@ pub struct Scratch(PathBuf);
 
 impl Scratch {
     pub fn new(test: &str) -> Scratch {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-            .join("loaders")
-            .join(test);
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("loaders").join(test);
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         Scratch(dir)
@@ -65,19 +63,12 @@ pub fn load_ok(path: &Path) -> Volume {
 /// Loading must fail, and the message must name the file.
 pub fn load_err(path: &Path) -> LoadError {
     let error = match load_volume(path) {
-        Ok(volume) => panic!(
-            "{} should not load, but gave {:?} voxels",
-            path.display(),
-            volume.dims
-        ),
+        Ok(volume) => panic!("{} should not load, but gave {:?} voxels", path.display(), volume.dims),
         Err(e) => e,
     };
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
     let message = error.to_string();
-    assert!(
-        message.contains(&name),
-        "the error for {name} does not name the file: {message}"
-    );
+    assert!(message.contains(&name), "the error for {name} does not name the file: {message}");
     error
 }
 

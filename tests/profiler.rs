@@ -9,12 +9,7 @@ use sweeplab::vk::commands::submit_and_wait;
 use sweeplab::vk::Profiler;
 
 fn chunked_scene() -> sweeplab::scene::Scene {
-    let mut scene = scene_with(
-        sphere_volume(24, 9.0),
-        vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)],
-        16,
-        16,
-    );
+    let mut scene = scene_with(sphere_volume(24, 9.0), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)], 16, 16);
     scene.reference.shadow_step_voxels = 0.05;
     scene.reference.step_voxels = 0.25;
     scene
@@ -26,26 +21,14 @@ fn detail_scopes_nest_and_sum_to_at_most_the_parent() {
     let scene = chunked_scene();
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 1024).unwrap();
-    assert!(
-        profiler.timestamps_supported(),
-        "lavapipe supports timestamps"
-    );
+    assert!(profiler.timestamps_supported(), "lavapipe supports timestamps");
     profiler.set_detail(true);
     let out = render(&gpu, Technique::Reference, 16, 16, &mut profiler).unwrap();
     let scopes = &out.profile.scopes;
-    let parent = scopes
-        .iter()
-        .position(|s| s.name == "reference")
-        .expect("reference scope");
+    let parent = scopes.iter().position(|s| s.name == "reference").expect("reference scope");
     let children: Vec<_> = scopes.iter().filter(|s| s.parent == Some(parent)).collect();
-    assert_eq!(
-        children.len() as u32,
-        out.dispatches,
-        "one detail scope per chunk dispatch"
-    );
-    assert!(children
-        .iter()
-        .all(|c| c.depth == scopes[parent].depth + 1 && c.path == "reference/reference_chunk"));
+    assert_eq!(children.len() as u32, out.dispatches, "one detail scope per chunk dispatch");
+    assert!(children.iter().all(|c| c.depth == scopes[parent].depth + 1 && c.path == "reference/reference_chunk"));
     let sum: f64 = children.iter().map(|c| c.duration_ns).sum();
     assert!(
         sum <= scopes[parent].duration_ns * (1.0 + 1e-9),
@@ -55,26 +38,17 @@ fn detail_scopes_nest_and_sum_to_at_most_the_parent() {
     for c in &children {
         assert!(
             c.start_ns >= scopes[parent].start_ns
-                && c.start_ns + c.duration_ns
-                    <= scopes[parent].start_ns + scopes[parent].duration_ns + 1.0
+                && c.start_ns + c.duration_ns <= scopes[parent].start_ns + scopes[parent].duration_ns + 1.0
         );
     }
-    let pass = out
-        .profile
-        .passes
-        .iter()
-        .find(|p| p.path == "reference/reference_chunk")
-        .unwrap();
+    let pass = out.profile.passes.iter().find(|p| p.path == "reference/reference_chunk").unwrap();
     assert_eq!(pass.count, out.dispatches);
     assert!(out.profile.gpu_ms_total > 0.0);
 
     profiler.set_detail(false);
     let out = render(&gpu, Technique::Reference, 16, 16, &mut profiler).unwrap();
     assert!(
-        out.profile
-            .scopes
-            .iter()
-            .all(|s| s.name != "reference_chunk"),
+        out.profile.scopes.iter().all(|s| s.name != "reference_chunk"),
         "detail scopes recorded while detail is off"
     );
     drop(gpu);

@@ -34,12 +34,7 @@ fn constant_volume(n: u32) -> Volume {
 
 /// The same colour and opacity for every scalar: a homogeneous medium.
 fn constant_transfer(rgb: [f32; 3], alpha: f32) -> TransferFunction {
-    TransferFunction {
-        points: vec![ControlPoint {
-            value: 0.0,
-            rgba: [rgb[0], rgb[1], rgb[2], alpha],
-        }],
-    }
+    TransferFunction { points: vec![ControlPoint { value: 0.0, rgba: [rgb[0], rgb[1], rgb[2], alpha] }] }
 }
 
 /// Orthographic camera on the +z axis looking down -z; every ray crosses the
@@ -54,12 +49,7 @@ fn looking_down_z(height: f32) -> Camera {
 }
 
 fn directional(direction: Vec3, color: Vec3, intensity: f32) -> Light {
-    Light {
-        kind: LightKind::Directional { direction },
-        color,
-        intensity,
-        falloff: Falloff::None,
-    }
+    Light { kind: LightKind::Directional { direction }, color, intensity, falloff: Falloff::None }
 }
 
 fn tiny_scene(volume: Volume, transfer: TransferFunction, lights: Vec<Light>) -> Scene {
@@ -81,12 +71,7 @@ fn tiny_scene(volume: Volume, transfer: TransferFunction, lights: Vec<Light>) ->
             shadow_step_voxels: 0.5,
             min_transmittance: 0.0,
         },
-        phong: PhongSettings {
-            ambient: 0.2,
-            diffuse: 0.6,
-            specular: 0.3,
-            shininess: 16.0,
-        },
+        phong: PhongSettings { ambient: 0.2, diffuse: 0.6, specular: 0.3, shininess: 16.0 },
         techniques: toml::Table::new(),
     }
 }
@@ -127,8 +112,7 @@ fn dvr_of_a_homogeneous_box_is_the_closed_form() {
     let tau = sigma_of(&scene) * 8.0;
     assert!((-tau).exp() > EARLY_TERMINATION_TRANSMITTANCE);
     let bg = dv(scene.render.background);
-    let want: [f64; 3] =
-        std::array::from_fn(|c| rgb[c] as f64 * (1.0 - (-tau).exp()) + bg[c] * (-tau).exp());
+    let want: [f64; 3] = std::array::from_fn(|c| rgb[c] as f64 * (1.0 - (-tau).exp()) + bg[c] * (-tau).exp());
     for step in [0.5, 0.3, 1.0, 2.5, 20.0] {
         scene.render.step_voxels = step;
         for (x, y) in [(0, 0), (3, 5), (7, 7)] {
@@ -150,13 +134,10 @@ fn dvr_early_termination_error_is_bounded_by_t_min() {
     let scene = tiny_scene(constant_volume(8), constant_transfer(rgb, 0.9), vec![]);
     let tau = sigma_of(&scene) * 8.0;
     let bg = dv(scene.render.background);
-    let exact: [f64; 3] =
-        std::array::from_fn(|c| rgb[c] as f64 * (1.0 - (-tau).exp()) + bg[c] * (-tau).exp());
+    let exact: [f64; 3] = std::array::from_fn(|c| rgb[c] as f64 * (1.0 - (-tau).exp()) + bg[c] * (-tau).exp());
     let got = render_pixel_cpu(&scene, CpuRenderKind::Dvr, 8, 8, 4, 4).unwrap();
     let bound = EARLY_TERMINATION_TRANSMITTANCE * 0.8;
-    let err: f64 = (0..3)
-        .map(|c| (got[c] - exact[c]).abs())
-        .fold(0.0, f64::max);
+    let err: f64 = (0..3).map(|c| (got[c] - exact[c]).abs()).fold(0.0, f64::max);
     assert!(err <= bound, "error {err} above {bound}");
     // The ray did stop early (the final transmittance e^-18 is far below t_min,
     // and a ray that ran to the end would match to rounding).
@@ -172,9 +153,8 @@ fn phong_without_lights_or_gradient_is_flat_shading() {
         let tau = sigma_of(&scene) * 8.0;
         let bg = dv(scene.render.background);
         let flat = scene.phong.ambient as f64 + scene.phong.diffuse as f64;
-        let want: [f64; 3] = std::array::from_fn(|c| {
-            rgb[c] as f64 * flat * (1.0 - (-tau).exp()) + bg[c] * (-tau).exp()
-        });
+        let want: [f64; 3] =
+            std::array::from_fn(|c| rgb[c] as f64 * flat * (1.0 - (-tau).exp()) + bg[c] * (-tau).exp());
         let got = render_pixel_cpu(&scene, CpuRenderKind::Phong, 8, 8, 2, 6).unwrap();
         assert_close(got, want, 1e-13, "flat phong");
     }
@@ -236,11 +216,7 @@ fn reference_at_a_known_depth_below_a_lit_face_is_the_closed_form() {
     let radiance = [1.0, 0.8, 0.6];
     let n = 16;
     let light = directional(Vec3::NEG_Y, Vec3::from_array(radiance), 2.0);
-    let mut scene = tiny_scene(
-        constant_volume(n),
-        constant_transfer(rgb, 0.15),
-        vec![light],
-    );
+    let mut scene = tiny_scene(constant_volume(n), constant_transfer(rgb, 0.15), vec![light]);
     scene.camera = looking_down_z(1.0);
     scene.render.emission = 0.25;
     let e = 0.25f64;
@@ -248,12 +224,7 @@ fn reference_at_a_known_depth_below_a_lit_face_is_the_closed_form() {
     let kappa = sigma_of(&scene) / vl;
     let view_t = (-kappa).exp();
     let bg = dv(scene.render.background);
-    for (kind, step) in [
-        (SINGLE, 0.5),
-        (SINGLE, 1.7),
-        (EMISSIVE, 0.5),
-        (EMISSIVE, 0.9),
-    ] {
+    for (kind, step) in [(SINGLE, 0.5), (SINGLE, 1.7), (EMISSIVE, 0.5), (EMISSIVE, 0.9)] {
         scene.reference.step_voxels = step;
         scene.reference.shadow_step_voxels = step;
         for (x, y) in [(0, 0), (4, 3), (7, 7)] {
@@ -268,12 +239,7 @@ fn reference_at_a_known_depth_below_a_lit_face_is_the_closed_form() {
                 rgb * light_in * (1.0 - view_t) + bg[c] * view_t
             });
             let got = render_pixel_cpu(&scene, kind, 8, 8, x, y).unwrap();
-            assert_close(
-                got,
-                want,
-                1e-12,
-                &format!("{kind:?} step {step} ({x}, {y})"),
-            );
+            assert_close(got, want, 1e-12, &format!("{kind:?} step {step} ({x}, {y})"));
         }
     }
 }
@@ -296,8 +262,7 @@ fn reference_along_the_light_converges_quadratically_to_the_integral() {
     let kappa = sigma_of(&scene) / vl;
     let bg = dv(scene.render.background);
     let view_t = (-kappa).exp();
-    let scatter: [f64; 3] =
-        std::array::from_fn(|c| rgb[c] as f64 * big_r * (1.0 - (-2.0 * kappa).exp()) / 2.0);
+    let scatter: [f64; 3] = std::array::from_fn(|c| rgb[c] as f64 * big_r * (1.0 - (-2.0 * kappa).exp()) / 2.0);
     let continuous: [f64; 3] =
         std::array::from_fn(|c| rgb[c] as f64 * e * (1.0 - view_t) + scatter[c] + bg[c] * view_t);
     let mut errors = vec![];
@@ -306,8 +271,7 @@ fn reference_along_the_light_converges_quadratically_to_the_integral() {
         let got = render_pixel_cpu(&scene, SINGLE, 8, 8, 3, 3).unwrap();
         let h = step as f64 * vl;
         let shrink = 1.0 / (kappa * h / 2.0).cosh();
-        let discrete: [f64; 3] =
-            std::array::from_fn(|c| continuous[c] - scatter[c] * (1.0 - shrink));
+        let discrete: [f64; 3] = std::array::from_fn(|c| continuous[c] - scatter[c] * (1.0 - shrink));
         assert_close(got, discrete, 1e-12, &format!("discrete sum, step {step}"));
         let bound = (kappa * h).powi(2) / 8.0;
         let err = (got[0] - continuous[0]).abs();
@@ -336,13 +300,8 @@ fn sphere_over_slab(with_sphere: bool) -> (Volume, TransferFunction) {
             0
         }
     });
-    let grey = |a: f32, v: f32| ControlPoint {
-        value: v,
-        rgba: [0.9, 0.9, 0.9, a],
-    };
-    let transfer = TransferFunction {
-        points: vec![grey(0.0, 0.0), grey(0.08, 0.5), grey(0.5, 1.0)],
-    };
+    let grey = |a: f32, v: f32| ControlPoint { value: v, rgba: [0.9, 0.9, 0.9, a] };
+    let transfer = TransferFunction { points: vec![grey(0.0, 0.0), grey(0.08, 0.5), grey(0.5, 1.0)] };
     (volume, transfer)
 }
 
@@ -382,9 +341,7 @@ fn three_lights() -> Vec<Light> {
     vec![
         directional(Vec3::new(0.2, -1.0, -0.1), Vec3::new(1.0, 0.9, 0.8), 1.0),
         Light {
-            kind: LightKind::Point {
-                position: Vec3::new(-0.6, 0.3, 0.4),
-            },
+            kind: LightKind::Point { position: Vec3::new(-0.6, 0.3, 0.4) },
             color: Vec3::new(0.5, 0.6, 1.0),
             intensity: 0.4,
             falloff: Falloff::InverseSquare,
@@ -442,9 +399,7 @@ fn emissive_model_brightens_the_shadow_of_an_emitting_occluder() {
 #[test]
 fn point_light_inside_the_volume_gives_finite_light() {
     let light = Light {
-        kind: LightKind::Point {
-            position: Vec3::new(0.0, -0.3, 0.0),
-        },
+        kind: LightKind::Point { position: Vec3::new(0.0, -0.3, 0.0) },
         color: Vec3::ONE,
         intensity: 1.0,
         falloff: Falloff::InverseSquare,
@@ -517,11 +472,8 @@ fn grazing_and_axis_parallel_directional_lights_are_finite_and_continuous() {
 #[test]
 fn near_opaque_medium_stays_finite() {
     let light = directional(Vec3::new(0.3, -1.0, 0.2), Vec3::ONE, 1.0);
-    let mut scene = tiny_scene(
-        constant_volume(16),
-        constant_transfer([0.9, 0.7, 0.5], transfer::MAX_ALPHA),
-        vec![light],
-    );
+    let mut scene =
+        tiny_scene(constant_volume(16), constant_transfer([0.9, 0.7, 0.5], transfer::MAX_ALPHA), vec![light]);
     scene.render.emission = 0.1;
     for kind in [CpuRenderKind::Dvr, CpuRenderKind::Phong, SINGLE, EMISSIVE] {
         let image = render_cpu(&scene, kind, 8, 8).unwrap();
@@ -548,13 +500,7 @@ fn rays_that_miss_the_box_see_the_background() {
 #[test]
 fn image_is_the_pixels_in_row_order_and_deterministic() {
     let mut scene = slab_scene(true, three_lights());
-    scene.camera = Camera::orbit(
-        Vec3::ZERO,
-        2.5,
-        30.0,
-        20.0,
-        Projection::Perspective { fov_y_deg: 35.0 },
-    );
+    scene.camera = Camera::orbit(Vec3::ZERO, 2.5, 30.0, 20.0, Projection::Perspective { fov_y_deg: 35.0 });
     let (w, h) = (13, 7);
     let image = render_cpu(&scene, SINGLE, w, h).unwrap();
     assert_eq!((image.width, image.height), (w, h));
@@ -572,26 +518,17 @@ fn invalid_settings_are_errors_not_panics() {
     zero_step.reference.shadow_step_voxels = 0.0;
     assert!(matches!(
         render_cpu(&zero_step, SINGLE, 4, 4),
-        Err(CpuRenderError::Step {
-            setting: "reference.shadow_step_voxels",
-            ..
-        })
+        Err(CpuRenderError::Step { setting: "reference.shadow_step_voxels", .. })
     ));
     let mut nan_step = base.clone();
     nan_step.render.step_voxels = f32::NAN;
     assert!(render_cpu(&nan_step, CpuRenderKind::Dvr, 4, 4).is_err());
     let mut bad_light = base.clone();
     bad_light.lights = vec![directional(Vec3::NEG_Y, Vec3::ONE, f32::INFINITY)];
-    assert!(matches!(
-        render_cpu(&bad_light, SINGLE, 4, 4),
-        Err(CpuRenderError::Light { index: 0, .. })
-    ));
+    assert!(matches!(render_cpu(&bad_light, SINGLE, 4, 4), Err(CpuRenderError::Light { index: 0, .. })));
     let mut short = base.clone();
     short.volume.dims = UVec3::new(4, 4, 5);
-    assert!(matches!(
-        render_cpu(&short, CpuRenderKind::Dvr, 4, 4),
-        Err(CpuRenderError::Volume { .. })
-    ));
+    assert!(matches!(render_cpu(&short, CpuRenderKind::Dvr, 4, 4), Err(CpuRenderError::Volume { .. })));
     assert!(matches!(
         render_pixel_cpu(&base, CpuRenderKind::Dvr, 4, 4, 4, 0),
         Err(CpuRenderError::PixelOutOfRange { .. })

@@ -6,12 +6,8 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use sweeplab::scene::default_scene::volume_file_scene_spec;
 use sweeplab::scene::loaders::data_dir;
-use sweeplab::scene::scene_file::{
-    parse_scene_file, parse_scene_str, scene_from_toml_str, SceneError,
-};
-use sweeplab::scene::scene_spec::{
-    CameraPlacement, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource,
-};
+use sweeplab::scene::scene_file::{parse_scene_file, parse_scene_str, scene_from_toml_str, SceneError};
+use sweeplab::scene::scene_spec::{CameraPlacement, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource};
 use sweeplab::scene::synthetic::{three_spheres, SyntheticKind};
 use sweeplab::scene::{Falloff, LightKind, OpticalModel};
 
@@ -46,10 +42,7 @@ fn error_of(text: &str, overrides: &[&str]) -> String {
 
 fn assert_mentions(message: &str, parts: &[&str]) {
     for part in parts {
-        assert!(
-            message.contains(part),
-            "message does not mention {part:?}: {message}"
-        );
+        assert!(message.contains(part), "message does not mention {part:?}: {message}");
     }
 }
 
@@ -58,21 +51,11 @@ const MINIMAL: &str = "[volume]\nsynthetic = \"noise\"\nsize = 8\n";
 #[test]
 fn every_example_scene_parses() {
     let paths = example_paths();
-    let names: Vec<String> = paths
-        .iter()
-        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
-        .collect();
-    for expected in [
-        "phantom.toml",
-        "three-spheres.toml",
-        "cornell-box.toml",
-        "slab-under-sphere.toml",
-        "all-keys.toml",
-    ] {
-        assert!(
-            names.iter().any(|n| n == expected),
-            "{expected} missing from {names:?}"
-        );
+    let names: Vec<String> = paths.iter().map(|p| p.file_name().unwrap().to_string_lossy().into_owned()).collect();
+    for expected in
+        ["phantom.toml", "three-spheres.toml", "cornell-box.toml", "slab-under-sphere.toml", "all-keys.toml"]
+    {
+        assert!(names.iter().any(|n| n == expected), "{expected} missing from {names:?}");
     }
     for path in &paths {
         if let Err(e) = parse_scene_file(path, &[]) {
@@ -88,15 +71,8 @@ fn synthetic_example_scenes_build() {
         let VolumeSource::Synthetic { size, .. } = spec.volume else {
             continue;
         };
-        let scene = spec
-            .build()
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        assert_eq!(
-            scene.volume.dims,
-            glam::UVec3::splat(size),
-            "{}",
-            path.display()
-        );
+        let scene = spec.build().unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert_eq!(scene.volume.dims, glam::UVec3::splat(size), "{}", path.display());
         assert!(!scene.transfer.points.is_empty());
     }
 }
@@ -109,12 +85,7 @@ fn data_example_scenes_load_their_volumes() {
         let VolumeSource::File(file) = &spec.volume else {
             continue;
         };
-        assert!(
-            file.starts_with(&dir),
-            "{}: data_file must resolve under {}",
-            path.display(),
-            dir.display()
-        );
+        assert!(file.starts_with(&dir), "{}: data_file must resolve under {}", path.display(), dir.display());
         assert!(
             file.exists(),
             "{}: {} is missing; the real data sets are found through SWEEPLAB_DATA (now {})",
@@ -131,69 +102,33 @@ fn data_example_scenes_load_their_volumes() {
 fn examples_read_what_they_say() {
     let spheres = example("three-spheres.toml", &[]);
     assert_eq!(spheres.lights.len(), 2);
-    assert_eq!(
-        spheres.lights[0].kind,
-        LightKind::Point {
-            position: Vec3::new(-1.2, 0.2, 0.3)
-        }
-    );
+    assert_eq!(spheres.lights[0].kind, LightKind::Point { position: Vec3::new(-1.2, 0.2, 0.3) });
     assert_eq!(spheres.lights[1].color, Vec3::new(0.2, 0.4, 1.0));
-    assert_eq!(
-        spheres.techniques["lightvolume"]["resolution_scale"].as_float(),
-        Some(0.5)
-    );
+    assert_eq!(spheres.techniques["lightvolume"]["resolution_scale"].as_float(), Some(0.5));
 
     let cornell = example("cornell-box.toml", &[]);
-    let LightKind::Spot {
-        direction,
-        inner_cone_deg,
-        outer_cone_deg,
-        ..
-    } = cornell.lights[0].kind
-    else {
+    let LightKind::Spot { direction, inner_cone_deg, outer_cone_deg, .. } = cornell.lights[0].kind else {
         panic!("cornell-box.toml: expected a spot light");
     };
-    assert_eq!(
-        (direction, inner_cone_deg, outer_cone_deg),
-        (Vec3::NEG_Y, 50.0, 70.0)
-    );
+    assert_eq!((direction, inner_cone_deg, outer_cone_deg), (Vec3::NEG_Y, 50.0, 70.0));
     assert_eq!(cornell.lights[0].falloff, Falloff::InverseSquare);
-    assert_eq!(
-        cornell.camera.projection,
-        ProjectionSpec::Perspective { fov_y_deg: 40.0 }
-    );
+    assert_eq!(cornell.camera.projection, ProjectionSpec::Perspective { fov_y_deg: 40.0 });
 
     let voxel = example("single-voxel.toml", &[]);
     assert!(voxel.lights.is_empty(), "`lights = []` means no lights");
-    assert_eq!(
-        voxel.camera.projection,
-        ProjectionSpec::Orthographic { height: Some(1.0) }
-    );
+    assert_eq!(voxel.camera.projection, ProjectionSpec::Orthographic { height: Some(1.0) });
 
     let noise = example("noise.toml", &[]);
     assert_eq!(noise.transfer, TransferSpec::FromHistogram);
     assert_eq!(noise.reference.model, OpticalModel::EmissiveScattering);
-    assert_eq!(
-        noise.volume,
-        VolumeSource::Synthetic {
-            kind: SyntheticKind::Noise,
-            size: 48,
-            seed: 7
-        }
-    );
+    assert_eq!(noise.volume, VolumeSource::Synthetic { kind: SyntheticKind::Noise, size: 48, seed: 7 });
 
     let nucleon = example("nucleon.toml", &[]);
     assert_eq!(
         nucleon.camera.placement,
-        CameraPlacement::LookAt {
-            eye: Vec3::new(1.2, 0.8, 1.6),
-            target: Vec3::ZERO,
-            up: Vec3::Y
-        }
+        CameraPlacement::LookAt { eye: Vec3::new(1.2, 0.8, 1.6), target: Vec3::ZERO, up: Vec3::Y }
     );
-    let TransferSpec::Given(tf) = &nucleon.transfer else {
-        panic!("nucleon.toml: expected explicit points")
-    };
+    let TransferSpec::Given(tf) = &nucleon.transfer else { panic!("nucleon.toml: expected explicit points") };
     assert_eq!(tf.points.len(), 4);
     assert_eq!(tf.points[2].rgba, [0.9, 0.5, 0.2, 0.2]);
 }
@@ -201,66 +136,26 @@ fn examples_read_what_they_say() {
 #[test]
 fn an_almost_empty_file_gets_the_documented_defaults() {
     let spec = parse_scene_str(MINIMAL, Path::new(""), "minimal", &[]).unwrap();
-    assert_eq!(
-        (
-            spec.render.width,
-            spec.render.height,
-            spec.render.step_voxels
-        ),
-        (512, 512, 0.5)
-    );
-    assert_eq!(
-        (spec.render.background, spec.render.emission),
-        (Vec3::ZERO, 0.1)
-    );
+    assert_eq!((spec.render.width, spec.render.height, spec.render.step_voxels), (512, 512, 0.5));
+    assert_eq!((spec.render.background, spec.render.emission), (Vec3::ZERO, 0.1));
     assert_eq!(spec.reference.model, OpticalModel::SingleScattering);
-    assert_eq!(
-        (
-            spec.reference.step_voxels,
-            spec.reference.shadow_step_voxels
-        ),
-        (0.25, 0.5)
-    );
+    assert_eq!((spec.reference.step_voxels, spec.reference.shadow_step_voxels), (0.25, 0.5));
     assert_eq!(spec.reference.min_transmittance, 1e-4);
     assert_eq!(
-        (
-            spec.phong.ambient,
-            spec.phong.diffuse,
-            spec.phong.specular,
-            spec.phong.shininess
-        ),
+        (spec.phong.ambient, spec.phong.diffuse, spec.phong.specular, spec.phong.shininess),
         (0.2, 0.8, 0.3, 32.0)
     );
-    assert_eq!(
-        spec.camera.projection,
-        ProjectionSpec::Perspective { fov_y_deg: 30.0 }
-    );
+    assert_eq!(spec.camera.projection, ProjectionSpec::Perspective { fov_y_deg: 30.0 });
     assert_eq!(
         spec.camera.placement,
-        CameraPlacement::Orbit {
-            target: Vec3::ZERO,
-            azimuth_deg: 30.0,
-            elevation_deg: 20.0,
-            distance: None
-        }
+        CameraPlacement::Orbit { target: Vec3::ZERO, azimuth_deg: 30.0, elevation_deg: 20.0, distance: None }
     );
     assert_eq!(spec.lights.len(), 1);
-    assert_eq!(
-        spec.lights[0].kind,
-        LightKind::Directional {
-            direction: Vec3::new(1.0, -1.0, -1.0).normalize()
-        }
-    );
-    assert_eq!(
-        (spec.lights[0].color, spec.lights[0].intensity),
-        (Vec3::ONE, 1.0)
-    );
+    assert_eq!(spec.lights[0].kind, LightKind::Directional { direction: Vec3::new(1.0, -1.0, -1.0).normalize() });
+    assert_eq!((spec.lights[0].color, spec.lights[0].intensity), (Vec3::ONE, 1.0));
     assert!(spec.techniques.is_empty());
     // The noise volume's own preset.
-    assert_eq!(
-        spec.transfer,
-        TransferSpec::Given(sweeplab::scene::presets::preset("grayscale-ramp").unwrap())
-    );
+    assert_eq!(spec.transfer, TransferSpec::Given(sweeplab::scene::presets::preset("grayscale-ramp").unwrap()));
 }
 
 #[test]
@@ -285,54 +180,26 @@ fn set_changes_the_named_fields() {
     assert_eq!((azimuth(&before), azimuth(&after)), (30.0, 45.0));
     assert_eq!((before.render.width, after.render.width), (256, 128));
     assert_eq!(after.render.height, 256, "other keys keep their values");
-    assert_eq!(
-        (before.lights[0].intensity, after.lights[0].intensity),
-        (1.0, 5.0)
-    );
+    assert_eq!((before.lights[0].intensity, after.lights[0].intensity), (1.0, 5.0));
     assert!(before.techniques.is_empty());
-    assert_eq!(
-        after.techniques["ipsvi"]["line_width"].as_integer(),
-        Some(4)
-    );
-    assert_eq!(
-        after.camera.projection,
-        ProjectionSpec::Orthographic { height: None }
-    );
+    assert_eq!(after.techniques["ipsvi"]["line_width"].as_integer(), Some(4));
+    assert_eq!(after.camera.projection, ProjectionSpec::Orthographic { height: None });
     assert_eq!(after.reference.model, OpticalModel::EmissiveScattering);
-    assert_eq!(
-        after.volume,
-        VolumeSource::Synthetic {
-            kind: SyntheticKind::SheppLogan,
-            size: 16,
-            seed: 1
-        }
-    );
+    assert_eq!(after.volume, VolumeSource::Synthetic { kind: SyntheticKind::SheppLogan, size: 16, seed: 1 });
     // The orbit camera is placed by the overridden azimuth.
     let scene = after.build().unwrap();
     let eye = scene.camera.eye;
-    assert!(
-        (eye.x / eye.z - 45f32.to_radians().tan()).abs() < 1e-5,
-        "eye {eye}"
-    );
+    assert!((eye.x / eye.z - 45f32.to_radians().tan()).abs() < 1e-5, "eye {eye}");
 }
 
 #[test]
 fn set_applies_to_the_default_light_and_replaces_whole_tables() {
-    let spec = parse_scene_str(
-        MINIMAL,
-        Path::new(""),
-        "minimal",
-        &["lights.0.intensity=3".into()],
-    )
-    .unwrap();
+    let spec = parse_scene_str(MINIMAL, Path::new(""), "minimal", &["lights.0.intensity=3".into()]).unwrap();
     assert_eq!(spec.lights[0].intensity, 3.0);
 
     let spec = example(
         "phantom.toml",
-        &[
-            "lights=[{type=\"point\", position=[0, 1, 0]}, {type=\"directional\"}]",
-            "transfer={auto=true}",
-        ],
+        &["lights=[{type=\"point\", position=[0, 1, 0]}, {type=\"directional\"}]", "transfer={auto=true}"],
     );
     assert_eq!(spec.lights.len(), 2);
     assert_eq!(spec.lights[0].kind, LightKind::Point { position: Vec3::Y });
@@ -347,34 +214,15 @@ fn set_applies_to_the_default_light_and_replaces_whole_tables() {
 fn volume_paths_resolve_against_the_scene_folder_and_the_data_folder() {
     let text = "[volume]\nfile = \"sub/ct.nrrd\"\n";
     let spec = parse_scene_str(text, Path::new("/scenes/here"), "s", &[]).unwrap();
-    assert_eq!(
-        spec.volume,
-        VolumeSource::File(PathBuf::from("/scenes/here/sub/ct.nrrd"))
-    );
-    assert_eq!(
-        spec.transfer,
-        TransferSpec::FromHistogram,
-        "file volumes default to the automatic transfer"
-    );
+    assert_eq!(spec.volume, VolumeSource::File(PathBuf::from("/scenes/here/sub/ct.nrrd")));
+    assert_eq!(spec.transfer, TransferSpec::FromHistogram, "file volumes default to the automatic transfer");
 
     let text = "[volume]\nfile = \"/abs/ct.nrrd\"\n";
     let spec = parse_scene_str(text, Path::new("/scenes/here"), "s", &[]).unwrap();
-    assert_eq!(
-        spec.volume,
-        VolumeSource::File(PathBuf::from("/abs/ct.nrrd"))
-    );
+    assert_eq!(spec.volume, VolumeSource::File(PathBuf::from("/abs/ct.nrrd")));
 
-    let spec = parse_scene_str(
-        "[volume]\ndata_file = \"engine.vti\"\n",
-        Path::new("/x"),
-        "s",
-        &[],
-    )
-    .unwrap();
-    assert_eq!(
-        spec.volume,
-        VolumeSource::File(data_dir().join("engine.vti"))
-    );
+    let spec = parse_scene_str("[volume]\ndata_file = \"engine.vti\"\n", Path::new("/x"), "s", &[]).unwrap();
+    assert_eq!(spec.volume, VolumeSource::File(data_dir().join("engine.vti")));
 
     // parse_scene_file takes the folder of the file.
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("scene_files_relative");
@@ -393,14 +241,8 @@ fn a_missing_volume_file_is_an_error_naming_scene_and_volume() {
     std::fs::write(&scene_path, "[volume]\nfile = \"no-such-volume.nrrd\"\n").unwrap();
     let e = sweeplab::scene::scene_file::load_scene(&scene_path, &[]).unwrap_err();
     assert!(matches!(e, SceneError::Volume { .. }), "{e:?}");
-    assert_mentions(
-        &e.to_string(),
-        &["missing-volume.toml", "no-such-volume.nrrd"],
-    );
-    assert!(
-        std::error::Error::source(&e).is_some(),
-        "the loader's error is kept as the source"
-    );
+    assert_mentions(&e.to_string(), &["missing-volume.toml", "no-such-volume.nrrd"]);
+    assert!(std::error::Error::source(&e).is_some(), "the loader's error is kept as the source");
 }
 
 #[test]
@@ -417,15 +259,9 @@ fn a_missing_or_malformed_scene_file_is_an_error_naming_it() {
 fn misspelt_keys_are_errors_naming_file_and_key() {
     let e = error_of(&format!("{MINIMAL}[camera]\nazimth = 3.0\n"), &[]);
     assert_mentions(&e, &["test.toml", "`camera`", "azimth"]);
-    let e = error_of(
-        &format!("{MINIMAL}[[lights]]\ntype = \"point\"\nintensty = 2.0\n"),
-        &[],
-    );
+    let e = error_of(&format!("{MINIMAL}[[lights]]\ntype = \"point\"\nintensty = 2.0\n"), &[]);
     assert_mentions(&e, &["test.toml", "`lights.0`", "intensty"]);
-    let e = error_of(
-        &format!("{MINIMAL}[[lights]]\n[[lights]]\ncolour = [1, 1, 1]\n"),
-        &[],
-    );
+    let e = error_of(&format!("{MINIMAL}[[lights]]\n[[lights]]\ncolour = [1, 1, 1]\n"), &[]);
     assert_mentions(&e, &["`lights.1`", "colour"]);
     let e = error_of(&format!("{MINIMAL}[render]\nwidht = 3\n"), &[]);
     assert_mentions(&e, &["`render`", "widht"]);
@@ -444,10 +280,7 @@ fn misspelt_keys_are_errors_naming_file_and_key() {
 fn values_of_the_wrong_type_or_name_are_errors_naming_the_key() {
     let e = error_of(&format!("{MINIMAL}[render]\nwidth = \"big\"\n"), &[]);
     assert_mentions(&e, &["test.toml", "`render.width`"]);
-    let e = error_of(
-        &format!("{MINIMAL}[camera]\nprojection = \"fisheye\"\n"),
-        &[],
-    );
+    let e = error_of(&format!("{MINIMAL}[camera]\nprojection = \"fisheye\"\n"), &[]);
     assert_mentions(&e, &["`camera.projection`", "fisheye", "orthographic"]);
     let e = error_of(&format!("{MINIMAL}[camera]\ntarget = [0, 0]\n"), &[]);
     assert_mentions(&e, &["`camera.target`", "length"]);
@@ -477,67 +310,32 @@ fn out_of_range_values_are_errors_naming_the_key() {
         ("[camera]\nfov_y = 0.0", "camera.fov_y"),
         ("[camera]\nelevation = 100.0", "camera.elevation"),
         ("[camera]\ndistance = 0.0", "camera.distance"),
-        (
-            "[camera]\nprojection = \"orthographic\"\northo_height = -1.0",
-            "camera.ortho_height",
-        ),
+        ("[camera]\nprojection = \"orthographic\"\northo_height = -1.0", "camera.ortho_height"),
         ("[camera]\neye = [0, 0, 0]", "camera.eye"),
         ("[camera]\neye = [0, 2, 0]", "camera.up"),
         ("[[lights]]\nintensity = -1.0", "lights.0.intensity"),
         ("[[lights]]\nintensity = inf", "lights.0.intensity"),
         ("[[lights]]\ndirection = [0, 0, 0]", "lights.0.direction"),
         ("[[lights]]\ncolor = [1, -1, 1]", "lights.0.color"),
-        (
-            "[[lights]]\ntype = \"point\"\nposition = [nan, 0, 0]",
-            "lights.0.position",
-        ),
-        (
-            "[[lights]]\ntype = \"spot\"\ninner_cone = 30.0\nouter_cone = 30.0",
-            "lights.0.inner_cone",
-        ),
-        (
-            "[[lights]]\ntype = \"spot\"\ninner_cone = -1.0",
-            "lights.0.inner_cone",
-        ),
-        (
-            "[[lights]]\ntype = \"spot\"\nouter_cone = 190.0",
-            "lights.0.outer_cone",
-        ),
-        (
-            "[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]",
-            "lights.0.direction",
-        ),
-        (
-            "[reference]\nmin_transmittance = 1.0",
-            "reference.min_transmittance",
-        ),
+        ("[[lights]]\ntype = \"point\"\nposition = [nan, 0, 0]", "lights.0.position"),
+        ("[[lights]]\ntype = \"spot\"\ninner_cone = 30.0\nouter_cone = 30.0", "lights.0.inner_cone"),
+        ("[[lights]]\ntype = \"spot\"\ninner_cone = -1.0", "lights.0.inner_cone"),
+        ("[[lights]]\ntype = \"spot\"\nouter_cone = 190.0", "lights.0.outer_cone"),
+        ("[[lights]]\ntype = \"spot\"\nposition = [0, 0, 0]", "lights.0.direction"),
+        ("[reference]\nmin_transmittance = 1.0", "reference.min_transmittance"),
         ("[reference]\nshadow_step = 0.0", "reference.shadow_step"),
         ("[phong]\nshininess = -2.0", "phong.shininess"),
         ("[transfer]\npoints = []", "transfer.points"),
-        (
-            "[transfer]\npoints = [[0.5, 0, 0, 0, 0], [0.2, 0, 0, 0, 0]]",
-            "transfer.points.1",
-        ),
-        (
-            "[transfer]\npoints = [[0.0, 0, 0, 0, 0], [1.5, 0, 0, 0, 0]]",
-            "transfer.points.1",
-        ),
-        (
-            "[transfer]\npoints = [[0.0, 0, 0, 2, 0]]",
-            "transfer.points.0",
-        ),
+        ("[transfer]\npoints = [[0.5, 0, 0, 0, 0], [0.2, 0, 0, 0, 0]]", "transfer.points.1"),
+        ("[transfer]\npoints = [[0.0, 0, 0, 0, 0], [1.5, 0, 0, 0, 0]]", "transfer.points.1"),
+        ("[transfer]\npoints = [[0.0, 0, 0, 2, 0]]", "transfer.points.0"),
     ];
     for (table, key) in cases {
         let e = error_of(&format!("{MINIMAL}{table}\n"), &[]);
         assert_mentions(&e, &["test.toml", &format!("`{key}`")]);
     }
-    let many: Vec<String> = (0..=256)
-        .map(|i| format!("[{}, 0, 0, 0, 0]", i as f32 / 256.0))
-        .collect();
-    let e = error_of(
-        &format!("{MINIMAL}[transfer]\npoints = [{}]\n", many.join(", ")),
-        &[],
-    );
+    let many: Vec<String> = (0..=256).map(|i| format!("[{}, 0, 0, 0, 0]", i as f32 / 256.0)).collect();
+    let e = error_of(&format!("{MINIMAL}[transfer]\npoints = [{}]\n", many.join(", ")), &[]);
     assert_mentions(&e, &["`transfer.points`", "257"]);
     let e = error_of("[volume]\nsynthetic = \"noise\"\nsize = 0\n", &[]);
     assert_mentions(&e, &["`volume.size`"]);
@@ -560,7 +358,10 @@ fn contradicting_keys_are_errors_naming_them() {
         ("[volume]\nsynthetic = \"noise\"\n[camera]\northo_height = 1.0\n", "camera.ortho_height"),
         ("[volume]\nsynthetic = \"noise\"\n[camera]\nprojection = \"orthographic\"\nfov_y = 20.0\n", "camera.fov_y"),
         ("[volume]\nsynthetic = \"noise\"\n[[lights]]\nposition = [0, 1, 0]\n", "lights.0.position"),
-        ("[volume]\nsynthetic = \"noise\"\n[[lights]]\ntype = \"point\"\ndirection = [0, 1, 0]\n", "lights.0.direction"),
+        (
+            "[volume]\nsynthetic = \"noise\"\n[[lights]]\ntype = \"point\"\ndirection = [0, 1, 0]\n",
+            "lights.0.direction",
+        ),
         ("[volume]\nsynthetic = \"noise\"\n[[lights]]\ntype = \"point\"\nouter_cone = 9.0\n", "lights.0.outer_cone"),
         ("[volume]\nsynthetic = \"noise\"\n[[lights]]\nfalloff = \"inverse-square\"\n", "lights.0.falloff"),
     ];
@@ -579,21 +380,11 @@ fn bad_set_arguments_are_errors_naming_them() {
     let e = error_of(MINIMAL, &["camera..azimuth=5"]);
     assert_mentions(&e, &["--set `camera..azimuth=5`"]);
     let e = error_of(MINIMAL, &["lights.1.intensity=5"]);
-    assert_mentions(
-        &e,
-        &[
-            "--set `lights.1.intensity=5`",
-            "index 1 is out of range",
-            "`lights` has 1 entries",
-        ],
-    );
+    assert_mentions(&e, &["--set `lights.1.intensity=5`", "index 1 is out of range", "`lights` has 1 entries"]);
     let e = error_of(MINIMAL, &["lights.key.intensity=5"]);
     assert_mentions(&e, &["--set `lights.key.intensity=5`", "index"]);
     let e = error_of(MINIMAL, &["volume.size.x=5"]);
-    assert_mentions(
-        &e,
-        &["--set `volume.size.x=5`", "`volume.size` is an integer"],
-    );
+    assert_mentions(&e, &["--set `volume.size.x=5`", "`volume.size` is an integer"]);
     // A well-formed --set with a bad value is caught by the checks, naming the key.
     let e = error_of(MINIMAL, &["render.width=0"]);
     assert_mentions(&e, &["test.toml", "`render.width`"]);
@@ -603,13 +394,7 @@ fn bad_set_arguments_are_errors_naming_them() {
 
 #[test]
 fn scene_from_toml_str_builds_synthetic_scenes() {
-    let scene = scene_from_toml_str(
-        MINIMAL,
-        Path::new(""),
-        "minimal",
-        &["render.width=64".into()],
-    )
-    .unwrap();
+    let scene = scene_from_toml_str(MINIMAL, Path::new(""), "minimal", &["render.width=64".into()]).unwrap();
     assert_eq!(scene.volume.dims, glam::UVec3::splat(8));
     assert_eq!(scene.render.width, 64);
 }
@@ -619,23 +404,11 @@ fn volume_file_scene_frames_the_box_and_makes_the_background_clear() {
     let spec = volume_file_scene_spec(Path::new("x.raw"), &["render.height=256".into()]).unwrap();
     assert_eq!(spec.transfer, TransferSpec::FromHistogram);
     let scene = spec.build_with_volume(three_spheres(32));
-    assert_eq!(
-        scene.transfer.eval(0.0)[3],
-        0.0,
-        "background (empty space) must be clear"
-    );
-    assert!(
-        scene.transfer.eval(1.0)[3] > 0.0,
-        "the spheres must be visible"
-    );
+    assert_eq!(scene.transfer.eval(0.0)[3], 0.0, "background (empty space) must be clear");
+    assert!(scene.transfer.eval(1.0)[3] > 0.0, "the spheres must be visible");
     // Upper-left-front light.
-    let LightKind::Directional { direction } = scene.lights[0].kind else {
-        panic!("expected a directional light")
-    };
-    assert!(
-        direction.y < 0.0 && direction.x > 0.0 && direction.z < 0.0,
-        "{direction}"
-    );
+    let LightKind::Directional { direction } = scene.lights[0].kind else { panic!("expected a directional light") };
+    assert!(direction.y < 0.0 && direction.x > 0.0 && direction.z < 0.0, "{direction}");
     // The whole box is inside the view: every corner projects inside the image.
     let basis = scene.camera.basis(scene.render.width, scene.render.height);
     for corner in scene.volume_box().corners() {
@@ -644,9 +417,6 @@ fn volume_file_scene_frames_the_box_and_makes_the_background_clear() {
         assert!(along > 0.0);
         let x = d.dot(basis.right) / basis.right.length_squared() / along;
         let y = d.dot(basis.up) / basis.up.length_squared() / along;
-        assert!(
-            x.abs() < 1.0 && y.abs() < 1.0,
-            "corner {corner} at ndc ({x}, {y})"
-        );
+        assert!(x.abs() < 1.0 && y.abs() < 1.0, "corner {corner} at ndc ({x}, {y})");
     }
 }

@@ -61,11 +61,7 @@ impl Axis {
         }
         if low > high {
             // Nothing to show: a unit range keeps ticks and labels sensible.
-            return Axis {
-                scale,
-                low: 0.0,
-                high: 1.0,
-            };
+            return Axis { scale, low: 0.0, high: 1.0 };
         }
         let pad = if high > low {
             (high - low) * 0.05
@@ -74,11 +70,7 @@ impl Axis {
         } else {
             0.5
         };
-        Axis {
-            scale,
-            low: low - pad,
-            high: high + pad,
-        }
+        Axis { scale, low: low - pad, high: high + pad }
     }
 
     /// Where `value` falls from 0 (low end) to 1 (high end); `None` when the
@@ -98,13 +90,7 @@ impl Axis {
             AxisScale::Log2 => self.octave_ticks(target),
         };
         // Ranges narrower than two decades or octaves read best with even steps.
-        ticks.unwrap_or_else(|| {
-            linear_ticks(
-                self.scale.inverse(self.low),
-                self.scale.inverse(self.high),
-                target,
-            )
-        })
+        ticks.unwrap_or_else(|| linear_ticks(self.scale.inverse(self.low), self.scale.inverse(self.high), target))
     }
 
     fn exponents(&self) -> std::ops::RangeInclusive<i32> {
@@ -130,10 +116,7 @@ impl Axis {
         for k in (self.low.floor() as i32)..=(self.high.ceil() as i32) {
             for mantissa in [1, 2, 5] {
                 let tick = decimal_tick(mantissa, k);
-                if self
-                    .fraction(tick.value)
-                    .is_some_and(|f| (0.0..=1.0).contains(&f))
-                {
+                if self.fraction(tick.value).is_some_and(|f| (0.0..=1.0).contains(&f)) {
                     ticks.push(tick);
                 }
             }
@@ -147,22 +130,14 @@ impl Axis {
             return None;
         }
         let stride = octaves.len().div_ceil(target).max(1);
-        let chosen: Vec<i32> = octaves
-            .iter()
-            .copied()
-            .filter(|k| k.rem_euclid(stride as i32) == 0)
-            .collect();
+        let chosen: Vec<i32> = octaves.iter().copied().filter(|k| k.rem_euclid(stride as i32) == 0).collect();
         let chosen = if chosen.len() >= 2 { chosen } else { octaves };
         Some(
             chosen
                 .into_iter()
                 .map(|k| {
                     let value = f64::from(k).exp2();
-                    let label = if (-10..=30).contains(&k) {
-                        value.to_string()
-                    } else {
-                        format!("2^{k}")
-                    };
+                    let label = if (-10..=30).contains(&k) { value.to_string() } else { format!("2^{k}") };
                     Tick { value, label }
                 })
                 .collect(),
@@ -174,11 +149,7 @@ impl Axis {
 /// the nearest double with no accumulated rounding.
 fn decimal_tick(mantissa: i64, exponent: i32) -> Tick {
     let value: f64 = format!("{mantissa}e{exponent}").parse().unwrap_or(f64::NAN);
-    let label = if (-4..=5).contains(&exponent) {
-        value.to_string()
-    } else {
-        format!("{mantissa}e{exponent}")
-    };
+    let label = if (-4..=5).contains(&exponent) { value.to_string() } else { format!("{mantissa}e{exponent}") };
     Tick { value, label }
 }
 
@@ -190,10 +161,8 @@ fn linear_ticks(low: f64, high: f64, target: usize) -> Vec<Tick> {
     }
     let raw_step = (high - low) / target as f64;
     let mut exponent = raw_step.log10().floor() as i32;
-    let mut mantissa = [1_i64, 2, 5]
-        .into_iter()
-        .find(|&m| m as f64 * 10f64.powi(exponent) >= raw_step * 0.999)
-        .unwrap_or(10);
+    let mut mantissa =
+        [1_i64, 2, 5].into_iter().find(|&m| m as f64 * 10f64.powi(exponent) >= raw_step * 0.999).unwrap_or(10);
     if mantissa == 10 {
         mantissa = 1;
         exponent += 1;
@@ -244,18 +213,9 @@ mod tests {
 
     #[test]
     fn linear_ticks_use_round_steps_and_equal_decimals() {
-        assert_eq!(
-            labels(&linear_ticks(0.0, 1.0, 5)),
-            ["0", "0.2", "0.4", "0.6", "0.8", "1.0"]
-        );
-        assert_eq!(
-            labels(&linear_ticks(13.0, 61.0, 5)),
-            ["20", "30", "40", "50", "60"]
-        );
-        assert_eq!(
-            labels(&linear_ticks(-0.013, 0.012, 5)),
-            ["-0.010", "-0.005", "0", "0.005", "0.010"]
-        );
+        assert_eq!(labels(&linear_ticks(0.0, 1.0, 5)), ["0", "0.2", "0.4", "0.6", "0.8", "1.0"]);
+        assert_eq!(labels(&linear_ticks(13.0, 61.0, 5)), ["20", "30", "40", "50", "60"]);
+        assert_eq!(labels(&linear_ticks(-0.013, 0.012, 5)), ["-0.010", "-0.005", "0", "0.005", "0.010"]);
     }
 
     #[test]

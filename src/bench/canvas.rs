@@ -58,19 +58,11 @@ pub struct Canvas {
 impl Canvas {
     pub fn new(width: u32, height: u32, background: Rgb) -> Self {
         let image = RgbImage::from_pixel(width, height, image::Rgb(background));
-        Canvas {
-            clip: Self::full_rect(width, height),
-            image,
-        }
+        Canvas { clip: Self::full_rect(width, height), image }
     }
 
     fn full_rect(width: u32, height: u32) -> PixelRect {
-        PixelRect {
-            x0: 0,
-            y0: 0,
-            x1: i64::from(width),
-            y1: i64::from(height),
-        }
+        PixelRect { x0: 0, y0: 0, x1: i64::from(width), y1: i64::from(height) }
     }
 
     pub fn into_image(self) -> RgbImage {
@@ -168,9 +160,7 @@ impl Canvas {
             Marker::Square => dx.abs() <= radius * 0.85 && dy.abs() <= radius * 0.85,
             Marker::Diamond => dx.abs() + dy.abs() <= radius * 1.2,
             // Apex up at -radius, base at 0.8 radius with half-width radius.
-            Marker::Triangle => {
-                dy >= -radius && dy <= radius * 0.8 && dx.abs() <= (dy + radius) / 1.8
-            }
+            Marker::Triangle => dy >= -radius && dy <= radius * 0.8 && dx.abs() <= (dy + radius) / 1.8,
         });
     }
 
@@ -183,13 +173,7 @@ impl Canvas {
         });
     }
 
-    fn fill_shape(
-        &mut self,
-        center: (f64, f64),
-        radius: f64,
-        color: Rgb,
-        inside: impl Fn(f64, f64) -> bool,
-    ) {
+    fn fill_shape(&mut self, center: (f64, f64), radius: f64, color: Rgb, inside: impl Fn(f64, f64) -> bool) {
         if !(center.0.is_finite() && center.1.is_finite() && radius.is_finite()) {
             return;
         }
@@ -218,13 +202,7 @@ impl Canvas {
 
     /// Draws glyph pixels at text coordinates (u along the text, v down the
     /// glyph), placed on the image by `place`.
-    fn draw_glyphs(
-        &mut self,
-        text: &str,
-        scale: u32,
-        color: Rgb,
-        place: impl Fn(i64, i64) -> (i64, i64),
-    ) {
+    fn draw_glyphs(&mut self, text: &str, scale: u32, color: Rgb, place: impl Fn(i64, i64) -> (i64, i64)) {
         let scale = i64::from(scale.max(1));
         for (index, c) in text.chars().enumerate() {
             let glyph = glyph_for(c);
@@ -312,11 +290,7 @@ mod tests {
     const RED: Rgb = [255, 0, 0];
 
     fn count(canvas: Canvas, color: Rgb) -> usize {
-        canvas
-            .into_image()
-            .pixels()
-            .filter(|p| p.0 == color)
-            .count()
+        canvas.into_image().pixels().filter(|p| p.0 == color).count()
     }
 
     #[test]
@@ -340,21 +314,8 @@ mod tests {
     #[test]
     fn clipping_keeps_drawing_inside_the_clip_rectangle() {
         let mut canvas = Canvas::new(30, 30, WHITE);
-        canvas.clip_to(PixelRect {
-            x0: 10,
-            y0: 10,
-            x1: 20,
-            y1: 20,
-        });
-        canvas.fill_rect(
-            PixelRect {
-                x0: 0,
-                y0: 0,
-                x1: 30,
-                y1: 30,
-            },
-            RED,
-        );
+        canvas.clip_to(PixelRect { x0: 10, y0: 10, x1: 20, y1: 20 });
+        canvas.fill_rect(PixelRect { x0: 0, y0: 0, x1: 30, y1: 30 }, RED);
         assert_eq!(count(canvas, RED), 100);
     }
 

@@ -4,34 +4,16 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum BenchError {
     #[error("cannot write {path}: {source}")]
-    Write {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Write { path: PathBuf, source: std::io::Error },
     #[error("cannot read {path}: {source}")]
-    Read {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Read { path: PathBuf, source: std::io::Error },
     #[error("{path} is not a benchmark table in JSON (an array of flat objects): {source}")]
-    Json {
-        path: PathBuf,
-        source: serde_json::Error,
-    },
+    Json { path: PathBuf, source: serde_json::Error },
     #[error("cannot write the chart {path}: {source}")]
-    Png {
-        path: PathBuf,
-        source: image::ImageError,
-    },
+    Png { path: PathBuf, source: image::ImageError },
     #[error(
         "chart size {width}x{height} is outside the supported range \
          {min_width}x{min_height} to {max_side}x{max_side} pixels"
     )]
-    ChartSize {
-        width: u32,
-        height: u32,
-        min_width: u32,
-        min_height: u32,
-        max_side: u32,
-    },
+    ChartSize { width: u32, height: u32, min_width: u32, min_height: u32, max_side: u32 },
 }

@@ -15,9 +15,6 @@ pub mod rows;
 pub use axis::AxisScale;
 pub use error::BenchError;
 pub use pareto::pareto_front;
-pub use plot::{
-    palette_color, plot_error_vs_time, plot_lines, render_error_vs_time, render_lines, Chart,
-    Series,
-};
+pub use plot::{palette_color, plot_error_vs_time, plot_lines, render_error_vs_time, render_lines, Chart, Series};
 pub use progress::Progress;
 pub use rows::{BenchRow, BenchTable, BenchValue};

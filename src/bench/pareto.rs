@@ -9,16 +9,13 @@ use std::cmp::Ordering;
 /// dominate each other, so all copies of a front point are on the front. Points
 /// with a NaN or infinite coordinate are never on the front and never dominate.
 pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
-    let mut order: Vec<usize> = (0..points.len())
-        .filter(|&i| points[i].0.is_finite() && points[i].1.is_finite())
-        .collect();
+    let mut order: Vec<usize> =
+        (0..points.len()).filter(|&i| points[i].0.is_finite() && points[i].1.is_finite()).collect();
     // Adding 0.0 turns -0.0 into 0.0, so total_cmp orders equal values as equal.
     let point = |i: usize| (points[i].0 + 0.0, points[i].1 + 0.0);
     order.sort_by(|&a, &b| {
         let (pa, pb) = (point(a), point(b));
-        pa.0.total_cmp(&pb.0)
-            .then(pa.1.total_cmp(&pb.1))
-            .then(a.cmp(&b))
+        pa.0.total_cmp(&pb.0).then(pa.1.total_cmp(&pb.1)).then(a.cmp(&b))
     });
 
     // Sweeping by increasing time, a point is on the front only if it improves
@@ -50,18 +47,13 @@ mod tests {
     /// Straight from the definition, O(n²): an independent check of the sweep.
     fn front_by_definition(points: &[(f64, f64)]) -> Vec<usize> {
         let finite = |p: (f64, f64)| p.0.is_finite() && p.1.is_finite();
-        let dominates =
-            |q: (f64, f64), p: (f64, f64)| q.0 <= p.0 && q.1 <= p.1 && (q.0 < p.0 || q.1 < p.1);
+        let dominates = |q: (f64, f64), p: (f64, f64)| q.0 <= p.0 && q.1 <= p.1 && (q.0 < p.0 || q.1 < p.1);
         let mut front: Vec<usize> = (0..points.len())
             .filter(|&i| finite(points[i]))
             .filter(|&i| !points.iter().any(|&q| finite(q) && dominates(q, points[i])))
             .collect();
         front.sort_by(|&a, &b| {
-            points[a]
-                .0
-                .total_cmp(&points[b].0)
-                .then(points[a].1.total_cmp(&points[b].1))
-                .then(a.cmp(&b))
+            points[a].0.total_cmp(&points[b].0).then(points[a].1.total_cmp(&points[b].1)).then(a.cmp(&b))
         });
         front
     }
@@ -104,13 +96,7 @@ mod tests {
 
     #[test]
     fn non_finite_points_never_reach_the_front() {
-        let points = [
-            (f64::NAN, 0.0),
-            (0.5, f64::NAN),
-            (f64::NEG_INFINITY, 1.0),
-            (1.0, f64::NEG_INFINITY),
-            (2.0, 1.0),
-        ];
+        let points = [(f64::NAN, 0.0), (0.5, f64::NAN), (f64::NEG_INFINITY, 1.0), (1.0, f64::NEG_INFINITY), (2.0, 1.0)];
         assert_eq!(pareto_front(&points), vec![4]);
         assert!(pareto_front(&[(f64::NAN, f64::NAN)]).is_empty());
     }
@@ -120,20 +106,12 @@ mod tests {
         // A small LCG on a coarse grid, so ties and duplicates are frequent.
         let mut state: u64 = 0x2545_f491_4f6c_dd1d;
         let mut next = move || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
             (state >> 33) % 8
         };
         for size in 0..40 {
-            let points: Vec<(f64, f64)> = (0..size)
-                .map(|_| (next() as f64, next() as f64 * 0.125))
-                .collect();
-            assert_eq!(
-                pareto_front(&points),
-                front_by_definition(&points),
-                "{points:?}"
-            );
+            let points: Vec<(f64, f64)> = (0..size).map(|_| (next() as f64, next() as f64 * 0.125)).collect();
+            assert_eq!(pareto_front(&points), front_by_definition(&points), "{points:?}");
         }
     }
 }

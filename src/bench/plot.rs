@@ -34,12 +34,7 @@ const PALETTE: [Rgb; 8] = [
     [140, 86, 75],
     [127, 127, 127],
 ];
-const MARKERS: [Marker; 4] = [
-    Marker::Circle,
-    Marker::Square,
-    Marker::Triangle,
-    Marker::Diamond,
-];
+const MARKERS: [Marker; 4] = [Marker::Circle, Marker::Square, Marker::Triangle, Marker::Diamond];
 
 /// Charts at least this big draw text at twice the font's size, smaller ones
 /// at its own size, so legends and labels still fit.
@@ -71,11 +66,7 @@ pub struct Chart {
 
 impl Chart {
     /// A 900x600 chart with linear axes.
-    pub fn new(
-        title: impl Into<String>,
-        x_label: impl Into<String>,
-        y_label: impl Into<String>,
-    ) -> Self {
+    pub fn new(title: impl Into<String>, x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
         Chart {
             title: title.into(),
             x_label: x_label.into(),
@@ -104,8 +95,7 @@ impl Chart {
     }
 
     fn check_size(&self) -> Result<(), BenchError> {
-        let fits = (MIN_WIDTH..=MAX_SIDE).contains(&self.width)
-            && (MIN_HEIGHT..=MAX_SIDE).contains(&self.height);
+        let fits = (MIN_WIDTH..=MAX_SIDE).contains(&self.width) && (MIN_HEIGHT..=MAX_SIDE).contains(&self.height);
         if fits {
             Ok(())
         } else {
@@ -131,11 +121,7 @@ pub struct Series {
 
 impl Series {
     pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
-        Series {
-            name: name.into(),
-            points,
-            color: None,
-        }
+        Series { name: name.into(), points, color: None }
     }
 
     pub fn with_color(mut self, color: [u8; 3]) -> Self {
@@ -145,30 +131,17 @@ impl Series {
 }
 
 /// Draws the error-against-time scatter chart and writes it as PNG.
-pub fn plot_error_vs_time(
-    path: impl AsRef<Path>,
-    chart: &Chart,
-    series: &[Series],
-) -> Result<(), BenchError> {
+pub fn plot_error_vs_time(path: impl AsRef<Path>, chart: &Chart, series: &[Series]) -> Result<(), BenchError> {
     save_png(path.as_ref(), &render_error_vs_time(chart, series)?)
 }
 
 /// Draws the line chart and writes it as PNG.
-pub fn plot_lines(
-    path: impl AsRef<Path>,
-    chart: &Chart,
-    series: &[Series],
-) -> Result<(), BenchError> {
+pub fn plot_lines(path: impl AsRef<Path>, chart: &Chart, series: &[Series]) -> Result<(), BenchError> {
     save_png(path.as_ref(), &render_lines(chart, series)?)
 }
 
 fn save_png(path: &Path, image: &RgbImage) -> Result<(), BenchError> {
-    image
-        .save_with_format(path, ImageFormat::Png)
-        .map_err(|source| BenchError::Png {
-            path: path.to_owned(),
-            source,
-        })
+    image.save_with_format(path, ImageFormat::Png).map_err(|source| BenchError::Png { path: path.to_owned(), source })
 }
 
 /// Scatter of every series' (time, error) points; the Pareto front over all
@@ -177,26 +150,14 @@ fn save_png(path: &Path, image: &RgbImage) -> Result<(), BenchError> {
 /// show (NaN, or not positive on a log axis) are left out and counted in the
 /// legend; on a log axis the front is that of the points shown.
 pub fn render_error_vs_time(chart: &Chart, series: &[Series]) -> Result<RgbImage, BenchError> {
-    let mut legend: Vec<LegendEntry> = series
-        .iter()
-        .enumerate()
-        .map(|(i, s)| LegendEntry::series(i, s, false))
-        .collect();
-    legend.push(LegendEntry {
-        name: "Pareto front".to_owned(),
-        sample: LegendSample::Front,
-    });
+    let mut legend: Vec<LegendEntry> =
+        series.iter().enumerate().map(|(i, s)| LegendEntry::series(i, s, false)).collect();
+    legend.push(LegendEntry { name: "Pareto front".to_owned(), sample: LegendSample::Front });
     let mut frame = ChartFrame::new(chart, series, legend)?;
 
-    let shown: Vec<(f64, f64)> = series
-        .iter()
-        .flat_map(|s| s.points.iter().copied())
-        .filter(|&p| frame.to_pixel(p).is_some())
-        .collect();
-    let front: Vec<(f64, f64)> = pareto_front(&shown)
-        .into_iter()
-        .filter_map(|i| frame.to_pixel(shown[i]))
-        .collect();
+    let shown: Vec<(f64, f64)> =
+        series.iter().flat_map(|s| s.points.iter().copied()).filter(|&p| frame.to_pixel(p).is_some()).collect();
+    let front: Vec<(f64, f64)> = pareto_front(&shown).into_iter().filter_map(|i| frame.to_pixel(shown[i])).collect();
 
     frame.canvas.clip_to(frame.plot);
     for pair in front.windows(2) {
@@ -208,9 +169,7 @@ pub fn render_error_vs_time(chart: &Chart, series: &[Series]) -> Result<RgbImage
         let color = s.color.unwrap_or(palette_color(index));
         let pixels: Vec<(f64, f64)> = s.points.iter().filter_map(|&p| frame.to_pixel(p)).collect();
         for pixel in pixels {
-            frame
-                .canvas
-                .marker(series_marker(index), pixel, MARKER_RADIUS, color);
+            frame.canvas.marker(series_marker(index), pixel, MARKER_RADIUS, color);
         }
     }
     for &pixel in &front {
@@ -223,31 +182,20 @@ pub fn render_error_vs_time(chart: &Chart, series: &[Series]) -> Result<RgbImage
 /// One line per series through its points in order of x, with a marker on
 /// each point. Points an axis cannot show are left out and counted in the legend.
 pub fn render_lines(chart: &Chart, series: &[Series]) -> Result<RgbImage, BenchError> {
-    let legend = series
-        .iter()
-        .enumerate()
-        .map(|(i, s)| LegendEntry::series(i, s, true))
-        .collect();
+    let legend = series.iter().enumerate().map(|(i, s)| LegendEntry::series(i, s, true)).collect();
     let mut frame = ChartFrame::new(chart, series, legend)?;
 
     frame.canvas.clip_to(frame.plot);
     for (index, s) in series.iter().enumerate() {
         let color = s.color.unwrap_or(palette_color(index));
-        let mut points: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .copied()
-            .filter(|&p| frame.to_pixel(p).is_some())
-            .collect();
+        let mut points: Vec<(f64, f64)> = s.points.iter().copied().filter(|&p| frame.to_pixel(p).is_some()).collect();
         points.sort_by(|a, b| a.0.total_cmp(&b.0));
         let pixels: Vec<(f64, f64)> = points.iter().filter_map(|&p| frame.to_pixel(p)).collect();
         for pair in pixels.windows(2) {
             frame.canvas.line(pair[0], pair[1], 2, color);
         }
         for &pixel in &pixels {
-            frame
-                .canvas
-                .marker(series_marker(index), pixel, MARKER_RADIUS - 1.0, color);
+            frame.canvas.marker(series_marker(index), pixel, MARKER_RADIUS - 1.0, color);
         }
     }
     frame.canvas.unclip();
@@ -255,11 +203,7 @@ pub fn render_lines(chart: &Chart, series: &[Series]) -> Result<RgbImage, BenchE
 }
 
 enum LegendSample {
-    Points {
-        marker: Marker,
-        color: Rgb,
-        line: bool,
-    },
+    Points { marker: Marker, color: Rgb, line: bool },
     Front,
 }
 
@@ -298,20 +242,15 @@ impl ChartFrame {
         let x_axis = Axis::fitting(chart.x_scale, all_points().map(|p| p.0));
         let y_axis = Axis::fitting(chart.y_scale, all_points().map(|p| p.1));
         let hidden = all_points()
-            .filter(|&(x, y)| {
-                chart.x_scale.transform(x).is_none() || chart.y_scale.transform(y).is_none()
-            })
+            .filter(|&(x, y)| chart.x_scale.transform(x).is_none() || chart.y_scale.transform(y).is_none())
             .count();
 
         let (width, height) = (i64::from(chart.width), i64::from(chart.height));
         let large = chart.width >= LARGE_TEXT_MIN_SIZE.0 && chart.height >= LARGE_TEXT_MIN_SIZE.1;
         let text_scale = if large { 2 } else { 1 };
         let text_height = i64::from(GLYPH_HEIGHT * text_scale);
-        let title_scale = if text_width(&chart.title, text_scale + 1) + 2 * GAP <= width {
-            text_scale + 1
-        } else {
-            text_scale
-        };
+        let title_scale =
+            if text_width(&chart.title, text_scale + 1) + 2 * GAP <= width { text_scale + 1 } else { text_scale };
         let title_height = i64::from(GLYPH_HEIGHT * title_scale);
 
         let top = GAP + title_height + 2 * GAP;
@@ -320,41 +259,19 @@ impl ChartFrame {
         let y_ticks = y_axis.ticks(y_target);
 
         let legend_layout = LegendLayout::new(legend, hidden, width, text_scale);
-        let widest_y_label = y_ticks
-            .iter()
-            .map(|t| text_width(&t.label, text_scale))
-            .max()
-            .unwrap_or(0);
+        let widest_y_label = y_ticks.iter().map(|t| text_width(&t.label, text_scale)).max().unwrap_or(0);
         let left = GAP + text_height + 2 * GAP + widest_y_label + 6 + TICK_LENGTH;
         let right = width - legend_layout.width - 2 * GAP;
-        let plot = PixelRect {
-            x0: left,
-            y0: top,
-            x1: right.max(left + 1),
-            y1: bottom.max(top + 1),
-        };
+        let plot = PixelRect { x0: left, y0: top, x1: right.max(left + 1), y1: bottom.max(top + 1) };
         let x_ticks = x_ticks_without_overlap(&x_axis, plot, text_scale);
 
-        let mut frame = ChartFrame {
-            canvas: Canvas::new(chart.width, chart.height, BACKGROUND),
-            plot,
-            x_axis,
-            y_axis,
-            text_scale,
-        };
+        let mut frame =
+            ChartFrame { canvas: Canvas::new(chart.width, chart.height, BACKGROUND), plot, x_axis, y_axis, text_scale };
         let title = fit_text(&chart.title, title_scale, width - 2 * GAP);
-        frame.canvas.text(
-            (width - text_width(&title, title_scale)) / 2,
-            GAP,
-            &title,
-            title_scale,
-            INK,
-        );
+        frame.canvas.text((width - text_width(&title, title_scale)) / 2, GAP, &title, title_scale, INK);
         frame.draw_axes(&x_ticks, &y_ticks);
         frame.draw_axis_labels(chart, text_height);
-        if all_points().all(|(x, y)| {
-            chart.x_scale.transform(x).is_none() || chart.y_scale.transform(y).is_none()
-        }) {
+        if all_points().all(|(x, y)| chart.x_scale.transform(x).is_none() || chart.y_scale.transform(y).is_none()) {
             let note = "no data to show";
             frame.canvas.text(
                 plot.x0 + (plot.width() - text_width(note, text_scale)) / 2,
@@ -373,10 +290,7 @@ impl ChartFrame {
         let fx = self.x_axis.fraction(x)?;
         let fy = self.y_axis.fraction(y)?;
         let plot = &self.plot;
-        Some((
-            plot.x0 as f64 + fx * (plot.width() - 1) as f64,
-            (plot.y1 - 1) as f64 - fy * (plot.height() - 1) as f64,
-        ))
+        Some((plot.x0 as f64 + fx * (plot.width() - 1) as f64, (plot.y1 - 1) as f64 - fy * (plot.height() - 1) as f64))
     }
 
     fn draw_axes(&mut self, x_ticks: &[Tick], y_ticks: &[Tick]) {
@@ -386,59 +300,25 @@ impl ChartFrame {
                 continue;
             };
             let x = (plot.x0 as f64 + f * (plot.width() - 1) as f64).round() as i64;
-            self.canvas.line(
-                (x as f64, plot.y0 as f64),
-                (x as f64, (plot.y1 - 1) as f64),
-                1,
-                GRID,
-            );
-            self.canvas.line(
-                (x as f64, plot.y1 as f64),
-                (x as f64, (plot.y1 + TICK_LENGTH) as f64),
-                1,
-                FRAME,
-            );
+            self.canvas.line((x as f64, plot.y0 as f64), (x as f64, (plot.y1 - 1) as f64), 1, GRID);
+            self.canvas.line((x as f64, plot.y1 as f64), (x as f64, (plot.y1 + TICK_LENGTH) as f64), 1, FRAME);
             let label_x = x - text_width(&tick.label, self.text_scale) / 2;
-            self.canvas.text(
-                label_x,
-                plot.y1 + TICK_LENGTH + 6,
-                &tick.label,
-                self.text_scale,
-                INK,
-            );
+            self.canvas.text(label_x, plot.y1 + TICK_LENGTH + 6, &tick.label, self.text_scale, INK);
         }
         for tick in y_ticks {
             let Some(f) = self.y_axis.fraction(tick.value) else {
                 continue;
             };
             let y = ((plot.y1 - 1) as f64 - f * (plot.height() - 1) as f64).round() as i64;
-            self.canvas.line(
-                (plot.x0 as f64, y as f64),
-                ((plot.x1 - 1) as f64, y as f64),
-                1,
-                GRID,
-            );
-            self.canvas.line(
-                ((plot.x0 - TICK_LENGTH) as f64, y as f64),
-                ((plot.x0 - 1) as f64, y as f64),
-                1,
-                FRAME,
-            );
+            self.canvas.line((plot.x0 as f64, y as f64), ((plot.x1 - 1) as f64, y as f64), 1, GRID);
+            self.canvas.line(((plot.x0 - TICK_LENGTH) as f64, y as f64), ((plot.x0 - 1) as f64, y as f64), 1, FRAME);
             let label_x = plot.x0 - TICK_LENGTH - 6 - text_width(&tick.label, self.text_scale);
             // Digits fill the top seven of the nine font rows; centre those.
             let label_y = y - i64::from(7 * self.text_scale) / 2;
-            self.canvas
-                .text(label_x, label_y, &tick.label, self.text_scale, INK);
+            self.canvas.text(label_x, label_y, &tick.label, self.text_scale, INK);
         }
-        self.canvas.outline_rect(
-            PixelRect {
-                x0: plot.x0 - 1,
-                y0: plot.y0 - 1,
-                x1: plot.x1 + 1,
-                y1: plot.y1 + 1,
-            },
-            FRAME,
-        );
+        self.canvas
+            .outline_rect(PixelRect { x0: plot.x0 - 1, y0: plot.y0 - 1, x1: plot.x1 + 1, y1: plot.y1 + 1 }, FRAME);
     }
 
     fn draw_axis_labels(&mut self, chart: &Chart, text_height: i64) {
@@ -469,9 +349,7 @@ fn x_ticks_without_overlap(axis: &Axis, plot: PixelRect, text_scale: u32) -> Vec
     let pixel_x = |tick: &Tick| axis.fraction(tick.value).map(|f| f * plot.width() as f64);
     let clear = |ticks: &[Tick]| {
         ticks.windows(2).all(|pair| {
-            let room = (text_width(&pair[0].label, text_scale)
-                + text_width(&pair[1].label, text_scale)) as f64
-                / 2.0
+            let room = (text_width(&pair[0].label, text_scale) + text_width(&pair[1].label, text_scale)) as f64 / 2.0
                 + 2.0 * GAP as f64;
             match (pixel_x(&pair[0]), pixel_x(&pair[1])) {
                 (Some(a), Some(b)) => (b - a).abs() >= room,
@@ -479,11 +357,7 @@ fn x_ticks_without_overlap(axis: &Axis, plot: PixelRect, text_scale: u32) -> Vec
             }
         })
     };
-    (2..=most)
-        .rev()
-        .map(|target| axis.ticks(target))
-        .find(|ticks| clear(ticks))
-        .unwrap_or_else(|| axis.ticks(2))
+    (2..=most).rev().map(|target| axis.ticks(target)).find(|ticks| clear(ticks)).unwrap_or_else(|| axis.ticks(2))
 }
 
 /// The legend box right of the plot: one line per entry, plus a count of
@@ -498,10 +372,8 @@ const SAMPLE_WIDTH: i64 = 28;
 
 impl LegendLayout {
     fn new(entries: Vec<LegendEntry>, hidden: usize, chart_width: i64, text_scale: u32) -> Self {
-        let mut lines: Vec<(String, Option<LegendSample>)> = entries
-            .into_iter()
-            .map(|e| (e.name, Some(e.sample)))
-            .collect();
+        let mut lines: Vec<(String, Option<LegendSample>)> =
+            entries.into_iter().map(|e| (e.name, Some(e.sample))).collect();
         if hidden > 0 {
             lines.push((format!("{hidden} not shown"), None));
         }
@@ -510,21 +382,9 @@ impl LegendLayout {
         for (name, _) in &mut lines {
             *name = fit_text(name, text_scale, max_text);
         }
-        let widest = lines
-            .iter()
-            .map(|(name, _)| text_width(name, text_scale))
-            .max()
-            .unwrap_or(0);
-        let width = if lines.is_empty() {
-            0
-        } else {
-            GAP + SAMPLE_WIDTH + GAP + widest + GAP
-        };
-        LegendLayout {
-            lines,
-            width,
-            text_scale,
-        }
+        let widest = lines.iter().map(|(name, _)| text_width(name, text_scale)).max().unwrap_or(0);
+        let width = if lines.is_empty() { 0 } else { GAP + SAMPLE_WIDTH + GAP + widest + GAP };
+        LegendLayout { lines, width, text_scale }
     }
 
     fn draw(&self, canvas: &mut Canvas, x: i64, y: i64) {
@@ -533,12 +393,7 @@ impl LegendLayout {
         }
         let line_height = i64::from(GLYPH_HEIGHT * self.text_scale) + 8;
         let height = GAP + line_height * self.lines.len() as i64 + GAP / 2;
-        let rect = PixelRect {
-            x0: x,
-            y0: y,
-            x1: x + self.width,
-            y1: y + height,
-        };
+        let rect = PixelRect { x0: x, y0: y, x1: x + self.width, y1: y + height };
         canvas.outline_rect(rect, FRAME);
         for (row, (name, sample)) in self.lines.iter().enumerate() {
             let top = y + GAP + row as i64 * line_height;
@@ -546,40 +401,20 @@ impl LegendLayout {
             let sample_x0 = (x + GAP) as f64;
             let sample_centre = sample_x0 + SAMPLE_WIDTH as f64 / 2.0;
             match sample {
-                Some(LegendSample::Points {
-                    marker,
-                    color,
-                    line,
-                }) => {
+                Some(LegendSample::Points { marker, color, line }) => {
                     if *line {
-                        canvas.line(
-                            (sample_x0, middle),
-                            (sample_x0 + SAMPLE_WIDTH as f64, middle),
-                            2,
-                            *color,
-                        );
+                        canvas.line((sample_x0, middle), (sample_x0 + SAMPLE_WIDTH as f64, middle), 2, *color);
                     }
                     canvas.marker(*marker, (sample_centre, middle), MARKER_RADIUS, *color);
                 }
                 Some(LegendSample::Front) => {
-                    canvas.line(
-                        (sample_x0, middle),
-                        (sample_x0 + SAMPLE_WIDTH as f64, middle),
-                        2,
-                        FRONT,
-                    );
+                    canvas.line((sample_x0, middle), (sample_x0 + SAMPLE_WIDTH as f64, middle), 2, FRONT);
                     canvas.ring((sample_centre, middle), MARKER_RADIUS + 5.0, 2.0, FRONT);
                 }
                 None => {}
             }
             let text_color = if sample.is_some() { INK } else { FRAME };
-            canvas.text(
-                x + GAP + SAMPLE_WIDTH + GAP,
-                top,
-                name,
-                self.text_scale,
-                text_color,
-            );
+            canvas.text(x + GAP + SAMPLE_WIDTH + GAP, top, name, self.text_scale, text_color);
         }
     }
 }
@@ -611,9 +446,6 @@ mod tests {
     #[test]
     fn charts_outside_the_size_limits_are_refused() {
         let chart = Chart::new("t", "x", "y").size(10, 10);
-        assert!(matches!(
-            render_lines(&chart, &[]),
-            Err(BenchError::ChartSize { .. })
-        ));
+        assert!(matches!(render_lines(&chart, &[]), Err(BenchError::ChartSize { .. })));
     }
 }

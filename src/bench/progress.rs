@@ -62,22 +62,12 @@ impl<W: Write> Progress<W> {
         if self.current.is_some() {
             self.finish_step();
         }
-        let label = if self.redraw {
-            shorten(label, MAX_LABEL_ON_TERMINAL)
-        } else {
-            label.to_owned()
-        };
-        let prefix = format!(
-            "{} {label} ...",
-            step_counter(self.finished_steps + 1, self.total)
-        );
+        let label = if self.redraw { shorten(label, MAX_LABEL_ON_TERMINAL) } else { label.to_owned() };
+        let prefix = format!("{} {label} ...", step_counter(self.finished_steps + 1, self.total));
         self.begin_line();
         self.write(&prefix);
         self.line_open = true;
-        self.current = Some(CurrentStep {
-            prefix,
-            started: Instant::now(),
-        });
+        self.current = Some(CurrentStep { prefix, started: Instant::now() });
     }
 
     /// Ends the current step successfully and returns how long it took.

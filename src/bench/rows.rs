@@ -342,26 +342,14 @@ impl BenchTable {
     /// One number per row; NaN where the row lacks `key` or it is not numeric,
     /// so the result lines up with `rows` and such rows never reach a Pareto front.
     pub fn column_f64(&self, key: &str) -> Vec<f64> {
-        self.rows
-            .iter()
-            .map(|row| row.get_f64(key).unwrap_or(f64::NAN))
-            .collect()
+        self.rows.iter().map(|row| row.get_f64(key).unwrap_or(f64::NAN)).collect()
     }
 
     /// Computes the Pareto front of (`time_key`, `error_key`), sets the bool
     /// column `flag_key` on every row (true on the front), and returns the
     /// front's row indices sorted by time.
-    pub fn mark_pareto_front(
-        &mut self,
-        time_key: &str,
-        error_key: &str,
-        flag_key: &str,
-    ) -> Vec<usize> {
-        let points: Vec<(f64, f64)> = self
-            .column_f64(time_key)
-            .into_iter()
-            .zip(self.column_f64(error_key))
-            .collect();
+    pub fn mark_pareto_front(&mut self, time_key: &str, error_key: &str, flag_key: &str) -> Vec<usize> {
+        let points: Vec<(f64, f64)> = self.column_f64(time_key).into_iter().zip(self.column_f64(error_key)).collect();
         let front = pareto_front(&points);
         for (index, row) in self.rows.iter_mut().enumerate() {
             row.set(flag_key, front.contains(&index));
@@ -393,26 +381,18 @@ impl BenchTable {
 
     pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<(), BenchError> {
         let path = path.as_ref();
-        std::fs::write(path, self.to_csv()).map_err(|source| BenchError::Write {
-            path: path.to_owned(),
-            source,
-        })
+        std::fs::write(path, self.to_csv()).map_err(|source| BenchError::Write { path: path.to_owned(), source })
     }
 
     /// The table as a pretty-printed JSON array of objects, keys in row order.
     /// Non-finite floats become `null` (JSON has no NaN) and read back as NaN.
     pub fn write_json(&self, path: impl AsRef<Path>) -> Result<(), BenchError> {
         let path = path.as_ref();
-        let write_error = |source| BenchError::Write {
-            path: path.to_owned(),
-            source,
-        };
+        let write_error = |source| BenchError::Write { path: path.to_owned(), source };
         let file = File::create(path).map_err(write_error)?;
         let mut writer = BufWriter::new(file);
-        serde_json::to_writer_pretty(&mut writer, self).map_err(|e| BenchError::Write {
-            path: path.to_owned(),
-            source: e.into(),
-        })?;
+        serde_json::to_writer_pretty(&mut writer, self)
+            .map_err(|e| BenchError::Write { path: path.to_owned(), source: e.into() })?;
         writer.write_all(b"\n").map_err(write_error)?;
         writer.flush().map_err(write_error)
     }
@@ -420,14 +400,9 @@ impl BenchTable {
     /// Reads a table written by [`BenchTable::write_json`], keeping key order.
     pub fn read_json(path: impl AsRef<Path>) -> Result<Self, BenchError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| BenchError::Read {
-            path: path.to_owned(),
-            source,
-        })?;
-        serde_json::from_str(&text).map_err(|source| BenchError::Json {
-            path: path.to_owned(),
-            source,
-        })
+        let text =
+            std::fs::read_to_string(path).map_err(|source| BenchError::Read { path: path.to_owned(), source })?;
+        serde_json::from_str(&text).map_err(|source| BenchError::Json { path: path.to_owned(), source })
     }
 
     /// A Markdown table to paste into a report: numbers right-aligned with four
@@ -440,22 +415,14 @@ impl BenchTable {
             .map(|row| {
                 columns
                     .iter()
-                    .map(|column| {
-                        row.get(column)
-                            .map(|v| markdown_cell(&v.to_readable_text()))
-                            .unwrap_or_default()
-                    })
+                    .map(|column| row.get(column).map(|v| markdown_cell(&v.to_readable_text())).unwrap_or_default())
                     .collect()
             })
             .collect();
         let numeric: Vec<bool> = columns
             .iter()
             .map(|column| {
-                let mut present = self
-                    .rows
-                    .iter()
-                    .filter_map(|row| row.get(column))
-                    .peekable();
+                let mut present = self.rows.iter().filter_map(|row| row.get(column)).peekable();
                 present.peek().is_some() && present.all(BenchValue::is_number)
             })
             .collect();
@@ -464,12 +431,7 @@ impl BenchTable {
             .iter()
             .enumerate()
             .map(|(i, header)| {
-                cells
-                    .iter()
-                    .map(|row| row[i].chars().count())
-                    .chain([header.chars().count(), 3])
-                    .max()
-                    .unwrap_or(3)
+                cells.iter().map(|row| row[i].chars().count()).chain([header.chars().count(), 3]).max().unwrap_or(3)
             })
             .collect();
 
@@ -482,32 +444,17 @@ impl BenchTable {
             }
         };
         let mut out = String::new();
-        let header_line: Vec<String> = headers
-            .iter()
-            .zip(&widths)
-            .zip(&numeric)
-            .map(|((h, &w), &n)| pad(h, w, n))
-            .collect();
+        let header_line: Vec<String> =
+            headers.iter().zip(&widths).zip(&numeric).map(|((h, &w), &n)| pad(h, w, n)).collect();
         out.push_str(&format!("| {} |\n", header_line.join(" | ")));
         let rule: Vec<String> = widths
             .iter()
             .zip(&numeric)
-            .map(|(&w, &n)| {
-                if n {
-                    format!("{}:", "-".repeat(w - 1))
-                } else {
-                    format!(":{}", "-".repeat(w - 1))
-                }
-            })
+            .map(|(&w, &n)| if n { format!("{}:", "-".repeat(w - 1)) } else { format!(":{}", "-".repeat(w - 1)) })
             .collect();
         out.push_str(&format!("| {} |\n", rule.join(" | ")));
         for row in &cells {
-            let line: Vec<String> = row
-                .iter()
-                .zip(&widths)
-                .zip(&numeric)
-                .map(|((c, &w), &n)| pad(c, w, n))
-                .collect();
+            let line: Vec<String> = row.iter().zip(&widths).zip(&numeric).map(|((c, &w), &n)| pad(c, w, n)).collect();
             out.push_str(&format!("| {} |\n", line.join(" | ")));
         }
         out
@@ -609,9 +556,6 @@ mod tests {
     #[test]
     fn huge_unsigned_counts_become_floats() {
         assert_eq!(BenchValue::from(7_u64), BenchValue::Int(7));
-        assert_eq!(
-            BenchValue::from(u64::MAX),
-            BenchValue::Float(u64::MAX as f64)
-        );
+        assert_eq!(BenchValue::from(u64::MAX), BenchValue::Float(u64::MAX as f64));
     }
 }

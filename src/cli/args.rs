@@ -4,11 +4,7 @@ use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
 #[derive(Parser, Debug)]
-#[command(
-    name = "sweeplab",
-    version,
-    about = "Volume illumination with explicit Vulkan synchronization"
-)]
+#[command(name = "sweeplab", version, about = "Volume illumination with explicit Vulkan synchronization")]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,

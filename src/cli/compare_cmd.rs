@@ -10,37 +10,27 @@ use sweeplab::render::{render, GpuScene, Technique};
 use sweeplab::vk::Profiler;
 
 pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
-    let technique: Technique = args
-        .technique
-        .parse()
-        .map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
+    let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
     let mut scene = scene_args::load(&args.scene)?;
     // Each technique is compared against the model it approximates.
     scene.reference.model = technique.reference_model(&scene);
     let (w, h) = (scene.render.width, scene.render.height);
     let ctx = session::open(&args.gpu)?;
-    let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu))
-        .context("uploading the scene")?;
+    let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
-    let tested = render(&gpu, technique, w, h, &mut profiler)
-        .with_context(|| format!("rendering {technique}"))?;
+    let tested = render(&gpu, technique, w, h, &mut profiler).with_context(|| format!("rendering {technique}"))?;
     let (reference, reference_gpu_ms, reference_cpu_s) = if args.reference == "cpu" {
         let start = Instant::now();
-        let image = render_cpu(&scene, CpuRenderKind::reference_of(&scene), w, h)
-            .context("CPU reference")?;
+        let image = render_cpu(&scene, CpuRenderKind::reference_of(&scene), w, h).context("CPU reference")?;
         (image, None, Some(start.elapsed().as_secs_f64()))
     } else {
-        let out =
-            render(&gpu, Technique::Reference, w, h, &mut profiler).context("GPU reference")?;
+        let out = render(&gpu, Technique::Reference, w, h, &mut profiler).context("GPU reference")?;
         (out.image, Some(out.profile.gpu_ms_total), None)
     };
     drop(gpu);
     let stats = compare(&tested.image, &reference).context("comparing against the reference")?;
     println!("technique        {technique}");
-    println!(
-        "reference        {} ({:?} model)",
-        args.reference, scene.reference.model
-    );
+    println!("reference        {} ({:?} model)", args.reference, scene.reference.model);
     println!("image            {w}x{h}");
     println!("rmse             {:.6e}", stats.rmse);
     println!("max_abs          {:.6e}", stats.max_abs);

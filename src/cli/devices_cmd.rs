@@ -15,13 +15,7 @@ pub fn run(args: &DevicesArgs) -> anyhow::Result<ExitCode> {
     for d in &devices {
         println!(
             "{:<5} {:<36} {:<15} {:<8} {:<12} {:>12} {:>10}",
-            d.index,
-            d.name,
-            d.device_type,
-            d.api_version,
-            d.driver_name,
-            d.timestamp_period_ns,
-            d.timestamp_valid_bits
+            d.index, d.name, d.device_type, d.api_version, d.driver_name, d.timestamp_period_ns, d.timestamp_valid_bits
         );
     }
     Ok(ExitCode::SUCCESS)

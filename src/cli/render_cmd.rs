@@ -10,25 +10,16 @@ use sweeplab::vk::Profiler;
 pub const PROFILER_CAPACITY: u32 = 65_536;
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
-    let technique: Technique = args
-        .technique
-        .parse()
-        .map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
+    let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
     let scene = scene_args::load(&args.scene)?;
     let ctx = session::open(&args.gpu)?;
     let output = {
-        let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu))
-            .context("uploading the scene")?;
+        let gpu =
+            GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
         let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
         profiler.set_detail(args.detail);
-        render(
-            &gpu,
-            technique,
-            scene.render.width,
-            scene.render.height,
-            &mut profiler,
-        )
-        .with_context(|| format!("rendering {technique}"))?
+        render(&gpu, technique, scene.render.width, scene.render.height, &mut profiler)
+            .with_context(|| format!("rendering {technique}"))?
     };
     output.image.save_png(&args.out)?;
     print!("{}", output.profile.table());

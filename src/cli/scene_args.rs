@@ -23,19 +23,12 @@ pub fn load(args: &SceneArgs) -> anyhow::Result<Scene> {
 }
 
 pub fn parse_size(text: &str) -> anyhow::Result<(u32, u32)> {
-    let Some((w, h)) = text
-        .to_lowercase()
-        .split_once('x')
-        .map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
+    let Some((w, h)) = text.to_lowercase().split_once('x').map(|(a, b)| (a.trim().to_string(), b.trim().to_string()))
     else {
         bail!("--size {text:?}: expected WIDTHxHEIGHT, e.g. 512x512");
     };
-    let w: u32 = w
-        .parse()
-        .with_context(|| format!("--size {text:?}: width {w:?} is not a whole number"))?;
-    let h: u32 = h
-        .parse()
-        .with_context(|| format!("--size {text:?}: height {h:?} is not a whole number"))?;
+    let w: u32 = w.parse().with_context(|| format!("--size {text:?}: width {w:?} is not a whole number"))?;
+    let h: u32 = h.parse().with_context(|| format!("--size {text:?}: height {h:?} is not a whole number"))?;
     if w == 0 || h == 0 || w > 16384 || h > 16384 {
         bail!("--size {text:?}: width and height must be between 1 and 16384");
     }

@@ -7,22 +7,14 @@ use sweeplab::render::VolumeTexels;
 use sweeplab::vk::{Context, ContextOptions};
 
 pub fn open(gpu: &GpuArgs) -> anyhow::Result<Context> {
-    let options = ContextOptions {
-        device: gpu.device.clone(),
-        validate: gpu.validate,
-    }
-    .with_env();
+    let options = ContextOptions { device: gpu.device.clone(), validate: gpu.validate }.with_env();
     let ctx = Context::new(&options).context("cannot start Vulkan")?;
     eprintln!(
         "device: {} ({}, Vulkan {}){}",
         ctx.info.name,
         ctx.info.driver_info,
         ctx.info.api_version,
-        if ctx.validation_enabled() {
-            ", validation on"
-        } else {
-            ""
-        }
+        if ctx.validation_enabled() { ", validation on" } else { "" }
     );
     Ok(ctx)
 }

@@ -46,19 +46,8 @@ pub fn render(
 ) -> Result<FrameResult, RenderError> {
     let ctx = gpu.ctx;
     let name = shading.pass_name();
-    let params = frame_params(
-        gpu.scene,
-        width,
-        height,
-        gpu.lut_size,
-        MarchSteps::render(gpu.scene),
-    );
-    let frame = Buffer::with_data(
-        ctx,
-        "frame params",
-        &[params],
-        vk::BufferUsageFlags::UNIFORM_BUFFER,
-    )?;
+    let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
+    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
     let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
     let mut pipeline = ComputePipeline::new(
         ctx,
@@ -88,9 +77,5 @@ pub fn render(
         output.record_readback(rec, &readback);
         Ok((rec.dispatch_count, rec.barrier_count))
     })?;
-    Ok(FrameResult {
-        image: output.read(&readback)?,
-        dispatches,
-        barriers,
-    })
+    Ok(FrameResult { image: output.read(&readback)?, dispatches, barriers })
 }

@@ -98,18 +98,12 @@ impl CacheGeometry {
     pub fn coord(&self, p: Vec3) -> (f32, f32, f32) {
         let q = p - self.origin;
         match self.projection {
-            CacheProjection::Orthographic => (
-                (q.dot(self.u) - self.a0) / self.texel,
-                (q.dot(self.v) - self.b0) / self.texel,
-                q.dot(self.axis),
-            ),
+            CacheProjection::Orthographic => {
+                ((q.dot(self.u) - self.a0) / self.texel, (q.dot(self.v) - self.b0) / self.texel, q.dot(self.axis))
+            }
             CacheProjection::Perspective => {
                 let z = q.dot(self.axis).max(1e-12);
-                (
-                    (q.dot(self.u) / z - self.a0) / self.texel,
-                    (q.dot(self.v) / z - self.b0) / self.texel,
-                    q.length(),
-                )
+                ((q.dot(self.u) / z - self.a0) / self.texel, (q.dot(self.v) / z - self.b0) / self.texel, q.length())
             }
             CacheProjection::Octahedral => {
                 let d = q.normalize_or(Vec3::Z);
@@ -120,11 +114,7 @@ impl CacheGeometry {
                     ex = (1.0 - oy.abs()) * if ox >= 0.0 { 1.0 } else { -1.0 };
                     ey = (1.0 - ox.abs()) * if oy >= 0.0 { 1.0 } else { -1.0 };
                 }
-                (
-                    (ex * 0.5 + 0.5) * self.size as f32,
-                    (ey * 0.5 + 0.5) * self.size as f32,
-                    q.length(),
-                )
+                ((ex * 0.5 + 0.5) * self.size as f32, (ey * 0.5 + 0.5) * self.size as f32, q.length())
             }
         }
     }
@@ -163,23 +153,13 @@ mod tests {
     fn every_corner_of_the_box_lands_on_the_cache() {
         let bx = VolumeBox::new(UVec3::new(64, 32, 48), Vec3::ONE);
         for light in [
-            LightKind::Directional {
-                direction: Vec3::new(0.3, -1.0, 0.2),
-            },
-            LightKind::Point {
-                position: Vec3::new(2.0, 1.0, 0.5),
-            },
-            LightKind::Point {
-                position: Vec3::new(0.1, 0.0, 0.0),
-            },
+            LightKind::Directional { direction: Vec3::new(0.3, -1.0, 0.2) },
+            LightKind::Point { position: Vec3::new(2.0, 1.0, 0.5) },
+            LightKind::Point { position: Vec3::new(0.1, 0.0, 0.0) },
         ] {
             let g = CacheGeometry::fit(&light, &bx, 64);
             for c in bx.corners() {
-                assert!(
-                    inside(&g, c),
-                    "{light:?}: corner {c} maps to {:?}",
-                    g.coord(c)
-                );
+                assert!(inside(&g, c), "{light:?}: corner {c} maps to {:?}", g.coord(c));
             }
         }
     }
@@ -187,13 +167,7 @@ mod tests {
     #[test]
     fn fitted_cache_is_tight_for_a_directional_light() {
         let bx = VolumeBox::new(UVec3::splat(32), Vec3::ONE);
-        let g = CacheGeometry::fit(
-            &LightKind::Directional {
-                direction: Vec3::NEG_Y,
-            },
-            &bx,
-            66,
-        );
+        let g = CacheGeometry::fit(&LightKind::Directional { direction: Vec3::NEG_Y }, &bx, 66);
         // The unit cube seen from above: 1 world unit over 64 texels plus margins.
         assert!((g.texel - 1.0 / 64.0).abs() < 1e-6, "{}", g.texel);
     }
@@ -201,13 +175,7 @@ mod tests {
     #[test]
     fn light_inside_the_volume_uses_the_octahedral_map() {
         let bx = VolumeBox::new(UVec3::splat(32), Vec3::ONE);
-        let g = CacheGeometry::fit(
-            &LightKind::Point {
-                position: Vec3::ZERO,
-            },
-            &bx,
-            32,
-        );
+        let g = CacheGeometry::fit(&LightKind::Point { position: Vec3::ZERO }, &bx, 32);
         assert_eq!(g.projection, CacheProjection::Octahedral);
         let (_, _, t) = g.coord(Vec3::new(0.3, 0.0, 0.4));
         assert!((t - 0.5).abs() < 1e-6);

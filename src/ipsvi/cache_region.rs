@@ -42,7 +42,8 @@ impl TexelRect {
     }
 }
 
-const EDGES: [(usize, usize); 12] = [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7)];
+const EDGES: [(usize, usize); 12] =
+    [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7)];
 
 /// Texels whose rays cross plane (n, d) inside the box, one texel of margin.
 pub fn plane_region(geometry: &CacheGeometry, bx: &VolumeBox, plane: [f32; 4]) -> TexelRect {

@@ -80,19 +80,11 @@ pub fn line_planes(basis: &RayBasis, width: u32, height: u32) -> Vec<[f32; 4]> {
     let mut out = Vec::with_capacity((width + height) as usize);
     for y in 0..height {
         let ny = 1.0 - (y as f32 + 0.5) / height as f32 * 2.0;
-        out.push(if basis.orthographic {
-            plane(r.cross(f), o + u * ny)
-        } else {
-            plane(r.cross(f + u * ny), o)
-        });
+        out.push(if basis.orthographic { plane(r.cross(f), o + u * ny) } else { plane(r.cross(f + u * ny), o) });
     }
     for x in 0..width {
         let nx = (x as f32 + 0.5) / width as f32 * 2.0 - 1.0;
-        out.push(if basis.orthographic {
-            plane(u.cross(f), o + r * nx)
-        } else {
-            plane(u.cross(f + r * nx), o)
-        });
+        out.push(if basis.orthographic { plane(u.cross(f), o + r * nx) } else { plane(u.cross(f + r * nx), o) });
     }
     out
 }

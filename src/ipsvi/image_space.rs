@@ -46,10 +46,7 @@ const FAR_AWAY_IMAGES: f32 = 64.0;
 
 impl ImageSpace {
     fn ndc_to_pixel(&self, nx: f32, ny: f32) -> Vec2 {
-        Vec2::new(
-            (nx + 1.0) * 0.5 * self.width as f32,
-            (1.0 - ny) * 0.5 * self.height as f32,
-        )
+        Vec2::new((nx + 1.0) * 0.5 * self.width as f32, (1.0 - ny) * 0.5 * self.height as f32)
     }
 
     /// Image-plane components of a world vector: (along right, along up) in ndc
@@ -75,21 +72,13 @@ impl ImageSpace {
     /// Image direction (pixels) of a small world displacement, orthographic only.
     fn image_direction(&self, v: Vec3) -> Vec2 {
         let l = self.lateral(v);
-        Vec2::new(
-            l.x * 0.5 * self.width as f32,
-            -l.y * 0.5 * self.height as f32,
-        )
+        Vec2::new(l.x * 0.5 * self.width as f32, -l.y * 0.5 * self.height as f32)
     }
 
     /// Pixels covered by the projected bounding box; the whole image when a
     /// corner lies behind a perspective camera.
     pub fn projected_box(&self, bx: &VolumeBox) -> PixelRect {
-        let full = PixelRect {
-            x0: 0,
-            y0: 0,
-            x1: self.width,
-            y1: self.height,
-        };
+        let full = PixelRect { x0: 0, y0: 0, x1: self.width, y1: self.height };
         let mut lo = Vec2::splat(f32::INFINITY);
         let mut hi = Vec2::splat(f32::NEG_INFINITY);
         for c in bx.corners() {
@@ -122,14 +111,10 @@ impl ImageSpace {
                 }
                 let z = w.dot(self.basis.forward);
                 let l = self.lateral(w);
-                let lateral_px =
-                    Vec2::new(l.x * self.width as f32, l.y * self.height as f32).length();
+                let lateral_px = Vec2::new(l.x * self.width as f32, l.y * self.height as f32).length();
                 if z.abs() * far <= lateral_px {
                     // The vanishing point is far outside the image: parallel sweep.
-                    return LightAnchor::AtInfinity(Vec2::new(
-                        l.x * self.width as f32,
-                        -l.y * self.height as f32,
-                    ));
+                    return LightAnchor::AtInfinity(Vec2::new(l.x * self.width as f32, -l.y * self.height as f32));
                 }
                 let vp = self.ndc_to_pixel(l.x / z, l.y / z);
                 if z > 0.0 {
@@ -145,14 +130,10 @@ impl ImageSpace {
                     return LightAnchor::Source(self.ndc_to_pixel(l.x, l.y));
                 }
                 let z = v.dot(self.basis.forward);
-                let lateral_px =
-                    Vec2::new(l.x * self.width as f32, l.y * self.height as f32).length();
+                let lateral_px = Vec2::new(l.x * self.width as f32, l.y * self.height as f32).length();
                 if z.abs() * far <= lateral_px {
                     // In the eye plane: light enters from that side of the image.
-                    return LightAnchor::AtInfinity(Vec2::new(
-                        -l.x * self.width as f32,
-                        l.y * self.height as f32,
-                    ));
+                    return LightAnchor::AtInfinity(Vec2::new(-l.x * self.width as f32, l.y * self.height as f32));
                 }
                 let p = self.ndc_to_pixel(l.x / z, l.y / z);
                 if z > 0.0 {

@@ -5,8 +5,7 @@
 use super::cache_geometry::CacheGeometry;
 use super::cache_region::{plane_region, TexelRect};
 use super::gpu_params::{
-    line_planes, sweep_params, BlockPush, SweepInputs, FLAG_EARLY_TERMINATION, FLAG_FIRST_LIGHT,
-    FLAG_PIECEWISE,
+    line_planes, sweep_params, BlockPush, SweepInputs, FLAG_EARLY_TERMINATION, FLAG_FIRST_LIGHT, FLAG_PIECEWISE,
 };
 use super::image_space::ImageSpace;
 use super::settings::IpsviSettings;
@@ -78,11 +77,7 @@ impl Cache {
                 ImageDesc {
                     image_type: vk::ImageType::TYPE_2D,
                     format,
-                    extent: vk::Extent3D {
-                        width: size,
-                        height: size,
-                        depth: 1,
-                    },
+                    extent: vk::Extent3D { width: size, height: size, depth: 1 },
                     usage: vk::ImageUsageFlags::STORAGE,
                 },
             )
@@ -92,59 +87,28 @@ impl Cache {
                 image("ipsvi cache a", vk::Format::R16G16B16A16_SFLOAT)?,
                 image("ipsvi cache b", vk::Format::R16G16B16A16_SFLOAT)?,
             ],
-            front: [
-                image("ipsvi front a", vk::Format::R16_UINT)?,
-                image("ipsvi front b", vk::Format::R16_UINT)?,
-            ],
+            front: [image("ipsvi front a", vk::Format::R16_UINT)?, image("ipsvi front b", vk::Format::R16_UINT)?],
         })
     }
 
     fn images(&self) -> [&Image; 4] {
-        [
-            &self.light[0],
-            &self.light[1],
-            &self.front[0],
-            &self.front[1],
-        ]
+        [&self.light[0], &self.light[1], &self.front[0], &self.front[1]]
     }
 }
 
 /// Plans for every light, in light order.
 pub fn plans(gpu: &GpuScene, settings: &IpsviSettings, width: u32, height: u32) -> Vec<SweepPlan> {
-    let space = ImageSpace {
-        basis: gpu.scene.camera.basis(width, height),
-        width,
-        height,
-    };
+    let space = ImageSpace { basis: gpu.scene.camera.basis(width, height), width, height };
     let bbox = space.projected_box(&gpu.scene.volume_box());
     gpu.scene
         .lights
         .iter()
-        .map(|l| {
-            plan(
-                bbox,
-                space.light_anchor(&l.kind),
-                settings.line_width,
-                settings.zone_blend_px,
-            )
-        })
+        .map(|l| plan(bbox, space.light_anchor(&l.kind), settings.line_width, settings.zone_blend_px))
         .collect()
 }
 
-pub fn render(
-    gpu: &GpuScene,
-    width: u32,
-    height: u32,
-    profiler: &mut Profiler,
-) -> Result<FrameResult, RenderError> {
-    render_with(
-        gpu,
-        &IpsviSettings::from_scene(gpu.scene)?,
-        width,
-        height,
-        profiler,
-        LineSync::Barrier,
-    )
+pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
+    render_with(gpu, &IpsviSettings::from_scene(gpu.scene)?, width, height, profiler, LineSync::Barrier)
 }
 
 pub fn render_with(
@@ -158,36 +122,15 @@ pub fn render_with(
     let scene = gpu.scene;
     if scene.lights.is_empty() {
         // No light, no sweep: emission-absorption ray casting, nothing else allocated.
-        return crate::dvr::render(
-            gpu,
-            crate::dvr::Shading::EmissionOnly,
-            width,
-            height,
-            profiler,
-        );
+        return crate::dvr::render(gpu, crate::dvr::Shading::EmissionOnly, width, height, profiler);
     }
     let ctx = gpu.ctx;
-    let space = ImageSpace {
-        basis: scene.camera.basis(width, height),
-        width,
-        height,
-    };
+    let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
     let bx = scene.volume_box();
     let plans = plans(gpu, settings, width, height);
 
-    let params = frame_params(
-        scene,
-        width,
-        height,
-        gpu.lut_size,
-        MarchSteps::render(scene),
-    );
-    let frame = Buffer::with_data(
-        ctx,
-        "frame params",
-        &[params],
-        vk::BufferUsageFlags::UNIFORM_BUFFER,
-    )?;
+    let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::render(scene));
+    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
     let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
     let cache = Cache::new(gpu, settings.cache_size)?;
 
@@ -204,14 +147,9 @@ pub fn render_with(
     }
     let planes_host = line_planes(&space.basis, width, height);
     let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
-    let geometries: Vec<CacheGeometry> = scene.lights.iter().map(|l| CacheGeometry::fit(&l.kind, &bx, settings.cache_size)).collect();
-    let light_scale = |i: usize| {
-        scene.lights[i]
-            .radiance()
-            .max_element()
-            .max(scene.render.emission)
-            .max(1e-30)
-    };
+    let geometries: Vec<CacheGeometry> =
+        scene.lights.iter().map(|l| CacheGeometry::fit(&l.kind, &bx, settings.cache_size)).collect();
+    let light_scale = |i: usize| scene.lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
     let sweep_buffers: Vec<Buffer> = scene
         .lights
         .iter()
@@ -228,12 +166,7 @@ pub fn render_with(
                 albedo: settings.albedo,
                 cone_angle_deg: settings.cone_angle_deg,
             });
-            Buffer::with_data(
-                ctx,
-                &format!("ipsvi sweep light {i}"),
-                &[p],
-                vk::BufferUsageFlags::UNIFORM_BUFFER,
-            )
+            Buffer::with_data(ctx, &format!("ipsvi sweep light {i}"), &[p], vk::BufferUsageFlags::UNIFORM_BUFFER)
         })
         .collect::<Result<_, _>>()?;
 
@@ -343,28 +276,19 @@ pub fn render_with(
             for sweep in &plan.sweeps {
                 let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
                 rec.bind(&init, init_sets[li]);
-                rec.dispatch(
-                    settings.cache_size.div_ceil(8),
-                    settings.cache_size.div_ceil(8),
-                    1,
-                );
+                rec.dispatch(settings.cache_size.div_ceil(8), settings.cache_size.div_ceil(8), 1);
                 profiler.end(rec, init_scope)?;
                 rec.barrier(&Barrier::memory(
                     "cache_init_write_to_first_line_read",
                     Access::COMPUTE_WRITE,
                     Access::COMPUTE_READ_WRITE,
                 ));
-                let sweep_scope =
-                    profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
+                let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
                 let mut previous_region = TexelRect::default();
                 for (bi, block) in sweep.blocks.iter().enumerate() {
                     let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                     let columns = sweep.axis == LineAxis::Columns;
-                    let plane = if columns {
-                        height + block.last_line
-                    } else {
-                        block.last_line
-                    };
+                    let plane = if columns { height + block.last_line } else { block.last_line };
                     let pixel_count = block.width * block.span_len;
                     let region = plane_region(&geometries[li], &bx, planes_host[plane as usize]);
                     let update = region.union(&previous_region);
@@ -401,9 +325,5 @@ pub fn render_with(
         output.record_readback(rec, &readback);
         Ok((rec.dispatch_count, rec.barrier_count))
     })?;
-    Ok(FrameResult {
-        image: output.read(&readback)?,
-        dispatches,
-        barriers,
-    })
+    Ok(FrameResult { image: output.read(&readback)?, dispatches, barriers })
 }

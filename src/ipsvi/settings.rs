@@ -35,15 +35,8 @@ impl Default for IpsviSettings {
     }
 }
 
-const KEYS: [&str; 7] = [
-    "line_width",
-    "cache_size",
-    "piecewise",
-    "early_termination",
-    "albedo",
-    "cone_angle",
-    "zone_blend",
-];
+const KEYS: [&str; 7] =
+    ["line_width", "cache_size", "piecewise", "early_termination", "albedo", "cone_angle", "zone_blend"];
 
 impl IpsviSettings {
     pub fn from_scene(scene: &Scene) -> Result<IpsviSettings, RenderError> {
@@ -51,19 +44,14 @@ impl IpsviSettings {
         let Some(value) = scene.techniques.get("ipsvi") else {
             return Ok(s);
         };
-        let table = value
-            .as_table()
-            .ok_or_else(|| bad("[ipsvi] must be a table"))?;
+        let table = value.as_table().ok_or_else(|| bad("[ipsvi] must be a table"))?;
         for (key, v) in table {
             let number = || {
                 v.as_float()
                     .or_else(|| v.as_integer().map(|i| i as f64))
                     .ok_or_else(|| bad(&format!("ipsvi.{key} must be a number")))
             };
-            let boolean = || {
-                v.as_bool()
-                    .ok_or_else(|| bad(&format!("ipsvi.{key} must be true or false")))
-            };
+            let boolean = || v.as_bool().ok_or_else(|| bad(&format!("ipsvi.{key} must be true or false")));
             match key.as_str() {
                 "line_width" => s.line_width = whole(number()?, 1, 32, key)?,
                 "cache_size" => s.cache_size = whole(number()?, 16, 4096, key)?,
@@ -72,12 +60,7 @@ impl IpsviSettings {
                 "albedo" => s.albedo = within(number()?, 0.0, 1.0, key)?,
                 "cone_angle" => s.cone_angle_deg = within(number()?, 0.0, 80.0, key)?,
                 "zone_blend" => s.zone_blend_px = within(number()?, 0.0, 64.0, key)?,
-                other => {
-                    return Err(bad(&format!(
-                        "unknown key ipsvi.{other}; known: {}",
-                        KEYS.join(", ")
-                    )))
-                }
+                other => return Err(bad(&format!("unknown key ipsvi.{other}; known: {}", KEYS.join(", ")))),
             }
         }
         Ok(s)
@@ -90,9 +73,7 @@ fn bad(message: &str) -> RenderError {
 
 fn whole(v: f64, lo: u32, hi: u32, key: &str) -> Result<u32, RenderError> {
     if v.fract() != 0.0 || v < lo as f64 || v > hi as f64 {
-        return Err(bad(&format!(
-            "ipsvi.{key} = {v}: must be a whole number in {lo}..={hi}"
-        )));
+        return Err(bad(&format!("ipsvi.{key} = {v}: must be a whole number in {lo}..={hi}")));
     }
     Ok(v as u32)
 }

@@ -76,11 +76,7 @@ pub struct SweepPlan {
 
 impl SweepPlan {
     pub fn lines(&self) -> u32 {
-        self.sweeps
-            .iter()
-            .flat_map(|s| &s.blocks)
-            .map(|b| b.width)
-            .sum()
+        self.sweeps.iter().flat_map(|s| &s.blocks).map(|b| b.width).sum()
     }
 
     pub fn dispatches(&self) -> u32 {
@@ -95,13 +91,7 @@ pub const PARALLEL_FALLBACK: &str = "light parallel to the view direction: no im
 
 pub fn plan(bbox: PixelRect, anchor: LightAnchor, line_width: u32, blend_px: f32) -> SweepPlan {
     let lw = line_width.clamp(1, 32);
-    let mut out = SweepPlan {
-        anchor,
-        bbox,
-        sweeps: Vec::new(),
-        blend_px,
-        fallback: None,
-    };
+    let mut out = SweepPlan { anchor, bbox, sweeps: Vec::new(), blend_px, fallback: None };
     if bbox.is_empty() {
         return out;
     }
@@ -123,12 +113,7 @@ pub fn plan(bbox: PixelRect, anchor: LightAnchor, line_width: u32, blend_px: f32
             if !ascending {
                 order.reverse();
             }
-            out.sweeps.push(Sweep {
-                zone: Zone::All,
-                axis,
-                ascending,
-                blocks: blocks(&order, lw),
-            });
+            out.sweeps.push(Sweep { zone: Zone::All, axis, ascending, blocks: blocks(&order, lw) });
         }
         LightAnchor::Source(p) | LightAnchor::Sink(p) => {
             let outward = matches!(anchor, LightAnchor::Source(_));
@@ -141,18 +126,9 @@ pub fn plan(bbox: PixelRect, anchor: LightAnchor, line_width: u32, blend_px: f32
                 if order.is_empty() {
                     continue;
                 }
-                let axis = if matches!(zone, Zone::Right | Zone::Left) {
-                    LineAxis::Columns
-                } else {
-                    LineAxis::Rows
-                };
+                let axis = if matches!(zone, Zone::Right | Zone::Left) { LineAxis::Columns } else { LineAxis::Rows };
                 let away_ascending = matches!(zone, Zone::Right | Zone::Down);
-                out.sweeps.push(Sweep {
-                    zone,
-                    axis,
-                    ascending: away_ascending == outward,
-                    blocks: blocks(&order, lw),
-                });
+                out.sweeps.push(Sweep { zone, axis, ascending: away_ascending == outward, blocks: blocks(&order, lw) });
             }
         }
     }
@@ -177,9 +153,7 @@ fn zone_lines(bbox: PixelRect, p: Vec2, zone: Zone, blend: f32) -> Vec<(u32, (u3
             continue;
         }
         let a = (centre_across - reach - 0.5).ceil().max(across_lo as f32);
-        let b = (centre_across + reach - 0.5)
-            .floor()
-            .min(across_hi as f32 - 1.0);
+        let b = (centre_across + reach - 0.5).floor().min(across_hi as f32 - 1.0);
         if a > b {
             continue;
         }
@@ -224,29 +198,12 @@ mod tests {
 
     #[test]
     fn directional_light_sweeps_whole_lines_from_the_lit_border() {
-        let p = plan(
-            rect(10, 20, 50, 40),
-            LightAnchor::AtInfinity(Vec2::new(-3.0, 1.0)),
-            4,
-            2.0,
-        );
+        let p = plan(rect(10, 20, 50, 40), LightAnchor::AtInfinity(Vec2::new(-3.0, 1.0)), 4, 2.0);
         assert_eq!(p.sweeps.len(), 1);
         let s = &p.sweeps[0];
         assert_eq!(s.axis, LineAxis::Columns);
-        assert!(
-            !s.ascending,
-            "light travels toward -x: start at the right border"
-        );
-        assert_eq!(
-            s.blocks[0],
-            LineBlock {
-                first: 49,
-                width: 1,
-                span_start: 20,
-                span_len: 20,
-                last_line: 49
-            }
-        );
+        assert!(!s.ascending, "light travels toward -x: start at the right border");
+        assert_eq!(s.blocks[0], LineBlock { first: 49, width: 1, span_start: 20, span_len: 20, last_line: 49 });
         assert_eq!(s.blocks[1].first, 45);
         assert_eq!(s.blocks[1].width, 4);
         assert_eq!(s.blocks[1].last_line, 45);
@@ -256,32 +213,15 @@ mod tests {
 
     #[test]
     fn rows_when_the_light_is_mostly_vertical() {
-        let p = plan(
-            rect(0, 0, 8, 8),
-            LightAnchor::AtInfinity(Vec2::new(0.5, 2.0)),
-            1,
-            2.0,
-        );
+        let p = plan(rect(0, 0, 8, 8), LightAnchor::AtInfinity(Vec2::new(0.5, 2.0)), 1, 2.0);
         assert_eq!(p.sweeps[0].axis, LineAxis::Rows);
         assert!(p.sweeps[0].ascending);
-        assert_eq!(
-            p.sweeps[0]
-                .blocks
-                .iter()
-                .map(|b| b.first)
-                .collect::<Vec<_>>(),
-            (0..8).collect::<Vec<_>>()
-        );
+        assert_eq!(p.sweeps[0].blocks.iter().map(|b| b.first).collect::<Vec<_>>(), (0..8).collect::<Vec<_>>());
     }
 
     #[test]
     fn parallel_light_falls_back_and_still_covers_the_box() {
-        let p = plan(
-            rect(0, 0, 8, 8),
-            LightAnchor::AtInfinity(Vec2::ZERO),
-            2,
-            2.0,
-        );
+        let p = plan(rect(0, 0, 8, 8), LightAnchor::AtInfinity(Vec2::ZERO), 2, 2.0);
         assert!(p.fallback.is_some());
         assert_eq!(p.lines(), 8);
     }
@@ -296,39 +236,22 @@ mod tests {
             for b in &s.blocks {
                 for l in b.first..b.first + b.width {
                     for t in b.span_start..b.span_start + b.span_len {
-                        let (x, y) = if s.axis == LineAxis::Columns {
-                            (l, t)
-                        } else {
-                            (t, l)
-                        };
+                        let (x, y) = if s.axis == LineAxis::Columns { (l, t) } else { (t, l) };
                         covered[(y * 32 + x) as usize] += 1;
                     }
                 }
             }
             // Outward: the first block is next to the anchor.
             let first = s.blocks[0].first as f32 + 0.5;
-            let anchor = if s.axis == LineAxis::Columns {
-                13.3
-            } else {
-                9.7
-            };
-            assert!(
-                (first - anchor).abs() <= 1.0,
-                "{:?} starts at {first}",
-                s.zone
-            );
+            let anchor = if s.axis == LineAxis::Columns { 13.3 } else { 9.7 };
+            assert!((first - anchor).abs() <= 1.0, "{:?} starts at {first}", s.zone);
         }
         assert!(covered.iter().all(|&c| c >= 1), "some pixel is in no zone");
     }
 
     #[test]
     fn sink_sweeps_run_toward_the_anchor() {
-        let p = plan(
-            rect(0, 0, 32, 32),
-            LightAnchor::Sink(Vec2::new(16.0, 16.0)),
-            1,
-            1.0,
-        );
+        let p = plan(rect(0, 0, 32, 32), LightAnchor::Sink(Vec2::new(16.0, 16.0)), 1, 1.0);
         for s in &p.sweeps {
             let first = s.blocks[0].first as f32 + 0.5;
             let last = s.blocks.last().unwrap().first as f32 + 0.5;
@@ -338,25 +261,14 @@ mod tests {
 
     #[test]
     fn anchor_outside_the_box_uses_only_the_zones_that_reach_it() {
-        let p = plan(
-            rect(40, 0, 60, 10),
-            LightAnchor::Source(Vec2::new(10.0, 5.0)),
-            1,
-            1.0,
-        );
-        assert!(p
-            .sweeps
-            .iter()
-            .all(|s| s.zone == Zone::Right || s.blocks.iter().all(|b| b.span_len > 0)));
+        let p = plan(rect(40, 0, 60, 10), LightAnchor::Source(Vec2::new(10.0, 5.0)), 1, 1.0);
+        assert!(p.sweeps.iter().all(|s| s.zone == Zone::Right || s.blocks.iter().all(|b| b.span_len > 0)));
         assert!(p.sweeps.iter().any(|s| s.zone == Zone::Right));
         assert!(!p.sweeps.iter().any(|s| s.zone == Zone::Left));
     }
 
     #[test]
     fn empty_box_plans_nothing() {
-        assert_eq!(
-            plan(rect(5, 5, 5, 9), LightAnchor::AtInfinity(Vec2::X), 1, 1.0).dispatches(),
-            0
-        );
+        assert_eq!(plan(rect(5, 5, 5, 9), LightAnchor::AtInfinity(Vec2::X), 1, 1.0).dispatches(), 0);
     }
 }

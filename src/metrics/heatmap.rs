@@ -40,10 +40,7 @@ pub fn error_heatmap(
 
 /// Writes a heatmap as PNG.
 pub fn save_heatmap(heatmap: &image::RgbImage, path: &Path) -> Result<(), MetricsError> {
-    heatmap.save(path).map_err(|source| MetricsError::Write {
-        path: path.display().to_string(),
-        source,
-    })
+    heatmap.save(path).map_err(|source| MetricsError::Write { path: path.display().to_string(), source })
 }
 
 #[cfg(test)]
@@ -51,11 +48,7 @@ mod tests {
     use super::*;
 
     fn image(pixels: Vec<[f32; 3]>) -> LinearImage {
-        LinearImage {
-            width: pixels.len() as u32,
-            height: 1,
-            pixels,
-        }
+        LinearImage { width: pixels.len() as u32, height: 1, pixels }
     }
 
     #[test]
@@ -88,21 +81,12 @@ mod tests {
     fn bad_inputs_are_errors() {
         let a = image(vec![[0.0; 3]; 2]);
         let b = image(vec![[0.0; 3]; 3]);
-        assert!(matches!(
-            error_heatmap(&a, &b, None),
-            Err(MetricsError::SizeMismatch { .. })
-        ));
+        assert!(matches!(error_heatmap(&a, &b, None), Err(MetricsError::SizeMismatch { .. })));
         for s in [0.0, -1.0, f32::NAN, f32::INFINITY] {
-            assert!(matches!(
-                error_heatmap(&a, &a, Some(s)),
-                Err(MetricsError::InvalidScale(_))
-            ));
+            assert!(matches!(error_heatmap(&a, &a, Some(s)), Err(MetricsError::InvalidScale(_))));
         }
         let nan = image(vec![[f32::NAN, 0.0, 0.0], [0.0; 3]]);
-        assert!(matches!(
-            error_heatmap(&nan, &a, None),
-            Err(MetricsError::NonFinite { .. })
-        ));
+        assert!(matches!(error_heatmap(&nan, &a, None), Err(MetricsError::NonFinite { .. })));
     }
 
     #[test]
@@ -117,8 +101,6 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
         let bad = Path::new("/nonexistent-dir-for-sweeplab/map.png");
         let err = save_heatmap(&map, bad).unwrap_err();
-        assert!(err
-            .to_string()
-            .contains("/nonexistent-dir-for-sweeplab/map.png"));
+        assert!(err.to_string().contains("/nonexistent-dir-for-sweeplab/map.png"));
     }
 }

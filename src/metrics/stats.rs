@@ -34,16 +34,8 @@ pub fn compare(test: &LinearImage, reference: &LinearImage) -> Result<ErrorStats
         }
     }
     let rmse = (sum_sq / (3 * test.pixels.len()) as f64).sqrt();
-    let psnr = if rmse == 0.0 {
-        f64::INFINITY
-    } else {
-        20.0 * (peak / rmse).log10()
-    };
-    Ok(ErrorStats {
-        rmse,
-        max_abs,
-        psnr,
-    })
+    let psnr = if rmse == 0.0 { f64::INFINITY } else { 20.0 * (peak / rmse).log10() };
+    Ok(ErrorStats { rmse, max_abs, psnr })
 }
 
 /// Same size, well formed, not empty, all values finite.
@@ -74,11 +66,7 @@ fn check_image(which: &'static str, image: &LinearImage) -> Result<(), MetricsEr
             pixels: image.pixels.len(),
         });
     }
-    match image
-        .pixels
-        .iter()
-        .position(|p| p.iter().any(|c| !c.is_finite()))
-    {
+    match image.pixels.iter().position(|p| p.iter().any(|c| !c.is_finite())) {
         None => Ok(()),
         Some(i) => Err(MetricsError::NonFinite {
             which,
@@ -94,11 +82,7 @@ mod tests {
     use super::*;
 
     fn image(width: u32, height: u32, pixels: Vec<[f32; 3]>) -> LinearImage {
-        LinearImage {
-            width,
-            height,
-            pixels,
-        }
+        LinearImage { width, height, pixels }
     }
 
     #[test]
@@ -145,10 +129,7 @@ mod tests {
     fn size_mismatch_is_an_error() {
         let a = image(2, 1, vec![[0.0; 3]; 2]);
         let b = image(1, 2, vec![[0.0; 3]; 2]);
-        assert!(matches!(
-            compare(&a, &b),
-            Err(MetricsError::SizeMismatch { .. })
-        ));
+        assert!(matches!(compare(&a, &b), Err(MetricsError::SizeMismatch { .. })));
     }
 
     #[test]
@@ -157,43 +138,25 @@ mod tests {
         let mut bad = good.clone();
         bad.pixels[3] = [0.0, f32::NAN, 0.0];
         match compare(&bad, &good) {
-            Err(MetricsError::NonFinite {
-                which: "test",
-                x: 1,
-                y: 1,
-                ..
-            }) => {}
+            Err(MetricsError::NonFinite { which: "test", x: 1, y: 1, .. }) => {}
             other => panic!("{other:?}"),
         }
         bad.pixels[3] = [f32::INFINITY, 0.0, 0.0];
-        assert!(matches!(
-            compare(&good, &bad),
-            Err(MetricsError::NonFinite {
-                which: "reference",
-                ..
-            })
-        ));
+        assert!(matches!(compare(&good, &bad), Err(MetricsError::NonFinite { which: "reference", .. })));
     }
 
     #[test]
     fn malformed_and_empty_images_are_errors() {
         let short = image(2, 2, vec![[0.0; 3]; 3]);
         let ok = image(2, 2, vec![[0.0; 3]; 4]);
-        assert!(matches!(
-            compare(&short, &ok),
-            Err(MetricsError::Malformed { .. })
-        ));
+        assert!(matches!(compare(&short, &ok), Err(MetricsError::Malformed { .. })));
         let empty = image(0, 0, vec![]);
         assert!(matches!(compare(&empty, &empty), Err(MetricsError::Empty)));
     }
 
     #[test]
     fn stats_serialize_to_json() {
-        let s = ErrorStats {
-            rmse: 0.5,
-            max_abs: 1.0,
-            psnr: f64::INFINITY,
-        };
+        let s = ErrorStats { rmse: 0.5, max_abs: 1.0, psnr: f64::INFINITY };
         let json = serde_json::to_string(&s).unwrap();
         assert_eq!(json, r#"{"rmse":0.5,"max_abs":1.0,"psnr":null}"#);
     }

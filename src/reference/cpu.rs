@@ -46,21 +46,11 @@ pub struct CpuRenderer<'a> {
 }
 
 impl<'a> CpuRenderer<'a> {
-    pub fn new(
-        scene: &'a Scene,
-        kind: CpuRenderKind,
-        width: u32,
-        height: u32,
-    ) -> Result<Self, CpuRenderError> {
+    pub fn new(scene: &'a Scene, kind: CpuRenderKind, width: u32, height: u32) -> Result<Self, CpuRenderError> {
         check_scene(scene, kind)?;
         let (step_voxels, min_transmittance) = match kind {
-            CpuRenderKind::Dvr | CpuRenderKind::Phong => {
-                (scene.render.step_voxels, EARLY_TERMINATION_TRANSMITTANCE)
-            }
-            CpuRenderKind::Reference(_) => (
-                scene.reference.step_voxels,
-                scene.reference.min_transmittance as f64,
-            ),
+            CpuRenderKind::Dvr | CpuRenderKind::Phong => (scene.render.step_voxels, EARLY_TERMINATION_TRANSMITTANCE),
+            CpuRenderKind::Reference(_) => (scene.reference.step_voxels, scene.reference.min_transmittance as f64),
         };
         Ok(CpuRenderer {
             scene,
@@ -77,26 +67,15 @@ impl<'a> CpuRenderer<'a> {
     /// Linear RGB of pixel (x, y), in f64.
     pub fn pixel(&self, x: u32, y: u32) -> Result<[f64; 3], CpuRenderError> {
         if x >= self.width || y >= self.height {
-            return Err(CpuRenderError::PixelOutOfRange {
-                x,
-                y,
-                width: self.width,
-                height: self.height,
-            });
+            return Err(CpuRenderError::PixelOutOfRange { x, y, width: self.width, height: self.height });
         }
         Ok(self.march_pixel(x, y).to_array())
     }
 
     /// The whole image, rows spread over all cores; deterministic.
     pub fn render(&self) -> LinearImage {
-        let pixels = render_rows(self.width, self.height, |x, y| {
-            self.march_pixel(x, y).as_vec3().to_array()
-        });
-        LinearImage {
-            width: self.width,
-            height: self.height,
-            pixels,
-        }
+        let pixels = render_rows(self.width, self.height, |x, y| self.march_pixel(x, y).as_vec3().to_array());
+        LinearImage { width: self.width, height: self.height, pixels }
     }
 
     fn march_pixel(&self, x: u32, y: u32) -> DVec3 {
@@ -151,12 +130,7 @@ impl<'a> CpuRenderer<'a> {
 }
 
 /// Renders `scene` at `width` x `height` on the CPU in f64 (stored as f32).
-pub fn render_cpu(
-    scene: &Scene,
-    kind: CpuRenderKind,
-    width: u32,
-    height: u32,
-) -> Result<LinearImage, CpuRenderError> {
+pub fn render_cpu(scene: &Scene, kind: CpuRenderKind, width: u32, height: u32) -> Result<LinearImage, CpuRenderError> {
     Ok(CpuRenderer::new(scene, kind, width, height)?.render())
 }
 

@@ -49,12 +49,7 @@ pub struct ChunkPlan {
 }
 
 impl ChunkPlan {
-    pub fn new(
-        diagonal_voxels: f64,
-        view_step_voxels: f64,
-        shadow_step_voxels: f64,
-        lights: u64,
-    ) -> ChunkPlan {
+    pub fn new(diagonal_voxels: f64, view_step_voxels: f64, shadow_step_voxels: f64, lights: u64) -> ChunkPlan {
         // +1: ceil of a length that is itself rounded in f32 on the GPU.
         let max_view_samples = (diagonal_voxels / view_step_voxels).ceil() as u64 + 1;
         let max_shadow_samples = (diagonal_voxels / shadow_step_voxels).ceil() as u64 + 1;
@@ -95,12 +90,7 @@ pub enum ChunkSync {
     RacyNoBarrier,
 }
 
-pub fn render(
-    gpu: &GpuScene,
-    width: u32,
-    height: u32,
-    profiler: &mut Profiler,
-) -> Result<FrameResult, RenderError> {
+pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
     render_with(gpu, width, height, profiler, ChunkSync::Barrier)
 }
 
@@ -113,19 +103,8 @@ pub fn render_with(
 ) -> Result<FrameResult, RenderError> {
     let ctx = gpu.ctx;
     let scene = gpu.scene;
-    let params = frame_params(
-        scene,
-        width,
-        height,
-        gpu.lut_size,
-        MarchSteps::reference(scene),
-    );
-    let frame = Buffer::with_data(
-        ctx,
-        "frame params",
-        &[params],
-        vk::BufferUsageFlags::UNIFORM_BUFFER,
-    )?;
+    let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::reference(scene));
+    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
     let accum = [
         OutputImage::new(ctx, "reference accum a", width, height)?,
         OutputImage::new(ctx, "reference accum b", width, height)?,
@@ -192,9 +171,5 @@ pub fn render_with(
         accum[last_written].record_readback(rec, &readback);
         Ok((rec.dispatch_count, rec.barrier_count))
     })?;
-    Ok(FrameResult {
-        image: accum[last_written].read(&readback)?,
-        dispatches,
-        barriers,
-    })
+    Ok(FrameResult { image: accum[last_written].read(&readback)?, dispatches, barriers })
 }

@@ -19,17 +19,13 @@ pub struct LightPath {
 /// looks up (+y).
 pub fn toward_light(light: &Light, p: DVec3) -> LightPath {
     match light.kind {
-        LightKind::Directional { direction } => LightPath {
-            toward: -direction.as_dvec3().normalize_or(DVec3::NEG_Y),
-            distance: f64::INFINITY,
-        },
+        LightKind::Directional { direction } => {
+            LightPath { toward: -direction.as_dvec3().normalize_or(DVec3::NEG_Y), distance: f64::INFINITY }
+        }
         LightKind::Point { position } | LightKind::Spot { position, .. } => {
             let d = position.as_dvec3() - p;
             let len = d.length();
-            LightPath {
-                toward: if len > 0.0 { d / len } else { DVec3::Y },
-                distance: len,
-            }
+            LightPath { toward: if len > 0.0 { d / len } else { DVec3::Y }, distance: len }
         }
     }
 }
@@ -56,13 +52,7 @@ pub fn falloff(light: &Light, path: &LightPath, voxel_length: f64) -> f64 {
 /// step at the outer one when inner >= outer. 1 for other lights. A zero spot
 /// axis falls back to -y, as on the GPU.
 pub fn cone(light: &Light, path: &LightPath) -> f64 {
-    let LightKind::Spot {
-        direction,
-        inner_cone_deg,
-        outer_cone_deg,
-        ..
-    } = light.kind
-    else {
+    let LightKind::Spot { direction, inner_cone_deg, outer_cone_deg, .. } = light.kind else {
         return 1.0;
     };
     let axis = direction.as_dvec3().normalize_or(DVec3::NEG_Y);
@@ -114,9 +104,7 @@ mod tests {
     #[test]
     fn directional_points_against_travel_direction() {
         let light = Light {
-            kind: LightKind::Directional {
-                direction: Vec3::new(0.0, 0.0, -5.0),
-            },
+            kind: LightKind::Directional { direction: Vec3::new(0.0, 0.0, -5.0) },
             color: Vec3::ONE,
             intensity: 1.0,
             falloff: Falloff::InverseSquare,
@@ -164,10 +152,7 @@ mod tests {
         assert_eq!(at(19.9), 1.0);
         assert_eq!(at(20.1), 0.0);
         let wider_inner = spot(30.0, 20.0);
-        assert_eq!(
-            cone(&wider_inner, &toward_light(&wider_inner, off_axis(25.0))),
-            0.0
-        );
+        assert_eq!(cone(&wider_inner, &toward_light(&wider_inner, off_axis(25.0))), 0.0);
     }
 
     #[test]

@@ -63,10 +63,7 @@ impl<'a> Medium<'a> {
     /// Transfer function applied to the scalar at world position `p`.
     pub fn at(&self, p: DVec3) -> MediumSample {
         let [r, g, b, sigma] = self.lut.sample(self.scalar_at_uvw(self.uvw(p)));
-        MediumSample {
-            rgb: DVec3::new(r, g, b),
-            sigma,
-        }
+        MediumSample { rgb: DVec3::new(r, g, b), sigma }
     }
 
     /// Box hit `(t0, t1)` of the ray `o + t * d`, `None` on a miss.

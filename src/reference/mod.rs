@@ -15,7 +15,5 @@ pub mod shadow;
 pub mod sources;
 pub mod validate;
 
-pub use cpu::{
-    render_cpu, render_pixel_cpu, CpuRenderKind, CpuRenderer, EARLY_TERMINATION_TRANSMITTANCE,
-};
+pub use cpu::{render_cpu, render_pixel_cpu, CpuRenderKind, CpuRenderer, EARLY_TERMINATION_TRANSMITTANCE};
 pub use validate::CpuRenderError;

@@ -12,9 +12,7 @@ where
     if pixels.is_empty() {
         return pixels;
     }
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(height as usize);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get()).min(height as usize);
     // Rows are handed out one at a time: cost varies a lot between rows that
     // miss the volume and rows through its densest part.
     let rows = Mutex::new(pixels.chunks_mut(width as usize).zip(0u32..));
@@ -43,10 +41,7 @@ mod tests {
         assert_eq!(pixels.len(), (w * h) as usize);
         for y in 0..h {
             for x in 0..w {
-                assert_eq!(
-                    pixels[(y * w + x) as usize],
-                    [x as f32, y as f32, (x * y) as f32]
-                );
+                assert_eq!(pixels[(y * w + x) as usize], [x as f32, y as f32, (x * y) as f32]);
             }
         }
     }

@@ -31,10 +31,7 @@ pub fn trace_shadow(
     if !matches!(light.kind, LightKind::Directional { .. }) {
         distance = distance.min(path.distance);
     }
-    let mut result = ShadowSample {
-        transmittance: 1.0,
-        emission: DVec3::ZERO,
-    };
+    let mut result = ShadowSample { transmittance: 1.0, emission: DVec3::ZERO };
     if distance <= 0.0 {
         return result;
     }
@@ -72,22 +69,12 @@ mod tests {
             data: VoxelData::U8(vec![255; (n * n * n) as usize]),
             value_range: (0.0, 255.0),
         };
-        let transfer = TransferFunction {
-            points: vec![ControlPoint {
-                value: 0.0,
-                rgba: [0.5, 0.25, 1.0, alpha],
-            }],
-        };
+        let transfer = TransferFunction { points: vec![ControlPoint { value: 0.0, rgba: [0.5, 0.25, 1.0, alpha] }] };
         (volume, transfer)
     }
 
     fn light_at(position: Vec3) -> Light {
-        Light {
-            kind: LightKind::Point { position },
-            color: Vec3::ONE,
-            intensity: 1.0,
-            falloff: Falloff::None,
-        }
+        Light { kind: LightKind::Point { position }, color: Vec3::ONE, intensity: 1.0, falloff: Falloff::None }
     }
 
     #[test]

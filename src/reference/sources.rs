@@ -57,8 +57,7 @@ pub fn phong(
     for light in lights {
         let path = toward_light(light, p);
         let w = path.toward;
-        let lit =
-            radiance(light) * falloff(light, &path, medium.voxel_length()) * cone(light, &path);
+        let lit = radiance(light) * falloff(light, &path, medium.voxel_length()) * cone(light, &path);
         // w == view_dir leaves the half vector undefined: no highlight then.
         let half = (w - view_dir).normalize_or_zero();
         let highlight = n.dot(half).max(0.0).powf(shininess);
@@ -86,10 +85,8 @@ pub fn scattering(
     for light in lights {
         let path = toward_light(light, p);
         let shadow = trace_shadow(medium, light, p, &path, shadow_step_voxels, gather);
-        let direct = radiance(light)
-            * falloff(light, &path, medium.voxel_length())
-            * cone(light, &path)
-            * shadow.transmittance;
+        let direct =
+            radiance(light) * falloff(light, &path, medium.voxel_length()) * cone(light, &path) * shadow.transmittance;
         light_in += match model {
             OpticalModel::SingleScattering => direct,
             OpticalModel::EmissiveScattering => direct + shadow.emission,

@@ -16,19 +16,11 @@ pub enum CpuRenderError {
     #[error("{setting} must be a finite number above 0, got {value}")]
     Step { setting: &'static str, value: f32 },
     #[error("{setting} must be finite, got {value}")]
-    NotFinite {
-        setting: &'static str,
-        value: String,
-    },
+    NotFinite { setting: &'static str, value: String },
     #[error("light {index}: {problem}")]
     Light { index: usize, problem: String },
     #[error("pixel ({x}, {y}) is outside the {width}x{height} image")]
-    PixelOutOfRange {
-        x: u32,
-        y: u32,
-        width: u32,
-        height: u32,
-    },
+    PixelOutOfRange { x: u32, y: u32, width: u32, height: u32 },
 }
 
 pub fn check_scene(scene: &Scene, kind: CpuRenderKind) -> Result<(), CpuRenderError> {
@@ -43,10 +35,7 @@ pub fn check_scene(scene: &Scene, kind: CpuRenderKind) -> Result<(), CpuRenderEr
 
 fn check_volume(scene: &Scene) -> Result<(), CpuRenderError> {
     let v = &scene.volume;
-    let problem = |problem: String| CpuRenderError::Volume {
-        name: v.name.clone(),
-        problem,
-    };
+    let problem = |problem: String| CpuRenderError::Volume { name: v.name.clone(), problem };
     if v.dims.min_element() == 0 {
         return Err(problem(format!("dimensions {} contain a zero", v.dims)));
     }
@@ -59,10 +48,7 @@ fn check_volume(scene: &Scene) -> Result<(), CpuRenderError> {
         )));
     }
     if !v.spacing.is_finite() || v.spacing.min_element() <= 0.0 {
-        return Err(problem(format!(
-            "spacing {} must be finite and above 0",
-            v.spacing
-        )));
+        return Err(problem(format!("spacing {} must be finite and above 0", v.spacing)));
     }
     if let VoxelData::F32(values) = &v.data {
         if let Some(i) = values.iter().position(|x| !x.is_finite()) {
@@ -77,10 +63,7 @@ fn check_transfer(scene: &Scene) -> Result<(), CpuRenderError> {
         if !point.value.is_finite() || point.rgba.iter().any(|c| !c.is_finite()) {
             return Err(CpuRenderError::Transfer {
                 index,
-                problem: format!(
-                    "value {} and rgba {:?} must be finite",
-                    point.value, point.rgba
-                ),
+                problem: format!("value {} and rgba {:?} must be finite", point.value, point.rgba),
             });
         }
     }
@@ -99,10 +82,7 @@ fn finite(setting: &'static str, values: &[f32]) -> Result<(), CpuRenderError> {
     if values.iter().all(|v| v.is_finite()) {
         Ok(())
     } else {
-        Err(CpuRenderError::NotFinite {
-            setting,
-            value: format!("{values:?}"),
-        })
+        Err(CpuRenderError::NotFinite { setting, value: format!("{values:?}") })
     }
 }
 
@@ -122,10 +102,7 @@ fn check_settings(scene: &Scene, kind: CpuRenderKind) -> Result<(), CpuRenderErr
         CpuRenderKind::Phong => {
             positive_step("render.step_voxels", scene.render.step_voxels)?;
             let p = &scene.phong;
-            finite(
-                "phong (ambient, diffuse, specular, shininess)",
-                &[p.ambient, p.diffuse, p.specular, p.shininess],
-            )
+            finite("phong (ambient, diffuse, specular, shininess)", &[p.ambient, p.diffuse, p.specular, p.shininess])
         }
         CpuRenderKind::Reference(_) => {
             let r = &scene.reference;
@@ -141,26 +118,14 @@ fn check_light(index: usize, light: &Light) -> Result<(), CpuRenderError> {
     let vectors: Vec<Vec3> = match light.kind {
         LightKind::Directional { direction } => vec![direction],
         LightKind::Point { position } => vec![position],
-        LightKind::Spot {
-            position,
-            direction,
-            inner_cone_deg,
-            outer_cone_deg,
-        } => vec![
-            position,
-            direction,
-            Vec3::new(inner_cone_deg, outer_cone_deg, 0.0),
-        ],
+        LightKind::Spot { position, direction, inner_cone_deg, outer_cone_deg } => {
+            vec![position, direction, Vec3::new(inner_cone_deg, outer_cone_deg, 0.0)]
+        }
     };
-    let all_finite = vectors.iter().all(|v| v.is_finite())
-        && light.color.is_finite()
-        && light.intensity.is_finite();
+    let all_finite = vectors.iter().all(|v| v.is_finite()) && light.color.is_finite() && light.intensity.is_finite();
     if all_finite {
         Ok(())
     } else {
-        Err(CpuRenderError::Light {
-            index,
-            problem: format!("every value must be finite: {light:?}"),
-        })
+        Err(CpuRenderError::Light { index, problem: format!("every value must be finite: {light:?}") })
     }
 }

@@ -58,42 +58,21 @@ impl MarchSteps {
     }
 }
 
-pub fn frame_params(
-    scene: &Scene,
-    width: u32,
-    height: u32,
-    lut_size: usize,
-    steps: MarchSteps,
-) -> FrameParams {
+pub fn frame_params(scene: &Scene, width: u32, height: u32, lut_size: usize, steps: MarchSteps) -> FrameParams {
     let b = scene.camera.basis(width, height);
     let bx = scene.volume_box();
     let d = scene.volume.dims.as_vec3();
     let bg = scene.render.background;
     FrameParams {
-        cam_origin: [
-            b.origin.x,
-            b.origin.y,
-            b.origin.z,
-            if b.orthographic { 1.0 } else { 0.0 },
-        ],
+        cam_origin: [b.origin.x, b.origin.y, b.origin.z, if b.orthographic { 1.0 } else { 0.0 }],
         cam_forward: b.forward.extend(0.0).to_array(),
         cam_right: b.right.extend(0.0).to_array(),
         cam_up: b.up.extend(0.0).to_array(),
         box_half: bx.half_extent.extend(bx.voxel_length).to_array(),
         dims: [d.x, d.y, d.z, lut_size as f32],
         background: [bg.x, bg.y, bg.z, scene.render.emission],
-        march: [
-            steps.view_step_voxels,
-            steps.shadow_step_voxels,
-            steps.min_transmittance,
-            scene.lights.len() as f32,
-        ],
-        phong: [
-            scene.phong.ambient,
-            scene.phong.diffuse,
-            scene.phong.specular,
-            scene.phong.shininess,
-        ],
+        march: [steps.view_step_voxels, steps.shadow_step_voxels, steps.min_transmittance, scene.lights.len() as f32],
+        phong: [scene.phong.ambient, scene.phong.diffuse, scene.phong.specular, scene.phong.shininess],
         image_size: [width, height, 0, 0],
     }
 }
@@ -104,17 +83,10 @@ pub fn gpu_lights(scene: &Scene) -> Vec<GpuLight> {
         .iter()
         .map(|l| {
             let rad = l.radiance();
-            let falloff = if l.falloff == Falloff::InverseSquare {
-                1.0
-            } else {
-                0.0
-            };
+            let falloff = if l.falloff == Falloff::InverseSquare { 1.0 } else { 0.0 };
             match l.kind {
                 LightKind::Directional { direction } => GpuLight {
-                    pos_type: direction
-                        .normalize_or(glam::Vec3::NEG_Y)
-                        .extend(0.0)
-                        .to_array(),
+                    pos_type: direction.normalize_or(glam::Vec3::NEG_Y).extend(0.0).to_array(),
                     spot_dir: [0.0, 0.0, 0.0, 1.0],
                     radiance: rad.extend(0.0).to_array(),
                     params: [falloff, 0.0, 0.0, 0.0],
@@ -125,12 +97,7 @@ pub fn gpu_lights(scene: &Scene) -> Vec<GpuLight> {
                     radiance: rad.extend(0.0).to_array(),
                     params: [falloff, 0.0, 0.0, 0.0],
                 },
-                LightKind::Spot {
-                    position,
-                    direction,
-                    inner_cone_deg,
-                    outer_cone_deg,
-                } => GpuLight {
+                LightKind::Spot { position, direction, inner_cone_deg, outer_cone_deg } => GpuLight {
                     pos_type: position.extend(2.0).to_array(),
                     spot_dir: direction
                         .normalize_or(glam::Vec3::NEG_Y)

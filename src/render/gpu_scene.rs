@@ -28,11 +28,7 @@ impl<'a> GpuScene<'a> {
         GpuScene::upload_with(ctx, scene, VolumeTexels::Native)
     }
 
-    pub fn upload_with(
-        ctx: &'a Context,
-        scene: &'a Scene,
-        texels: VolumeTexels,
-    ) -> Result<GpuScene<'a>, RenderError> {
+    pub fn upload_with(ctx: &'a Context, scene: &'a Scene, texels: VolumeTexels) -> Result<GpuScene<'a>, RenderError> {
         let v = &scene.volume;
         if v.data.len() != v.voxel_count() || v.voxel_count() == 0 {
             return Err(RenderError::Invalid(format!(
@@ -43,11 +39,7 @@ impl<'a> GpuScene<'a> {
             )));
         }
         let (format, bytes) = volume_texels(ctx, &v.data, texels)?;
-        let extent = vk::Extent3D {
-            width: v.dims.x,
-            height: v.dims.y,
-            depth: v.dims.z,
-        };
+        let extent = vk::Extent3D { width: v.dims.x, height: v.dims.y, depth: v.dims.z };
         let volume = Image::new(
             ctx,
             &format!("volume {}", v.name),
@@ -90,22 +82,12 @@ impl<'a> GpuScene<'a> {
         drop(staging);
 
         let lut_table: TransferLut = scene.transfer.bake(TransferLut::DEFAULT_SIZE);
-        let lut = Buffer::with_data(
-            ctx,
-            "transfer lut",
-            &lut_table.texels,
-            vk::BufferUsageFlags::STORAGE_BUFFER,
-        )?;
+        let lut = Buffer::with_data(ctx, "transfer lut", &lut_table.texels, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let mut lights_data = gpu_lights(scene);
         if lights_data.is_empty() {
             lights_data.push(GpuLight::default());
         }
-        let lights = Buffer::with_data(
-            ctx,
-            "lights",
-            &lights_data,
-            vk::BufferUsageFlags::STORAGE_BUFFER,
-        )?;
+        let lights = Buffer::with_data(ctx, "lights", &lights_data, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let sampler = Sampler::linear_clamp(ctx, "volume sampler")?;
         Ok(GpuScene {
             ctx,
@@ -135,11 +117,7 @@ pub enum VolumeTexels {
 
 /// Picks r8/r16 unorm or r32 float by the voxel type, falling back to r32 float
 /// where the device cannot filter the narrower format linearly.
-fn volume_texels(
-    ctx: &Context,
-    data: &VoxelData,
-    texels: VolumeTexels,
-) -> Result<(vk::Format, Vec<u8>), VkError> {
+fn volume_texels(ctx: &Context, data: &VoxelData, texels: VolumeTexels) -> Result<(vk::Format, Vec<u8>), VkError> {
     let need = vk::FormatFeatureFlags::SAMPLED_IMAGE
         | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
         | vk::FormatFeatureFlags::TRANSFER_DST;

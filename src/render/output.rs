@@ -16,33 +16,20 @@ pub struct OutputImage {
 }
 
 impl OutputImage {
-    pub fn new(
-        ctx: &Context,
-        name: &str,
-        width: u32,
-        height: u32,
-    ) -> Result<OutputImage, RenderError> {
+    pub fn new(ctx: &Context, name: &str, width: u32, height: u32) -> Result<OutputImage, RenderError> {
         let image = Image::new(
             ctx,
             name,
             ImageDesc {
                 image_type: vk::ImageType::TYPE_2D,
                 format: vk::Format::R32G32B32A32_SFLOAT,
-                extent: vk::Extent3D {
-                    width,
-                    height,
-                    depth: 1,
-                },
+                extent: vk::Extent3D { width, height, depth: 1 },
                 usage: vk::ImageUsageFlags::STORAGE
                     | vk::ImageUsageFlags::TRANSFER_SRC
                     | vk::ImageUsageFlags::TRANSFER_DST,
             },
         )?;
-        Ok(OutputImage {
-            image,
-            width,
-            height,
-        })
+        Ok(OutputImage { image, width, height })
     }
 
     /// Before the first write of a frame: old contents are discarded.
@@ -73,13 +60,7 @@ impl OutputImage {
     /// Host-visible buffer big enough for the image.
     pub fn readback_buffer(&self, ctx: &Context) -> Result<Buffer, RenderError> {
         let size = self.width as u64 * self.height as u64 * 16;
-        Ok(Buffer::staging(
-            ctx,
-            "output readback",
-            size,
-            vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuToCpu,
-        )?)
+        Ok(Buffer::staging(ctx, "output readback", size, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?)
     }
 
     /// Copies the finished frame (written by compute shaders) into `readback`.
@@ -93,11 +74,7 @@ impl OutputImage {
             vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
         ));
         rec.copy_image_to_buffer(&self.image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, readback);
-        rec.barrier(&Barrier::memory(
-            "readback_copy_to_host_read",
-            Access::TRANSFER_WRITE,
-            Access::HOST_READ,
-        ));
+        rec.barrier(&Barrier::memory("readback_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
     }
 
     pub fn read(&self, readback: &Buffer) -> Result<LinearImage, RenderError> {

@@ -21,12 +21,7 @@ pub enum Technique {
 }
 
 impl Technique {
-    pub const ALL: [Technique; 4] = [
-        Technique::Dvr,
-        Technique::Phong,
-        Technique::Reference,
-        Technique::Ipsvi,
-    ];
+    pub const ALL: [Technique; 4] = [Technique::Dvr, Technique::Phong, Technique::Reference, Technique::Ipsvi];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -60,12 +55,7 @@ impl FromStr for Technique {
         Technique::ALL
             .into_iter()
             .find(|t| t.name() == s)
-            .ok_or_else(|| {
-                format!(
-                    "unknown technique {s:?}; known: {}",
-                    Technique::ALL.map(|t| t.name()).join(", ")
-                )
-            })
+            .ok_or_else(|| format!("unknown technique {s:?}; known: {}", Technique::ALL.map(|t| t.name()).join(", ")))
     }
 }
 
@@ -94,32 +84,16 @@ pub fn render(
     profiler: &mut Profiler,
 ) -> Result<RenderOutput, RenderError> {
     if width == 0 || height == 0 {
-        return Err(RenderError::Invalid(format!(
-            "image size {width}x{height} is empty"
-        )));
+        return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
     }
     gpu.ctx.memory.reset_peak();
     profiler.reset();
     let frame = match technique {
-        Technique::Dvr => {
-            crate::dvr::render(gpu, crate::dvr::Shading::Unshaded, width, height, profiler)?
-        }
-        Technique::Phong => crate::dvr::render(
-            gpu,
-            crate::dvr::Shading::BlinnPhong,
-            width,
-            height,
-            profiler,
-        )?,
+        Technique::Dvr => crate::dvr::render(gpu, crate::dvr::Shading::Unshaded, width, height, profiler)?,
+        Technique::Phong => crate::dvr::render(gpu, crate::dvr::Shading::BlinnPhong, width, height, profiler)?,
         Technique::Reference => crate::reference::gpu::render(gpu, width, height, profiler)?,
         Technique::Ipsvi => crate::ipsvi::render(gpu, width, height, profiler)?,
     };
     let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
-    Ok(RenderOutput {
-        technique,
-        image: frame.image,
-        profile,
-        dispatches: frame.dispatches,
-        barriers: frame.barriers,
-    })
+    Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })
 }

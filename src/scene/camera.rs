@@ -38,26 +38,11 @@ pub struct RayBasis {
 impl Camera {
     /// Camera on a sphere around `target`: azimuth about +y from +z, elevation up
     /// from the xz plane, both in degrees.
-    pub fn orbit(
-        target: Vec3,
-        distance: f32,
-        azimuth_deg: f32,
-        elevation_deg: f32,
-        projection: Projection,
-    ) -> Camera {
+    pub fn orbit(target: Vec3, distance: f32, azimuth_deg: f32, elevation_deg: f32, projection: Projection) -> Camera {
         let (az, el) = (azimuth_deg.to_radians(), elevation_deg.to_radians());
         let dir = Vec3::new(el.cos() * az.sin(), el.sin(), el.cos() * az.cos());
-        let up = if el.cos().abs() < 1e-4 {
-            Vec3::new(-az.sin(), 0.0, -az.cos()) * el.sin().signum()
-        } else {
-            Vec3::Y
-        };
-        Camera {
-            eye: target + dir * distance,
-            target,
-            up,
-            projection,
-        }
+        let up = if el.cos().abs() < 1e-4 { Vec3::new(-az.sin(), 0.0, -az.cos()) * el.sin().signum() } else { Vec3::Y };
+        Camera { eye: target + dir * distance, target, up, projection }
     }
 
     pub fn forward(&self) -> Vec3 {
@@ -76,13 +61,7 @@ impl Camera {
         match self.projection {
             Projection::Perspective { fov_y_deg } => {
                 let t = (fov_y_deg.to_radians() * 0.5).tan();
-                RayBasis {
-                    origin: self.eye,
-                    forward,
-                    right: right * t * aspect,
-                    up: up * t,
-                    orthographic: false,
-                }
+                RayBasis { origin: self.eye, forward, right: right * t * aspect, up: up * t, orthographic: false }
             }
             Projection::Orthographic { height: h } => RayBasis {
                 origin: self.eye,
@@ -97,10 +76,7 @@ impl Camera {
 
 impl RayBasis {
     pub fn ndc(x: u32, y: u32, width: u32, height: u32) -> (f32, f32) {
-        (
-            (x as f32 + 0.5) / width as f32 * 2.0 - 1.0,
-            1.0 - (y as f32 + 0.5) / height as f32 * 2.0,
-        )
+        ((x as f32 + 0.5) / width as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / height as f32 * 2.0)
     }
 
     /// Ray through ndc (origin, unnormalized direction), in f64 for the reference.

@@ -34,12 +34,7 @@ intensity = 1.0
 
 /// Reads [`DEFAULT_SCENE_TOML`] with `overrides` applied, without building it.
 pub fn default_scene_spec(overrides: &[String]) -> Result<SceneSpec, SceneError> {
-    parse_scene_str(
-        DEFAULT_SCENE_TOML,
-        Path::new(""),
-        DEFAULT_SCENE_ORIGIN,
-        overrides,
-    )
+    parse_scene_str(DEFAULT_SCENE_TOML, Path::new(""), DEFAULT_SCENE_ORIGIN, overrides)
 }
 
 pub fn default_scene(overrides: &[String]) -> Result<Scene, SceneError> {
@@ -66,10 +61,7 @@ pub fn volume_file_scene_spec(path: &Path, overrides: &[String]) -> Result<Scene
     })?;
     let mut doc: Table = VOLUME_FILE_SCENE_TOML
         .parse()
-        .map_err(|e: toml::de::Error| SceneError::Syntax {
-            origin: origin.clone(),
-            message: e.to_string(),
-        })?;
+        .map_err(|e: toml::de::Error| SceneError::Syntax { origin: origin.clone(), message: e.to_string() })?;
     let mut volume = Table::new();
     volume.insert("file".into(), Value::String(file.to_string()));
     doc.insert("volume".into(), Value::Table(volume));
@@ -96,36 +88,17 @@ mod tests {
         assert_eq!(scene.volume.name, "shepp-logan");
         assert_eq!(scene.volume.dims, glam::UVec3::splat(96));
         assert_eq!(scene.lights.len(), 1);
-        assert!(matches!(
-            scene.lights[0].kind,
-            LightKind::Directional { .. }
-        ));
-        assert_eq!(
-            Some(scene.transfer),
-            crate::scene::presets::preset("phantom")
-        );
+        assert!(matches!(scene.lights[0].kind, LightKind::Directional { .. }));
+        assert_eq!(Some(scene.transfer), crate::scene::presets::preset("phantom"));
     }
 
     #[test]
     fn default_scene_takes_overrides() {
-        let spec =
-            default_scene_spec(&["volume.size=16".into(), "render.width=64".into()]).unwrap();
-        assert_eq!(
-            spec.volume,
-            VolumeSource::Synthetic {
-                kind: SyntheticKind::SheppLogan,
-                size: 16,
-                seed: 1
-            }
-        );
+        let spec = default_scene_spec(&["volume.size=16".into(), "render.width=64".into()]).unwrap();
+        assert_eq!(spec.volume, VolumeSource::Synthetic { kind: SyntheticKind::SheppLogan, size: 16, seed: 1 });
         assert_eq!(spec.render.width, 64);
-        let e = default_scene_spec(&["volume.size=0".into()])
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.contains(DEFAULT_SCENE_ORIGIN) && e.contains("volume.size"),
-            "{e}"
-        );
+        let e = default_scene_spec(&["volume.size=0".into()]).unwrap_err().to_string();
+        assert!(e.contains(DEFAULT_SCENE_ORIGIN) && e.contains("volume.size"), "{e}");
     }
 
     #[test]
@@ -134,9 +107,7 @@ mod tests {
         assert_eq!(spec.volume, VolumeSource::File("some/dir/ct.nrrd".into()));
         assert_eq!(spec.transfer, TransferSpec::FromHistogram);
         assert_eq!(spec.lights.len(), 1);
-        let spec =
-            volume_file_scene_spec(Path::new("ct.nrrd"), &["transfer.preset=ct-bone".into()])
-                .unwrap();
+        let spec = volume_file_scene_spec(Path::new("ct.nrrd"), &["transfer.preset=ct-bone".into()]).unwrap();
         assert!(matches!(spec.transfer, TransferSpec::Given(_)));
     }
 }

@@ -20,10 +20,7 @@ impl VolumeBox {
     pub fn new(dims: UVec3, spacing: Vec3) -> Self {
         let physical = dims.as_vec3() * spacing;
         let longest = physical.max_element().max(f32::MIN_POSITIVE);
-        VolumeBox {
-            half_extent: physical / longest * 0.5,
-            voxel_length: spacing.min_element() / longest,
-        }
+        VolumeBox { half_extent: physical / longest * 0.5, voxel_length: spacing.min_element() / longest }
     }
 
     pub fn min(&self) -> Vec3 {

@@ -10,18 +10,9 @@ use glam::Vec3;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightKind {
-    Directional {
-        direction: Vec3,
-    },
-    Point {
-        position: Vec3,
-    },
-    Spot {
-        position: Vec3,
-        direction: Vec3,
-        inner_cone_deg: f32,
-        outer_cone_deg: f32,
-    },
+    Directional { direction: Vec3 },
+    Point { position: Vec3 },
+    Spot { position: Vec3, direction: Vec3, inner_cone_deg: f32, outer_cone_deg: f32 },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -50,9 +41,7 @@ impl Light {
     /// (infinite for directional lights).
     pub fn toward_light(&self, p: Vec3) -> (Vec3, f32) {
         match self.kind {
-            LightKind::Directional { direction } => {
-                (-direction.normalize_or(Vec3::NEG_Y), f32::INFINITY)
-            }
+            LightKind::Directional { direction } => (-direction.normalize_or(Vec3::NEG_Y), f32::INFINITY),
             LightKind::Point { position } | LightKind::Spot { position, .. } => {
                 let d = position - p;
                 let len = d.length();

@@ -17,24 +17,11 @@ pub enum OverrideError {
     #[error("--set `{arg}`: empty key or empty part in the dotted key")]
     EmptyKey { arg: String },
     #[error("--set `{arg}`: index {index} is out of range, `{path}` has {len} entries")]
-    IndexOutOfRange {
-        arg: String,
-        path: String,
-        index: usize,
-        len: usize,
-    },
+    IndexOutOfRange { arg: String, path: String, index: usize, len: usize },
     #[error("--set `{arg}`: `{path}` is an array, so `{segment}` must be an index")]
-    NotAnIndex {
-        arg: String,
-        path: String,
-        segment: String,
-    },
+    NotAnIndex { arg: String, path: String, segment: String },
     #[error("--set `{arg}`: `{path}` is {found}, not a table or array")]
-    NotAContainer {
-        arg: String,
-        path: String,
-        found: &'static str,
-    },
+    NotAContainer { arg: String, path: String, found: &'static str },
 }
 
 /// One parsed `--set` argument.
@@ -49,33 +36,18 @@ pub struct Override {
 /// Parses `key=value` (split at the first `=`; spaces around key and value are
 /// ignored).
 pub fn parse_override(arg: &str) -> Result<Override, OverrideError> {
-    let (key, raw_value) = arg
-        .split_once('=')
-        .ok_or_else(|| OverrideError::MissingEquals {
-            arg: arg.to_string(),
-        })?;
-    let path: Vec<String> = key
-        .trim()
-        .split('.')
-        .map(|s| s.trim().to_string())
-        .collect();
+    let (key, raw_value) = arg.split_once('=').ok_or_else(|| OverrideError::MissingEquals { arg: arg.to_string() })?;
+    let path: Vec<String> = key.trim().split('.').map(|s| s.trim().to_string()).collect();
     if path.iter().any(|s| s.is_empty()) {
-        return Err(OverrideError::EmptyKey {
-            arg: arg.to_string(),
-        });
+        return Err(OverrideError::EmptyKey { arg: arg.to_string() });
     }
-    Ok(Override {
-        arg: arg.to_string(),
-        path,
-        value: parse_value(raw_value.trim()),
-    })
+    Ok(Override { arg: arg.to_string(), path, value: parse_value(raw_value.trim()) })
 }
 
 /// A TOML value if `text` is one, otherwise the text as a string.
 fn parse_value(text: &str) -> Value {
     use serde::Deserialize;
-    Value::deserialize(toml::de::ValueDeserializer::new(text))
-        .unwrap_or_else(|_| Value::String(text.to_string()))
+    Value::deserialize(toml::de::ValueDeserializer::new(text)).unwrap_or_else(|_| Value::String(text.to_string()))
 }
 
 fn type_name(v: &Value) -> &'static str {
@@ -92,17 +64,12 @@ fn type_name(v: &Value) -> &'static str {
 
 /// Sets `o.value` at `o.path` in `doc`.
 pub fn apply_override(doc: &mut Table, o: &Override) -> Result<(), OverrideError> {
-    let (first, rest) = o
-        .path
-        .split_first()
-        .ok_or_else(|| OverrideError::EmptyKey { arg: o.arg.clone() })?;
+    let (first, rest) = o.path.split_first().ok_or_else(|| OverrideError::EmptyKey { arg: o.arg.clone() })?;
     if rest.is_empty() {
         doc.insert(first.clone(), o.value.clone());
         return Ok(());
     }
-    let child = doc
-        .entry(first.clone())
-        .or_insert_with(|| Value::Table(Table::new()));
+    let child = doc.entry(first.clone()).or_insert_with(|| Value::Table(Table::new()));
     set_below(child, 1, o)
 }
 
@@ -111,9 +78,7 @@ fn set_below(here: &mut Value, depth: usize, o: &Override) -> Result<(), Overrid
     let segment = &o.path[depth];
     let path = o.path[..depth].join(".");
     let slot = match here {
-        Value::Table(t) => t
-            .entry(segment.clone())
-            .or_insert_with(|| Value::Table(Table::new())),
+        Value::Table(t) => t.entry(segment.clone()).or_insert_with(|| Value::Table(Table::new())),
         Value::Array(items) => {
             let len = items.len();
             let index: usize = segment.parse().map_err(|_| OverrideError::NotAnIndex {
@@ -121,22 +86,14 @@ fn set_below(here: &mut Value, depth: usize, o: &Override) -> Result<(), Overrid
                 path: path.clone(),
                 segment: segment.clone(),
             })?;
-            items
-                .get_mut(index)
-                .ok_or_else(|| OverrideError::IndexOutOfRange {
-                    arg: o.arg.clone(),
-                    path,
-                    index,
-                    len,
-                })?
-        }
-        other => {
-            return Err(OverrideError::NotAContainer {
+            items.get_mut(index).ok_or_else(|| OverrideError::IndexOutOfRange {
                 arg: o.arg.clone(),
                 path,
-                found: type_name(other),
-            })
+                index,
+                len,
+            })?
         }
+        other => return Err(OverrideError::NotAContainer { arg: o.arg.clone(), path, found: type_name(other) }),
     };
     if depth + 1 == o.path.len() {
         *slot = o.value.clone();
@@ -170,63 +127,26 @@ mod tests {
     fn values_are_parsed_as_toml_or_kept_as_strings() {
         assert_eq!(parse_override("a=45").unwrap().value, Value::Integer(45));
         assert_eq!(parse_override("a=0.5").unwrap().value, Value::Float(0.5));
-        assert_eq!(
-            parse_override("a=true").unwrap().value,
-            Value::Boolean(true)
-        );
-        assert_eq!(
-            parse_override("a=orthographic").unwrap().value,
-            Value::String("orthographic".into())
-        );
-        assert_eq!(
-            parse_override("a=\"45\"").unwrap().value,
-            Value::String("45".into())
-        );
-        assert_eq!(
-            parse_override("a=data/x.raw").unwrap().value,
-            Value::String("data/x.raw".into())
-        );
+        assert_eq!(parse_override("a=true").unwrap().value, Value::Boolean(true));
+        assert_eq!(parse_override("a=orthographic").unwrap().value, Value::String("orthographic".into()));
+        assert_eq!(parse_override("a=\"45\"").unwrap().value, Value::String("45".into()));
+        assert_eq!(parse_override("a=data/x.raw").unwrap().value, Value::String("data/x.raw".into()));
         let array = parse_override("a=[1, 2.5]").unwrap().value;
-        assert_eq!(
-            array,
-            Value::Array(vec![Value::Integer(1), Value::Float(2.5)])
-        );
+        assert_eq!(array, Value::Array(vec![Value::Integer(1), Value::Float(2.5)]));
         let table = parse_override("a={ type = \"point\" }").unwrap().value;
         assert_eq!(table.get("type"), Some(&Value::String("point".into())));
         // A value with a second key smuggled in is not TOML value syntax: a string.
-        assert_eq!(
-            parse_override("a=1\nb=2").unwrap().value,
-            Value::String("1\nb=2".into())
-        );
+        assert_eq!(parse_override("a=1\nb=2").unwrap().value, Value::String("1\nb=2".into()));
         // Only the first `=` splits.
-        assert_eq!(
-            parse_override("a=b=c").unwrap().value,
-            Value::String("b=c".into())
-        );
-        assert_eq!(
-            parse_override(" camera.azimuth = 3 ").unwrap().path,
-            ["camera", "azimuth"]
-        );
+        assert_eq!(parse_override("a=b=c").unwrap().value, Value::String("b=c".into()));
+        assert_eq!(parse_override(" camera.azimuth = 3 ").unwrap().path, ["camera", "azimuth"]);
     }
 
     #[test]
     fn malformed_arguments_are_errors_naming_them() {
-        assert_eq!(
-            parse_override("width"),
-            Err(OverrideError::MissingEquals {
-                arg: "width".into()
-            })
-        );
-        assert_eq!(
-            parse_override("=3"),
-            Err(OverrideError::EmptyKey { arg: "=3".into() })
-        );
-        assert_eq!(
-            parse_override("render..width=3"),
-            Err(OverrideError::EmptyKey {
-                arg: "render..width=3".into()
-            })
-        );
+        assert_eq!(parse_override("width"), Err(OverrideError::MissingEquals { arg: "width".into() }));
+        assert_eq!(parse_override("=3"), Err(OverrideError::EmptyKey { arg: "=3".into() }));
+        assert_eq!(parse_override("render..width=3"), Err(OverrideError::EmptyKey { arg: "render..width=3".into() }));
         let message = parse_override("width").unwrap_err().to_string();
         assert!(message.contains("--set `width`"), "{message}");
     }
@@ -269,18 +189,9 @@ mod tests {
                 len: 1
             }
         );
-        assert!(
-            e.to_string()
-                .contains("index 3 is out of range, `lights` has 1 entries"),
-            "{e}"
-        );
-        assert!(matches!(
-            set(&mut d, "lights.first.intensity=5"),
-            Err(OverrideError::NotAnIndex { .. })
-        ));
+        assert!(e.to_string().contains("index 3 is out of range, `lights` has 1 entries"), "{e}");
+        assert!(matches!(set(&mut d, "lights.first.intensity=5"), Err(OverrideError::NotAnIndex { .. })));
         let e = set(&mut d, "render.width.x=5").unwrap_err();
-        assert!(
-            matches!(&e, OverrideError::NotAContainer { path, found: "an integer", .. } if path == "render.width")
-        );
+        assert!(matches!(&e, OverrideError::NotAContainer { path, found: "an integer", .. } if path == "render.width"));
     }
 }

@@ -6,30 +6,18 @@
 //! have the same thickness in voxels.
 
 use super::synthetic::{
-    CORNELL_BACK_WALL, CORNELL_CEILING, CORNELL_FLOOR, CORNELL_LEFT_WALL, CORNELL_RIGHT_WALL,
-    CORNELL_SHORT_BOX, CORNELL_TALL_BOX, SLAB_VALUE, SPHERE_VALUE,
+    CORNELL_BACK_WALL, CORNELL_CEILING, CORNELL_FLOOR, CORNELL_LEFT_WALL, CORNELL_RIGHT_WALL, CORNELL_SHORT_BOX,
+    CORNELL_TALL_BOX, SLAB_VALUE, SPHERE_VALUE,
 };
 use super::transfer::{ControlPoint, TransferFunction};
 use super::volume::Volume;
 
 /// Names accepted by [`preset`] (and by `transfer.preset` in scene files).
-pub const PRESET_NAMES: [&str; 7] = [
-    "grayscale-ramp",
-    "ct-bone",
-    "ct-engine",
-    "phantom",
-    "spheres",
-    "cornell",
-    "slab-sphere",
-];
+pub const PRESET_NAMES: [&str; 7] =
+    ["grayscale-ramp", "ct-bone", "ct-engine", "phantom", "spheres", "cornell", "slab-sphere"];
 
 fn tf(points: &[(f32, [f32; 4])]) -> TransferFunction {
-    TransferFunction {
-        points: points
-            .iter()
-            .map(|&(value, rgba)| ControlPoint { value, rgba })
-            .collect(),
-    }
+    TransferFunction { points: points.iter().map(|&(value, rgba)| ControlPoint { value, rgba }).collect() }
 }
 
 fn rgba(rgb: [f32; 3], a: f32) -> [f32; 4] {
@@ -77,11 +65,7 @@ pub fn preset(name: &str) -> Option<TransferFunction> {
         ]),
         // Three spheres (255) nearly opaque light grey; the anti-aliased surface
         // ramps up in opacity.
-        "spheres" => tf(&[
-            (0.0, [0.9, 0.9, 0.9, 0.0]),
-            (0.2, [0.9, 0.9, 0.9, 0.0]),
-            (1.0, [0.9, 0.9, 0.9, 0.9]),
-        ]),
+        "spheres" => tf(&[(0.0, [0.9, 0.9, 0.9, 0.0]), (0.2, [0.9, 0.9, 0.9, 0.0]), (1.0, [0.9, 0.9, 0.9, 0.9])]),
         "cornell" => cornell(),
         "slab-sphere" => slab_sphere(),
         _ => return None,
@@ -101,10 +85,7 @@ fn bands(materials: &[(u8, [f32; 3], f32)]) -> TransferFunction {
         points.push(((v - HALF_WIDTH).max(0.0), rgba(rgb, 0.0)));
         points.push(((v - HALF_PLATEAU).max(0.0), rgba(rgb, a)));
         points.push(((v + HALF_PLATEAU).min(1.0), rgba(rgb, a)));
-        points.push((
-            (v + HALF_WIDTH).min(1.0),
-            rgba(rgb, if v + HALF_WIDTH >= 1.0 { a } else { 0.0 }),
-        ));
+        points.push(((v + HALF_WIDTH).min(1.0), rgba(rgb, if v + HALF_WIDTH >= 1.0 { a } else { 0.0 })));
     }
     tf(&points)
 }
@@ -129,10 +110,7 @@ fn cornell() -> TransferFunction {
 /// Slab under sphere (synthetic "slab-under-sphere"): grey slab and orange
 /// sphere, both nearly opaque so the shadow is crisp.
 fn slab_sphere() -> TransferFunction {
-    bands(&[
-        (SLAB_VALUE, [0.8, 0.8, 0.8], 0.95),
-        (SPHERE_VALUE, [1.0, 0.6, 0.3], 0.95),
-    ])
+    bands(&[(SLAB_VALUE, [0.8, 0.8, 0.8], 0.95), (SPHERE_VALUE, [1.0, 0.6, 0.3], 0.95)])
 }
 
 /// Bins of the histogram the automatic transfer function looks at.
@@ -184,17 +162,11 @@ fn auto_ramp(h: &[u64]) -> (f32, f32) {
         })
         .collect();
     // First bin above the peak where the smoothed histogram stops falling.
-    let valley = (peak + 1..n - 1)
-        .find(|&i| smoothed[i] <= smoothed[i + 1])
-        .unwrap_or(n - 1);
+    let valley = (peak + 1..n - 1).find(|&i| smoothed[i] <= smoothed[i + 1]).unwrap_or(n - 1);
     let count_from = |from: usize| -> u64 { h[from.min(n)..].iter().sum() };
     // A histogram that falls all the way (no second population): everything above
     // the background peak is foreground.
-    let start = if count_from(valley + 1) > 0 {
-        valley + 1
-    } else {
-        peak + 1
-    };
+    let start = if count_from(valley + 1) > 0 { valley + 1 } else { peak + 1 };
     let foreground = count_from(start);
     if foreground == 0 {
         // Constant volume: nothing but background; keep a valid ramp above it.
@@ -226,22 +198,14 @@ fn auto_ramp(h: &[u64]) -> (f32, f32) {
 mod tests {
     use super::*;
     use crate::scene::synthetic::SyntheticKind;
-    use crate::scene::synthetic::{
-        cornell_box, noise, shepp_logan, slab_under_sphere, three_spheres,
-    };
+    use crate::scene::synthetic::{cornell_box, noise, shepp_logan, slab_under_sphere, three_spheres};
 
     #[test]
     fn every_preset_is_a_valid_transfer_function() {
         for name in PRESET_NAMES {
             let tf = preset(name).unwrap_or_else(|| panic!("preset {name} missing"));
-            assert!(
-                TransferFunction::new(tf.points.clone()).is_ok(),
-                "preset {name} is invalid: {tf:?}"
-            );
-            assert!(
-                tf.points.iter().any(|p| p.rgba[3] > 0.0),
-                "preset {name} is fully transparent"
-            );
+            assert!(TransferFunction::new(tf.points.clone()).is_ok(), "preset {name} is invalid: {tf:?}");
+            assert!(tf.points.iter().any(|p| p.rgba[3] > 0.0), "preset {name} is fully transparent");
         }
         assert!(preset("no-such-preset").is_none());
         for kind in SyntheticKind::ALL {
@@ -281,22 +245,9 @@ mod tests {
         ];
         for (volume, object) in cases {
             let tf = transfer_from_histogram(&volume);
-            assert!(
-                TransferFunction::new(tf.points.clone()).is_ok(),
-                "{}: {tf:?}",
-                volume.name
-            );
-            assert_eq!(
-                tf.eval(0.0)[3],
-                0.0,
-                "{}: background must be clear",
-                volume.name
-            );
-            assert!(
-                tf.eval(object)[3] > 0.05,
-                "{}: object {object} invisible: {tf:?}",
-                volume.name
-            );
+            assert!(TransferFunction::new(tf.points.clone()).is_ok(), "{}: {tf:?}", volume.name);
+            assert_eq!(tf.eval(0.0)[3], 0.0, "{}: background must be clear", volume.name);
+            assert!(tf.eval(object)[3] > 0.05, "{}: object {object} invisible: {tf:?}", volume.name);
         }
     }
 
@@ -312,10 +263,7 @@ mod tests {
         }
         let (lo, hi) = auto_ramp(&h);
         // Clear past the air's tail, opacity rising below the block.
-        assert!(
-            (40.0 / 256.0..130.0 / 256.0).contains(&lo),
-            "ramp starts at {lo}"
-        );
+        assert!((40.0 / 256.0..130.0 / 256.0).contains(&lo), "ramp starts at {lo}");
         // 99 % of a block uniform over bins 130..150 lie below bin 149's top edge.
         assert_eq!(hi, 150.0 / 256.0);
     }

@@ -76,37 +76,19 @@ use super::Scene;
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
     #[error("cannot read scene file {path}: {source}")]
-    Read {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Read { path: PathBuf, source: std::io::Error },
     #[error("{origin}: not valid TOML: {message}")]
     Syntax { origin: String, message: String },
     #[error("{origin}: {source}")]
-    Override {
-        origin: String,
-        source: OverrideError,
-    },
+    Override { origin: String, source: OverrideError },
     /// A key of the wrong type, an unknown key or enum name.
     #[error("{origin}: `{key}`: {message}")]
-    Schema {
-        origin: String,
-        key: String,
-        message: String,
-    },
+    Schema { origin: String, key: String, message: String },
     /// A value of the right type but out of range, or contradicting another key.
     #[error("{origin}: `{key}` {problem}")]
-    Invalid {
-        origin: String,
-        key: String,
-        problem: String,
-    },
+    Invalid { origin: String, key: String, problem: String },
     #[error("{origin}: cannot load volume {path}: {source}")]
-    Volume {
-        origin: String,
-        path: PathBuf,
-        source: Box<LoadError>,
-    },
+    Volume { origin: String, path: PathBuf, source: Box<LoadError> },
 }
 
 /// Reads, checks and builds (loading the volume) the scene file at `path`.
@@ -116,10 +98,7 @@ pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Scene, SceneError
 
 /// Reads and checks the scene file at `path` without loading its volume.
 pub fn parse_scene_file(path: &Path, overrides: &[String]) -> Result<SceneSpec, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
     let base_dir = path.parent().unwrap_or(Path::new(""));
     parse_scene_str(&text, base_dir, &path.display().to_string(), overrides)
 }
@@ -141,25 +120,15 @@ pub fn parse_scene_str(
     origin: &str,
     overrides: &[String],
 ) -> Result<SceneSpec, SceneError> {
-    let doc: Table = text
-        .parse()
-        .map_err(|e: toml::de::Error| SceneError::Syntax {
-            origin: origin.to_string(),
-            message: e.to_string().trim_end().to_string(),
-        })?;
+    let doc: Table = text.parse().map_err(|e: toml::de::Error| SceneError::Syntax {
+        origin: origin.to_string(),
+        message: e.to_string().trim_end().to_string(),
+    })?;
     parse_scene_table(doc, base_dir, origin, overrides)
 }
 
 /// The scene sections, for telling a misspelt one from a technique table.
-const SECTIONS: [&str; 7] = [
-    "volume",
-    "transfer",
-    "camera",
-    "lights",
-    "render",
-    "reference",
-    "phong",
-];
+const SECTIONS: [&str; 7] = ["volume", "transfer", "camera", "lights", "render", "reference", "phong"];
 
 /// Applies `overrides` to `doc` and checks it. A missing `lights` array gets the
 /// default light first, so `--set lights.0.intensity=2` applies to it. Tables
@@ -171,21 +140,13 @@ pub fn parse_scene_table(
     overrides: &[String],
 ) -> Result<SceneSpec, SceneError> {
     if !doc.contains_key("lights") {
-        doc.insert(
-            "lights".into(),
-            Value::Array(vec![Value::Table(default_light_table())]),
-        );
+        doc.insert("lights".into(), Value::Array(vec![Value::Table(default_light_table())]));
     }
-    apply_overrides(&mut doc, overrides).map_err(|source| SceneError::Override {
-        origin: origin.to_string(),
-        source,
-    })?;
+    apply_overrides(&mut doc, overrides)
+        .map_err(|source| SceneError::Override { origin: origin.to_string(), source })?;
 
-    let invalid = |key: &str, problem: String| SceneError::Invalid {
-        origin: origin.to_string(),
-        key: key.to_string(),
-        problem,
-    };
+    let invalid =
+        |key: &str, problem: String| SceneError::Invalid { origin: origin.to_string(), key: key.to_string(), problem };
     let mut tables = SceneTables::default();
     let mut techniques = Table::new();
     for (key, value) in doc {
@@ -198,17 +159,11 @@ pub fn parse_scene_table(
             "reference" => &mut tables.reference,
             "phong" => &mut tables.phong,
             _ if !value.is_table() => {
-                return Err(invalid(
-                    &key,
-                    "is not a scene setting (settings belong in tables such as [render])".into(),
-                ))
+                return Err(invalid(&key, "is not a scene setting (settings belong in tables such as [render])".into()))
             }
             _ => {
                 if let Some(near) = SECTIONS.iter().find(|s| edit_distance(s, &key) <= 2) {
-                    return Err(invalid(
-                        &key,
-                        format!("is not a known table; did you mean [{near}]?"),
-                    ));
+                    return Err(invalid(&key, format!("is not a known table; did you mean [{near}]?")));
                 }
                 techniques.insert(key, value);
                 continue;
@@ -225,12 +180,7 @@ fn default_light_table() -> Table {
     t.insert("type".into(), Value::String("directional".into()));
     t.insert(
         "direction".into(),
-        Value::Array(
-            DEFAULT_LIGHT_DIRECTION
-                .iter()
-                .map(|&x| Value::Float(x as f64))
-                .collect(),
-        ),
+        Value::Array(DEFAULT_LIGHT_DIRECTION.iter().map(|&x| Value::Float(x as f64)).collect()),
     );
     t
 }

@@ -13,9 +13,7 @@ use super::light::{Falloff, Light, LightKind};
 use super::loaders;
 use super::presets::{preset, PRESET_NAMES};
 use super::scene_file::SceneError;
-use super::scene_spec::{
-    CameraPlacement, CameraSpec, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource,
-};
+use super::scene_spec::{CameraPlacement, CameraSpec, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource};
 use super::synthetic::SyntheticKind;
 use super::transfer::{ControlPoint, TransferError, TransferFunction};
 use super::{OpticalModel, PhongSettings, ReferenceSettings, RenderSettings};
@@ -53,29 +51,13 @@ pub(crate) fn check_scene(
 ) -> Result<SceneSpec, SceneError> {
     let c = Checker { origin };
     let volume = c.volume(c.section(tables.volume, "volume")?, base_dir)?;
-    let transfer = c.transfer(
-        c.section(tables.transfer, "transfer")?.unwrap_or_default(),
-        &volume,
-    )?;
+    let transfer = c.transfer(c.section(tables.transfer, "transfer")?.unwrap_or_default(), &volume)?;
     let camera = c.camera(c.section(tables.camera, "camera")?.unwrap_or_default())?;
     let lights = c.lights(tables.lights)?;
     let render = c.render(c.section(tables.render, "render")?.unwrap_or_default())?;
-    let reference = c.reference(
-        c.section(tables.reference, "reference")?
-            .unwrap_or_default(),
-    )?;
+    let reference = c.reference(c.section(tables.reference, "reference")?.unwrap_or_default())?;
     let phong = c.phong(c.section(tables.phong, "phong")?.unwrap_or_default())?;
-    Ok(SceneSpec {
-        origin: origin.to_string(),
-        volume,
-        transfer,
-        camera,
-        lights,
-        render,
-        reference,
-        phong,
-        techniques,
-    })
+    Ok(SceneSpec { origin: origin.to_string(), volume, transfer, camera, lights, render, reference, phong, techniques })
 }
 
 // The schema, one struct per table. Options where "absent" means something
@@ -161,13 +143,7 @@ struct RenderSection {
 
 impl Default for RenderSection {
     fn default() -> Self {
-        RenderSection {
-            width: 512,
-            height: 512,
-            step: 0.5,
-            background: [0.0; 3],
-            emission: 0.1,
-        }
+        RenderSection { width: 512, height: 512, step: 0.5, background: [0.0; 3], emission: 0.1 }
     }
 }
 
@@ -189,12 +165,7 @@ struct ReferenceSection {
 
 impl Default for ReferenceSection {
     fn default() -> Self {
-        ReferenceSection {
-            model: ModelName::SingleScattering,
-            step: 0.25,
-            shadow_step: 0.5,
-            min_transmittance: 1e-4,
-        }
+        ReferenceSection { model: ModelName::SingleScattering, step: 0.25, shadow_step: 0.5, min_transmittance: 1e-4 }
     }
 }
 
@@ -209,12 +180,7 @@ struct PhongSection {
 
 impl Default for PhongSection {
     fn default() -> Self {
-        PhongSection {
-            ambient: 0.2,
-            diffuse: 0.8,
-            specular: 0.3,
-            shininess: 32.0,
-        }
+        PhongSection { ambient: 0.2, diffuse: 0.8, specular: 0.3, shininess: 32.0 }
     }
 }
 
@@ -226,19 +192,11 @@ struct Checker<'a> {
 
 impl Checker<'_> {
     fn err(&self, key: &str, problem: impl Into<String>) -> SceneError {
-        SceneError::Invalid {
-            origin: self.origin.to_string(),
-            key: key.to_string(),
-            problem: problem.into(),
-        }
+        SceneError::Invalid { origin: self.origin.to_string(), key: key.to_string(), problem: problem.into() }
     }
 
     /// Deserializes one table, with the key path of any error.
-    fn section<T: DeserializeOwned>(
-        &self,
-        value: Option<Value>,
-        key: &str,
-    ) -> Result<Option<T>, SceneError> {
+    fn section<T: DeserializeOwned>(&self, value: Option<Value>, key: &str) -> Result<Option<T>, SceneError> {
         value.map(|v| self.deserialize(v, key)).transpose()
     }
 
@@ -246,10 +204,7 @@ impl Checker<'_> {
         value.try_into().map_err(|e: toml::de::Error| {
             // toml names the inner key path on the error's last line ("in `a.b`").
             let display = e.to_string();
-            let inner = display
-                .lines()
-                .rev()
-                .find_map(|l| l.trim().strip_prefix("in `")?.strip_suffix('`'));
+            let inner = display.lines().rev().find_map(|l| l.trim().strip_prefix("in `")?.strip_suffix('`'));
             SceneError::Schema {
                 origin: self.origin.to_string(),
                 key: inner.map_or_else(|| key.to_string(), |k| format!("{key}.{k}")),
@@ -314,18 +269,10 @@ impl Checker<'_> {
         }
     }
 
-    fn volume(
-        &self,
-        section: Option<VolumeSection>,
-        base_dir: &Path,
-    ) -> Result<VolumeSource, SceneError> {
+    fn volume(&self, section: Option<VolumeSection>, base_dir: &Path) -> Result<VolumeSource, SceneError> {
         const HOW: &str = "give exactly one of volume.file, volume.data_file, volume.synthetic";
         let s = section.ok_or_else(|| self.err("volume", format!("is missing: {HOW}")))?;
-        let given = [
-            s.file.is_some(),
-            s.data_file.is_some(),
-            s.synthetic.is_some(),
-        ];
+        let given = [s.file.is_some(), s.data_file.is_some(), s.synthetic.is_some()];
         if given.iter().filter(|&&g| g).count() != 1 {
             return Err(self.err(
                 "volume",
@@ -343,56 +290,33 @@ impl Checker<'_> {
         if let Some(file) = s.file {
             self.only_with(s.size.is_some(), "volume.size", not_synthetic)?;
             self.only_with(s.seed.is_some(), "volume.seed", not_synthetic)?;
-            return Ok(VolumeSource::File(
-                base_dir.join(nonempty("volume.file", file)?),
-            ));
+            return Ok(VolumeSource::File(base_dir.join(nonempty("volume.file", file)?)));
         }
         if let Some(file) = s.data_file {
             self.only_with(s.size.is_some(), "volume.size", not_synthetic)?;
             self.only_with(s.seed.is_some(), "volume.seed", not_synthetic)?;
-            return Ok(VolumeSource::File(
-                loaders::data_dir().join(nonempty("volume.data_file", file)?),
-            ));
+            return Ok(VolumeSource::File(loaders::data_dir().join(nonempty("volume.data_file", file)?)));
         }
         let name = s.synthetic.unwrap_or_default();
         let kind = SyntheticKind::from_name(&name).ok_or_else(|| {
             let names: Vec<&str> = SyntheticKind::ALL.iter().map(|k| k.name()).collect();
-            self.err(
-                "volume.synthetic",
-                format!("is \"{name}\", not one of: {}", names.join(", ")),
-            )
+            self.err("volume.synthetic", format!("is \"{name}\", not one of: {}", names.join(", ")))
         })?;
         let size = s.size.unwrap_or(64);
         if !(1..=MAX_SYNTHETIC_SIZE).contains(&size) {
-            return Err(self.err(
-                "volume.size",
-                format!("must be in 1..={MAX_SYNTHETIC_SIZE}, got {size}"),
-            ));
+            return Err(self.err("volume.size", format!("must be in 1..={MAX_SYNTHETIC_SIZE}, got {size}")));
         }
         self.only_with(
             s.seed.is_some() && kind != SyntheticKind::Noise,
             "volume.seed",
             "with volume.synthetic = \"noise\"",
         )?;
-        Ok(VolumeSource::Synthetic {
-            kind,
-            size,
-            seed: s.seed.unwrap_or(1),
-        })
+        Ok(VolumeSource::Synthetic { kind, size, seed: s.seed.unwrap_or(1) })
     }
 
-    fn transfer(
-        &self,
-        s: TransferSection,
-        volume: &VolumeSource,
-    ) -> Result<TransferSpec, SceneError> {
+    fn transfer(&self, s: TransferSection, volume: &VolumeSource) -> Result<TransferSpec, SceneError> {
         let auto = s.auto == Some(true);
-        if [s.preset.is_some(), auto, s.points.is_some()]
-            .iter()
-            .filter(|&&g| g)
-            .count()
-            > 1
-        {
+        if [s.preset.is_some(), auto, s.points.is_some()].iter().filter(|&&g| g).count() > 1 {
             return Err(self.err(
                 "transfer",
                 "takes only one of preset, auto = true, points (from the command line, replace the whole table: --set 'transfer={auto=true}')",
@@ -400,10 +324,7 @@ impl Checker<'_> {
         }
         if let Some(name) = s.preset {
             return preset(&name).map(TransferSpec::Given).ok_or_else(|| {
-                self.err(
-                    "transfer.preset",
-                    format!("is \"{name}\", not one of: {}", PRESET_NAMES.join(", ")),
-                )
+                self.err("transfer.preset", format!("is \"{name}\", not one of: {}", PRESET_NAMES.join(", ")))
             });
         }
         if auto {
@@ -413,19 +334,10 @@ impl Checker<'_> {
             if points.len() > MAX_TRANSFER_POINTS {
                 return Err(self.err(
                     "transfer.points",
-                    format!(
-                        "has {} points, at most {MAX_TRANSFER_POINTS} are allowed",
-                        points.len()
-                    ),
+                    format!("has {} points, at most {MAX_TRANSFER_POINTS} are allowed", points.len()),
                 ));
             }
-            let points = points
-                .iter()
-                .map(|p| ControlPoint {
-                    value: p[0],
-                    rgba: [p[1], p[2], p[3], p[4]],
-                })
-                .collect();
+            let points = points.iter().map(|p| ControlPoint { value: p[0], rgba: [p[1], p[2], p[3], p[4]] }).collect();
             return TransferFunction::new(points).map(TransferSpec::Given).map_err(|e| match e {
                 TransferError::Empty => self.err("transfer.points", "is empty; give at least one point"),
                 TransferError::OutOfRange { index } => self.err(
@@ -440,8 +352,9 @@ impl Checker<'_> {
         }
         // Nothing given: the synthetic volume's own preset, else automatic.
         Ok(match volume {
-            VolumeSource::Synthetic { kind, .. } => preset(kind.default_preset())
-                .map_or(TransferSpec::FromHistogram, TransferSpec::Given),
+            VolumeSource::Synthetic { kind, .. } => {
+                preset(kind.default_preset()).map_or(TransferSpec::FromHistogram, TransferSpec::Given)
+            }
             VolumeSource::File(_) => TransferSpec::FromHistogram,
         })
     }
@@ -449,30 +362,16 @@ impl Checker<'_> {
     fn camera(&self, s: CameraSection) -> Result<CameraSpec, SceneError> {
         let projection = match s.projection.unwrap_or(ProjectionName::Perspective) {
             ProjectionName::Perspective => {
-                self.only_with(
-                    s.ortho_height.is_some(),
-                    "camera.ortho_height",
-                    "with projection = \"orthographic\"",
-                )?;
+                self.only_with(s.ortho_height.is_some(), "camera.ortho_height", "with projection = \"orthographic\"")?;
                 let fov = s.fov_y.unwrap_or(30.0);
                 if !(fov > 0.0 && fov < 180.0) {
-                    return Err(self.err(
-                        "camera.fov_y",
-                        format!("must be in (0, 180) degrees, got {fov}"),
-                    ));
+                    return Err(self.err("camera.fov_y", format!("must be in (0, 180) degrees, got {fov}")));
                 }
                 ProjectionSpec::Perspective { fov_y_deg: fov }
             }
             ProjectionName::Orthographic => {
-                self.only_with(
-                    s.fov_y.is_some(),
-                    "camera.fov_y",
-                    "with projection = \"perspective\"",
-                )?;
-                let height = s
-                    .ortho_height
-                    .map(|h| self.positive("camera.ortho_height", h))
-                    .transpose()?;
+                self.only_with(s.fov_y.is_some(), "camera.fov_y", "with projection = \"perspective\"")?;
+                let height = s.ortho_height.map(|h| self.positive("camera.ortho_height", h)).transpose()?;
                 ProjectionSpec::Orthographic { height }
             }
         };
@@ -488,41 +387,20 @@ impl Checker<'_> {
                 .try_normalize()
                 .ok_or_else(|| self.err("camera.eye", "must differ from camera.target"))?;
             if forward.cross(up).length() < 1e-4 {
-                return Err(self.err(
-                    "camera.up",
-                    "is parallel to the view direction (camera.target - camera.eye)",
-                ));
+                return Err(self.err("camera.up", "is parallel to the view direction (camera.target - camera.eye)"));
             }
             CameraPlacement::LookAt { eye, target, up }
         } else {
-            self.only_with(
-                s.up.is_some(),
-                "camera.up",
-                "with camera.eye (an orbit camera keeps +y up)",
-            )?;
+            self.only_with(s.up.is_some(), "camera.up", "with camera.eye (an orbit camera keeps +y up)")?;
             let azimuth_deg = self.finite("camera.azimuth", s.azimuth.unwrap_or(30.0))?;
             let elevation_deg = s.elevation.unwrap_or(20.0);
             if !(-90.0..=90.0).contains(&elevation_deg) {
-                return Err(self.err(
-                    "camera.elevation",
-                    format!("must be in [-90, 90] degrees, got {elevation_deg}"),
-                ));
+                return Err(self.err("camera.elevation", format!("must be in [-90, 90] degrees, got {elevation_deg}")));
             }
-            let distance = s
-                .distance
-                .map(|d| self.positive("camera.distance", d))
-                .transpose()?;
-            CameraPlacement::Orbit {
-                target,
-                azimuth_deg,
-                elevation_deg,
-                distance,
-            }
+            let distance = s.distance.map(|d| self.positive("camera.distance", d)).transpose()?;
+            CameraPlacement::Orbit { target, azimuth_deg, elevation_deg, distance }
         };
-        Ok(CameraSpec {
-            placement,
-            projection,
-        })
+        Ok(CameraSpec { placement, projection })
     }
 
     fn lights(&self, value: Option<Value>) -> Result<Vec<Light>, SceneError> {
@@ -533,13 +411,7 @@ impl Checker<'_> {
             Some(_) => return Err(self.err("lights", "must be an array of tables ([[lights]])")),
         };
         if items.len() > MAX_LIGHTS {
-            return Err(self.err(
-                "lights",
-                format!(
-                    "has {} lights, at most {MAX_LIGHTS} are allowed",
-                    items.len()
-                ),
-            ));
+            return Err(self.err("lights", format!("has {} lights, at most {MAX_LIGHTS} are allowed", items.len())));
         }
         items
             .into_iter()
@@ -564,54 +436,30 @@ impl Checker<'_> {
                 self.only_with(s.inner_cone.is_some(), &k("inner_cone"), spot_only)?;
                 self.only_with(s.outer_cone.is_some(), &k("outer_cone"), spot_only)?;
                 LightKind::Directional {
-                    direction: self.direction(
-                        &k("direction"),
-                        s.direction.unwrap_or(DEFAULT_LIGHT_DIRECTION),
-                    )?,
+                    direction: self.direction(&k("direction"), s.direction.unwrap_or(DEFAULT_LIGHT_DIRECTION))?,
                 }
             }
             LightType::Point => {
-                self.only_with(
-                    s.direction.is_some(),
-                    &k("direction"),
-                    "to directional and spot lights",
-                )?;
+                self.only_with(s.direction.is_some(), &k("direction"), "to directional and spot lights")?;
                 self.only_with(s.inner_cone.is_some(), &k("inner_cone"), spot_only)?;
                 self.only_with(s.outer_cone.is_some(), &k("outer_cone"), spot_only)?;
-                LightKind::Point {
-                    position: self
-                        .point(&k("position"), s.position.unwrap_or(DEFAULT_LIGHT_POSITION))?,
-                }
+                LightKind::Point { position: self.point(&k("position"), s.position.unwrap_or(DEFAULT_LIGHT_POSITION))? }
             }
             LightType::Spot => {
-                let position =
-                    self.point(&k("position"), s.position.unwrap_or(DEFAULT_LIGHT_POSITION))?;
+                let position = self.point(&k("position"), s.position.unwrap_or(DEFAULT_LIGHT_POSITION))?;
                 // Default: aimed at the volume centre.
-                let direction = self.direction(
-                    &k("direction"),
-                    s.direction.unwrap_or((-position).to_array()),
-                )?;
+                let direction = self.direction(&k("direction"), s.direction.unwrap_or((-position).to_array()))?;
                 let inner = s.inner_cone.unwrap_or(20.0);
                 let outer = s.outer_cone.unwrap_or(30.0);
                 if !(outer > 0.0 && outer <= 180.0) {
-                    return Err(self.err(
-                        &k("outer_cone"),
-                        format!("must be in (0, 180] degrees, got {outer}"),
-                    ));
+                    return Err(self.err(&k("outer_cone"), format!("must be in (0, 180] degrees, got {outer}")));
                 }
                 // Strictly below: the cone edge is a smoothstep between the two.
                 if !(inner >= 0.0 && inner < outer) {
-                    return Err(self.err(
-                        &k("inner_cone"),
-                        format!("must be in [0, outer_cone = {outer}) degrees, got {inner}"),
-                    ));
+                    return Err(self
+                        .err(&k("inner_cone"), format!("must be in [0, outer_cone = {outer}) degrees, got {inner}")));
                 }
-                LightKind::Spot {
-                    position,
-                    direction,
-                    inner_cone_deg: inner,
-                    outer_cone_deg: outer,
-                }
+                LightKind::Spot { position, direction, inner_cone_deg: inner, outer_cone_deg: outer }
             }
         };
         Ok(Light {
@@ -642,10 +490,9 @@ impl Checker<'_> {
 
     fn reference(&self, s: ReferenceSection) -> Result<ReferenceSettings, SceneError> {
         if !(0.0..1.0).contains(&s.min_transmittance) {
-            return Err(self.err(
-                "reference.min_transmittance",
-                format!("must be in [0, 1), got {}", s.min_transmittance),
-            ));
+            return Err(
+                self.err("reference.min_transmittance", format!("must be in [0, 1), got {}", s.min_transmittance))
+            );
         }
         Ok(ReferenceSettings {
             model: match s.model {

@@ -24,11 +24,7 @@ pub const FRAMING_MARGIN: f32 = 1.05;
 #[derive(Clone, Debug, PartialEq)]
 pub enum VolumeSource {
     File(PathBuf),
-    Synthetic {
-        kind: SyntheticKind,
-        size: u32,
-        seed: u64,
-    },
+    Synthetic { kind: SyntheticKind, size: u32, seed: u64 },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -79,17 +75,12 @@ impl CameraSpec {
         let aspect = width as f32 / height.max(1) as f32;
         let projection = match self.projection {
             ProjectionSpec::Perspective { fov_y_deg } => Projection::Perspective { fov_y_deg },
-            ProjectionSpec::Orthographic { height } => Projection::Orthographic {
-                height: height.unwrap_or(2.0 * radius / aspect.min(1.0)),
-            },
+            ProjectionSpec::Orthographic { height } => {
+                Projection::Orthographic { height: height.unwrap_or(2.0 * radius / aspect.min(1.0)) }
+            }
         };
         match self.placement {
-            CameraPlacement::Orbit {
-                target,
-                azimuth_deg,
-                elevation_deg,
-                distance,
-            } => {
+            CameraPlacement::Orbit { target, azimuth_deg, elevation_deg, distance } => {
                 let distance = distance.unwrap_or_else(|| match projection {
                     Projection::Perspective { fov_y_deg } => {
                         let half_y = fov_y_deg.to_radians() * 0.5;
@@ -101,12 +92,7 @@ impl CameraSpec {
                 });
                 Camera::orbit(target, distance, azimuth_deg, elevation_deg, projection)
             }
-            CameraPlacement::LookAt { eye, target, up } => Camera {
-                eye,
-                target,
-                up,
-                projection,
-            },
+            CameraPlacement::LookAt { eye, target, up } => Camera { eye, target, up, projection },
         }
     }
 }
@@ -129,13 +115,11 @@ pub struct SceneSpec {
 impl SceneSpec {
     pub fn load_volume(&self) -> Result<Volume, SceneError> {
         match &self.volume {
-            VolumeSource::File(path) => {
-                loaders::load_volume(path).map_err(|source| SceneError::Volume {
-                    origin: self.origin.clone(),
-                    path: path.clone(),
-                    source: Box::new(source),
-                })
-            }
+            VolumeSource::File(path) => loaders::load_volume(path).map_err(|source| SceneError::Volume {
+                origin: self.origin.clone(),
+                path: path.clone(),
+                source: Box::new(source),
+            }),
             VolumeSource::Synthetic { kind, size, seed } => Ok(kind.generate(*size, *seed)),
         }
     }
@@ -153,9 +137,7 @@ impl SceneSpec {
             TransferSpec::FromHistogram => transfer_from_histogram(&volume),
         };
         let volume_box = VolumeBox::new(volume.dims, volume.spacing);
-        let camera = self
-            .camera
-            .resolve(&volume_box, self.render.width, self.render.height);
+        let camera = self.camera.resolve(&volume_box, self.render.width, self.render.height);
         Scene {
             volume,
             transfer,
@@ -188,11 +170,7 @@ mod tests {
         let camera = spec.resolve(&cube, 200, 100);
         // Cube of side 1: bounding radius sqrt(3)/2, seen under the half fov of 15 deg.
         let expected = 3f32.sqrt() / 2.0 * FRAMING_MARGIN / 15f32.to_radians().sin();
-        assert!(
-            (camera.eye.length() - expected).abs() < 1e-4,
-            "{} vs {expected}",
-            camera.eye.length()
-        );
+        assert!((camera.eye.length() - expected).abs() < 1e-4, "{} vs {expected}", camera.eye.length());
         // A tall image is limited by its narrower horizontal field of view.
         let tall = spec.resolve(&cube, 100, 200);
         assert!(tall.eye.length() > expected * 1.5);

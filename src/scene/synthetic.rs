@@ -138,9 +138,7 @@ fn voxel_centre(i: UVec3) -> Vec3 {
 }
 
 fn u8_volume(name: &str, n: u32, data: Vec<u8>) -> Volume {
-    let (lo, hi) = data
-        .iter()
-        .fold((u8::MAX, u8::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = data.iter().fold((u8::MAX, u8::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
     Volume {
         name: name.to_string(),
         dims: UVec3::splat(n),
@@ -153,16 +151,9 @@ fn u8_volume(name: &str, n: u32, data: Vec<u8>) -> Volume {
 /// Rescales raw values from their own [min, max] into [0, 1] (constant data maps
 /// to 0, the convention of the loaders), keeping the raw range in `value_range`.
 fn rescaled_f32_volume(name: &str, n: u32, raw: Vec<f32>) -> Volume {
-    let (lo, hi) = raw
-        .iter()
-        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
+    let (lo, hi) = raw.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
     let span = hi - lo;
-    let data = raw
-        .iter()
-        .map(|&v| if span > 0.0 { (v - lo) / span } else { 0.0 })
-        .collect();
+    let data = raw.iter().map(|&v| if span > 0.0 { (v - lo) / span } else { 0.0 }).collect();
     Volume {
         name: name.to_string(),
         dims: UVec3::splat(n),
@@ -190,75 +181,21 @@ struct Ellipsoid {
 /// The modified (higher-contrast) 3D Shepp-Logan head phantom of Kak & Slaney, with
 /// Toft's densities: skull 1, brain 0.2, ventricles 0, small features 0.3.
 const SHEPP_LOGAN_ELLIPSOIDS: [Ellipsoid; 10] = [
-    Ellipsoid {
-        density_tenths: 10,
-        semi_axes: [0.69, 0.92, 0.81],
-        centre: [0.0, 0.0, 0.0],
-        angle_deg: 0.0,
-    },
-    Ellipsoid {
-        density_tenths: -8,
-        semi_axes: [0.6624, 0.874, 0.78],
-        centre: [0.0, -0.0184, 0.0],
-        angle_deg: 0.0,
-    },
-    Ellipsoid {
-        density_tenths: -2,
-        semi_axes: [0.11, 0.31, 0.22],
-        centre: [0.22, 0.0, 0.0],
-        angle_deg: -18.0 + 10.0,
-    },
-    Ellipsoid {
-        density_tenths: -2,
-        semi_axes: [0.16, 0.41, 0.28],
-        centre: [-0.22, 0.0, 0.0],
-        angle_deg: 18.0 + 10.0,
-    },
-    Ellipsoid {
-        density_tenths: 1,
-        semi_axes: [0.21, 0.25, 0.41],
-        centre: [0.0, 0.35, -0.15],
-        angle_deg: 0.0,
-    },
-    Ellipsoid {
-        density_tenths: 1,
-        semi_axes: [0.046, 0.046, 0.05],
-        centre: [0.0, 0.1, 0.25],
-        angle_deg: 0.0,
-    },
-    Ellipsoid {
-        density_tenths: 1,
-        semi_axes: [0.046, 0.046, 0.05],
-        centre: [0.0, -0.1, 0.25],
-        angle_deg: 0.0,
-    },
-    Ellipsoid {
-        density_tenths: 1,
-        semi_axes: [0.046, 0.023, 0.05],
-        centre: [-0.08, -0.605, 0.0],
-        angle_deg: 0.0,
-    },
-    Ellipsoid {
-        density_tenths: 1,
-        semi_axes: [0.023, 0.023, 0.02],
-        centre: [0.0, -0.606, 0.0],
-        angle_deg: 0.0,
-    },
-    Ellipsoid {
-        density_tenths: 1,
-        semi_axes: [0.023, 0.046, 0.02],
-        centre: [0.06, -0.605, 0.0],
-        angle_deg: 0.0,
-    },
+    Ellipsoid { density_tenths: 10, semi_axes: [0.69, 0.92, 0.81], centre: [0.0, 0.0, 0.0], angle_deg: 0.0 },
+    Ellipsoid { density_tenths: -8, semi_axes: [0.6624, 0.874, 0.78], centre: [0.0, -0.0184, 0.0], angle_deg: 0.0 },
+    Ellipsoid { density_tenths: -2, semi_axes: [0.11, 0.31, 0.22], centre: [0.22, 0.0, 0.0], angle_deg: -18.0 + 10.0 },
+    Ellipsoid { density_tenths: -2, semi_axes: [0.16, 0.41, 0.28], centre: [-0.22, 0.0, 0.0], angle_deg: 18.0 + 10.0 },
+    Ellipsoid { density_tenths: 1, semi_axes: [0.21, 0.25, 0.41], centre: [0.0, 0.35, -0.15], angle_deg: 0.0 },
+    Ellipsoid { density_tenths: 1, semi_axes: [0.046, 0.046, 0.05], centre: [0.0, 0.1, 0.25], angle_deg: 0.0 },
+    Ellipsoid { density_tenths: 1, semi_axes: [0.046, 0.046, 0.05], centre: [0.0, -0.1, 0.25], angle_deg: 0.0 },
+    Ellipsoid { density_tenths: 1, semi_axes: [0.046, 0.023, 0.05], centre: [-0.08, -0.605, 0.0], angle_deg: 0.0 },
+    Ellipsoid { density_tenths: 1, semi_axes: [0.023, 0.023, 0.02], centre: [0.0, -0.606, 0.0], angle_deg: 0.0 },
+    Ellipsoid { density_tenths: 1, semi_axes: [0.023, 0.046, 0.02], centre: [0.06, -0.605, 0.0], angle_deg: 0.0 },
 ];
 
 impl Ellipsoid {
     fn contains(&self, p: [f32; 3]) -> bool {
-        let d = [
-            p[0] - self.centre[0],
-            p[1] - self.centre[1],
-            p[2] - self.centre[2],
-        ];
+        let d = [p[0] - self.centre[0], p[1] - self.centre[1], p[2] - self.centre[2]];
         // Into the ellipsoid's own frame: rotate by -angle about z.
         let (s, c) = self.angle_deg.to_radians().sin_cos();
         let local = [c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]];
@@ -270,11 +207,7 @@ impl Ellipsoid {
 /// Density of the Shepp-Logan phantom at `p` in its [-1, 1]³ frame (+y is the top
 /// of the head, as in the 2D phantom).
 pub fn shepp_logan_density(p: [f32; 3]) -> f32 {
-    let tenths: i32 = SHEPP_LOGAN_ELLIPSOIDS
-        .iter()
-        .filter(|e| e.contains(p))
-        .map(|e| e.density_tenths)
-        .sum();
+    let tenths: i32 = SHEPP_LOGAN_ELLIPSOIDS.iter().filter(|e| e.contains(p)).map(|e| e.density_tenths).sum();
     tenths as f32 / 10.0
 }
 
@@ -297,15 +230,8 @@ pub fn shepp_logan(n: u32) -> Volume {
 /// at least 0.05 n.
 pub fn three_spheres_geometry(n: u32) -> [Sphere; 3] {
     let n = n.max(1) as f32;
-    let sphere = |x: f32, y: f32, r: f32| Sphere {
-        centre: Vec3::new(x, y, 0.5) * n,
-        radius: r * n,
-    };
-    [
-        sphere(0.18, 0.45, 0.08),
-        sphere(0.43, 0.55, 0.12),
-        sphere(0.76, 0.50, 0.16),
-    ]
+    let sphere = |x: f32, y: f32, r: f32| Sphere { centre: Vec3::new(x, y, 0.5) * n, radius: r * n };
+    [sphere(0.18, 0.45, 0.08), sphere(0.43, 0.55, 0.12), sphere(0.76, 0.50, 0.16)]
 }
 
 /// Three solid spheres of growing size side by side along x (the test scene of the
@@ -347,24 +273,16 @@ pub fn cornell_box_parts(n: u32) -> Vec<(VoxelBox, u8)> {
     let n = n.max(1);
     let t = (n / 16).max(1);
     let f = |fraction: f32| (fraction * n as f32) as u32;
-    let b = |min: [u32; 3], max: [u32; 3]| VoxelBox {
-        min: UVec3::from(min),
-        max: UVec3::from(max).min(UVec3::splat(n)),
-    };
+    let b =
+        |min: [u32; 3], max: [u32; 3]| VoxelBox { min: UVec3::from(min), max: UVec3::from(max).min(UVec3::splat(n)) };
     vec![
         (b([0, 0, 0], [n, t, n]), CORNELL_FLOOR),
         (b([0, n - t, 0], [n, n, n]), CORNELL_CEILING),
         (b([0, 0, 0], [n, n, t]), CORNELL_BACK_WALL),
         (b([0, 0, 0], [t, n, n]), CORNELL_LEFT_WALL),
         (b([n - t, 0, 0], [n, n, n]), CORNELL_RIGHT_WALL),
-        (
-            b([f(0.55), t, f(0.50)], [f(0.80), t + f(0.30), f(0.75)]),
-            CORNELL_SHORT_BOX,
-        ),
-        (
-            b([f(0.20), t, f(0.20)], [f(0.45), t + f(0.60), f(0.45)]),
-            CORNELL_TALL_BOX,
-        ),
+        (b([f(0.55), t, f(0.50)], [f(0.80), t + f(0.30), f(0.75)]), CORNELL_SHORT_BOX),
+        (b([f(0.20), t, f(0.20)], [f(0.45), t + f(0.60), f(0.45)]), CORNELL_TALL_BOX),
     ]
 }
 
@@ -374,13 +292,7 @@ pub fn cornell_box_parts(n: u32) -> Vec<(VoxelBox, u8)> {
 pub fn cornell_box(n: u32) -> Volume {
     let n = n.max(1);
     let parts = cornell_box_parts(n);
-    let data = fill(n, |i| {
-        parts
-            .iter()
-            .rev()
-            .find(|(b, _)| b.contains(i))
-            .map_or(0, |&(_, v)| v)
-    });
+    let data = fill(n, |i| parts.iter().rev().find(|(b, _)| b.contains(i)).map_or(0, |&(_, v)| v));
     u8_volume("cornell-box", n, data)
 }
 
@@ -405,14 +317,8 @@ impl SlabUnderSphere {
         let margin = n / 10;
         let nf = n as f32;
         SlabUnderSphere {
-            slab: VoxelBox {
-                min: UVec3::new(margin, n / 10, margin),
-                max: UVec3::new(n - margin, n / 5, n - margin),
-            },
-            sphere: Sphere {
-                centre: Vec3::new(nf / 2.0, 3.0 * nf / 5.0, nf / 2.0),
-                radius: nf / 5.0,
-            },
+            slab: VoxelBox { min: UVec3::new(margin, n / 10, margin), max: UVec3::new(n - margin, n / 5, n - margin) },
+            sphere: Sphere { centre: Vec3::new(nf / 2.0, 3.0 * nf / 5.0, nf / 2.0), radius: nf / 5.0 },
         }
     }
 
@@ -486,11 +392,7 @@ fn value_noise(seed: u64, octave: u32, cell: f32, p: Vec3) -> f32 {
     let b = base.as_i64vec3();
     let mut sum = 0.0;
     for corner in 0..8u32 {
-        let o = [
-            (corner & 1) as i64,
-            ((corner >> 1) & 1) as i64,
-            ((corner >> 2) & 1) as i64,
-        ];
+        let o = [(corner & 1) as i64, ((corner >> 1) & 1) as i64, ((corner >> 2) & 1) as i64];
         let weight = (if o[0] == 1 { w.x } else { 1.0 - w.x })
             * (if o[1] == 1 { w.y } else { 1.0 - w.y })
             * (if o[2] == 1 { w.z } else { 1.0 - w.z });
@@ -507,9 +409,7 @@ pub fn noise(n: u32, seed: u64) -> Volume {
     let cell = (n / 8).max(2) as f32;
     let raw = fill(n, |i| {
         let p = voxel_centre(i);
-        (0..3u32)
-            .map(|o| value_noise(seed, o, cell / (1 << o) as f32, p) / (1 << o) as f32)
-            .sum()
+        (0..3u32).map(|o| value_noise(seed, o, cell / (1 << o) as f32, p) / (1 << o) as f32).sum()
     });
     rescaled_f32_volume(&format!("noise-{seed}"), n, raw)
 }
@@ -537,12 +437,8 @@ mod tests {
     }
 
     fn sphere_bounds(s: &Sphere, n: u32) -> (UVec3, UVec3) {
-        let lo = (s.centre - Vec3::splat(s.radius + 1.0))
-            .max(Vec3::ZERO)
-            .as_uvec3();
-        let hi = (s.centre + Vec3::splat(s.radius + 2.0))
-            .as_uvec3()
-            .min(UVec3::splat(n));
+        let lo = (s.centre - Vec3::splat(s.radius + 1.0)).max(Vec3::ZERO).as_uvec3();
+        let hi = (s.centre + Vec3::splat(s.radius + 2.0)).as_uvec3().min(UVec3::splat(n));
         (lo, hi)
     }
 
@@ -554,11 +450,7 @@ mod tests {
             assert_eq!(v.spacing, Vec3::ONE, "{}", kind.name());
             assert_eq!(v.data.len(), 20 * 20 * 20, "{}", kind.name());
             let (lo, hi) = v.normalized_range();
-            assert!(
-                lo >= 0.0 && hi <= 1.0 && hi > lo,
-                "{}: range {lo}..{hi}",
-                kind.name()
-            );
+            assert!(lo >= 0.0 && hi <= 1.0 && hi > lo, "{}: range {lo}..{hi}", kind.name());
             assert_eq!(SyntheticKind::from_name(kind.name()), Some(kind));
         }
     }
@@ -576,17 +468,11 @@ mod tests {
         let v = shepp_logan(n);
         // Voxel index whose centre is nearest to phantom coordinate c in [-1, 1].
         let at = |c: [f32; 3]| {
-            let i = Vec3::from(c)
-                .map(|x| ((x + 1.0) * 0.5 * n as f32 - 0.5).round())
-                .as_uvec3();
+            let i = Vec3::from(c).map(|x| ((x + 1.0) * 0.5 * n as f32 - 0.5).round()).as_uvec3();
             value_at(&v, i)
         };
         assert_eq!(at([0.0, 0.0, 0.0]), 0.2, "brain: 1 - 0.8");
-        assert_eq!(
-            at([0.0, 0.89, 0.0]),
-            1.0,
-            "skull between the two outer ellipsoids"
-        );
+        assert_eq!(at([0.0, 0.89, 0.0]), 1.0, "skull between the two outer ellipsoids");
         assert_eq!(at([0.22, 0.0, 0.0]), 0.0, "right ventricle: 1 - 0.8 - 0.2");
         assert_eq!(at([0.0, 0.35, -0.15]), 0.3, "feature: 1 - 0.8 + 0.1");
         assert_eq!(at([0.95, 0.95, 0.95]), 0.0, "outside the head");
@@ -606,14 +492,8 @@ mod tests {
             // The one-voxel ramp adds pi r / 3 (see the module doc); sampling it on
             // the voxel lattice is good to far better than 0.2 % at these radii.
             let ramp = ball + PI as f64 * r / 3.0;
-            assert!(
-                (sum / ramp - 1.0).abs() < 0.002,
-                "radius {r}: {sum} vs {ramp}"
-            );
-            assert!(
-                (sum / ball - 1.0).abs() < 0.01,
-                "radius {r}: {sum} vs {ball}"
-            );
+            assert!((sum / ramp - 1.0).abs() < 0.002, "radius {r}: {sum} vs {ramp}");
+            assert!((sum / ball - 1.0).abs() < 0.01, "radius {r}: {sum} vs {ball}");
             assert_eq!(value_at(&v, s.centre.as_uvec3()), 1.0);
         }
         // Different sizes, disjoint.
@@ -636,30 +516,9 @@ mod tests {
         assert_eq!(raw(UVec3::new(0, m, m)), CORNELL_LEFT_WALL);
         assert_eq!(raw(UVec3::new(n - 1, m, m)), CORNELL_RIGHT_WALL);
         // Just above the floor in each box's footprint, and the open room between.
-        assert_eq!(
-            raw(UVec3::new(
-                (0.67 * n as f32) as u32,
-                t,
-                (0.62 * n as f32) as u32
-            )),
-            CORNELL_SHORT_BOX
-        );
-        assert_eq!(
-            raw(UVec3::new(
-                (0.32 * n as f32) as u32,
-                t,
-                (0.32 * n as f32) as u32
-            )),
-            CORNELL_TALL_BOX
-        );
-        assert_eq!(
-            raw(UVec3::new(
-                m,
-                (0.8 * n as f32) as u32,
-                (0.9 * n as f32) as u32
-            )),
-            0
-        );
+        assert_eq!(raw(UVec3::new((0.67 * n as f32) as u32, t, (0.62 * n as f32) as u32)), CORNELL_SHORT_BOX);
+        assert_eq!(raw(UVec3::new((0.32 * n as f32) as u32, t, (0.32 * n as f32) as u32)), CORNELL_TALL_BOX);
+        assert_eq!(raw(UVec3::new(m, (0.8 * n as f32) as u32, (0.9 * n as f32) as u32)), 0);
         // The front is open: the last z slice holds no back wall in the middle.
         assert_eq!(raw(UVec3::new(m, m, n - 1)), 0);
         // Each part's voxel count (before overlaps) is its box size.
@@ -683,16 +542,8 @@ mod tests {
         let slab_value = SLAB_VALUE as f32 / 255.0;
         assert_eq!(value_at(&v, UVec3::new(5, 5, 5)), slab_value);
         assert_eq!(value_at(&v, UVec3::new(44, 9, 44)), slab_value);
-        assert_eq!(
-            value_at(&v, UVec3::new(25, 10, 25)),
-            0.0,
-            "air right above the slab"
-        );
-        assert_eq!(
-            value_at(&v, UVec3::new(25, 4, 25)),
-            0.0,
-            "air right below the slab"
-        );
+        assert_eq!(value_at(&v, UVec3::new(25, 10, 25)), 0.0, "air right above the slab");
+        assert_eq!(value_at(&v, UVec3::new(25, 4, 25)), 0.0, "air right below the slab");
         assert_eq!(value_at(&v, UVec3::new(25, 30, 25)), 1.0);
         let (lo, hi) = sphere_bounds(&g.sphere, n);
         let sum = sum_over(&v, lo.max(UVec3::new(0, 11, 0)), hi);
@@ -700,18 +551,14 @@ mod tests {
         assert!((sum / ramp - 1.0).abs() < 0.002, "{sum} vs {ramp}");
         assert!(g.in_shadow_from_above(25.0, 25.0) && g.in_shadow_from_above(34.9, 25.0));
         assert!(!g.in_shadow_from_above(35.1, 25.0) && !g.in_shadow_from_above(10.0, 10.0));
-        assert!(
-            cubic_voxel_to_world(n, g.sphere.centre).abs_diff_eq(Vec3::new(0.0, 0.1, 0.0), 1e-6)
-        );
+        assert!(cubic_voxel_to_world(n, g.sphere.centre).abs_diff_eq(Vec3::new(0.0, 0.1, 0.0), 1e-6));
     }
 
     #[test]
     fn single_voxel_has_exactly_one_non_zero_voxel_at_the_centre() {
         for n in [1, 7, 16] {
             let v = single_voxel(n);
-            let non_zero: Vec<usize> = (0..v.voxel_count())
-                .filter(|&i| v.data.normalized(i) != 0.0)
-                .collect();
+            let non_zero: Vec<usize> = (0..v.voxel_count()).filter(|&i| v.data.normalized(i) != 0.0).collect();
             assert_eq!(non_zero.len(), 1, "n = {n}");
             assert_eq!(value_at(&v, UVec3::splat(n / 2)), 1.0);
         }
@@ -723,13 +570,9 @@ mod tests {
         let b = noise(24, 7);
         let c = noise(24, 8);
         assert_eq!(a.data, b.data);
-        let differing = (0..a.voxel_count())
-            .filter(|&i| (a.data.normalized(i) - c.data.normalized(i)).abs() > 0.05)
-            .count();
-        assert!(
-            differing > a.voxel_count() / 2,
-            "only {differing} voxels differ"
-        );
+        let differing =
+            (0..a.voxel_count()).filter(|&i| (a.data.normalized(i) - c.data.normalized(i)).abs() > 0.05).count();
+        assert!(differing > a.voxel_count() / 2, "only {differing} voxels differ");
         assert_eq!(a.normalized_range(), (0.0, 1.0));
         // Spread over the range, not two clusters: every quarter of [0, 1] is used.
         let h = a.histogram(4);

@@ -32,12 +32,10 @@ pub enum TransferError {
     Empty,
     #[error("control point {index}: value and rgba must be finite and in [0, 1]")]
     OutOfRange { index: usize },
-    #[error("control point {index}: value {value} is below the previous point's {previous}; points must be sorted by value")]
-    Unsorted {
-        index: usize,
-        value: f32,
-        previous: f32,
-    },
+    #[error(
+        "control point {index}: value {value} is below the previous point's {previous}; points must be sorted by value"
+    )]
+    Unsorted { index: usize, value: f32, previous: f32 },
 }
 
 impl TransferFunction {
@@ -53,11 +51,7 @@ impl TransferFunction {
                 return Err(TransferError::OutOfRange { index });
             }
             if index > 0 && p.value < points[index - 1].value {
-                return Err(TransferError::Unsorted {
-                    index,
-                    value: p.value,
-                    previous: points[index - 1].value,
-                });
+                return Err(TransferError::Unsorted { index, value: p.value, previous: points[index - 1].value });
             }
         }
         Ok(TransferFunction { points })
@@ -75,11 +69,7 @@ impl TransferFunction {
         for w in p.windows(2) {
             if s <= w[1].value {
                 let span = w[1].value - w[0].value;
-                let t = if span > 0.0 {
-                    (s - w[0].value) / span
-                } else {
-                    1.0
-                };
+                let t = if span > 0.0 { (s - w[0].value) / span } else { 1.0 };
                 let mut out = [0.0; 4];
                 for (c, o) in out.iter_mut().enumerate() {
                     *o = w[0].rgba[c] + (w[1].rgba[c] - w[0].rgba[c]) * t;
@@ -140,20 +130,12 @@ mod tests {
     use super::*;
 
     fn point(value: f32, a: f32) -> ControlPoint {
-        ControlPoint {
-            value,
-            rgba: [1.0, 0.5, 0.0, a],
-        }
+        ControlPoint { value, rgba: [1.0, 0.5, 0.0, a] }
     }
 
     #[test]
     fn new_accepts_sorted_points_with_steps() {
-        let tf = TransferFunction::new(vec![
-            point(0.0, 0.0),
-            point(0.5, 0.0),
-            point(0.5, 1.0),
-            point(1.0, 1.0),
-        ]);
+        let tf = TransferFunction::new(vec![point(0.0, 0.0), point(0.5, 0.0), point(0.5, 1.0), point(1.0, 1.0)]);
         assert!(tf.is_ok());
     }
 
@@ -162,23 +144,10 @@ mod tests {
         assert_eq!(TransferFunction::new(vec![]), Err(TransferError::Empty));
         assert_eq!(
             TransferFunction::new(vec![point(0.6, 0.0), point(0.4, 0.0)]),
-            Err(TransferError::Unsorted {
-                index: 1,
-                value: 0.4,
-                previous: 0.6
-            })
+            Err(TransferError::Unsorted { index: 1, value: 0.4, previous: 0.6 })
         );
-        assert_eq!(
-            TransferFunction::new(vec![point(1.5, 0.0)]),
-            Err(TransferError::OutOfRange { index: 0 })
-        );
-        assert_eq!(
-            TransferFunction::new(vec![point(0.0, -0.1)]),
-            Err(TransferError::OutOfRange { index: 0 })
-        );
-        assert_eq!(
-            TransferFunction::new(vec![point(f32::NAN, 0.0)]),
-            Err(TransferError::OutOfRange { index: 0 })
-        );
+        assert_eq!(TransferFunction::new(vec![point(1.5, 0.0)]), Err(TransferError::OutOfRange { index: 0 }));
+        assert_eq!(TransferFunction::new(vec![point(0.0, -0.1)]), Err(TransferError::OutOfRange { index: 0 }));
+        assert_eq!(TransferFunction::new(vec![point(f32::NAN, 0.0)]), Err(TransferError::OutOfRange { index: 0 }));
     }
 }

@@ -71,8 +71,7 @@ impl Volume {
 
     #[inline]
     pub fn voxel(&self, x: u32, y: u32, z: u32) -> f32 {
-        let i =
-            (z as usize * self.dims.y as usize + y as usize) * self.dims.x as usize + x as usize;
+        let i = (z as usize * self.dims.y as usize + y as usize) * self.dims.x as usize + x as usize;
         self.data.normalized(i)
     }
 

@@ -13,10 +13,7 @@ pub struct Access {
 }
 
 impl Access {
-    pub const NONE: Access = Access {
-        stage: vk::PipelineStageFlags2::NONE,
-        access: vk::AccessFlags2::NONE,
-    };
+    pub const NONE: Access = Access { stage: vk::PipelineStageFlags2::NONE, access: vk::AccessFlags2::NONE };
     pub const COMPUTE_READ: Access = Access {
         stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
         access: vk::AccessFlags2::from_raw(
@@ -25,34 +22,23 @@ impl Access {
                 | vk::AccessFlags2::UNIFORM_READ.as_raw(),
         ),
     };
-    pub const COMPUTE_WRITE: Access = Access {
-        stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
-        access: vk::AccessFlags2::SHADER_STORAGE_WRITE,
-    };
+    pub const COMPUTE_WRITE: Access =
+        Access { stage: vk::PipelineStageFlags2::COMPUTE_SHADER, access: vk::AccessFlags2::SHADER_STORAGE_WRITE };
     pub const COMPUTE_READ_WRITE: Access = Access {
         stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
         access: vk::AccessFlags2::from_raw(
             Access::COMPUTE_READ.access.as_raw() | vk::AccessFlags2::SHADER_STORAGE_WRITE.as_raw(),
         ),
     };
-    pub const TRANSFER_READ: Access = Access {
-        stage: vk::PipelineStageFlags2::COPY,
-        access: vk::AccessFlags2::TRANSFER_READ,
-    };
-    pub const TRANSFER_WRITE: Access = Access {
-        stage: vk::PipelineStageFlags2::COPY,
-        access: vk::AccessFlags2::TRANSFER_WRITE,
-    };
+    pub const TRANSFER_READ: Access =
+        Access { stage: vk::PipelineStageFlags2::COPY, access: vk::AccessFlags2::TRANSFER_READ };
+    pub const TRANSFER_WRITE: Access =
+        Access { stage: vk::PipelineStageFlags2::COPY, access: vk::AccessFlags2::TRANSFER_WRITE };
     /// Around `vkCmdFillBuffer` and `vkCmdClearColorImage`: ALL_TRANSFER, not
     /// CLEAR (the validation layer version we run with reports a false hazard).
-    pub const CLEAR_WRITE: Access = Access {
-        stage: vk::PipelineStageFlags2::ALL_TRANSFER,
-        access: vk::AccessFlags2::TRANSFER_WRITE,
-    };
-    pub const HOST_READ: Access = Access {
-        stage: vk::PipelineStageFlags2::HOST,
-        access: vk::AccessFlags2::HOST_READ,
-    };
+    pub const CLEAR_WRITE: Access =
+        Access { stage: vk::PipelineStageFlags2::ALL_TRANSFER, access: vk::AccessFlags2::TRANSFER_WRITE };
+    pub const HOST_READ: Access = Access { stage: vk::PipelineStageFlags2::HOST, access: vk::AccessFlags2::HOST_READ };
 }
 
 /// A barrier about to be recorded: a global memory barrier or an image barrier
@@ -65,26 +51,14 @@ pub struct Barrier {
 
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum BarrierKind {
-    Memory {
-        src: Access,
-        dst: Access,
-    },
-    Image {
-        image: vk::Image,
-        src: Access,
-        dst: Access,
-        old_layout: vk::ImageLayout,
-        new_layout: vk::ImageLayout,
-    },
+    Memory { src: Access, dst: Access },
+    Image { image: vk::Image, src: Access, dst: Access, old_layout: vk::ImageLayout, new_layout: vk::ImageLayout },
 }
 
 impl Barrier {
     /// Global memory barrier: every write of `src` made visible to `dst`.
     pub fn memory(name: &'static str, src: Access, dst: Access) -> Barrier {
-        Barrier {
-            name,
-            kind: BarrierKind::Memory { src, dst },
-        }
+        Barrier { name, kind: BarrierKind::Memory { src, dst } }
     }
 
     /// Image barrier on the whole (single-level) colour image.
@@ -96,16 +70,7 @@ impl Barrier {
         old_layout: vk::ImageLayout,
         new_layout: vk::ImageLayout,
     ) -> Barrier {
-        Barrier {
-            name,
-            kind: BarrierKind::Image {
-                image: image.raw,
-                src,
-                dst,
-                old_layout,
-                new_layout,
-            },
-        }
+        Barrier { name, kind: BarrierKind::Image { image: image.raw, src, dst, old_layout, new_layout } }
     }
 
     pub(crate) fn record(&self, device: &ash::Device, cb: vk::CommandBuffer) {
@@ -120,13 +85,7 @@ impl Barrier {
                 // SAFETY: cb is in the recording state (Recorder owns it).
                 unsafe { device.cmd_pipeline_barrier2(cb, &dep) };
             }
-            BarrierKind::Image {
-                image,
-                src,
-                dst,
-                old_layout,
-                new_layout,
-            } => {
+            BarrierKind::Image { image, src, dst, old_layout, new_layout } => {
                 let b = [vk::ImageMemoryBarrier2::default()
                     .src_stage_mask(src.stage)
                     .src_access_mask(src.access)

@@ -57,11 +57,7 @@ impl<'a> Recorder<'a> {
     pub fn bind(&self, pipeline: &ComputePipeline, set: vk::DescriptorSet) {
         // SAFETY: pipeline, layout and set belong to this device; cb is recording.
         unsafe {
-            self.ctx.device.cmd_bind_pipeline(
-                self.cb,
-                vk::PipelineBindPoint::COMPUTE,
-                pipeline.raw,
-            );
+            self.ctx.device.cmd_bind_pipeline(self.cb, vk::PipelineBindPoint::COMPUTE, pipeline.raw);
             self.ctx.device.cmd_bind_descriptor_sets(
                 self.cb,
                 vk::PipelineBindPoint::COMPUTE,
@@ -78,30 +74,18 @@ impl<'a> Recorder<'a> {
         // SAFETY: the layout declares a compute push-constant range covering `bytes`
         // (checked when the pipeline was created).
         unsafe {
-            self.ctx.device.cmd_push_constants(
-                self.cb,
-                pipeline.layout,
-                vk::ShaderStageFlags::COMPUTE,
-                0,
-                bytes,
-            )
+            self.ctx.device.cmd_push_constants(self.cb, pipeline.layout, vk::ShaderStageFlags::COMPUTE, 0, bytes)
         };
     }
 
     pub fn dispatch(&mut self, x: u32, y: u32, z: u32) {
         // SAFETY: a compute pipeline and its descriptor set are bound by the caller.
-        unsafe {
-            self.ctx
-                .device
-                .cmd_dispatch(self.cb, x.max(1), y.max(1), z.max(1))
-        };
+        unsafe { self.ctx.device.cmd_dispatch(self.cb, x.max(1), y.max(1), z.max(1)) };
         self.dispatch_count += 1;
     }
 
     pub fn copy_buffer_to_image(&self, src: &Buffer, dst: &Image) {
-        let region = [vk::BufferImageCopy::default()
-            .image_subresource(color_layers())
-            .image_extent(dst.extent())];
+        let region = [vk::BufferImageCopy::default().image_subresource(color_layers()).image_extent(dst.extent())];
         // SAFETY: dst is in TRANSFER_DST_OPTIMAL (the caller's barrier) and src holds
         // at least extent * texel size bytes.
         unsafe {
@@ -116,15 +100,9 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn copy_image_to_buffer(&self, src: &Image, layout: vk::ImageLayout, dst: &Buffer) {
-        let region = [vk::BufferImageCopy::default()
-            .image_subresource(color_layers())
-            .image_extent(src.extent())];
+        let region = [vk::BufferImageCopy::default().image_subresource(color_layers()).image_extent(src.extent())];
         // SAFETY: src is in `layout` (GENERAL or TRANSFER_SRC) and dst is large enough.
-        unsafe {
-            self.ctx
-                .device
-                .cmd_copy_image_to_buffer(self.cb, src.raw, layout, dst.raw, &region)
-        };
+        unsafe { self.ctx.device.cmd_copy_image_to_buffer(self.cb, src.raw, layout, dst.raw, &region) };
     }
 
     /// Clears a colour image that is in TRANSFER_DST_OPTIMAL.
@@ -146,11 +124,7 @@ impl<'a> Recorder<'a> {
 
     pub fn fill_buffer(&self, dst: &Buffer, value: u32) {
         // SAFETY: dst was created with TRANSFER_DST usage.
-        unsafe {
-            self.ctx
-                .device
-                .cmd_fill_buffer(self.cb, dst.raw, 0, vk::WHOLE_SIZE, value)
-        };
+        unsafe { self.ctx.device.cmd_fill_buffer(self.cb, dst.raw, 0, vk::WHOLE_SIZE, value) };
     }
 }
 
@@ -165,35 +139,26 @@ pub fn submit_and_wait<R>(
         .queue_family_index(ctx.queue_family)
         .flags(vk::CommandPoolCreateFlags::TRANSIENT);
     // SAFETY: valid device and queue family.
-    let pool =
-        unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
+    let pool = unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
     let guard = PoolGuard { device, pool };
     let alloc = vk::CommandBufferAllocateInfo::default()
         .command_pool(pool)
         .level(vk::CommandBufferLevel::PRIMARY)
         .command_buffer_count(1);
     // SAFETY: pool is valid.
-    let cb =
-        unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?[0];
+    let cb = unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?[0];
     ctx.set_name(cb, name);
-    let begin =
-        vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+    let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
     // SAFETY: cb is freshly allocated, in the initial state.
     unsafe { device.begin_command_buffer(cb, &begin) }.call("vkBeginCommandBuffer")?;
-    let mut rec = Recorder {
-        ctx,
-        cb,
-        barrier_count: 0,
-        dispatch_count: 0,
-    };
+    let mut rec = Recorder { ctx, cb, barrier_count: 0, dispatch_count: 0 };
     rec.begin_label(name);
     let result = record(&mut rec)?;
     rec.end_label();
     // SAFETY: cb is recording.
     unsafe { device.end_command_buffer(cb) }.call("vkEndCommandBuffer")?;
     // SAFETY: valid device.
-    let fence = unsafe { device.create_fence(&vk::FenceCreateInfo::default(), None) }
-        .call("vkCreateFence")?;
+    let fence = unsafe { device.create_fence(&vk::FenceCreateInfo::default(), None) }.call("vkCreateFence")?;
     let cbs = [cb];
     let submit = [vk::SubmitInfo::default().command_buffers(&cbs)];
     // SAFETY: cb is executable; the queue is used from this thread only; we wait on
@@ -202,11 +167,7 @@ pub fn submit_and_wait<R>(
         device
             .queue_submit(ctx.queue, &submit, fence)
             .call("vkQueueSubmit")
-            .and_then(|_| {
-                device
-                    .wait_for_fences(&[fence], true, u64::MAX)
-                    .call("vkWaitForFences")
-            })
+            .and_then(|_| device.wait_for_fences(&[fence], true, u64::MAX).call("vkWaitForFences"))
     };
     // SAFETY: the fence is signalled or the submission failed; either way it is unused now.
     unsafe { device.destroy_fence(fence, None) };

@@ -26,14 +26,11 @@ impl ContextOptions {
     /// Options with the environment overrides applied where the caller gave none.
     pub fn with_env(mut self) -> Self {
         if self.device.is_none() {
-            self.device = std::env::var(DEVICE_ENV)
-                .ok()
-                .filter(|s| !s.trim().is_empty());
+            self.device = std::env::var(DEVICE_ENV).ok().filter(|s| !s.trim().is_empty());
         }
         if !self.validate {
-            self.validate = std::env::var(VALIDATE_ENV)
-                .map(|v| v == "1" || v.eq_ignore_ascii_case("true"))
-                .unwrap_or(false);
+            self.validate =
+                std::env::var(VALIDATE_ENV).map(|v| v == "1" || v.eq_ignore_ascii_case("true")).unwrap_or(false);
         }
         self
     }
@@ -71,33 +68,18 @@ fn load_entry() -> Result<ash::Entry, VkError> {
 
 fn has_layer(entry: &ash::Entry, name: &CStr) -> Result<bool, VkError> {
     // SAFETY: plain enumeration call on a loaded entry.
-    let layers = unsafe { entry.enumerate_instance_layer_properties() }
-        .call("vkEnumerateInstanceLayerProperties")?;
-    Ok(layers
-        .iter()
-        .any(|l| l.layer_name_as_c_str().map(|n| n == name).unwrap_or(false)))
+    let layers = unsafe { entry.enumerate_instance_layer_properties() }.call("vkEnumerateInstanceLayerProperties")?;
+    Ok(layers.iter().any(|l| l.layer_name_as_c_str().map(|n| n == name).unwrap_or(false)))
 }
 
-fn has_instance_extension(
-    entry: &ash::Entry,
-    layer: Option<&CStr>,
-    name: &CStr,
-) -> Result<bool, VkError> {
+fn has_instance_extension(entry: &ash::Entry, layer: Option<&CStr>, name: &CStr) -> Result<bool, VkError> {
     // SAFETY: plain enumeration call on a loaded entry.
     let exts = unsafe { entry.enumerate_instance_extension_properties(layer) }
         .call("vkEnumerateInstanceExtensionProperties")?;
-    Ok(exts.iter().any(|e| {
-        e.extension_name_as_c_str()
-            .map(|n| n == name)
-            .unwrap_or(false)
-    }))
+    Ok(exts.iter().any(|e| e.extension_name_as_c_str().map(|n| n == name).unwrap_or(false)))
 }
 
-fn create_instance(
-    entry: &ash::Entry,
-    validate: bool,
-    debug_utils: bool,
-) -> Result<ash::Instance, VkError> {
+fn create_instance(entry: &ash::Entry, validate: bool, debug_utils: bool) -> Result<ash::Instance, VkError> {
     let app_name = CString::new("sweeplab").unwrap_or_default();
     let app = vk::ApplicationInfo::default()
         .application_name(&app_name)
@@ -114,11 +96,7 @@ fn create_instance(
             return Err(VkError::NoValidationLayer);
         }
         layers.push(VALIDATION_LAYER.as_ptr());
-        if has_instance_extension(
-            entry,
-            Some(VALIDATION_LAYER),
-            ash::ext::validation_features::NAME,
-        )? {
+        if has_instance_extension(entry, Some(VALIDATION_LAYER), ash::ext::validation_features::NAME)? {
             extensions.push(ash::ext::validation_features::NAME.as_ptr());
             validation_features_ext = true;
         }
@@ -138,8 +116,7 @@ fn create_instance(
 
 fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
     // SAFETY: instance is valid; enumeration has no other preconditions.
-    let physical =
-        unsafe { instance.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
+    let physical = unsafe { instance.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
     let mut out = Vec::new();
     for (index, pd) in physical.into_iter().enumerate() {
         let mut driver = vk::PhysicalDeviceDriverProperties::default();
@@ -149,33 +126,18 @@ fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
         let props = props2.properties;
         // SAFETY: pd comes from this instance.
         let families = unsafe { instance.get_physical_device_queue_family_properties(pd) };
-        let queue_family = families
-            .iter()
-            .position(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE))
-            .map(|i| i as u32);
-        let valid_bits = queue_family
-            .map(|q| families[q as usize].timestamp_valid_bits)
-            .unwrap_or(0);
+        let queue_family =
+            families.iter().position(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE)).map(|i| i as u32);
+        let valid_bits = queue_family.map(|q| families[q as usize].timestamp_valid_bits).unwrap_or(0);
         let info = DeviceInfo {
             index,
-            name: props
-                .device_name_as_c_str()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default(),
+            name: props.device_name_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
             device_type: device_info::type_name(props.device_type).to_string(),
             api_version: device_info::version_string(props.api_version),
-            driver_name: driver
-                .driver_name_as_c_str()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default(),
-            driver_info: driver
-                .driver_info_as_c_str()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_default(),
+            driver_name: driver.driver_name_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+            driver_info: driver.driver_info_as_c_str().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
             timestamp_period_ns: props.limits.timestamp_period,
-            timestamp_valid_bits: if props.limits.timestamp_compute_and_graphics == vk::TRUE
-                || valid_bits > 0
-            {
+            timestamp_valid_bits: if props.limits.timestamp_compute_and_graphics == vk::TRUE || valid_bits > 0 {
                 valid_bits
             } else {
                 0
@@ -205,8 +167,7 @@ pub fn list_devices() -> Result<Vec<DeviceInfo>, VkError> {
 impl Context {
     pub fn new(options: &ContextOptions) -> Result<Context, VkError> {
         let entry = load_entry()?;
-        let debug_utils_ext =
-            has_instance_extension(&entry, None, ash::ext::debug_utils::NAME)? || options.validate;
+        let debug_utils_ext = has_instance_extension(&entry, None, ash::ext::debug_utils::NAME)? || options.validate;
         let instance = create_instance(&entry, options.validate, debug_utils_ext)?;
 
         let (debug_instance, messenger, validation) = if debug_utils_ext {
@@ -224,8 +185,8 @@ impl Context {
                     .user_data(log.as_user_data());
                 // SAFETY: the user data (the log's Arc) is kept in `self` until after the
                 // messenger is destroyed in Drop.
-                let messenger = unsafe { di.create_debug_utils_messenger(&info, None) }
-                    .call("vkCreateDebugUtilsMessengerEXT")?;
+                let messenger =
+                    unsafe { di.create_debug_utils_messenger(&info, None) }.call("vkCreateDebugUtilsMessengerEXT")?;
                 (Some(di), messenger, Some(log))
             } else {
                 (Some(di), vk::DebugUtilsMessengerEXT::null(), None)
@@ -275,8 +236,7 @@ impl Context {
         // SAFETY: the family was requested with one queue at creation.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
         // SAFETY: limits are plain data of a valid physical device.
-        let limits =
-            unsafe { instance.get_physical_device_properties(cand.physical_device) }.limits;
+        let limits = unsafe { instance.get_physical_device_properties(cand.physical_device) }.limits;
         let memory = match GpuMemory::new(&instance, &device, cand.physical_device) {
             Ok(m) => Arc::new(m),
             Err(e) => {
@@ -285,9 +245,7 @@ impl Context {
                 return Err(cleanup_instance(e));
             }
         };
-        let debug_utils = debug_instance
-            .as_ref()
-            .map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
+        let debug_utils = debug_instance.as_ref().map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
         Ok(Context {
             entry,
             instance,
@@ -307,18 +265,12 @@ impl Context {
 
     /// Validation messages collected so far (empty when validation is off).
     pub fn validation_messages(&self) -> Vec<String> {
-        self.validation
-            .as_ref()
-            .map(|v| v.messages())
-            .unwrap_or_default()
+        self.validation.as_ref().map(|v| v.messages()).unwrap_or_default()
     }
 
     /// Takes the validation messages collected so far.
     pub fn take_validation_messages(&self) -> Vec<String> {
-        self.validation
-            .as_ref()
-            .map(|v| v.take())
-            .unwrap_or_default()
+        self.validation.as_ref().map(|v| v.take()).unwrap_or_default()
     }
 
     pub fn validation_enabled(&self) -> bool {
@@ -333,9 +285,7 @@ impl Context {
     pub fn set_name<H: vk::Handle>(&self, handle: H, name: &str) {
         if let Some(du) = &self.debug_utils {
             let Ok(name) = CString::new(name) else { return };
-            let info = vk::DebugUtilsObjectNameInfoEXT::default()
-                .object_handle(handle)
-                .object_name(&name);
+            let info = vk::DebugUtilsObjectNameInfoEXT::default().object_handle(handle).object_name(&name);
             // SAFETY: the handle belongs to this device; naming has no other effect.
             let _ = unsafe { du.set_debug_utils_object_name(&info) };
         }
@@ -349,10 +299,7 @@ impl Context {
     /// Whether `format` supports `features` with optimal tiling.
     pub fn format_supports(&self, format: vk::Format, features: vk::FormatFeatureFlags) -> bool {
         // SAFETY: a query on a valid physical device.
-        let props = unsafe {
-            self.instance
-                .get_physical_device_format_properties(self.physical_device, format)
-        };
+        let props = unsafe { self.instance.get_physical_device_format_properties(self.physical_device, format) };
         props.optimal_tiling_features.contains(features)
     }
 }
@@ -365,11 +312,7 @@ fn choose(all: &[Candidate], wanted: Option<&str>) -> Result<usize, VkError> {
         let infos: Vec<DeviceInfo> = all.iter().map(|c| c.info.clone()).collect();
         return device_info::pick(w, &infos).ok_or_else(|| VkError::DeviceNotFound {
             wanted: w.to_string(),
-            available: infos
-                .iter()
-                .map(|d| format!("{}: {}", d.index, d.name))
-                .collect::<Vec<_>>()
-                .join(", "),
+            available: infos.iter().map(|d| format!("{}: {}", d.index, d.name)).collect::<Vec<_>>().join(", "),
         });
     }
     let best = (0..all.len())
@@ -379,16 +322,10 @@ fn choose(all: &[Candidate], wanted: Option<&str>) -> Result<usize, VkError> {
     Ok(best)
 }
 
-fn create_device(
-    instance: &ash::Instance,
-    cand: &Candidate,
-    queue_family: u32,
-) -> Result<ash::Device, VkError> {
+fn create_device(instance: &ash::Instance, cand: &Candidate, queue_family: u32) -> Result<ash::Device, VkError> {
     let mut have12 = vk::PhysicalDeviceVulkan12Features::default();
     let mut have13 = vk::PhysicalDeviceVulkan13Features::default();
-    let mut have = vk::PhysicalDeviceFeatures2::default()
-        .push_next(&mut have12)
-        .push_next(&mut have13);
+    let mut have = vk::PhysicalDeviceFeatures2::default().push_next(&mut have12).push_next(&mut have13);
     // SAFETY: the chained structs live on the stack for the call.
     unsafe { instance.get_physical_device_features2(cand.physical_device, &mut have) };
     let extended_formats = have.features.shader_storage_image_extended_formats;
@@ -406,21 +343,14 @@ fn create_device(
         missing.push("shaderStorageImageExtendedFormats");
     }
     if !missing.is_empty() {
-        return Err(VkError::MissingFeature {
-            device: cand.info.name.clone(),
-            missing: missing.join(", "),
-        });
+        return Err(VkError::MissingFeature { device: cand.info.name.clone(), missing: missing.join(", ") });
     }
-    let mut want12 = vk::PhysicalDeviceVulkan12Features::default()
-        .host_query_reset(true)
-        .timeline_semaphore(true);
+    let mut want12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true).timeline_semaphore(true);
     let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true);
     // r16ui / rgba16f storage images of the IPSVI cache.
     let core = vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true);
     let priorities = [1.0f32];
-    let queues = [vk::DeviceQueueCreateInfo::default()
-        .queue_family_index(queue_family)
-        .queue_priorities(&priorities)];
+    let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
     let info = vk::DeviceCreateInfo::default()
         .queue_create_infos(&queues)
         .enabled_features(&core)

@@ -46,28 +46,16 @@ impl DescriptorAllocator {
             let ty = kind.vk_type();
             match sizes.iter_mut().find(|s| s.ty == ty) {
                 Some(s) => s.descriptor_count += max_sets,
-                None => sizes.push(vk::DescriptorPoolSize {
-                    ty,
-                    descriptor_count: max_sets,
-                }),
+                None => sizes.push(vk::DescriptorPoolSize { ty, descriptor_count: max_sets }),
             }
         }
         if sizes.is_empty() {
-            sizes.push(vk::DescriptorPoolSize {
-                ty: vk::DescriptorType::STORAGE_BUFFER,
-                descriptor_count: 1,
-            });
+            sizes.push(vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: 1 });
         }
-        let info = vk::DescriptorPoolCreateInfo::default()
-            .max_sets(max_sets)
-            .pool_sizes(&sizes);
+        let info = vk::DescriptorPoolCreateInfo::default().max_sets(max_sets).pool_sizes(&sizes);
         // SAFETY: valid device and create info.
-        let pool = unsafe { ctx.device.create_descriptor_pool(&info, None) }
-            .call("vkCreateDescriptorPool")?;
-        Ok(DescriptorAllocator {
-            pool,
-            device: ctx.device.clone(),
-        })
+        let pool = unsafe { ctx.device.create_descriptor_pool(&info, None) }.call("vkCreateDescriptorPool")?;
+        Ok(DescriptorAllocator { pool, device: ctx.device.clone() })
     }
 
     pub fn create_set(
@@ -83,12 +71,9 @@ impl DescriptorAllocator {
             });
         }
         let layouts = [layout];
-        let alloc = vk::DescriptorSetAllocateInfo::default()
-            .descriptor_pool(self.pool)
-            .set_layouts(&layouts);
+        let alloc = vk::DescriptorSetAllocateInfo::default().descriptor_pool(self.pool).set_layouts(&layouts);
         // SAFETY: the pool was sized for max_sets sets of this layout.
-        let set = unsafe { self.device.allocate_descriptor_sets(&alloc) }
-            .call("vkAllocateDescriptorSets")?[0];
+        let set = unsafe { self.device.allocate_descriptor_sets(&alloc) }.call("vkAllocateDescriptorSets")?[0];
         let mut image_infos = Vec::with_capacity(resources.len());
         let mut buffer_infos = Vec::with_capacity(resources.len());
         for (kind, res) in kinds.iter().zip(resources) {
@@ -106,21 +91,15 @@ impl DescriptorAllocator {
                 });
             }
             match res {
-                Resource::StorageImage(img) => {
-                    image_infos.push([vk::DescriptorImageInfo::default()
-                        .image_view(img.view)
-                        .image_layout(vk::ImageLayout::GENERAL)])
-                }
-                Resource::SampledImage(img, s) => {
-                    image_infos.push([vk::DescriptorImageInfo::default()
-                        .image_view(img.view)
-                        .sampler(s.raw)
-                        .image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)])
-                }
+                Resource::StorageImage(img) => image_infos.push([vk::DescriptorImageInfo::default()
+                    .image_view(img.view)
+                    .image_layout(vk::ImageLayout::GENERAL)]),
+                Resource::SampledImage(img, s) => image_infos.push([vk::DescriptorImageInfo::default()
+                    .image_view(img.view)
+                    .sampler(s.raw)
+                    .image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)]),
                 Resource::StorageBuffer(b) | Resource::UniformBuffer(b) => {
-                    buffer_infos.push([vk::DescriptorBufferInfo::default()
-                        .buffer(b.raw)
-                        .range(vk::WHOLE_SIZE)])
+                    buffer_infos.push([vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)])
                 }
             }
         }

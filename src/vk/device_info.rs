@@ -17,12 +17,7 @@ pub struct DeviceInfo {
 }
 
 pub fn version_string(v: u32) -> String {
-    format!(
-        "{}.{}.{}",
-        vk::api_version_major(v),
-        vk::api_version_minor(v),
-        vk::api_version_patch(v)
-    )
+    format!("{}.{}.{}", vk::api_version_major(v), vk::api_version_minor(v), vk::api_version_patch(v))
 }
 
 pub fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
@@ -53,7 +48,5 @@ pub fn pick(wanted: &str, devices: &[DeviceInfo]) -> Option<usize> {
         return devices.iter().position(|d| d.index == i);
     }
     let w = wanted.to_lowercase();
-    devices
-        .iter()
-        .position(|d| d.name.to_lowercase().contains(&w))
+    devices.iter().position(|d| d.name.to_lowercase().contains(&w))
 }

@@ -4,13 +4,12 @@ use ash::vk;
 
 #[derive(Debug, thiserror::Error)]
 pub enum VkError {
-    #[error("cannot load the Vulkan loader (libvulkan.so.1): {0}; install libvulkan1 and a driver (tools/setup.sh does)")]
+    #[error(
+        "cannot load the Vulkan loader (libvulkan.so.1): {0}; install libvulkan1 and a driver (tools/setup.sh does)"
+    )]
     Loader(String),
     #[error("{call} failed: {result:?}")]
-    Call {
-        call: &'static str,
-        result: vk::Result,
-    },
+    Call { call: &'static str, result: vk::Result },
     #[error("no Vulkan device found; install mesa-vulkan-drivers (lavapipe) or a GPU driver")]
     NoDevice,
     #[error("no Vulkan device matches {wanted:?}; available: {available}")]
@@ -22,11 +21,7 @@ pub enum VkError {
     #[error("memory allocation for {name} failed: {message}")]
     Allocation { name: String, message: String },
     #[error("no {kind} format among {candidates} supports {usage} on this device")]
-    NoFormat {
-        kind: &'static str,
-        candidates: String,
-        usage: &'static str,
-    },
+    NoFormat { kind: &'static str, candidates: String, usage: &'static str },
     #[error("profiler misuse: {0}")]
     Profiler(String),
 }

@@ -3,9 +3,7 @@
 
 use super::error::VkError;
 use ash::vk;
-use gpu_allocator::vulkan::{
-    Allocation, AllocationCreateDesc, AllocationScheme, Allocator, AllocatorCreateDesc,
-};
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme, Allocator, AllocatorCreateDesc};
 use gpu_allocator::MemoryLocation;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Mutex;
@@ -33,10 +31,7 @@ impl GpuMemory {
             buffer_device_address: false,
             allocation_sizes: Default::default(),
         })
-        .map_err(|e| VkError::Allocation {
-            name: "allocator".into(),
-            message: e.to_string(),
-        })?;
+        .map_err(|e| VkError::Allocation { name: "allocator".into(), message: e.to_string() })?;
         Ok(GpuMemory {
             device: device.clone(),
             allocator: Mutex::new(Some(allocator)),
@@ -53,14 +48,13 @@ impl GpuMemory {
         linear: bool,
         tracked: bool,
     ) -> Result<Allocation, VkError> {
-        let mut guard = self.allocator.lock().map_err(|_| VkError::Allocation {
-            name: name.into(),
-            message: "allocator lock poisoned".into(),
-        })?;
-        let allocator = guard.as_mut().ok_or_else(|| VkError::Allocation {
-            name: name.into(),
-            message: "allocator already destroyed".into(),
-        })?;
+        let mut guard = self
+            .allocator
+            .lock()
+            .map_err(|_| VkError::Allocation { name: name.into(), message: "allocator lock poisoned".into() })?;
+        let allocator = guard
+            .as_mut()
+            .ok_or_else(|| VkError::Allocation { name: name.into(), message: "allocator already destroyed".into() })?;
         let allocation = allocator
             .allocate(&AllocationCreateDesc {
                 name,
@@ -69,15 +63,9 @@ impl GpuMemory {
                 linear,
                 allocation_scheme: AllocationScheme::GpuAllocatorManaged,
             })
-            .map_err(|e| VkError::Allocation {
-                name: name.into(),
-                message: e.to_string(),
-            })?;
+            .map_err(|e| VkError::Allocation { name: name.into(), message: e.to_string() })?;
         if tracked {
-            let now = self
-                .device_local_bytes
-                .fetch_add(requirements.size, Ordering::Relaxed)
-                + requirements.size;
+            let now = self.device_local_bytes.fetch_add(requirements.size, Ordering::Relaxed) + requirements.size;
             self.device_local_peak.fetch_max(now, Ordering::Relaxed);
         }
         Ok(allocation)
@@ -85,8 +73,7 @@ impl GpuMemory {
 
     pub fn free(&self, allocation: Allocation, tracked: bool) {
         if tracked {
-            self.device_local_bytes
-                .fetch_sub(allocation.size(), Ordering::Relaxed);
+            self.device_local_bytes.fetch_sub(allocation.size(), Ordering::Relaxed);
         }
         if let Ok(mut guard) = self.allocator.lock() {
             if let Some(allocator) = guard.as_mut() {
@@ -107,8 +94,7 @@ impl GpuMemory {
     }
 
     pub fn reset_peak(&self) {
-        self.device_local_peak
-            .store(self.device_local_bytes(), Ordering::Relaxed);
+        self.device_local_peak.store(self.device_local_bytes(), Ordering::Relaxed);
     }
 
     /// Drops the allocator; called by the context before it destroys the device.

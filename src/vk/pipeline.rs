@@ -35,15 +35,11 @@ pub struct ComputePipeline {
 impl ComputePipeline {
     pub fn new(ctx: &Context, desc: &ComputePipelineDesc) -> Result<ComputePipeline, VkError> {
         let device = &ctx.device;
-        let words =
-            ash::util::read_spv(&mut Cursor::new(desc.spirv)).map_err(|_| VkError::Call {
-                call: "read_spv",
-                result: vk::Result::ERROR_INVALID_SHADER_NV,
-            })?;
+        let words = ash::util::read_spv(&mut Cursor::new(desc.spirv))
+            .map_err(|_| VkError::Call { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
         let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
         // SAFETY: words is valid SPIR-V compiled by build.rs.
-        let module = unsafe { device.create_shader_module(&module_info, None) }
-            .call("vkCreateShaderModule")?;
+        let module = unsafe { device.create_shader_module(&module_info, None) }.call("vkCreateShaderModule")?;
 
         let layout_bindings: Vec<vk::DescriptorSetLayoutBinding> = desc
             .bindings
@@ -57,8 +53,7 @@ impl ComputePipeline {
                     .stage_flags(vk::ShaderStageFlags::COMPUTE)
             })
             .collect();
-        let set_layout_info =
-            vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings);
+        let set_layout_info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings);
         // SAFETY: valid device and create info.
         let set_layout = unsafe { device.create_descriptor_set_layout(&set_layout_info, None) }
             .call("vkCreateDescriptorSetLayout")?;
@@ -72,44 +67,27 @@ impl ComputePipeline {
             layout_info = layout_info.push_constant_ranges(&ranges);
         }
         // SAFETY: valid device and create info.
-        let layout = unsafe { device.create_pipeline_layout(&layout_info, None) }
-            .call("vkCreatePipelineLayout")?;
+        let layout = unsafe { device.create_pipeline_layout(&layout_info, None) }.call("vkCreatePipelineLayout")?;
 
         let entries: Vec<vk::SpecializationMapEntry> = desc
             .specialization
             .iter()
             .enumerate()
-            .map(|(i, (id, _))| vk::SpecializationMapEntry {
-                constant_id: *id,
-                offset: (i * 4) as u32,
-                size: 4,
-            })
+            .map(|(i, (id, _))| vk::SpecializationMapEntry { constant_id: *id, offset: (i * 4) as u32, size: 4 })
             .collect();
-        let data: Vec<u8> = desc
-            .specialization
-            .iter()
-            .flat_map(|(_, v)| v.to_ne_bytes())
-            .collect();
-        let spec = vk::SpecializationInfo::default()
-            .map_entries(&entries)
-            .data(&data);
+        let data: Vec<u8> = desc.specialization.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
+        let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .stage(vk::ShaderStageFlags::COMPUTE)
             .module(module)
             .name(c"main")
             .specialization_info(&spec);
-        let info = [vk::ComputePipelineCreateInfo::default()
-            .stage(stage)
-            .layout(layout)];
+        let info = [vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout)];
         // SAFETY: module and layout are valid; the shader matches the layout.
-        let created =
-            unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), &info, None) };
+        let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), &info, None) };
         // SAFETY: the module is no longer needed once pipelines are created.
         unsafe { device.destroy_shader_module(module, None) };
-        let raw = created.map_err(|(_, r)| VkError::Call {
-            call: "vkCreateComputePipelines",
-            result: r,
-        })?[0];
+        let raw = created.map_err(|(_, r)| VkError::Call { call: "vkCreateComputePipelines", result: r })?[0];
         ctx.set_name(raw, desc.name);
         let descriptors = DescriptorAllocator::new(ctx, desc.bindings, desc.max_sets.max(1))?;
         Ok(ComputePipeline {
@@ -125,12 +103,8 @@ impl ComputePipeline {
     }
 
     /// Allocates a descriptor set of this pipeline's layout and writes `resources`.
-    pub fn create_set(
-        &mut self,
-        resources: &[super::descriptors::Resource],
-    ) -> Result<vk::DescriptorSet, VkError> {
-        self.descriptors
-            .create_set(self.set_layout, &self.bindings, resources)
+    pub fn create_set(&mut self, resources: &[super::descriptors::Resource]) -> Result<vk::DescriptorSet, VkError> {
+        self.descriptors.create_set(self.set_layout, &self.bindings, resources)
     }
 }
 
@@ -140,8 +114,7 @@ impl Drop for ComputePipeline {
         unsafe {
             self.device.destroy_pipeline(self.raw, None);
             self.device.destroy_pipeline_layout(self.layout, None);
-            self.device
-                .destroy_descriptor_set_layout(self.set_layout, None);
+            self.device.destroy_descriptor_set_layout(self.set_layout, None);
         }
     }
 }

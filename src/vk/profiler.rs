@@ -91,23 +91,16 @@ impl Profiler {
         let timestamps = ctx.timestamps_supported();
         let queries = capacity.max(1) * 2;
         let pool = if timestamps {
-            let info = vk::QueryPoolCreateInfo::default()
-                .query_type(vk::QueryType::TIMESTAMP)
-                .query_count(queries);
+            let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(queries);
             // SAFETY: valid device and create info.
-            let pool =
-                unsafe { ctx.device.create_query_pool(&info, None) }.call("vkCreateQueryPool")?;
+            let pool = unsafe { ctx.device.create_query_pool(&info, None) }.call("vkCreateQueryPool")?;
             ctx.set_name(pool, "profiler timestamps");
             pool
         } else {
             vk::QueryPool::null()
         };
         let bits = ctx.info.timestamp_valid_bits;
-        let valid_mask = if bits >= 64 {
-            u64::MAX
-        } else {
-            (1u64 << bits) - 1
-        };
+        let valid_mask = if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 };
         let mut p = Profiler {
             pool,
             capacity: queries,
@@ -165,14 +158,7 @@ impl Profiler {
         self.next_query += 1;
         // SAFETY: q is a reset query of our pool; cb is recording. ALL_COMMANDS waits
         // for earlier work, so a scope spans exactly the commands inside it.
-        unsafe {
-            self.device.cmd_write_timestamp2(
-                rec.cb,
-                vk::PipelineStageFlags2::ALL_COMMANDS,
-                self.pool,
-                q,
-            )
-        };
+        unsafe { self.device.cmd_write_timestamp2(rec.cb, vk::PipelineStageFlags2::ALL_COMMANDS, self.pool, q) };
         Ok(Some(q))
     }
 
@@ -186,12 +172,7 @@ impl Profiler {
         self.begin_scope(rec, name, true)
     }
 
-    fn begin_scope(
-        &mut self,
-        rec: &Recorder,
-        name: &str,
-        detail: bool,
-    ) -> Result<ScopeToken, VkError> {
+    fn begin_scope(&mut self, rec: &Recorder, name: &str, detail: bool) -> Result<ScopeToken, VkError> {
         let active = !detail || self.detail;
         let parent = self.stack.last().copied();
         let depth = self.stack.len() as u32;
@@ -220,10 +201,7 @@ impl Profiler {
             _ => {
                 return Err(VkError::Profiler(format!(
                     "scope '{}' ended out of order (innermost open scope: {:?})",
-                    self.scopes
-                        .get(token.index)
-                        .map(|s| s.name.as_str())
-                        .unwrap_or("?"),
+                    self.scopes.get(token.index).map(|s| s.name.as_str()).unwrap_or("?"),
                     self.stack.last().map(|&i| self.scopes[i].name.clone())
                 )))
             }
@@ -241,10 +219,7 @@ impl Profiler {
     /// builds the report.
     pub fn resolve(&mut self, gpu_memory_bytes: u64) -> Result<ProfileReport, VkError> {
         if let Some(&open) = self.stack.last() {
-            return Err(VkError::Profiler(format!(
-                "scope '{}' was never ended",
-                self.scopes[open].name
-            )));
+            return Err(VkError::Profiler(format!("scope '{}' was never ended", self.scopes[open].name)));
         }
         let mut values = vec![0u64; self.next_query as usize];
         if self.timestamps && self.next_query > 0 {
@@ -272,23 +247,13 @@ impl Profiler {
                     let b = values[b as usize] & self.valid_mask;
                     let e = values[e as usize] & self.valid_mask;
                     // Wrapping subtraction in the valid bits handles one counter wrap.
-                    (
-                        to_ns(b.wrapping_sub(origin) & self.valid_mask),
-                        to_ns(e.wrapping_sub(b) & self.valid_mask),
-                    )
+                    (to_ns(b.wrapping_sub(origin) & self.valid_mask), to_ns(e.wrapping_sub(b) & self.valid_mask))
                 }
                 _ => (0.0, 0.0),
             };
             let parent = s.parent.and_then(|p| index_map[p]);
             let path = match parent {
-                Some(p) => format!(
-                    "{}/{}",
-                    scopes
-                        .get(p)
-                        .map(|x: &ScopeTiming| x.path.as_str())
-                        .unwrap_or(""),
-                    s.name
-                ),
+                Some(p) => format!("{}/{}", scopes.get(p).map(|x: &ScopeTiming| x.path.as_str()).unwrap_or(""), s.name),
                 None => s.name.clone(),
             };
             index_map[i] = Some(scopes.len());
@@ -306,23 +271,13 @@ impl Profiler {
         for s in &scopes {
             let e = sums.entry(s.path.clone()).or_insert_with(|| {
                 order.push(s.path.clone());
-                PassTiming {
-                    name: s.name.clone(),
-                    path: s.path.clone(),
-                    depth: s.depth,
-                    gpu_ms: 0.0,
-                    count: 0,
-                }
+                PassTiming { name: s.name.clone(), path: s.path.clone(), depth: s.depth, gpu_ms: 0.0, count: 0 }
             });
             e.gpu_ms += s.duration_ns * 1e-6;
             e.count += 1;
         }
         let passes: Vec<PassTiming> = order.iter().filter_map(|p| sums.remove(p)).collect();
-        let gpu_ms_total = scopes
-            .iter()
-            .filter(|s| s.parent.is_none())
-            .map(|s| s.duration_ns * 1e-6)
-            .sum();
+        let gpu_ms_total = scopes.iter().filter(|s| s.parent.is_none()).map(|s| s.duration_ns * 1e-6).sum();
         Ok(ProfileReport {
             device: self.device_name.clone(),
             timestamps_supported: self.timestamps,
@@ -346,32 +301,24 @@ impl Drop for Profiler {
 impl ProfileReport {
     /// GPU time of all passes with this name (any depth), in ms.
     pub fn pass_ms(&self, name: &str) -> f64 {
-        self.passes
-            .iter()
-            .filter(|p| p.name == name)
-            .map(|p| p.gpu_ms)
-            .sum()
+        self.passes.iter().filter(|p| p.name == name).map(|p| p.gpu_ms).sum()
     }
 
     /// The table printed on stdout.
     pub fn table(&self) -> String {
         let mut out = String::new();
         if !self.timestamps_supported {
-            out.push_str(&format!("GPU profile ({}): timestamps are not supported on this queue; no GPU times measured\n", self.device));
+            out.push_str(&format!(
+                "GPU profile ({}): timestamps are not supported on this queue; no GPU times measured\n",
+                self.device
+            ));
             return out;
         }
         out.push_str(&format!("GPU profile ({})\n", self.device));
-        out.push_str(&format!(
-            "{:<44} {:>7} {:>11} {:>11} {:>7}\n",
-            "pass", "count", "total ms", "mean ms", "%"
-        ));
+        out.push_str(&format!("{:<44} {:>7} {:>11} {:>11} {:>7}\n", "pass", "count", "total ms", "mean ms", "%"));
         for p in &self.passes {
             let name = format!("{}{}", "  ".repeat(p.depth as usize), p.name);
-            let pct = if self.gpu_ms_total > 0.0 {
-                100.0 * p.gpu_ms / self.gpu_ms_total
-            } else {
-                0.0
-            };
+            let pct = if self.gpu_ms_total > 0.0 { 100.0 * p.gpu_ms / self.gpu_ms_total } else { 0.0 };
             out.push_str(&format!(
                 "{:<44} {:>7} {:>11.3} {:>11.4} {:>6.1}%\n",
                 name,
@@ -381,10 +328,7 @@ impl ProfileReport {
                 pct
             ));
         }
-        out.push_str(&format!(
-            "{:<44} {:>7} {:>11.3}\n",
-            "total", "", self.gpu_ms_total
-        ));
+        out.push_str(&format!("{:<44} {:>7} {:>11.3}\n", "total", "", self.gpu_ms_total));
         out.push_str(&format!(
             "GPU memory held by resources: {:.2} MiB\n",
             self.gpu_memory_bytes as f64 / (1024.0 * 1024.0)

@@ -64,18 +64,13 @@ impl Buffer {
         location: MemoryLocation,
         tracked: bool,
     ) -> Result<Buffer, VkError> {
-        let info = vk::BufferCreateInfo::default()
-            .size(size.max(4))
-            .usage(usage)
-            .sharing_mode(vk::SharingMode::EXCLUSIVE);
+        let info =
+            vk::BufferCreateInfo::default().size(size.max(4)).usage(usage).sharing_mode(vk::SharingMode::EXCLUSIVE);
         // SAFETY: valid device and create info.
         let raw = unsafe { ctx.device.create_buffer(&info, None) }.call("vkCreateBuffer")?;
         // SAFETY: raw was just created on this device.
         let requirements = unsafe { ctx.device.get_buffer_memory_requirements(raw) };
-        let allocation = match ctx
-            .memory
-            .allocate(name, requirements, location, true, tracked)
-        {
+        let allocation = match ctx.memory.allocate(name, requirements, location, true, tracked) {
             Ok(a) => a,
             Err(e) => {
                 // SAFETY: the buffer is unused and unbound.
@@ -83,17 +78,10 @@ impl Buffer {
                 return Err(e);
             }
         };
-        let buffer = Buffer {
-            raw,
-            size,
-            tracked,
-            allocation: Some(allocation),
-            memory: ctx.memory.clone(),
-        };
+        let buffer = Buffer { raw, size, tracked, allocation: Some(allocation), memory: ctx.memory.clone() };
         let a = buffer.allocation.as_ref().expect("just set");
         // SAFETY: the allocation satisfies the buffer's requirements and is unbound.
-        unsafe { ctx.device.bind_buffer_memory(raw, a.memory(), a.offset()) }
-            .call("vkBindBufferMemory")?;
+        unsafe { ctx.device.bind_buffer_memory(raw, a.memory(), a.offset()) }.call("vkBindBufferMemory")?;
         ctx.set_name(raw, name);
         Ok(buffer)
     }
@@ -106,26 +94,16 @@ impl Buffer {
         usage: vk::BufferUsageFlags,
     ) -> Result<Buffer, VkError> {
         let bytes = as_bytes(data);
-        let mut b = Buffer::new(
-            ctx,
-            name,
-            bytes.len() as u64,
-            usage,
-            MemoryLocation::CpuToGpu,
-        )?;
+        let mut b = Buffer::new(ctx, name, bytes.len() as u64, usage, MemoryLocation::CpuToGpu)?;
         b.write_bytes(0, bytes)?;
         Ok(b)
     }
 
     pub fn write_bytes(&mut self, offset: usize, bytes: &[u8]) -> Result<(), VkError> {
-        let slice = self
-            .allocation
-            .as_mut()
-            .and_then(|a| a.mapped_slice_mut())
-            .ok_or_else(|| VkError::Allocation {
-                name: "buffer write".into(),
-                message: "buffer is not host visible".into(),
-            })?;
+        let slice = self.allocation.as_mut().and_then(|a| a.mapped_slice_mut()).ok_or_else(|| VkError::Allocation {
+            name: "buffer write".into(),
+            message: "buffer is not host visible".into(),
+        })?;
         let end = offset + bytes.len();
         if end > slice.len() {
             return Err(VkError::Allocation {
@@ -143,14 +121,10 @@ impl Buffer {
 
     /// Reads `count` values of `T` from a host-visible buffer.
     pub fn read<T: GpuData + Default>(&self, count: usize) -> Result<Vec<T>, VkError> {
-        let slice = self
-            .allocation
-            .as_ref()
-            .and_then(|a| a.mapped_slice())
-            .ok_or_else(|| VkError::Allocation {
-                name: "buffer read".into(),
-                message: "buffer is not host visible".into(),
-            })?;
+        let slice = self.allocation.as_ref().and_then(|a| a.mapped_slice()).ok_or_else(|| VkError::Allocation {
+            name: "buffer read".into(),
+            message: "buffer is not host visible".into(),
+        })?;
         let bytes = count * std::mem::size_of::<T>();
         if bytes > slice.len() {
             return Err(VkError::Allocation {
@@ -161,9 +135,7 @@ impl Buffer {
         let mut out = vec![T::default(); count];
         // SAFETY: out has room for `bytes` bytes; GpuData types accept any bit pattern
         // of their size (plain numbers).
-        unsafe {
-            std::ptr::copy_nonoverlapping(slice.as_ptr(), out.as_mut_ptr() as *mut u8, bytes)
-        };
+        unsafe { std::ptr::copy_nonoverlapping(slice.as_ptr(), out.as_mut_ptr() as *mut u8, bytes) };
         Ok(out)
     }
 }
@@ -212,24 +184,17 @@ impl Image {
         let raw = unsafe { ctx.device.create_image(&info, None) }.call("vkCreateImage")?;
         // SAFETY: raw was just created on this device.
         let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
-        let allocation =
-            match ctx
-                .memory
-                .allocate(name, requirements, MemoryLocation::GpuOnly, false, true)
-            {
-                Ok(a) => a,
-                Err(e) => {
-                    // SAFETY: the image is unused and unbound.
-                    unsafe { ctx.device.destroy_image(raw, None) };
-                    return Err(e);
-                }
-            };
+        let allocation = match ctx.memory.allocate(name, requirements, MemoryLocation::GpuOnly, false, true) {
+            Ok(a) => a,
+            Err(e) => {
+                // SAFETY: the image is unused and unbound.
+                unsafe { ctx.device.destroy_image(raw, None) };
+                return Err(e);
+            }
+        };
         // SAFETY: the allocation satisfies the image's requirements and is unbound.
-        if let Err(e) = unsafe {
-            ctx.device
-                .bind_image_memory(raw, allocation.memory(), allocation.offset())
-        }
-        .call("vkBindImageMemory")
+        if let Err(e) = unsafe { ctx.device.bind_image_memory(raw, allocation.memory(), allocation.offset()) }
+            .call("vkBindImageMemory")
         {
             // SAFETY: the image is unused.
             unsafe { ctx.device.destroy_image(raw, None) };
@@ -247,9 +212,7 @@ impl Image {
             .format(desc.format)
             .subresource_range(color_range());
         // SAFETY: the image is bound to memory and the view matches its type and format.
-        let view = match unsafe { ctx.device.create_image_view(&view_info, None) }
-            .call("vkCreateImageView")
-        {
+        let view = match unsafe { ctx.device.create_image_view(&view_info, None) }.call("vkCreateImageView") {
             Ok(v) => v,
             Err(e) => {
                 // SAFETY: the image is unused.
@@ -260,13 +223,7 @@ impl Image {
         };
         ctx.set_name(raw, name);
         ctx.set_name(view, name);
-        Ok(Image {
-            raw,
-            view,
-            desc,
-            allocation: Some(allocation),
-            memory: ctx.memory.clone(),
-        })
+        Ok(Image { raw, view, desc, allocation: Some(allocation), memory: ctx.memory.clone() })
     }
 
     pub fn extent(&self) -> vk::Extent3D {
@@ -288,16 +245,11 @@ impl Drop for Image {
 }
 
 pub fn color_range() -> vk::ImageSubresourceRange {
-    vk::ImageSubresourceRange::default()
-        .aspect_mask(vk::ImageAspectFlags::COLOR)
-        .level_count(1)
-        .layer_count(1)
+    vk::ImageSubresourceRange::default().aspect_mask(vk::ImageAspectFlags::COLOR).level_count(1).layer_count(1)
 }
 
 pub fn color_layers() -> vk::ImageSubresourceLayers {
-    vk::ImageSubresourceLayers::default()
-        .aspect_mask(vk::ImageAspectFlags::COLOR)
-        .layer_count(1)
+    vk::ImageSubresourceLayers::default().aspect_mask(vk::ImageAspectFlags::COLOR).layer_count(1)
 }
 
 /// Linear filtering, clamp to edge, normalized coordinates.
@@ -319,10 +271,7 @@ impl Sampler {
         // SAFETY: valid device and create info.
         let raw = unsafe { ctx.device.create_sampler(&info, None) }.call("vkCreateSampler")?;
         ctx.set_name(raw, name);
-        Ok(Sampler {
-            raw,
-            memory: ctx.memory.clone(),
-        })
+        Ok(Sampler { raw, memory: ctx.memory.clone() })
     }
 }
 

@@ -18,10 +18,7 @@ impl ValidationLog {
 
     /// Takes the messages collected so far, leaving the log empty.
     pub fn take(&self) -> Vec<String> {
-        self.messages
-            .lock()
-            .map(|mut m| std::mem::take(&mut *m))
-            .unwrap_or_default()
+        self.messages.lock().map(|mut m| std::mem::take(&mut *m)).unwrap_or_default()
     }
 
     /// Pointer handed to the messenger as user data; valid while `self` lives
@@ -53,9 +50,7 @@ pub unsafe extern "system" fn messenger_callback(
         let text = if data.is_null() || (*data).p_message.is_null() {
             "<no message>".to_string()
         } else {
-            CStr::from_ptr((*data).p_message)
-                .to_string_lossy()
-                .into_owned()
+            CStr::from_ptr((*data).p_message).to_string_lossy().into_owned()
         };
         (text, &*(user_data as *const Mutex<Vec<String>>))
     };

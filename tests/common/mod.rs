@@ -8,22 +8,14 @@ use sweeplab::vk::{Context, ContextOptions};
 
 /// A context with validation and synchronization validation on.
 pub fn validated_context() -> Context {
-    Context::new(&ContextOptions {
-        device: std::env::var("SWEEPLAB_DEVICE").ok(),
-        validate: true,
-    })
-    .expect("Vulkan context with validation")
+    Context::new(&ContextOptions { device: std::env::var("SWEEPLAB_DEVICE").ok(), validate: true })
+        .expect("Vulkan context with validation")
 }
 
 /// Fails the test with every message the validation layer reported.
 pub fn assert_validation_clean(ctx: &Context) {
     let messages = ctx.take_validation_messages();
-    assert!(
-        messages.is_empty(),
-        "validation reported {} message(s):\n{}",
-        messages.len(),
-        messages.join("\n")
-    );
+    assert!(messages.is_empty(), "validation reported {} message(s):\n{}", messages.len(), messages.join("\n"));
 }
 
 /// A sphere of radius `r` (in voxels) in an n^3 U8 volume, with a soft edge.
@@ -52,27 +44,12 @@ pub fn scene_with(volume: Volume, lights: Vec<Light>, width: u32, height: u32) -
         volume,
         transfer: TransferFunction {
             points: vec![
-                ControlPoint {
-                    value: 0.0,
-                    rgba: [0.0, 0.0, 0.0, 0.0],
-                },
-                ControlPoint {
-                    value: 0.2,
-                    rgba: [0.9, 0.6, 0.3, 0.0],
-                },
-                ControlPoint {
-                    value: 1.0,
-                    rgba: [0.9, 0.8, 0.7, 0.3],
-                },
+                ControlPoint { value: 0.0, rgba: [0.0, 0.0, 0.0, 0.0] },
+                ControlPoint { value: 0.2, rgba: [0.9, 0.6, 0.3, 0.0] },
+                ControlPoint { value: 1.0, rgba: [0.9, 0.8, 0.7, 0.3] },
             ],
         },
-        camera: Camera::orbit(
-            Vec3::ZERO,
-            2.5,
-            30.0,
-            20.0,
-            Projection::Perspective { fov_y_deg: 30.0 },
-        ),
+        camera: Camera::orbit(Vec3::ZERO, 2.5, 30.0, 20.0, Projection::Perspective { fov_y_deg: 30.0 }),
         lights,
         render: RenderSettings {
             width,
@@ -87,21 +64,11 @@ pub fn scene_with(volume: Volume, lights: Vec<Light>, width: u32, height: u32) -
             shadow_step_voxels: 0.5,
             min_transmittance: 1e-4,
         },
-        phong: PhongSettings {
-            ambient: 0.2,
-            diffuse: 0.8,
-            specular: 0.3,
-            shininess: 32.0,
-        },
+        phong: PhongSettings { ambient: 0.2, diffuse: 0.8, specular: 0.3, shininess: 32.0 },
         techniques: toml::Table::new(),
     }
 }
 
 pub fn directional(direction: Vec3, intensity: f32) -> Light {
-    Light {
-        kind: LightKind::Directional { direction },
-        color: Vec3::ONE,
-        intensity,
-        falloff: Falloff::None,
-    }
+    Light { kind: LightKind::Directional { direction }, color: Vec3::ONE, intensity, falloff: Falloff::None }
 }

@@ -34,11 +34,7 @@ fn kind(error: &LoadError) -> &'static str {
 
 fn assert_kind(path: &Path, expected: &[&str], context: &str) {
     let error = load_err(path);
-    assert!(
-        expected.contains(&kind(&error)),
-        "{context}: expected {expected:?}, got {}: {error}",
-        kind(&error)
-    );
+    assert!(expected.contains(&kind(&error)), "{context}: expected {expected:?}, got {}: {error}", kind(&error));
 }
 
 /// Truncates `cut` to many lengths short of its full size, restoring it
@@ -55,11 +51,7 @@ fn assert_every_truncation_fails(cut: &Path, load: &Path) {
         }
         std::fs::write(cut, &full[..len]).unwrap();
         let error = load_err(load);
-        assert!(
-            !matches!(error, LoadError::UnknownExtension { .. }),
-            "{} cut to {len} bytes: {error}",
-            cut.display()
-        );
+        assert!(!matches!(error, LoadError::UnknownExtension { .. }), "{} cut to {len} bytes: {error}", cut.display());
     }
     std::fs::write(cut, &full).unwrap();
 }
@@ -85,10 +77,7 @@ fn truncated_real_samples_fail() {
         }
     }
     // Header + data pairs: cut the header (not just its final newline), or the data.
-    for (header, data) in [
-        ("nucleon.nrrd", "nucleon.raw"),
-        ("smallHeart.mhd", "smallHeart.raw"),
-    ] {
+    for (header, data) in [("nucleon.nrrd", "nucleon.raw"), ("smallHeart.mhd", "smallHeart.raw")] {
         let header_source = sample(header);
         let data_source = sample(data);
         let header_len = std::fs::metadata(&header_source).unwrap().len() as usize;
@@ -137,90 +126,39 @@ fn variants(dir: &Path, v: &Synthetic) -> Vec<(PathBuf, Option<PathBuf>)> {
         files.push((header, Some(data)));
     };
     detached(write_vhdr(dir, "raw", v, big, 17), "data/raw.bin");
-    for (name, compressed, local, compressed_size) in [
-        ("meta_plain", false, false, false),
-        ("meta_zlib", true, false, true),
-    ] {
-        let options = MetaOptions {
-            endian: big,
-            compressed,
-            local,
-            compressed_size,
-            alternative_keys: false,
-        };
-        detached(
-            write_metaimage(dir, name, v, options),
-            &format!("{name}.raw"),
-        );
+    for (name, compressed, local, compressed_size) in
+        [("meta_plain", false, false, false), ("meta_zlib", true, false, true)]
+    {
+        let options = MetaOptions { endian: big, compressed, local, compressed_size, alternative_keys: false };
+        detached(write_metaimage(dir, name, v, options), &format!("{name}.raw"));
     }
-    for (name, encoding) in [
-        ("nrrd_raw", NrrdEncoding::Raw),
-        ("nrrd_gzip", NrrdEncoding::Gzip),
-    ] {
-        let options = NrrdOptions {
-            endian: little,
-            encoding,
-            detached: true,
-            nhdr: true,
-            directions: false,
-        };
+    for (name, encoding) in [("nrrd_raw", NrrdEncoding::Raw), ("nrrd_gzip", NrrdEncoding::Gzip)] {
+        let options = NrrdOptions { endian: little, encoding, detached: true, nhdr: true, directions: false };
         detached(write_nrrd(dir, name, v, options), &format!("{name}.data"));
     }
     let mut single = Vec::new();
-    for (name, compressed, compressed_size) in [
-        ("mha_plain", false, false),
-        ("mha_zlib", true, false),
-        ("mha_zlib_sized", true, true),
-    ] {
-        let options = MetaOptions {
-            endian: little,
-            compressed,
-            local: true,
-            compressed_size,
-            alternative_keys: false,
-        };
+    for (name, compressed, compressed_size) in
+        [("mha_plain", false, false), ("mha_zlib", true, false), ("mha_zlib_sized", true, true)]
+    {
+        let options = MetaOptions { endian: little, compressed, local: true, compressed_size, alternative_keys: false };
         single.push(write_metaimage(dir, name, v, options));
     }
-    for (name, encoding) in [
-        ("attached_raw", NrrdEncoding::Raw),
-        ("attached_gzip", NrrdEncoding::Gzip),
-    ] {
-        let options = NrrdOptions {
-            endian: big,
-            encoding,
-            detached: false,
-            nhdr: false,
-            directions: true,
-        };
+    for (name, encoding) in [("attached_raw", NrrdEncoding::Raw), ("attached_gzip", NrrdEncoding::Gzip)] {
+        let options = NrrdOptions { endian: big, encoding, detached: false, nhdr: false, directions: true };
         single.push(write_nrrd(dir, name, v, options));
     }
     for (name, gzip) in [("nifti", false), ("nifti_gz", true)] {
-        let options = NiftiOptions {
-            endian: big,
-            gzip,
-            scaling: (1.0, 0.0),
-            four_dims: false,
-        };
+        let options = NiftiOptions { endian: big, gzip, scaling: (1.0, 0.0), four_dims: false };
         single.push(write_nifti(dir, name, v, options));
     }
     for (name, storage, block_size, header_u64) in [
         ("vti_raw", VtiStorage::AppendedRaw, None, false),
         ("vti_raw_zlib", VtiStorage::AppendedRaw, Some(64), true),
-        (
-            "vti_base64_zlib",
-            VtiStorage::AppendedBase64,
-            Some(64),
-            false,
-        ),
+        ("vti_base64_zlib", VtiStorage::AppendedBase64, Some(64), false),
         ("vti_inline", VtiStorage::InlineBinary, None, true),
         ("vti_inline_zlib", VtiStorage::InlineBinary, Some(64), false),
     ] {
-        let options = VtiOptions {
-            endian: big,
-            storage,
-            block_size,
-            header_u64,
-        };
+        let options = VtiOptions { endian: big, storage, block_size, header_u64 };
         single.push(write_vti(dir, name, v, options));
     }
     files.extend(single.into_iter().map(|path| (path, None)));
@@ -253,12 +191,7 @@ fn edit(path: &Path, target: &Path, from: &[u8], to: &[u8]) {
         rest = &rest[at + from.len()..];
         found = true;
     }
-    assert!(
-        found,
-        "{} lacks {:?}",
-        path.display(),
-        String::from_utf8_lossy(from)
-    );
+    assert!(found, "{} lacks {:?}", path.display(), String::from_utf8_lossy(from));
     edited.extend_from_slice(rest);
     std::fs::write(target, edited).unwrap();
 }
@@ -267,14 +200,7 @@ fn edit(path: &Path, target: &Path, from: &[u8], to: &[u8]) {
 type Case<'a> = (&'a str, &'a str, &'a [&'a str]);
 
 fn check_cases(good: &Path, cases: &[Case]) {
-    let extension = good
-        .file_name()
-        .unwrap()
-        .to_string_lossy()
-        .split_once('.')
-        .unwrap()
-        .1
-        .to_string();
+    let extension = good.file_name().unwrap().to_string_lossy().split_once('.').unwrap().1.to_string();
     for (i, (from, to, expected)) in cases.iter().enumerate() {
         let bad = good.with_file_name(format!("bad{i}.{extension}"));
         edit(good, &bad, from.as_bytes(), to.as_bytes());
@@ -297,16 +223,8 @@ fn bad_raw_headers_fail() {
             ("dims = 5 4 3", "dims = 5 4", &["BadField"]),
             ("dims = 5 4 3", "dims = 40000 4 3", &["BadDims"]),
             ("dims = 5 4 3", "dims = 30000 30000 30000", &["BadDims"]),
-            (
-                "dims = 5 4 3",
-                "dims = 4294967296 4294967296 4294967296",
-                HOSTILE_DIMS,
-            ),
-            (
-                "dims = 5 4 3",
-                "dims = 99999999999999999999 1 1",
-                HOSTILE_DIMS,
-            ),
+            ("dims = 5 4 3", "dims = 4294967296 4294967296 4294967296", HOSTILE_DIMS),
+            ("dims = 5 4 3", "dims = 99999999999999999999 1 1", HOSTILE_DIMS),
             // Plausible but far more voxels than the data file holds.
             ("dims = 5 4 3", "dims = 30000 30000 4", &["Truncated"]),
             ("dims = 5 4 3", "dims = 5 4 2", &["TooLong"]),
@@ -317,11 +235,7 @@ fn bad_raw_headers_fail() {
             ("type = uint16", "type = float64", &["BadField"]),
             ("endian = little", "endian = middle", &["BadField"]),
             ("endian = little\n", "", &["MissingField"]),
-            (
-                "data = data/good.bin",
-                "data = data/missing.bin",
-                &["DataFile"],
-            ),
+            ("data = data/good.bin", "data = data/missing.bin", &["DataFile"]),
             ("offset = 0", "offset = -3", &["BadField"]),
             ("offset = 0", "colour = red", &["Syntax"]),
             ("# synthetic", "this line has no equals sign", &["Syntax"]),
@@ -348,56 +262,23 @@ fn bad_metaimage_headers_fail() {
             ("DimSize = 5 4 3", "DimSize = 5 0 3", &["BadDims"]),
             ("DimSize = 5 4 3", "DimSize = 5 4 -3", &["BadDims"]),
             ("DimSize = 5 4 3", "DimSize = 32769 4 3", &["BadDims"]),
-            (
-                "DimSize = 5 4 3",
-                "DimSize = 30000 30000 30000",
-                &["BadDims"],
-            ),
+            ("DimSize = 5 4 3", "DimSize = 30000 30000 30000", &["BadDims"]),
             ("DimSize = 5 4 3", "DimSize = 30000 30000 4", &["Truncated"]),
-            (
-                "ElementSpacing = 0.5",
-                "ElementSpacing = -0.5",
-                &["BadSpacing"],
-            ),
-            (
-                "ElementSpacing = 0.5",
-                "ElementSpacing = 0",
-                &["BadSpacing"],
-            ),
+            ("ElementSpacing = 0.5", "ElementSpacing = -0.5", &["BadSpacing"]),
+            ("ElementSpacing = 0.5", "ElementSpacing = 0", &["BadSpacing"]),
             ("MET_SHORT", "MET_DOUBLE", &["Unsupported"]),
             ("MET_SHORT", "SHORT", &["BadField"]),
-            (
-                "ElementDataFile = good.raw",
-                "ElementDataFile = missing.raw",
-                &["DataFile"],
-            ),
-            (
-                "ElementDataFile = good.raw",
-                "ElementDataFile = LIST",
-                &["Unsupported"],
-            ),
+            ("ElementDataFile = good.raw", "ElementDataFile = missing.raw", &["DataFile"]),
+            ("ElementDataFile = good.raw", "ElementDataFile = LIST", &["Unsupported"]),
             ("ElementDataFile = good.raw\n", "", &["MissingField"]),
-            (
-                "NDims = 3",
-                "NDims = 3\nElementNumberOfChannels = 3",
-                &["Unsupported"],
-            ),
-            (
-                "BinaryDataByteOrderMSB = False",
-                "BinaryDataByteOrderMSB = Maybe",
-                &["BadField"],
-            ),
+            ("NDims = 3", "NDims = 3\nElementNumberOfChannels = 3", &["Unsupported"]),
+            ("BinaryDataByteOrderMSB = False", "BinaryDataByteOrderMSB = Maybe", &["BadField"]),
             ("BinaryData = True", "BinaryData = False", &["Unsupported"]),
             ("ObjectType = Image", "ObjectType = Mesh", &["BadField"]),
         ],
     );
 
-    let compressed = MetaOptions {
-        compressed: true,
-        local: true,
-        compressed_size: true,
-        ..options
-    };
+    let compressed = MetaOptions { compressed: true, local: true, compressed_size: true, ..options };
     let good = write_metaimage(scratch.path(), "zipped", &v, compressed);
     let bytes = std::fs::read(&good).unwrap();
     let size_line = format!("CompressedDataSize = {}", bytes.len() - header_len(&bytes));
@@ -408,11 +289,7 @@ fn bad_metaimage_headers_fail() {
             (&size_line, "CompressedDataSize = 99999", &["Truncated"]),
             // Far more voxels than the compressed bytes can hold: refused before
             // inflating or allocating.
-            (
-                "DimSize = 5 4 3",
-                "DimSize = 30000 30000 4",
-                &["InflatedTooShort"],
-            ),
+            ("DimSize = 5 4 3", "DimSize = 30000 30000 4", &["InflatedTooShort"]),
         ],
     );
     // A corrupt zlib stream: flip bytes in the middle of the compressed data.
@@ -423,11 +300,7 @@ fn bad_metaimage_headers_fail() {
     }
     let bad = scratch.path().join("corrupt.mha");
     std::fs::write(&bad, corrupt).unwrap();
-    assert_kind(
-        &bad,
-        &["Decompress", "InflatedTooShort"],
-        "corrupt zlib stream",
-    );
+    assert_kind(&bad, &["Decompress", "InflatedTooShort"], "corrupt zlib stream");
 }
 
 /// Bytes up to the end of the `ElementDataFile` line.
@@ -456,41 +329,21 @@ fn bad_nrrd_headers_fail() {
             ("sizes: 5 4 3", "sizes: 5 4 0", &["BadDims"]),
             ("sizes: 5 4 3", "sizes: -5 4 3", &["BadDims"]),
             ("sizes: 5 4 3", "sizes: 30000 30000 30000", &["BadDims"]),
-            (
-                "sizes: 5 4 3",
-                "sizes: 4294967296 4294967296 4294967296",
-                HOSTILE_DIMS,
-            ),
+            ("sizes: 5 4 3", "sizes: 4294967296 4294967296 4294967296", HOSTILE_DIMS),
             ("sizes: 5 4 3", "sizes: 30000 30000 4", &["Truncated"]),
             ("spacings: 0.5", "spacings: -0.5", &["BadSpacing"]),
             ("spacings: 0.5", "spacings: nan", &["BadSpacing"]),
             ("type: float", "type: double", &["Unsupported"]),
             ("encoding: raw", "encoding: bzip2", &["Unsupported"]),
             ("endian: little\n", "", &["MissingField"]),
-            (
-                "data file: good.data",
-                "data file: missing.data",
-                &["DataFile"],
-            ),
-            (
-                "data file: good.data",
-                "data file: slice%03d.raw 1 3 1",
-                &["Unsupported"],
-            ),
+            ("data file: good.data", "data file: missing.data", &["DataFile"]),
+            ("data file: good.data", "data file: slice%03d.raw 1 3 1", &["Unsupported"]),
             ("data file: good.data\n", "", &["Syntax"]),
-            (
-                "sizes: 5 4 3\n",
-                "sizes: 5 4 3\nsizes: 5 4 3\n",
-                &["Syntax"],
-            ),
+            ("sizes: 5 4 3\n", "sizes: 5 4 3\nsizes: 5 4 3\n", &["Syntax"]),
         ],
     );
     // Attached gzip data that is not a gzip stream.
-    let gz = NrrdOptions {
-        encoding: NrrdEncoding::Gzip,
-        detached: false,
-        ..options
-    };
+    let gz = NrrdOptions { encoding: NrrdEncoding::Gzip, detached: false, ..options };
     let good = write_nrrd(scratch.path(), "zipped", &v, gz);
     let bytes = std::fs::read(&good).unwrap();
     let data_at = bytes.windows(2).position(|w| w == b"\n\n").unwrap() + 2;
@@ -499,26 +352,14 @@ fn bad_nrrd_headers_fail() {
     let bad = scratch.path().join("not_gzip.nrrd");
     std::fs::write(&bad, corrupt).unwrap();
     assert_kind(&bad, &["Decompress"], "zip data labelled gzip");
-    check_cases(
-        &good,
-        &[(
-            "sizes: 5 4 3",
-            "sizes: 30000 30000 4",
-            &["InflatedTooShort"],
-        )],
-    );
+    check_cases(&good, &[("sizes: 5 4 3", "sizes: 30000 30000 4", &["InflatedTooShort"])]);
 }
 
 #[test]
 fn bad_nifti_headers_fail() {
     let scratch = Scratch::new("bad_nifti");
     let v = synthetic("uint16", 83);
-    let options = NiftiOptions {
-        endian: Endian::Little,
-        gzip: false,
-        scaling: (0.0, 0.0),
-        four_dims: false,
-    };
+    let options = NiftiOptions { endian: Endian::Little, gzip: false, scaling: (0.0, 0.0), four_dims: false };
     let good = nifti_bytes(&v, options);
     let put = |at: usize, value: &[u8]| {
         let mut bytes = good.clone();
@@ -526,21 +367,13 @@ fn bad_nifti_headers_fail() {
         bytes
     };
     let cases: Vec<(&str, Vec<u8>, &[&str])> = vec![
-        (
-            "sizeof_hdr 540",
-            put(0, &540i32.to_le_bytes()),
-            &["Unsupported"],
-        ),
+        ("sizeof_hdr 540", put(0, &540i32.to_le_bytes()), &["Unsupported"]),
         ("sizeof_hdr 12", put(0, &12i32.to_le_bytes()), &["Syntax"]),
         ("dim[0] 2", put(40, &2i16.to_le_bytes()), &["Unsupported"]),
         ("dim[0] 9", put(40, &9i16.to_le_bytes()), &["Syntax"]),
         ("dim[1] 0", put(42, &0i16.to_le_bytes()), &["BadDims"]),
         ("dim[2] -4", put(44, &(-4i16).to_le_bytes()), &["BadDims"]),
-        (
-            "dim[3] 32767",
-            put(46, &32767i16.to_le_bytes()),
-            &["Truncated"],
-        ),
+        ("dim[3] 32767", put(46, &32767i16.to_le_bytes()), &["Truncated"]),
         (
             "dim 32767 32767 32767",
             [42, 44, 46].iter().fold(good.clone(), |mut b, &at| {
@@ -558,43 +391,15 @@ fn bad_nifti_headers_fail() {
             },
             &["Unsupported"],
         ),
-        (
-            "datatype 64",
-            put(70, &64i16.to_le_bytes()),
-            &["Unsupported"],
-        ),
-        (
-            "bitpix 8 for uint16",
-            put(72, &8i16.to_le_bytes()),
-            &["Syntax"],
-        ),
-        (
-            "pixdim[1] -1",
-            put(80, &(-1f32).to_le_bytes()),
-            &["BadSpacing"],
-        ),
+        ("datatype 64", put(70, &64i16.to_le_bytes()), &["Unsupported"]),
+        ("bitpix 8 for uint16", put(72, &8i16.to_le_bytes()), &["Syntax"]),
+        ("pixdim[1] -1", put(80, &(-1f32).to_le_bytes()), &["BadSpacing"]),
         ("pixdim[2] 0", put(84, &0f32.to_le_bytes()), &["BadSpacing"]),
-        (
-            "pixdim[3] NaN",
-            put(88, &f32::NAN.to_le_bytes()),
-            &["BadSpacing"],
-        ),
+        ("pixdim[3] NaN", put(88, &f32::NAN.to_le_bytes()), &["BadSpacing"]),
         ("vox_offset 10", put(108, &10f32.to_le_bytes()), &["Syntax"]),
-        (
-            "vox_offset 352.5",
-            put(108, &352.5f32.to_le_bytes()),
-            &["Syntax"],
-        ),
-        (
-            "vox_offset 1e12",
-            put(108, &1e12f32.to_le_bytes()),
-            &["Syntax"],
-        ),
-        (
-            "scl_slope -1",
-            put(112, &(-1f32).to_le_bytes()),
-            &["Unsupported"],
-        ),
+        ("vox_offset 352.5", put(108, &352.5f32.to_le_bytes()), &["Syntax"]),
+        ("vox_offset 1e12", put(108, &1e12f32.to_le_bytes()), &["Syntax"]),
+        ("scl_slope -1", put(112, &(-1f32).to_le_bytes()), &["Unsupported"]),
         ("magic ni1", put(344, b"ni1\0"), &["Unsupported"]),
         ("magic junk", put(344, b"abc\0"), &["Syntax"]),
         ("extra byte", [good.as_slice(), &[0]].concat(), &["TooLong"]),
@@ -644,61 +449,21 @@ fn bad_vti_files_fail() {
             ("type=\"ImageData\"", "type=\"PolyData\"", &["Unsupported"]),
             ("WholeExtent=\"0 4", "WholeExtent=\"0 -1", &["BadDims"]),
             ("WholeExtent=\"0 4", "WholeExtent=\"0 40000", &["BadDims"]),
-            (
-                "WholeExtent=\"0 4 0 3 0 2\"",
-                "WholeExtent=\"0 30000 0 30000 0 30000\"",
-                &["BadDims"],
-            ),
-            (
-                "WholeExtent=\"0 4",
-                "WholeExtent=\"-9223372036854775808 9223372036854775807",
-                &["BadField"],
-            ),
+            ("WholeExtent=\"0 4 0 3 0 2\"", "WholeExtent=\"0 30000 0 30000 0 30000\"", &["BadDims"]),
+            ("WholeExtent=\"0 4", "WholeExtent=\"-9223372036854775808 9223372036854775807", &["BadField"]),
             // Both extents grow: more voxels than the arrays hold.
-            (
-                "Extent=\"0 4 0 3 0 2\"",
-                "Extent=\"0 4 0 3 0 3\"",
-                &["Syntax"],
-            ),
-            (
-                "<Piece Extent=\"0 4",
-                "<Piece Extent=\"1 4",
-                &["Unsupported"],
-            ),
-            (
-                "</Piece>",
-                "</Piece><Piece Extent=\"0 4 0 3 3 3\"></Piece>",
-                &["Unsupported"],
-            ),
+            ("Extent=\"0 4 0 3 0 2\"", "Extent=\"0 4 0 3 0 3\"", &["Syntax"]),
+            ("<Piece Extent=\"0 4", "<Piece Extent=\"1 4", &["Unsupported"]),
+            ("</Piece>", "</Piece><Piece Extent=\"0 4 0 3 3 3\"></Piece>", &["Unsupported"]),
             ("Spacing=\"0.5", "Spacing=\"-0.5", &["BadSpacing"]),
             ("Spacing=\"0.5", "Spacing=\"nan", &["BadSpacing"]),
-            (
-                "type=\"UInt8\" Name=\"Density\"",
-                "type=\"Float64\" Name=\"Density\"",
-                &["Unsupported"],
-            ),
-            (
-                "vtkZLibDataCompressor",
-                "vtkLZ4DataCompressor",
-                &["Unsupported"],
-            ),
-            (
-                "header_type=\"UInt32\"",
-                "header_type=\"UInt16\"",
-                &["BadField"],
-            ),
+            ("type=\"UInt8\" Name=\"Density\"", "type=\"Float64\" Name=\"Density\"", &["Unsupported"]),
+            ("vtkZLibDataCompressor", "vtkLZ4DataCompressor", &["Unsupported"]),
+            ("header_type=\"UInt32\"", "header_type=\"UInt16\"", &["BadField"]),
             ("Scalars=\"Density\"", "Scalars=\"Missing\"", &["Syntax"]),
-            (
-                "Name=\"Density\"",
-                "Name=\"Density\" NumberOfComponents=\"3\"",
-                &["Unsupported"],
-            ),
+            ("Name=\"Density\"", "Name=\"Density\" NumberOfComponents=\"3\"", &["Unsupported"]),
             ("<CellData>", "<CellData><Oops>", &["Syntax"]),
-            (
-                "<AppendedData encoding=\"raw\">\n   _",
-                "<AppendedData encoding=\"raw\">\n   ",
-                &["Syntax"],
-            ),
+            ("<AppendedData encoding=\"raw\">\n   _", "<AppendedData encoding=\"raw\">\n   ", &["Syntax"]),
             ("</VTKFile>", "</VTKFil>", &["Syntax"]),
         ],
     );
@@ -708,15 +473,12 @@ fn bad_vti_files_fail() {
     let bytes = std::fs::read(&good).unwrap();
     let text = String::from_utf8_lossy(&bytes).into_owned();
     let offset_key = "Name=\"Density\" format=\"appended\" offset=\"";
-    let offset_text: String = text[text.find(offset_key).unwrap() + offset_key.len()..]
-        .chars()
-        .take_while(char::is_ascii_digit)
-        .collect();
+    let offset_text: String =
+        text[text.find(offset_key).unwrap() + offset_key.len()..].chars().take_while(char::is_ascii_digit).collect();
     let underscore = bytes.windows(4).position(|w| w == b"   _").unwrap() + 4;
     let start = underscore + offset_text.parse::<usize>().unwrap();
     let blocks = v.values.len().div_ceil(16);
-    let word =
-        |index: usize| u32::from_le_bytes(bytes[start + 4 * index..][..4].try_into().unwrap());
+    let word = |index: usize| u32::from_le_bytes(bytes[start + 4 * index..][..4].try_into().unwrap());
     assert_eq!((word(0), word(1)), (blocks as u32, 16), "test file layout");
     let set_word = |index: usize, value: u32| {
         let mut b = bytes.clone();
@@ -737,21 +499,9 @@ fn bad_vti_files_fail() {
     let cases: Vec<(&str, Vec<u8>, &[&str])> = vec![
         ("4 billion blocks", set_word(0, u32::MAX), &["Truncated"]),
         ("block size 1", set_word(1, 1), &["Syntax"]),
-        (
-            "compressed block size huge",
-            set_word(3, u32::MAX),
-            &["Truncated"],
-        ),
-        (
-            "compressed block size 2",
-            set_word(3, 2),
-            &["Decompress", "InflatedTooShort"],
-        ),
-        (
-            "corrupt zlib block",
-            corrupt,
-            &["Decompress", "InflatedTooShort"],
-        ),
+        ("compressed block size huge", set_word(3, u32::MAX), &["Truncated"]),
+        ("compressed block size 2", set_word(3, 2), &["Decompress", "InflatedTooShort"]),
+        ("corrupt zlib block", corrupt, &["Decompress", "InflatedTooShort"]),
         ("offset past the end", past_end, &["Truncated"]),
     ];
     for (what, bytes, expected) in cases {

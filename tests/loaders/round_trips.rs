@@ -37,8 +37,7 @@ fn metaimage_round_trips() {
                         compressed_size,
                         alternative_keys: endian == Endian::Big && !local,
                     };
-                    let name =
-                        format!("{type_name}_{endian:?}_{local}_{compressed}_{compressed_size}");
+                    let name = format!("{type_name}_{endian:?}_{local}_{compressed}_{compressed_size}");
                     let path = write_metaimage(scratch.path(), &name, &v, options);
                     assert_matches(&load_ok(&path), &v, &format!("{options:?} {type_name}"));
                 }
@@ -61,16 +60,8 @@ fn nrrd_round_trips() {
             for encoding in encodings {
                 for (detached, nhdr) in placements {
                     for directions in [false, true] {
-                        let options = NrrdOptions {
-                            endian,
-                            encoding,
-                            detached,
-                            nhdr,
-                            directions,
-                        };
-                        let name = format!(
-                            "{type_name}_{endian:?}_{encoding:?}_{detached}_{nhdr}_{directions}"
-                        );
+                        let options = NrrdOptions { endian, encoding, detached, nhdr, directions };
+                        let name = format!("{type_name}_{endian:?}_{encoding:?}_{detached}_{nhdr}_{directions}");
                         let path = write_nrrd(scratch.path(), &name, &v, options);
                         let volume = load_ok(&path);
                         let context = format!("{options:?} {type_name}");
@@ -80,10 +71,7 @@ fn nrrd_round_trips() {
                             for axis in 0..3 {
                                 let got = volume.spacing[axis];
                                 let want = v.spacing[axis];
-                                assert!(
-                                    (got - want).abs() <= 1e-6,
-                                    "{context}: spacing {got} vs {want}"
-                                );
+                                assert!((got - want).abs() <= 1e-6, "{context}: spacing {got} vs {want}");
                                 exact.spacing[axis] = want;
                             }
                             assert_matches(&exact, &v, &context);
@@ -105,12 +93,7 @@ fn nifti_round_trips() {
         for endian in ENDIANS {
             for gzip in [false, true] {
                 for four_dims in [false, true] {
-                    let options = NiftiOptions {
-                        endian,
-                        gzip,
-                        scaling: (0.0, 0.0),
-                        four_dims,
-                    };
+                    let options = NiftiOptions { endian, gzip, scaling: (0.0, 0.0), four_dims };
                     let name = format!("{type_name}_{endian:?}_{gzip}_{four_dims}");
                     let path = write_nifti(scratch.path(), &name, &v, options);
                     let volume = load_ok(&path);
@@ -126,12 +109,7 @@ fn nifti_round_trips() {
 fn nifti_scaling_applies_to_the_value_range_only() {
     let scratch = Scratch::new("nifti_scaling");
     let v = synthetic("int16", 40);
-    let options = NiftiOptions {
-        endian: Endian::Little,
-        gzip: false,
-        scaling: (2.0, -10.0),
-        four_dims: false,
-    };
+    let options = NiftiOptions { endian: Endian::Little, gzip: false, scaling: (2.0, -10.0), four_dims: false };
     let volume = load_ok(&write_nifti(scratch.path(), "scaled", &v, options));
     let (lo, hi) = v.values.range();
     assert_eq!(volume.value_range, (2.0 * lo - 10.0, 2.0 * hi - 10.0));
@@ -144,12 +122,8 @@ fn nifti_scaling_applies_to_the_value_range_only() {
 #[test]
 fn vti_round_trips() {
     let scratch = Scratch::new("vti_round_trips");
-    let storages = [
-        VtiStorage::AppendedRaw,
-        VtiStorage::AppendedBase64,
-        VtiStorage::InlineBinary,
-        VtiStorage::InlineAscii,
-    ];
+    let storages =
+        [VtiStorage::AppendedRaw, VtiStorage::AppendedBase64, VtiStorage::InlineBinary, VtiStorage::InlineAscii];
     // 16-byte blocks: several blocks, the last one partial or (float32) full.
     for (seed, type_name) in TYPES.iter().enumerate() {
         let v = synthetic(type_name, 50 + seed as u64);
@@ -157,15 +131,8 @@ fn vti_round_trips() {
             for storage in storages {
                 for block_size in [None, Some(16), Some(1000)] {
                     for header_u64 in [false, true] {
-                        let options = VtiOptions {
-                            endian,
-                            storage,
-                            block_size,
-                            header_u64,
-                        };
-                        let name = format!(
-                            "{type_name}_{endian:?}_{storage:?}_{block_size:?}_{header_u64}"
-                        );
+                        let options = VtiOptions { endian, storage, block_size, header_u64 };
+                        let name = format!("{type_name}_{endian:?}_{storage:?}_{block_size:?}_{header_u64}");
                         let path = write_vti(scratch.path(), &name, &v, options);
                         assert_matches(&load_ok(&path), &v, &format!("{options:?} {type_name}"));
                     }
@@ -179,12 +146,8 @@ fn vti_round_trips() {
 fn extensions_are_case_insensitive() {
     let scratch = Scratch::new("case_insensitive");
     let v = synthetic("uint8", 60);
-    let options = VtiOptions {
-        endian: Endian::Little,
-        storage: VtiStorage::AppendedRaw,
-        block_size: None,
-        header_u64: false,
-    };
+    let options =
+        VtiOptions { endian: Endian::Little, storage: VtiStorage::AppendedRaw, block_size: None, header_u64: false };
     let lower = write_vti(scratch.path(), "lower", &v, options);
     let upper = scratch.path().join("UPPER.VTI");
     std::fs::rename(&lower, &upper).unwrap();

@@ -27,15 +27,8 @@ fn assert_plausible(volume: &Volume) {
     let (lo, hi) = volume.value_range;
     assert!(hi > lo, "{}: constant data {lo}..{hi}", volume.name);
     let histogram = volume.histogram(16);
-    let busy = histogram
-        .iter()
-        .filter(|&&n| n as f64 >= 0.001 * volume.voxel_count() as f64)
-        .count();
-    assert!(
-        busy >= 3,
-        "{}: values crowd into {busy} of 16 bins: {histogram:?}",
-        volume.name
-    );
+    let busy = histogram.iter().filter(|&&n| n as f64 >= 0.001 * volume.voxel_count() as f64).count();
+    assert!(busy >= 3, "{}: values crowd into {busy} of 16 bins: {histogram:?}", volume.name);
 }
 
 fn assert_spacing(volume: &Volume, readme: [f32; 3]) {
@@ -62,9 +55,7 @@ fn inflate_vti_appended(bytes: &[u8]) -> Vec<u8> {
     let mut out = Vec::new();
     for i in 0..blocks {
         let size = word(3 + i);
-        ZlibDecoder::new(&data[position..position + size])
-            .read_to_end(&mut out)
-            .unwrap();
+        ZlibDecoder::new(&data[position..position + size]).read_to_end(&mut out).unwrap();
         position += size;
     }
     out
@@ -75,11 +66,7 @@ fn xml_attribute(bytes: &[u8], name: &str) -> f64 {
     let key = format!("{name}=\"");
     let start = find(bytes, key.as_bytes()) + key.len();
     let end = start + find(&bytes[start..], b"\"");
-    std::str::from_utf8(&bytes[start..end])
-        .unwrap()
-        .trim()
-        .parse()
-        .unwrap()
+    std::str::from_utf8(&bytes[start..end]).unwrap().trim().parse().unwrap()
 }
 
 fn check_vti(file: &str, dims: [u32; 3]) {
@@ -89,21 +76,10 @@ fn check_vti(file: &str, dims: [u32; 3]) {
     assert_spacing(&volume, [1.0, 1.0, 1.0]);
     let bytes = std::fs::read(&path).unwrap();
     let expected = inflate_vti_appended(&bytes);
-    assert_eq!(
-        expected.len(),
-        volume.voxel_count(),
-        "{file}: independent decoding"
-    );
+    assert_eq!(expected.len(), volume.voxel_count(), "{file}: independent decoding");
     // The writer recorded the range of the array in the file.
-    let recorded = (
-        xml_attribute(&bytes, "RangeMin"),
-        xml_attribute(&bytes, "RangeMax"),
-    );
-    assert_eq!(
-        min_max_u8(&expected),
-        recorded,
-        "{file}: independent decoding"
-    );
+    let recorded = (xml_attribute(&bytes, "RangeMin"), xml_attribute(&bytes, "RangeMax"));
+    assert_eq!(min_max_u8(&expected), recorded, "{file}: independent decoding");
     assert_eq!(volume.value_range, recorded, "{file}: value range");
     match &volume.data {
         VoxelData::U8(data) => assert!(data == &expected, "{file}: voxels differ"),
@@ -132,9 +108,7 @@ fn lidc2_mha_loads() {
     let marker = b"ElementDataFile = LOCAL\n";
     let start = find(&bytes, marker) + marker.len();
     let mut expected = Vec::new();
-    ZlibDecoder::new(&bytes[start..])
-        .read_to_end(&mut expected)
-        .unwrap();
+    ZlibDecoder::new(&bytes[start..]).read_to_end(&mut expected).unwrap();
     assert_eq!(expected.len(), 256 * 256 * 133);
     assert_eq!(volume.value_range, min_max_u8(&expected));
     match &volume.data {
@@ -158,10 +132,7 @@ fn small_heart_mhd_loads() {
     let lo = *raw.iter().min().unwrap() as f64;
     let hi = *raw.iter().max().unwrap() as f64;
     assert_eq!(volume.value_range, (lo, hi));
-    let expected: Vec<u16> = raw
-        .iter()
-        .map(|&v| ((v as f64 - lo) / (hi - lo) * 65535.0).round() as u16)
-        .collect();
+    let expected: Vec<u16> = raw.iter().map(|&v| ((v as f64 - lo) / (hi - lo) * 65535.0).round() as u16).collect();
     match &volume.data {
         VoxelData::U16(data) => assert!(data == &expected, "smallHeart.mhd: voxels differ"),
         _ => panic!("smallHeart.mhd: uint16 data not stored as U16"),

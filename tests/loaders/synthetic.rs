@@ -34,36 +34,9 @@ impl Values {
         let big = endian == Endian::Big;
         match self {
             Values::U8(v) => v.clone(),
-            Values::U16(v) => v
-                .iter()
-                .flat_map(|x| {
-                    if big {
-                        x.to_be_bytes()
-                    } else {
-                        x.to_le_bytes()
-                    }
-                })
-                .collect(),
-            Values::I16(v) => v
-                .iter()
-                .flat_map(|x| {
-                    if big {
-                        x.to_be_bytes()
-                    } else {
-                        x.to_le_bytes()
-                    }
-                })
-                .collect(),
-            Values::F32(v) => v
-                .iter()
-                .flat_map(|x| {
-                    if big {
-                        x.to_be_bytes()
-                    } else {
-                        x.to_le_bytes()
-                    }
-                })
-                .collect(),
+            Values::U16(v) => v.iter().flat_map(|x| if big { x.to_be_bytes() } else { x.to_le_bytes() }).collect(),
+            Values::I16(v) => v.iter().flat_map(|x| if big { x.to_be_bytes() } else { x.to_le_bytes() }).collect(),
+            Values::F32(v) => v.iter().flat_map(|x| if big { x.to_be_bytes() } else { x.to_le_bytes() }).collect(),
         }
     }
 
@@ -76,11 +49,7 @@ impl Values {
             // Rust prints the shortest text that parses back to the same f32.
             Values::F32(v) => v.iter().map(|x| x.to_string()).collect(),
         };
-        tokens
-            .chunks(7)
-            .map(|line| line.join(" "))
-            .collect::<Vec<_>>()
-            .join("\n")
+        tokens.chunks(7).map(|line| line.join(" ")).collect::<Vec<_>>().join("\n")
     }
 
     /// Raw values as f64, in file units.
@@ -113,10 +82,7 @@ struct Lcg(u64);
 
 impl Lcg {
     fn next(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
         self.0 >> 33
     }
 }
@@ -129,29 +95,12 @@ pub fn synthetic(type_name: &str, seed: u64) -> Synthetic {
     let mut rng = Lcg(seed);
     let values = match type_name {
         "uint8" => Values::U8((0..count).map(|_| (rng.next() % 256) as u8).collect()),
-        "uint16" => Values::U16(
-            (0..count)
-                .map(|_| (rng.next() % 60000) as u16 + 300)
-                .collect(),
-        ),
-        "int16" => Values::I16(
-            (0..count)
-                .map(|_| (rng.next() % 60000) as i32 - 31000)
-                .map(|v| v as i16)
-                .collect(),
-        ),
-        "float32" => Values::F32(
-            (0..count)
-                .map(|_| (rng.next() % 100_000) as f32 / 3.0 - 5000.0)
-                .collect(),
-        ),
+        "uint16" => Values::U16((0..count).map(|_| (rng.next() % 60000) as u16 + 300).collect()),
+        "int16" => Values::I16((0..count).map(|_| (rng.next() % 60000) as i32 - 31000).map(|v| v as i16).collect()),
+        "float32" => Values::F32((0..count).map(|_| (rng.next() % 100_000) as f32 / 3.0 - 5000.0).collect()),
         other => panic!("no synthetic type {other}"),
     };
-    Synthetic {
-        dims,
-        spacing: [0.5, 1.25, 2.0],
-        values,
-    }
+    Synthetic { dims, spacing: [0.5, 1.25, 2.0], values }
 }
 
 pub const TYPES: [&str; 4] = ["uint8", "uint16", "int16", "float32"];
@@ -161,38 +110,26 @@ pub const TYPES: [&str; 4] = ["uint8", "uint16", "int16", "float32"];
 /// [min, max] onto 0..=65535 rounding to nearest, float32 rescaled onto [0, 1].
 pub fn assert_matches(volume: &Volume, expected: &Synthetic, context: &str) {
     assert_eq!(volume.dims.to_array(), expected.dims, "{context}: dims");
-    assert_eq!(
-        volume.spacing.to_array(),
-        expected.spacing,
-        "{context}: spacing"
-    );
+    assert_eq!(volume.spacing.to_array(), expected.spacing, "{context}: spacing");
     let (lo, hi) = expected.values.range();
     assert_eq!(volume.value_range, (lo, hi), "{context}: value range");
     let raw = expected.values.as_f64();
     match (&expected.values, &volume.data) {
         (Values::U8(v), VoxelData::U8(got)) => assert_eq!(got, v, "{context}: voxels"),
         (Values::U16(_) | Values::I16(_), VoxelData::U16(got)) => {
-            let want: Vec<u16> = raw
-                .iter()
-                .map(|&x| ((x - lo) / (hi - lo) * 65535.0).round() as u16)
-                .collect();
+            let want: Vec<u16> = raw.iter().map(|&x| ((x - lo) / (hi - lo) * 65535.0).round() as u16).collect();
             assert_eq!(got, &want, "{context}: voxels");
         }
         (Values::F32(_), VoxelData::F32(got)) => {
             assert_eq!(got.len(), raw.len(), "{context}: voxel count");
             for (i, (&g, &x)) in got.iter().zip(&raw).enumerate() {
                 let want = (x - lo) / (hi - lo);
-                assert!(
-                    (g as f64 - want).abs() <= 1e-6,
-                    "{context}: voxel {i} is {g}, expected {want}"
-                );
+                assert!((g as f64 - want).abs() <= 1e-6, "{context}: voxel {i} is {g}, expected {want}");
             }
         }
-        (values, data) => panic!(
-            "{context}: {} voxels loaded as {:?}-type storage",
-            type_label(values),
-            std::mem::discriminant(data)
-        ),
+        (values, data) => {
+            panic!("{context}: {} voxels loaded as {:?}-type storage", type_label(values), std::mem::discriminant(data))
+        }
     }
 }
 

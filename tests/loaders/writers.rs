@@ -26,11 +26,7 @@ pub fn base64(data: &[u8]) -> String {
     const ALPHABET: &[u8] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     let mut out = String::new();
     for chunk in data.chunks(3) {
-        let b = [
-            chunk[0],
-            *chunk.get(1).unwrap_or(&0),
-            *chunk.get(2).unwrap_or(&0),
-        ];
+        let b = [chunk[0], *chunk.get(1).unwrap_or(&0), *chunk.get(2).unwrap_or(&0)];
         let bits = (b[0] as u32) << 16 | (b[1] as u32) << 8 | b[2] as u32;
         for i in 0..4 {
             if i <= chunk.len() {
@@ -114,11 +110,7 @@ pub fn meta_element_type(values: &Values) -> &'static str {
 pub fn write_metaimage(dir: &Path, name: &str, v: &Synthetic, o: MetaOptions) -> PathBuf {
     let raw = v.values.bytes(o.endian);
     let data = if o.compressed { zlib(&raw) } else { raw };
-    let msb = if o.endian == Endian::Big {
-        "True"
-    } else {
-        "False"
-    };
+    let msb = if o.endian == Endian::Big { "True" } else { "False" };
     let (spacing_key, order_key) = if o.alternative_keys {
         ("ElementSize", "ElementByteOrderMSB")
     } else {
@@ -210,10 +202,7 @@ pub fn write_nrrd(dir: &Path, name: &str, v: &Synthetic, o: NrrdOptions) -> Path
             sz
         );
     } else {
-        header += &format!(
-            "spacings: {} {} {}\n",
-            v.spacing[0], v.spacing[1], v.spacing[2]
-        );
+        header += &format!("spacings: {} {} {}\n", v.spacing[0], v.spacing[1], v.spacing[2]);
     }
     header += "kinds: domain domain domain\n";
     header += &format!("endian: {}\n", endian_word(o.endian));
@@ -276,16 +265,7 @@ pub fn nifti_bytes(v: &Synthetic, o: NiftiOptions) -> Vec<u8> {
     };
     put(0, &i32b(348));
     let rank = if o.four_dims { 4 } else { 3 };
-    let dim = [
-        rank,
-        v.dims[0] as i16,
-        v.dims[1] as i16,
-        v.dims[2] as i16,
-        1,
-        1,
-        1,
-        1,
-    ];
+    let dim = [rank, v.dims[0] as i16, v.dims[1] as i16, v.dims[2] as i16, 1, 1, 1, 1];
     for (i, d) in dim.iter().enumerate() {
         put(40 + 2 * i, &i16b(*d));
     }
@@ -297,16 +277,7 @@ pub fn nifti_bytes(v: &Synthetic, o: NiftiOptions) -> Vec<u8> {
     };
     put(70, &i16b(datatype));
     put(72, &i16b(bitpix));
-    let pixdim = [
-        1.0,
-        v.spacing[0],
-        v.spacing[1],
-        v.spacing[2],
-        1.0,
-        1.0,
-        1.0,
-        1.0,
-    ];
+    let pixdim = [1.0, v.spacing[0], v.spacing[1], v.spacing[2], 1.0, 1.0, 1.0, 1.0];
     for (i, p) in pixdim.iter().enumerate() {
         put(76 + 4 * i, &f32b(*p));
     }
@@ -395,12 +366,7 @@ pub fn vti_bytes(v: &Synthetic, o: VtiOptions) -> Vec<u8> {
         if o.header_u64 { "UInt64" } else { "UInt32" },
         if o.block_size.is_some() { " compressor=\"vtkZLibDataCompressor\"" } else { "" },
     );
-    let extent = format!(
-        "0 {} 0 {} 0 {}",
-        v.dims[0] - 1,
-        v.dims[1] - 1,
-        v.dims[2] - 1
-    );
+    let extent = format!("0 {} 0 {} 0 {}", v.dims[0] - 1, v.dims[1] - 1, v.dims[2] - 1);
     xml += &format!(
         "  <ImageData WholeExtent=\"{extent}\" Origin=\"0 0 0\" Spacing=\"{} {} {}\">\n    <Piece Extent=\"{extent}\">\n      <PointData Scalars=\"Density\">\n",
         v.spacing[0], v.spacing[1], v.spacing[2]
@@ -438,18 +404,10 @@ pub fn vti_bytes(v: &Synthetic, o: VtiOptions) -> Vec<u8> {
             }
         }
     }
-    xml +=
-        "      </PointData>\n      <CellData>\n      </CellData>\n    </Piece>\n  </ImageData>\n";
+    xml += "      </PointData>\n      <CellData>\n      </CellData>\n    </Piece>\n  </ImageData>\n";
     let mut bytes = xml.into_bytes();
-    if matches!(
-        o.storage,
-        VtiStorage::AppendedRaw | VtiStorage::AppendedBase64
-    ) {
-        let encoding = if o.storage == VtiStorage::AppendedRaw {
-            "raw"
-        } else {
-            "base64"
-        };
+    if matches!(o.storage, VtiStorage::AppendedRaw | VtiStorage::AppendedBase64) {
+        let encoding = if o.storage == VtiStorage::AppendedRaw { "raw" } else { "base64" };
         bytes.extend(format!("  <AppendedData encoding=\"{encoding}\">\n   _").into_bytes());
         bytes.extend(appended);
         bytes.extend(b"\n  </AppendedData>\n");

@@ -38,13 +38,8 @@ pub fn decode(text: &[u8], what: &str) -> Result<Vec<u8>, FormatProblem> {
             if padding > 0 {
                 return Err(bad(what, position, "data inside padding"));
             }
-            quantum[filled] = sextet(c).ok_or_else(|| {
-                bad(
-                    what,
-                    position,
-                    &format!("invalid character {:?}", c as char),
-                )
-            })?;
+            quantum[filled] =
+                sextet(c).ok_or_else(|| bad(what, position, &format!("invalid character {:?}", c as char)))?;
         }
         filled += 1;
         if filled == 4 {
@@ -69,9 +64,7 @@ fn push_quantum(out: &mut Vec<u8>, q: &[u8; 4], bytes: usize) {
 }
 
 fn bad(what: &str, position: usize, problem: &str) -> FormatProblem {
-    FormatProblem::syntax(format!(
-        "{what} is not valid base64: {problem} at character {position}"
-    ))
+    FormatProblem::syntax(format!("{what} is not valid base64: {problem} at character {position}"))
 }
 
 #[cfg(test)]
@@ -90,11 +83,7 @@ mod tests {
             ("Zm9vYmFy", "foobar"),
         ];
         for (text, plain) in cases {
-            assert_eq!(
-                decode(text.as_bytes(), "t").unwrap(),
-                plain.as_bytes(),
-                "{text}"
-            );
+            assert_eq!(decode(text.as_bytes(), "t").unwrap(), plain.as_bytes(), "{text}");
         }
     }
 

@@ -26,17 +26,11 @@ pub fn resolve(header: &Path, name: &str) -> PathBuf {
     if name.is_absolute() {
         return name.to_path_buf();
     }
-    header
-        .parent()
-        .map(|dir| dir.join(name))
-        .unwrap_or_else(|| name.to_path_buf())
+    header.parent().map(|dir| dir.join(name)).unwrap_or_else(|| name.to_path_buf())
 }
 
 fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> FormatProblem + '_ {
-    move |source| FormatProblem::DataFile {
-        path: path.to_path_buf(),
-        source,
-    }
+    move |source| FormatProblem::DataFile { path: path.to_path_buf(), source }
 }
 
 /// Reads exactly `len` uncompressed voxel bytes from the file at `path`.
@@ -47,16 +41,10 @@ pub fn read_exact(path: &Path, skip: Skip, len: usize) -> Result<Vec<u8>, Format
     let start = checked_start(size, skip, len as u64, &what)?;
     file.seek(SeekFrom::Start(start)).map_err(io_error(path))?;
     let mut bytes = try_vec_with_capacity(len, &what)?;
-    file.take(len as u64)
-        .read_to_end(&mut bytes)
-        .map_err(io_error(path))?;
+    file.take(len as u64).read_to_end(&mut bytes).map_err(io_error(path))?;
     if bytes.len() != len {
         // The file shrank while we read it.
-        return Err(FormatProblem::Truncated {
-            what,
-            expected: start + len as u64,
-            found: start + bytes.len() as u64,
-        });
+        return Err(FormatProblem::Truncated { what, expected: start + len as u64, found: start + bytes.len() as u64 });
     }
     Ok(bytes)
 }
@@ -68,11 +56,7 @@ pub fn read_rest(path: &Path, skip: u64) -> Result<Vec<u8>, FormatProblem> {
     let mut file = File::open(path).map_err(io_error(path))?;
     let size = file.metadata().map_err(io_error(path))?.len();
     if size < skip {
-        return Err(FormatProblem::Truncated {
-            what,
-            expected: skip,
-            found: size,
-        });
+        return Err(FormatProblem::Truncated { what, expected: skip, found: size });
     }
     file.seek(SeekFrom::Start(skip)).map_err(io_error(path))?;
     let mut bytes = try_vec_with_capacity((size - skip) as usize, &what)?;
@@ -81,12 +65,7 @@ pub fn read_rest(path: &Path, skip: u64) -> Result<Vec<u8>, FormatProblem> {
 }
 
 /// Exactly `len` voxel bytes of `data` (which holds only voxels after `skip`).
-pub fn exact_slice<'a>(
-    data: &'a [u8],
-    skip: Skip,
-    len: usize,
-    what: &str,
-) -> Result<&'a [u8], FormatProblem> {
+pub fn exact_slice<'a>(data: &'a [u8], skip: Skip, len: usize, what: &str) -> Result<&'a [u8], FormatProblem> {
     let start = checked_start(data.len() as u64, skip, len as u64, what)? as usize;
     Ok(&data[start..start + len])
 }
@@ -99,18 +78,10 @@ fn checked_start(size: u64, skip: Skip, len: u64, what: &str) -> Result<u64, For
     };
     let expected = start.saturating_add(len);
     if size < expected {
-        return Err(FormatProblem::Truncated {
-            what: what.to_string(),
-            expected,
-            found: size,
-        });
+        return Err(FormatProblem::Truncated { what: what.to_string(), expected, found: size });
     }
     if size > expected {
-        return Err(FormatProblem::TooLong {
-            what: what.to_string(),
-            expected,
-            found: size,
-        });
+        return Err(FormatProblem::TooLong { what: what.to_string(), expected, found: size });
     }
     Ok(start)
 }
@@ -122,9 +93,7 @@ pub fn skip_lines(data: &[u8], count: u64, what: &str) -> Result<usize, FormatPr
         match data[position..].iter().position(|&b| b == b'\n') {
             Some(i) => position += i + 1,
             None => {
-                return Err(FormatProblem::syntax(format!(
-                    "{what} ends after {skipped} of the {count} lines to skip"
-                )))
+                return Err(FormatProblem::syntax(format!("{what} ends after {skipped} of the {count} lines to skip")))
             }
         }
     }

@@ -61,9 +61,7 @@ pub fn checked_dims(dims: [i64; 3]) -> Result<UVec3, FormatProblem> {
     // Each factor is <= 2^15, so the product fits in u64.
     let voxels = dims.iter().map(|&d| d as u64).product::<u64>();
     if voxels > MAX_VOXELS {
-        return Err(bad(format!(
-            "{voxels} voxels exceed the limit of {MAX_VOXELS}"
-        )));
+        return Err(bad(format!("{voxels} voxels exceed the limit of {MAX_VOXELS}")));
     }
     Ok(UVec3::new(dims[0] as u32, dims[1] as u32, dims[2] as u32))
 }
@@ -116,13 +114,7 @@ impl Layout {
             });
         }
         let (data, value_range) = decode_voxels(bytes, self.voxel_type, self.endian)?;
-        Ok(Volume {
-            name,
-            dims: self.dims,
-            spacing: self.spacing,
-            data,
-            value_range,
-        })
+        Ok(Volume { name, dims: self.dims, spacing: self.spacing, data, value_range })
     }
 }
 
@@ -136,14 +128,8 @@ pub fn decode_voxels(
     let count = bytes.len() / voxel_type.size();
     match voxel_type {
         VoxelType::U8 => {
-            let (lo, hi) = bytes
-                .iter()
-                .fold((u8::MAX, u8::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
-            let range = if bytes.is_empty() {
-                (0.0, 0.0)
-            } else {
-                (lo as f64, hi as f64)
-            };
+            let (lo, hi) = bytes.iter().fold((u8::MAX, u8::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+            let range = if bytes.is_empty() { (0.0, 0.0) } else { (lo as f64, hi as f64) };
             Ok((VoxelData::U8(copy_bytes(bytes)?), range))
         }
         VoxelType::U16 => {
@@ -151,15 +137,11 @@ pub fn decode_voxels(
             Ok(rescale_integers(values, count)?)
         }
         VoxelType::I16 => {
-            let values = bytes
-                .chunks_exact(2)
-                .map(|c| read_u16(c, endian) as i16 as i32);
+            let values = bytes.chunks_exact(2).map(|c| read_u16(c, endian) as i16 as i32);
             Ok(rescale_integers(values, count)?)
         }
         VoxelType::F32 => {
-            let values = bytes
-                .chunks_exact(4)
-                .map(|c| f32::from_bits(read_u32(c, endian)));
+            let values = bytes.chunks_exact(4).map(|c| f32::from_bits(read_u32(c, endian)));
             Ok(rescale_floats(values, count)?)
         }
     }
@@ -174,11 +156,10 @@ fn copy_bytes(bytes: &[u8]) -> Result<Vec<u8>, FormatProblem> {
 /// `Vec::with_capacity` that reports a failed allocation instead of aborting.
 pub fn try_vec_with_capacity<T>(len: usize, what: &str) -> Result<Vec<T>, FormatProblem> {
     let mut v = Vec::new();
-    v.try_reserve_exact(len)
-        .map_err(|_| FormatProblem::OutOfMemory {
-            what: what.to_string(),
-            bytes: (len as u64).saturating_mul(std::mem::size_of::<T>() as u64),
-        })?;
+    v.try_reserve_exact(len).map_err(|_| FormatProblem::OutOfMemory {
+        what: what.to_string(),
+        bytes: (len as u64).saturating_mul(std::mem::size_of::<T>() as u64),
+    })?;
     Ok(v)
 }
 
@@ -203,9 +184,7 @@ fn rescale_integers(
     values: impl Iterator<Item = i32> + Clone,
     count: usize,
 ) -> Result<(VoxelData, (f64, f64)), FormatProblem> {
-    let (lo, hi) = values
-        .clone()
-        .fold((i32::MAX, i32::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = values.clone().fold((i32::MAX, i32::MIN), |(lo, hi), v| (lo.min(v), hi.max(v)));
     let mut out = try_vec_with_capacity(count, "voxel data")?;
     if count == 0 {
         return Ok((VoxelData::U16(out), (0.0, 0.0)));
@@ -231,9 +210,7 @@ fn rescale_floats(
     let (lo, hi) = values
         .clone()
         .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v as f64), hi.max(v as f64))
-        });
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v as f64), hi.max(v as f64)));
     let mut out = try_vec_with_capacity(count, "voxel data")?;
     if lo > hi {
         // No finite value at all: treat as constant.
@@ -257,11 +234,7 @@ fn rescale_floats(
 
 /// Parses whitespace-separated numbers of `voxel_type` (ASCII encodings) into
 /// little-endian bytes; exactly `count` values are expected.
-pub fn parse_ascii_voxels(
-    text: &str,
-    voxel_type: VoxelType,
-    count: usize,
-) -> Result<Vec<u8>, FormatProblem> {
+pub fn parse_ascii_voxels(text: &str, voxel_type: VoxelType, count: usize) -> Result<Vec<u8>, FormatProblem> {
     let found = text.split_ascii_whitespace().count();
     if found < count {
         return Err(FormatProblem::Truncated {
@@ -271,29 +244,17 @@ pub fn parse_ascii_voxels(
         });
     }
     if found > count {
-        return Err(FormatProblem::syntax(format!(
-            "ASCII voxel data has {found} values, expected {count}"
-        )));
+        return Err(FormatProblem::syntax(format!("ASCII voxel data has {found} values, expected {count}")));
     }
     let mut out = try_vec_with_capacity(count * voxel_type.size(), "voxel data")?;
     for (index, token) in text.split_ascii_whitespace().enumerate() {
-        let bad = || {
-            FormatProblem::syntax(format!(
-                "ASCII voxel {index}: `{token}` is not a {} value",
-                voxel_type.name()
-            ))
-        };
+        let bad =
+            || FormatProblem::syntax(format!("ASCII voxel {index}: `{token}` is not a {} value", voxel_type.name()));
         match voxel_type {
             VoxelType::U8 => out.push(token.parse::<u8>().map_err(|_| bad())?),
-            VoxelType::U16 => {
-                out.extend_from_slice(&token.parse::<u16>().map_err(|_| bad())?.to_le_bytes())
-            }
-            VoxelType::I16 => {
-                out.extend_from_slice(&token.parse::<i16>().map_err(|_| bad())?.to_le_bytes())
-            }
-            VoxelType::F32 => {
-                out.extend_from_slice(&token.parse::<f32>().map_err(|_| bad())?.to_le_bytes())
-            }
+            VoxelType::U16 => out.extend_from_slice(&token.parse::<u16>().map_err(|_| bad())?.to_le_bytes()),
+            VoxelType::I16 => out.extend_from_slice(&token.parse::<i16>().map_err(|_| bad())?.to_le_bytes()),
+            VoxelType::F32 => out.extend_from_slice(&token.parse::<f32>().map_err(|_| bad())?.to_le_bytes()),
         }
     }
     Ok(out)

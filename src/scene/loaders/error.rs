@@ -22,19 +22,14 @@ pub enum LoadError {
     )]
     UnknownExtension { file: PathBuf },
     #[error("{}: {problem}", .file.display())]
-    Format {
-        file: PathBuf,
-        problem: FormatProblem,
-    },
+    Format { file: PathBuf, problem: FormatProblem },
 }
 
 impl LoadError {
     /// The file the error is about (for a detached data file: its header).
     pub fn file(&self) -> &Path {
         match self {
-            LoadError::Io { file, .. }
-            | LoadError::UnknownExtension { file }
-            | LoadError::Format { file, .. } => file,
+            LoadError::Io { file, .. } | LoadError::UnknownExtension { file } | LoadError::Format { file, .. } => file,
         }
     }
 
@@ -56,11 +51,7 @@ pub enum FormatProblem {
     #[error("missing required field `{0}`")]
     MissingField(String),
     #[error("field `{field}` = `{value}`: expected {expected}")]
-    BadField {
-        field: String,
-        value: String,
-        expected: String,
-    },
+    BadField { field: String, value: String, expected: String },
     #[error("unsupported {0}")]
     Unsupported(String),
     #[error("invalid dimensions {}: {reason}", format_dims(.dims))]
@@ -68,25 +59,13 @@ pub enum FormatProblem {
     #[error("invalid spacing {} {} {}: every spacing must be finite and > 0", .spacing[0], .spacing[1], .spacing[2])]
     BadSpacing { spacing: [f64; 3] },
     #[error("{what} is truncated (expected {expected} bytes, found {found})")]
-    Truncated {
-        what: String,
-        expected: u64,
-        found: u64,
-    },
+    Truncated { what: String, expected: u64, found: u64 },
     #[error("{what} is too long (expected {expected} bytes, found {found})")]
-    TooLong {
-        what: String,
-        expected: u64,
-        found: u64,
-    },
+    TooLong { what: String, expected: u64, found: u64 },
     #[error("{what} is not a valid compressed stream: {reason}")]
     Decompress { what: String, reason: String },
     #[error("{what} inflates to {found} bytes, expected {expected}")]
-    InflatedTooShort {
-        what: String,
-        expected: u64,
-        found: u64,
-    },
+    InflatedTooShort { what: String, expected: u64, found: u64 },
     #[error("{what} inflates to more than the {expected} bytes expected")]
     InflatedTooLong { what: String, expected: u64 },
     #[error("cannot allocate {bytes} bytes for {what}")]
@@ -113,18 +92,11 @@ impl FormatProblem {
     }
 
     pub(crate) fn bad_field(field: &str, value: &str, expected: impl Into<String>) -> Self {
-        FormatProblem::BadField {
-            field: field.to_string(),
-            value: value.to_string(),
-            expected: expected.into(),
-        }
+        FormatProblem::BadField { field: field.to_string(), value: value.to_string(), expected: expected.into() }
     }
 
     /// Attaches the file name.
     pub(crate) fn in_file(self, file: &Path) -> LoadError {
-        LoadError::Format {
-            file: file.to_path_buf(),
-            problem: self,
-        }
+        LoadError::Format { file: file.to_path_buf(), problem: self }
     }
 }

@@ -26,10 +26,7 @@ pub fn parse_array<T: FromStr + Copy + Default, const N: usize>(
 }
 
 pub fn parse_one<T: FromStr>(field: &str, value: &str, expected: &str) -> Result<T, FormatProblem> {
-    value
-        .trim()
-        .parse()
-        .map_err(|_| FormatProblem::bad_field(field, value, expected))
+    value.trim().parse().map_err(|_| FormatProblem::bad_field(field, value, expected))
 }
 
 /// `True`/`False` (any case) or `1`/`0`.
@@ -58,11 +55,7 @@ pub struct Lines<'a> {
 }
 
 pub fn lines(bytes: &[u8]) -> Lines<'_> {
-    Lines {
-        bytes,
-        position: 0,
-        number: 0,
-    }
+    Lines { bytes, position: 0, number: 0 }
 }
 
 impl<'a> Iterator for Lines<'a> {
@@ -85,9 +78,7 @@ impl<'a> Iterator for Lines<'a> {
             Ok(text) => Ok(Line { number, text, end }),
             Err(_) => {
                 self.position = self.bytes.len();
-                Err(FormatProblem::syntax(format!(
-                    "header line {number} is not text"
-                )))
+                Err(FormatProblem::syntax(format!("header line {number} is not text")))
             }
         })
     }

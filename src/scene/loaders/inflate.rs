@@ -24,12 +24,7 @@ pub enum Stream {
 }
 
 /// Inflates `compressed` into a new buffer of exactly `len` bytes.
-pub fn inflate_exact(
-    compressed: &[u8],
-    stream: Stream,
-    len: usize,
-    what: &str,
-) -> Result<Vec<u8>, FormatProblem> {
+pub fn inflate_exact(compressed: &[u8], stream: Stream, len: usize, what: &str) -> Result<Vec<u8>, FormatProblem> {
     let mut out = Vec::new();
     inflate_append(compressed, stream, len, what, &mut out)?;
     Ok(out)
@@ -46,10 +41,7 @@ pub fn inflate_append(
     check_ratio(compressed.len() as u64, len as u64, what)?;
     // One spare byte so that a stream running past `len` is noticed.
     out.try_reserve_exact(len + 1)
-        .map_err(|_| FormatProblem::OutOfMemory {
-            what: what.to_string(),
-            bytes: len as u64,
-        })?;
+        .map_err(|_| FormatProblem::OutOfMemory { what: what.to_string(), bytes: len as u64 })?;
     let start = out.len();
     match stream {
         Stream::Zlib => inflate_zlib(compressed, len, what, out)?,
@@ -57,18 +49,12 @@ pub fn inflate_append(
             let mut limited = MultiGzDecoder::new(compressed).take(len as u64 + 1);
             limited
                 .read_to_end(out)
-                .map_err(|e| FormatProblem::Decompress {
-                    what: what.to_string(),
-                    reason: e.to_string(),
-                })?;
+                .map_err(|e| FormatProblem::Decompress { what: what.to_string(), reason: e.to_string() })?;
         }
     }
     let produced = out.len() - start;
     if produced > len {
-        return Err(FormatProblem::InflatedTooLong {
-            what: what.to_string(),
-            expected: len as u64,
-        });
+        return Err(FormatProblem::InflatedTooLong { what: what.to_string(), expected: len as u64 });
     }
     if produced < len {
         return Err(FormatProblem::InflatedTooShort {
@@ -82,27 +68,16 @@ pub fn inflate_append(
 
 /// Refuses sizes no deflate stream of `compressed_len` bytes can produce.
 pub fn check_ratio(compressed_len: u64, len: u64, what: &str) -> Result<(), FormatProblem> {
-    let most = compressed_len
-        .saturating_mul(MAX_DEFLATE_RATIO)
-        .saturating_add(RATIO_SLACK);
+    let most = compressed_len.saturating_mul(MAX_DEFLATE_RATIO).saturating_add(RATIO_SLACK);
     if len > most {
-        return Err(FormatProblem::InflatedTooShort {
-            what: what.to_string(),
-            expected: len,
-            found: most,
-        });
+        return Err(FormatProblem::InflatedTooShort { what: what.to_string(), expected: len, found: most });
     }
     Ok(())
 }
 
 /// Drives the raw decompressor so that a stream cut short (which the `Read`
 /// adapters report as a clean end) is an error, and its checksum is verified.
-fn inflate_zlib(
-    compressed: &[u8],
-    len: usize,
-    what: &str,
-    out: &mut Vec<u8>,
-) -> Result<(), FormatProblem> {
+fn inflate_zlib(compressed: &[u8], len: usize, what: &str, out: &mut Vec<u8>) -> Result<(), FormatProblem> {
     let start = out.len();
     let limit = start + len + 1;
     let mut inflater = Decompress::new(true);
@@ -112,10 +87,7 @@ fn inflate_zlib(
         // decompress_vec writes only into spare capacity, which ends at `limit`.
         let status = inflater
             .decompress_vec(&compressed[consumed..], out, FlushDecompress::None)
-            .map_err(|e| FormatProblem::Decompress {
-                what: what.to_string(),
-                reason: e.to_string(),
-            })?;
+            .map_err(|e| FormatProblem::Decompress { what: what.to_string(), reason: e.to_string() })?;
         if status == Status::StreamEnd {
             break;
         }

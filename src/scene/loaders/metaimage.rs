@@ -21,20 +21,15 @@ struct Header {
 
 impl Header {
     fn get(&self, key: &str) -> Option<(&str, &str)> {
-        self.fields
-            .get(&key.to_ascii_lowercase())
-            .map(|(name, value)| (name.as_str(), value.as_str()))
+        self.fields.get(&key.to_ascii_lowercase()).map(|(name, value)| (name.as_str(), value.as_str()))
     }
 
     fn require(&self, key: &str) -> Result<(&str, &str), FormatProblem> {
-        self.get(key)
-            .ok_or_else(|| FormatProblem::MissingField(key.into()))
+        self.get(key).ok_or_else(|| FormatProblem::MissingField(key.into()))
     }
 
     fn flag(&self, key: &str) -> Result<Option<bool>, FormatProblem> {
-        self.get(key)
-            .map(|(name, value)| parse_bool(name, value))
-            .transpose()
+        self.get(key).map(|(name, value)| parse_bool(name, value)).transpose()
     }
 }
 
@@ -48,9 +43,7 @@ pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatPro
     }
     let (field, ndims) = header.require("NDims")?;
     if parse_one::<u32>(field, ndims, "3")? != 3 {
-        return Err(FormatProblem::unsupported(format!(
-            "NDims = {ndims}: only 3-D images are volumes"
-        )));
+        return Err(FormatProblem::unsupported(format!("NDims = {ndims}: only 3-D images are volumes")));
     }
     if let Some((field, channels)) = header.get("ElementNumberOfChannels") {
         if parse_one::<u32>(field, channels, "1")? != 1 {
@@ -67,9 +60,7 @@ pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatPro
     };
     let voxel_type = element_type(header.require("ElementType")?)?;
     if header.flag("BinaryData")? == Some(false) {
-        return Err(FormatProblem::unsupported(
-            "ASCII data (BinaryData = False)",
-        ));
+        return Err(FormatProblem::unsupported("ASCII data (BinaryData = False)"));
     }
     let endian = byte_order(&header)?;
     let compressed = header.flag("CompressedData")?.unwrap_or(false);
@@ -86,12 +77,7 @@ pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatPro
         },
     };
 
-    let layout = Layout {
-        dims,
-        spacing,
-        voxel_type,
-        endian,
-    };
+    let layout = Layout { dims, spacing, voxel_type, endian };
     let len = layout.data_len();
     let (_, data_file) = header.require("ElementDataFile")?;
     let voxels = if data_file.eq_ignore_ascii_case("LOCAL") {
@@ -142,10 +128,7 @@ fn parse_header(bytes: &[u8]) -> Result<Header, FormatProblem> {
         let is_last = key == "elementdatafile";
         fields.insert(key, (name.to_string(), value.trim().to_string()));
         if is_last {
-            return Ok(Header {
-                fields,
-                data_start: line.end,
-            });
+            return Ok(Header { fields, data_start: line.end });
         }
     }
     Err(FormatProblem::MissingField("ElementDataFile".into()))
@@ -167,11 +150,7 @@ fn element_type((field, value): (&str, &str)) -> Result<VoxelType, FormatProblem
         other if other.starts_with("MET_") => Err(FormatProblem::unsupported(format!(
             "{field} = {value} (supported: MET_UCHAR, MET_USHORT, MET_SHORT, MET_FLOAT)"
         ))),
-        _ => Err(FormatProblem::bad_field(
-            field,
-            value,
-            "MET_UCHAR, MET_USHORT, MET_SHORT or MET_FLOAT",
-        )),
+        _ => Err(FormatProblem::bad_field(field, value, "MET_UCHAR, MET_USHORT, MET_SHORT or MET_FLOAT")),
     }
 }
 
@@ -181,9 +160,7 @@ fn byte_order(header: &Header) -> Result<Endian, FormatProblem> {
     let element = header.flag("ElementByteOrderMSB")?;
     let msb = match (binary, element) {
         (Some(a), Some(b)) if a != b => {
-            return Err(FormatProblem::syntax(
-                "BinaryDataByteOrderMSB and ElementByteOrderMSB disagree",
-            ))
+            return Err(FormatProblem::syntax("BinaryDataByteOrderMSB and ElementByteOrderMSB disagree"))
         }
         (Some(msb), _) | (None, Some(msb)) => msb,
         (None, None) => false,
@@ -200,18 +177,10 @@ fn compressed_stream<'a>(
 ) -> Result<&'a [u8], FormatProblem> {
     let start = match skip {
         Skip::Bytes(n) => n,
-        Skip::ToTail => {
-            return Err(FormatProblem::unsupported(
-                "HeaderSize = -1 with compressed data",
-            ))
-        }
+        Skip::ToTail => return Err(FormatProblem::unsupported("HeaderSize = -1 with compressed data")),
     };
     if (data.len() as u64) < start {
-        return Err(FormatProblem::Truncated {
-            what: what.to_string(),
-            expected: start,
-            found: data.len() as u64,
-        });
+        return Err(FormatProblem::Truncated { what: what.to_string(), expected: start, found: data.len() as u64 });
     }
     let stream = &data[start as usize..];
     match compressed_size {

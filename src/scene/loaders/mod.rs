@@ -25,9 +25,7 @@ pub use error::{FormatProblem, LoadError};
 use crate::scene::volume::Volume;
 
 /// File name endings [`load_volume`] understands, for messages and file pickers.
-pub const SUPPORTED_EXTENSIONS: [&str; 8] = [
-    ".vti", ".mhd", ".mha", ".nrrd", ".nhdr", ".nii", ".nii.gz", ".vhdr",
-];
+pub const SUPPORTED_EXTENSIONS: [&str; 8] = [".vti", ".mhd", ".mha", ".nrrd", ".nhdr", ".nii", ".nii.gz", ".vhdr"];
 
 /// The volume file formats, as told by the file name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -67,13 +65,9 @@ impl VolumeFormat {
 
 /// Loads a volume file, choosing the format by the file name's ending.
 pub fn load_volume(path: &Path) -> Result<Volume, LoadError> {
-    let format = VolumeFormat::from_path(path).ok_or_else(|| LoadError::UnknownExtension {
-        file: path.to_path_buf(),
-    })?;
-    let bytes = std::fs::read(path).map_err(|source| LoadError::Io {
-        file: path.to_path_buf(),
-        source,
-    })?;
+    let format =
+        VolumeFormat::from_path(path).ok_or_else(|| LoadError::UnknownExtension { file: path.to_path_buf() })?;
+    let bytes = std::fs::read(path).map_err(|source| LoadError::Io { file: path.to_path_buf(), source })?;
     let name = volume_name(path);
     let loaded = match format {
         VolumeFormat::Vti => vti::load(&bytes, name),
@@ -88,16 +82,10 @@ pub fn load_volume(path: &Path) -> Result<Volume, LoadError> {
 
 /// The file name without its format ending (`engine.vti` -> `engine`).
 fn volume_name(path: &Path) -> String {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let lower = name.to_ascii_lowercase();
-    let cut = if lower.ends_with(".nii.gz") {
-        name.len() - ".nii.gz".len()
-    } else {
-        name.rfind('.').unwrap_or(name.len())
-    };
+    let cut =
+        if lower.ends_with(".nii.gz") { name.len() - ".nii.gz".len() } else { name.rfind('.').unwrap_or(name.len()) };
     name[..cut].to_string()
 }
 

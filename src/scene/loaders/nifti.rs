@@ -9,9 +9,7 @@ use std::io::Read;
 
 use flate2::read::MultiGzDecoder;
 
-use super::decode::{
-    checked_dims, checked_spacing, try_vec_with_capacity, Endian, Layout, VoxelType,
-};
+use super::decode::{checked_dims, checked_spacing, try_vec_with_capacity, Endian, Layout, VoxelType};
 use super::error::FormatProblem;
 use super::inflate::check_ratio;
 use crate::scene::volume::Volume;
@@ -36,18 +34,10 @@ pub fn load(bytes: &[u8], name: String) -> Result<Volume, FormatProblem> {
     let expected = start + len as u64;
     let found = bytes.len() as u64;
     if found < expected {
-        return Err(FormatProblem::Truncated {
-            what: "voxel data".into(),
-            expected,
-            found,
-        });
+        return Err(FormatProblem::Truncated { what: "voxel data".into(), expected, found });
     }
     if found > expected {
-        return Err(FormatProblem::TooLong {
-            what: "file".into(),
-            expected,
-            found,
-        });
+        return Err(FormatProblem::TooLong { what: "file".into(), expected, found });
     }
     finish(header, name, &bytes[start as usize..])
 }
@@ -56,10 +46,7 @@ pub fn load(bytes: &[u8], name: String) -> Result<Volume, FormatProblem> {
 /// promises bounds everything inflated after it.
 pub fn load_gzip(compressed: &[u8], name: String) -> Result<Volume, FormatProblem> {
     let what = "gzip stream";
-    let bad_stream = |e: std::io::Error| FormatProblem::Decompress {
-        what: what.into(),
-        reason: e.to_string(),
-    };
+    let bad_stream = |e: std::io::Error| FormatProblem::Decompress { what: what.into(), reason: e.to_string() };
     let mut stream = MultiGzDecoder::new(compressed);
     let mut header_bytes = [0u8; HEADER_LEN];
     let got = read_up_to(&mut stream, &mut header_bytes).map_err(bad_stream)?;
@@ -76,26 +63,15 @@ pub fn load_gzip(compressed: &[u8], name: String) -> Result<Volume, FormatProble
     check_ratio(compressed.len() as u64, total, what)?;
 
     let gap = header.vox_offset - HEADER_LEN as u64;
-    let skipped =
-        std::io::copy(&mut (&mut stream).take(gap), &mut std::io::sink()).map_err(bad_stream)?;
+    let skipped = std::io::copy(&mut (&mut stream).take(gap), &mut std::io::sink()).map_err(bad_stream)?;
     let mut data = try_vec_with_capacity(len + 1, "voxel data")?;
-    (&mut stream)
-        .take(len as u64 + 1)
-        .read_to_end(&mut data)
-        .map_err(bad_stream)?;
+    (&mut stream).take(len as u64 + 1).read_to_end(&mut data).map_err(bad_stream)?;
     let inflated = HEADER_LEN as u64 + skipped + data.len() as u64;
     if inflated < total {
-        return Err(FormatProblem::InflatedTooShort {
-            what: what.into(),
-            expected: total,
-            found: inflated,
-        });
+        return Err(FormatProblem::InflatedTooShort { what: what.into(), expected: total, found: inflated });
     }
     if data.len() > len {
-        return Err(FormatProblem::InflatedTooLong {
-            what: what.into(),
-            expected: total,
-        });
+        return Err(FormatProblem::InflatedTooLong { what: what.into(), expected: total });
     }
     finish(header, name, &data)
 }
@@ -140,12 +116,7 @@ impl Fields<'_> {
     }
 
     fn i32(&self, at: usize) -> i32 {
-        let b = [
-            self.bytes[at],
-            self.bytes[at + 1],
-            self.bytes[at + 2],
-            self.bytes[at + 3],
-        ];
+        let b = [self.bytes[at], self.bytes[at + 1], self.bytes[at + 2], self.bytes[at + 3]];
         match self.endian {
             Endian::Little => i32::from_le_bytes(b),
             Endian::Big => i32::from_be_bytes(b),
@@ -168,45 +139,28 @@ fn parse_header(bytes: &[u8]) -> Result<Header, FormatProblem> {
     let bytes = &bytes[..HEADER_LEN];
     // sizeof_hdr is 348 in the file's byte order, which it thereby reveals.
     let sizeof_hdr = [bytes[0], bytes[1], bytes[2], bytes[3]];
-    let endian = match (
-        i32::from_le_bytes(sizeof_hdr),
-        i32::from_be_bytes(sizeof_hdr),
-    ) {
+    let endian = match (i32::from_le_bytes(sizeof_hdr), i32::from_be_bytes(sizeof_hdr)) {
         (348, _) => Endian::Little,
         (_, 348) => Endian::Big,
         (540, _) | (_, 540) => return Err(FormatProblem::unsupported("NIfTI-2 file")),
-        _ => {
-            return Err(FormatProblem::syntax(
-                "not a NIfTI-1 file: sizeof_hdr is not 348",
-            ))
-        }
+        _ => return Err(FormatProblem::syntax("not a NIfTI-1 file: sizeof_hdr is not 348")),
     };
     let f = Fields { bytes, endian };
     match &bytes[344..348] {
         b"n+1\0" => {}
         b"ni1\0" => {
-            return Err(FormatProblem::unsupported(
-                "NIfTI-1 header/image pair (magic ni1); only single .nii files",
-            ))
+            return Err(FormatProblem::unsupported("NIfTI-1 header/image pair (magic ni1); only single .nii files"))
         }
-        _ => {
-            return Err(FormatProblem::syntax(
-                "not a NIfTI-1 file: magic is not n+1",
-            ))
-        }
+        _ => return Err(FormatProblem::syntax("not a NIfTI-1 file: magic is not n+1")),
     }
 
     let dim: [i16; 8] = std::array::from_fn(|i| f.i16(40 + 2 * i));
     let rank = dim[0];
     if !(1..=7).contains(&rank) {
-        return Err(FormatProblem::syntax(format!(
-            "dim[0] = {rank}: must be 1 to 7"
-        )));
+        return Err(FormatProblem::syntax(format!("dim[0] = {rank}: must be 1 to 7")));
     }
     if rank < 3 {
-        return Err(FormatProblem::unsupported(format!(
-            "{rank}-D image (dim[0] = {rank}); volumes need 3"
-        )));
+        return Err(FormatProblem::unsupported(format!("{rank}-D image (dim[0] = {rank}); volumes need 3")));
     }
     if let Some(axis) = (4..=rank as usize).find(|&i| dim[i] != 1) {
         return Err(FormatProblem::unsupported(format!(
@@ -263,14 +217,5 @@ fn parse_header(bytes: &[u8]) -> Result<Header, FormatProblem> {
         Some((slope, intercept))
     };
 
-    Ok(Header {
-        layout: Layout {
-            dims,
-            spacing,
-            voxel_type,
-            endian,
-        },
-        vox_offset: vox_offset as u64,
-        scaling,
-    })
+    Ok(Header { layout: Layout { dims, spacing, voxel_type, endian }, vox_offset: vox_offset as u64, scaling })
 }

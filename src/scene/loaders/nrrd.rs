@@ -34,17 +34,12 @@ impl Header {
     }
 
     fn require(&self, field: &str) -> Result<&str, FormatProblem> {
-        self.get(field)
-            .ok_or_else(|| FormatProblem::MissingField(field.into()))
+        self.get(field).ok_or_else(|| FormatProblem::MissingField(field.into()))
     }
 }
 
 fn normalize(field: &str) -> String {
-    field
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .flat_map(char::to_lowercase)
-        .collect()
+    field.chars().filter(|c| !c.is_whitespace()).flat_map(char::to_lowercase).collect()
 }
 
 pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatProblem> {
@@ -52,26 +47,16 @@ pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatPro
 
     let dimension = header.require("dimension")?;
     if parse_one::<u32>("dimension", dimension, "3")? != 3 {
-        return Err(FormatProblem::unsupported(format!(
-            "dimension: {dimension} (only 3-D scalar volumes)"
-        )));
+        return Err(FormatProblem::unsupported(format!("dimension: {dimension} (only 3-D scalar volumes)")));
     }
     let voxel_type = voxel_type(header.require("type")?)?;
-    let dims = checked_dims(parse_array(
-        "sizes",
-        header.require("sizes")?,
-        "3 integers",
-    )?)?;
+    let dims = checked_dims(parse_array("sizes", header.require("sizes")?, "3 integers")?)?;
     let spacing = spacing(&header)?;
     let encoding = match header.require("encoding")?.to_ascii_lowercase().as_str() {
         "raw" => Encoding::Raw,
         "gzip" | "gz" => Encoding::Gzip,
         "ascii" | "text" | "txt" => Encoding::Ascii,
-        other => {
-            return Err(FormatProblem::unsupported(format!(
-                "encoding: {other} (supported: raw, gzip, ascii)"
-            )))
-        }
+        other => return Err(FormatProblem::unsupported(format!("encoding: {other} (supported: raw, gzip, ascii)"))),
     };
     // ASCII values are converted to little-endian bytes; `endian` is then moot.
     let endian = match (header.get("endian"), encoding) {
@@ -92,34 +77,17 @@ pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatPro
         None => Skip::Bytes(0),
         Some(value) => match parse_one::<i64>("byte skip", value, "a byte count or -1")? {
             -1 if encoding == Encoding::Raw => Skip::ToTail,
-            -1 => {
-                return Err(FormatProblem::unsupported(
-                    "byte skip: -1 with a compressed or ASCII encoding",
-                ))
-            }
+            -1 => return Err(FormatProblem::unsupported("byte skip: -1 with a compressed or ASCII encoding")),
             n if n >= 0 => Skip::Bytes(n as u64),
-            _ => {
-                return Err(FormatProblem::bad_field(
-                    "byte skip",
-                    value,
-                    "a byte count or -1",
-                ))
-            }
+            _ => return Err(FormatProblem::bad_field("byte skip", value, "a byte count or -1")),
         },
     };
 
-    let layout = Layout {
-        dims,
-        spacing,
-        voxel_type,
-        endian,
-    };
+    let layout = Layout { dims, spacing, voxel_type, endian };
     let source = match header.get("data file") {
         Some(file) => {
             if file.eq_ignore_ascii_case("LIST") || file.contains('%') {
-                return Err(FormatProblem::unsupported(format!(
-                    "data file: {file} (data split over several files)"
-                )));
+                return Err(FormatProblem::unsupported(format!("data file: {file} (data split over several files)")));
             }
             DataSource::Detached(data_file::resolve(path, file))
         }
@@ -132,12 +100,7 @@ pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatPro
             }
         },
     };
-    let read = ReadPlan {
-        encoding,
-        line_skip,
-        byte_skip,
-        layout,
-    };
+    let read = ReadPlan { encoding, line_skip, byte_skip, layout };
     let voxels = read.voxels(source)?;
     layout.into_volume(name, &voxels)
 }
@@ -180,24 +143,20 @@ impl ReadPlan {
             Encoding::Gzip => {
                 // Teem applies byte skip to the inflated data.
                 let skip = match self.byte_skip {
-                    Skip::Bytes(n) => usize::try_from(n).map_err(|_| {
-                        FormatProblem::bad_field("byte skip", &n.to_string(), "a smaller count")
-                    })?,
+                    Skip::Bytes(n) => usize::try_from(n)
+                        .map_err(|_| FormatProblem::bad_field("byte skip", &n.to_string(), "a smaller count"))?,
                     Skip::ToTail => 0, // refused when parsing
                 };
-                let total = skip.checked_add(len).ok_or_else(|| {
-                    FormatProblem::bad_field("byte skip", &skip.to_string(), "a smaller count")
-                })?;
+                let total = skip
+                    .checked_add(len)
+                    .ok_or_else(|| FormatProblem::bad_field("byte skip", &skip.to_string(), "a smaller count"))?;
                 let mut inflated = inflate_exact(data, Stream::Gzip, total, &what)?;
                 inflated.drain(..skip);
                 Ok(inflated)
             }
             Encoding::Ascii => {
-                let text = std::str::from_utf8(data).map_err(|_| {
-                    FormatProblem::syntax(format!(
-                        "{what}: ASCII encoding but the data is not text"
-                    ))
-                })?;
+                let text = std::str::from_utf8(data)
+                    .map_err(|_| FormatProblem::syntax(format!("{what}: ASCII encoding but the data is not text")))?;
                 let count = len / self.layout.voxel_type.size();
                 parse_ascii_voxels(text, self.layout.voxel_type, count)
             }
@@ -207,35 +166,24 @@ impl ReadPlan {
 
 fn parse_header(bytes: &[u8]) -> Result<Header, FormatProblem> {
     let mut all = lines(bytes);
-    let magic = all
-        .next()
-        .transpose()?
-        .map(|line| line.text)
-        .unwrap_or_default();
+    let magic = all.next().transpose()?.map(|line| line.text).unwrap_or_default();
     let version = magic.strip_prefix("NRRD000").unwrap_or_default();
     if !matches!(version, "1" | "2" | "3" | "4" | "5") {
-        return Err(FormatProblem::syntax(
-            "not a NRRD file: the first line must be NRRD0001 to NRRD0005",
-        ));
+        return Err(FormatProblem::syntax("not a NRRD file: the first line must be NRRD0001 to NRRD0005"));
     }
     let mut fields = HashMap::new();
     for line in all {
         let line = line?;
         if line.text.is_empty() {
-            return Ok(Header {
-                fields,
-                data_start: Some(line.end),
-            });
+            return Ok(Header { fields, data_start: Some(line.end) });
         }
         if line.text.starts_with('#') {
             continue;
         }
-        let (field, value) = line.text.split_once(':').ok_or_else(|| {
-            FormatProblem::syntax(format!(
-                "header line {}: expected `field: value`",
-                line.number
-            ))
-        })?;
+        let (field, value) = line
+            .text
+            .split_once(':')
+            .ok_or_else(|| FormatProblem::syntax(format!("header line {}: expected `field: value`", line.number)))?;
         if value.starts_with('=') {
             continue; // a `key:=value` pair: free-form metadata
         }
@@ -248,43 +196,27 @@ fn parse_header(bytes: &[u8]) -> Result<Header, FormatProblem> {
             )));
         }
     }
-    Ok(Header {
-        fields,
-        data_start: None,
-    })
+    Ok(Header { fields, data_start: None })
 }
 
 fn voxel_type(name: &str) -> Result<VoxelType, FormatProblem> {
     match name {
         "uchar" | "unsigned char" | "uint8" | "uint8_t" => Ok(VoxelType::U8),
-        "ushort" | "unsigned short" | "unsigned short int" | "uint16" | "uint16_t" => {
-            Ok(VoxelType::U16)
-        }
-        "short" | "short int" | "signed short" | "signed short int" | "int16" | "int16_t" => {
-            Ok(VoxelType::I16)
-        }
+        "ushort" | "unsigned short" | "unsigned short int" | "uint16" | "uint16_t" => Ok(VoxelType::U16),
+        "short" | "short int" | "signed short" | "signed short int" | "int16" | "int16_t" => Ok(VoxelType::I16),
         "float" => Ok(VoxelType::F32),
-        other => Err(FormatProblem::unsupported(format!(
-            "type: {other} (supported: uchar, ushort, short, float)"
-        ))),
+        other => Err(FormatProblem::unsupported(format!("type: {other} (supported: uchar, ushort, short, float)"))),
     }
 }
 
 /// From `space directions` (lengths of the axis vectors) or `spacings`; 1 when absent.
 fn spacing(header: &Header) -> Result<Vec3, FormatProblem> {
     if let Some(value) = header.get("space directions") {
-        let vectors = parse_vectors(value).ok_or_else(|| {
-            FormatProblem::bad_field("space directions", value, "3 vectors like (1,0,0)")
-        })?;
+        let vectors = parse_vectors(value)
+            .ok_or_else(|| FormatProblem::bad_field("space directions", value, "3 vectors like (1,0,0)"))?;
         let lengths: [f64; 3] = match vectors.as_slice() {
             [a, b, c] => [a, b, c].map(|v| v.iter().map(|x| x * x).sum::<f64>().sqrt()),
-            _ => {
-                return Err(FormatProblem::bad_field(
-                    "space directions",
-                    value,
-                    "3 vectors, one per axis",
-                ))
-            }
+            _ => return Err(FormatProblem::bad_field("space directions", value, "3 vectors, one per axis")),
         };
         return checked_spacing(lengths);
     }
@@ -301,10 +233,8 @@ fn parse_vectors(value: &str) -> Option<Vec<Vec<f64>>> {
     while !rest.is_empty() {
         let inner = rest.strip_prefix('(')?;
         let close = inner.find(')')?;
-        let components = inner[..close]
-            .split(',')
-            .map(|c| c.trim().parse::<f64>().ok())
-            .collect::<Option<Vec<f64>>>()?;
+        let components =
+            inner[..close].split(',').map(|c| c.trim().parse::<f64>().ok()).collect::<Option<Vec<f64>>>()?;
         vectors.push(components);
         rest = inner[close + 1..].trim_start();
     }
@@ -318,14 +248,7 @@ mod tests {
     #[test]
     fn space_direction_vectors() {
         let v = parse_vectors("(1,0,0) ( 0, 1.5 ,0)(0,0,-2)").unwrap();
-        assert_eq!(
-            v,
-            vec![
-                vec![1.0, 0.0, 0.0],
-                vec![0.0, 1.5, 0.0],
-                vec![0.0, 0.0, -2.0]
-            ]
-        );
+        assert_eq!(v, vec![vec![1.0, 0.0, 0.0], vec![0.0, 1.5, 0.0], vec![0.0, 0.0, -2.0]]);
         assert!(parse_vectors("(1,0,0) none (0,0,1)").is_none());
         assert!(parse_vectors("(1,0,0").is_none());
         assert!(parse_vectors("(1,a,0)").is_none());

@@ -39,13 +39,7 @@ pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatPro
         "uint16" => VoxelType::U16,
         "int16" => VoxelType::I16,
         "float32" => VoxelType::F32,
-        _ => {
-            return Err(FormatProblem::bad_field(
-                "type",
-                require("type")?,
-                "uint8, uint16, int16 or float32",
-            ))
-        }
+        _ => return Err(FormatProblem::bad_field("type", require("type")?, "uint8, uint16, int16 or float32")),
     };
     // The byte order of multi-byte voxels must be stated: guessing silently
     // produces noise that looks like data.
@@ -61,12 +55,7 @@ pub fn load(path: &Path, bytes: &[u8], name: String) -> Result<Volume, FormatPro
         None => 0,
     };
     let data_path = data_file::resolve(path, require("data")?);
-    let layout = Layout {
-        dims,
-        spacing,
-        voxel_type,
-        endian,
-    };
+    let layout = Layout { dims, spacing, voxel_type, endian };
     let data = data_file::read_exact(&data_path, Skip::Bytes(offset), layout.data_len())?;
     layout.into_volume(name, &data)
 }
@@ -80,10 +69,7 @@ fn parse_fields(bytes: &[u8]) -> Result<HashMap<String, String>, FormatProblem> 
             continue;
         }
         let (key, value) = text.split_once('=').ok_or_else(|| {
-            FormatProblem::syntax(format!(
-                "line {}: expected `key = value`, found `{text}`",
-                line.number
-            ))
+            FormatProblem::syntax(format!("line {}: expected `key = value`, found `{text}`", line.number))
         })?;
         let key = key.trim().to_ascii_lowercase();
         if !KEYS.contains(&key.as_str()) {
@@ -93,14 +79,8 @@ fn parse_fields(bytes: &[u8]) -> Result<HashMap<String, String>, FormatProblem> 
                 KEYS.join(", ")
             )));
         }
-        if fields
-            .insert(key.clone(), value.trim().to_string())
-            .is_some()
-        {
-            return Err(FormatProblem::syntax(format!(
-                "line {}: `{key}` is given twice",
-                line.number
-            )));
+        if fields.insert(key.clone(), value.trim().to_string()).is_some() {
+            return Err(FormatProblem::syntax(format!("line {}: `{key}` is given twice", line.number)));
         }
     }
     Ok(fields)

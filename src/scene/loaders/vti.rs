@@ -11,8 +11,7 @@ use quick_xml::{Reader, XmlVersion};
 
 use super::base64;
 use super::decode::{
-    checked_dims, checked_spacing, parse_ascii_voxels, try_vec_with_capacity, Endian, Layout,
-    VoxelType,
+    checked_dims, checked_spacing, parse_ascii_voxels, try_vec_with_capacity, Endian, Layout, VoxelType,
 };
 use super::error::FormatProblem;
 use super::inflate::{check_ratio, inflate_append, Stream};
@@ -72,35 +71,18 @@ struct Framing {
 
 pub fn load(bytes: &[u8], name: String) -> Result<Volume, FormatProblem> {
     let appended_at = find(bytes, APPENDED_OPEN);
-    let xml = std::str::from_utf8(&bytes[..appended_at.unwrap_or(bytes.len())]).map_err(|e| {
-        FormatProblem::syntax(format!(
-            "the XML part is not UTF-8 text (byte {})",
-            e.valid_up_to()
-        ))
-    })?;
+    let xml = std::str::from_utf8(&bytes[..appended_at.unwrap_or(bytes.len())])
+        .map_err(|e| FormatProblem::syntax(format!("the XML part is not UTF-8 text (byte {})", e.valid_up_to())))?;
     let document = parse_document(xml, appended_at.is_some())?;
     match document.file_type.as_deref() {
         Some("ImageData") => {}
-        Some(other) => {
-            return Err(FormatProblem::unsupported(format!(
-                "VTKFile type=\"{other}\" (only ImageData)"
-            )))
-        }
-        None => {
-            return Err(FormatProblem::syntax(
-                "no <VTKFile type=\"ImageData\"> element",
-            ))
-        }
+        Some(other) => return Err(FormatProblem::unsupported(format!("VTKFile type=\"{other}\" (only ImageData)"))),
+        None => return Err(FormatProblem::syntax("no <VTKFile type=\"ImageData\"> element")),
     }
     let framing = framing(&document)?;
     let (dims, spacing) = grid(&document)?;
     let array = scalar_array(&document)?;
-    let layout = Layout {
-        dims,
-        spacing,
-        voxel_type: voxel_type(array)?,
-        endian: framing.endian,
-    };
+    let layout = Layout { dims, spacing, voxel_type: voxel_type(array)?, endian: framing.endian };
     let len = layout.data_len();
 
     let voxels = match array.format.as_deref() {
@@ -108,30 +90,19 @@ pub fn load(bytes: &[u8], name: String) -> Result<Volume, FormatProblem> {
             let count = len / layout.voxel_type.size();
             let bytes = parse_ascii_voxels(&array.text, layout.voxel_type, count)?;
             // The ASCII values were converted to little-endian bytes.
-            return Layout {
-                endian: Endian::Little,
-                ..layout
-            }
-            .into_volume(name, &bytes);
+            return Layout { endian: Endian::Little, ..layout }.into_volume(name, &bytes);
         }
         Some("binary") => {
             let block = base64::decode(array.text.as_bytes(), "inline DataArray")?;
             read_binary(&block, framing, len, "inline data")?
         }
         Some("appended") => {
-            let at = appended_at.ok_or_else(|| {
-                FormatProblem::syntax("DataArray format=\"appended\" but no <AppendedData>")
-            })?;
+            let at = appended_at
+                .ok_or_else(|| FormatProblem::syntax("DataArray format=\"appended\" but no <AppendedData>"))?;
             let section = appended_section(bytes, at)?;
             read_appended(&section, array, framing, len)?
         }
-        Some(other) => {
-            return Err(FormatProblem::bad_field(
-                "DataArray format",
-                other,
-                "ascii, binary or appended",
-            ))
-        }
+        Some(other) => return Err(FormatProblem::bad_field("DataArray format", other, "ascii, binary or appended")),
         None => return Err(FormatProblem::MissingField("DataArray format".into())),
     };
     layout.into_volume(name, &voxels)
@@ -142,47 +113,27 @@ fn framing(document: &Document) -> Result<Framing, FormatProblem> {
     let endian = match document.byte_order.as_deref() {
         None | Some("LittleEndian") => Endian::Little,
         Some("BigEndian") => Endian::Big,
-        Some(other) => {
-            return Err(FormatProblem::bad_field(
-                "byte_order",
-                other,
-                "LittleEndian or BigEndian",
-            ))
-        }
+        Some(other) => return Err(FormatProblem::bad_field("byte_order", other, "LittleEndian or BigEndian")),
     };
     let header_type = match document.header_type.as_deref() {
         None | Some("UInt32") => HeaderType::U32,
         Some("UInt64") => HeaderType::U64,
-        Some(other) => {
-            return Err(FormatProblem::bad_field(
-                "header_type",
-                other,
-                "UInt32 or UInt64",
-            ))
-        }
+        Some(other) => return Err(FormatProblem::bad_field("header_type", other, "UInt32 or UInt64")),
     };
     let compressed = match document.compressor.as_deref() {
         None | Some("") => false,
         Some("vtkZLibDataCompressor") => true,
         Some(other) => {
-            return Err(FormatProblem::unsupported(format!(
-                "compressor {other} (only vtkZLibDataCompressor)"
-            )))
+            return Err(FormatProblem::unsupported(format!("compressor {other} (only vtkZLibDataCompressor)")))
         }
     };
-    Ok(Framing {
-        endian,
-        header_type,
-        compressed,
-    })
+    Ok(Framing { endian, header_type, compressed })
 }
 
 /// Dimensions from `WholeExtent` (one `<Piece>` must cover it) and `Spacing`.
 fn grid(document: &Document) -> Result<(UVec3, Vec3), FormatProblem> {
-    let extent_text = document
-        .whole_extent
-        .as_deref()
-        .ok_or_else(|| FormatProblem::MissingField("ImageData WholeExtent".into()))?;
+    let extent_text =
+        document.whole_extent.as_deref().ok_or_else(|| FormatProblem::MissingField("ImageData WholeExtent".into()))?;
     let extent = parse_extent("WholeExtent", extent_text)?;
     let dims = checked_dims(extent_dims(&extent, extent_text)?)?;
     match document.piece_extents.as_slice() {
@@ -195,12 +146,7 @@ fn grid(document: &Document) -> Result<(UVec3, Vec3), FormatProblem> {
                 )));
             }
         }
-        pieces => {
-            return Err(FormatProblem::unsupported(format!(
-                "{} pieces in one file (only 1)",
-                pieces.len()
-            )))
-        }
+        pieces => return Err(FormatProblem::unsupported(format!("{} pieces in one file (only 1)", pieces.len()))),
     }
     let spacing = match document.spacing.as_deref() {
         Some(value) => checked_spacing(parse_numbers("Spacing", value)?)?,
@@ -212,9 +158,7 @@ fn grid(document: &Document) -> Result<(UVec3, Vec3), FormatProblem> {
 fn voxel_type(array: &DataArray) -> Result<VoxelType, FormatProblem> {
     if let Some(components) = array.components.as_deref() {
         if components.trim() != "1" {
-            return Err(FormatProblem::unsupported(format!(
-                "NumberOfComponents=\"{components}\" (only scalar data)"
-            )));
+            return Err(FormatProblem::unsupported(format!("NumberOfComponents=\"{components}\" (only scalar data)")));
         }
     }
     match array.type_name.as_str() {
@@ -235,10 +179,7 @@ fn read_appended(
     framing: Framing,
     len: usize,
 ) -> Result<Vec<u8>, FormatProblem> {
-    let offset_text = array
-        .offset
-        .as_deref()
-        .ok_or_else(|| FormatProblem::MissingField("DataArray offset".into()))?;
+    let offset_text = array.offset.as_deref().ok_or_else(|| FormatProblem::MissingField("DataArray offset".into()))?;
     let offset: u64 = offset_text
         .trim()
         .parse()
@@ -268,15 +209,8 @@ fn scalar_array(document: &Document) -> Result<&DataArray, FormatProblem> {
             .arrays
             .iter()
             .find(|a| a.name.as_deref() == Some(wanted))
-            .ok_or_else(|| {
-                FormatProblem::syntax(format!(
-                    "<PointData Scalars=\"{wanted}\"> names no DataArray"
-                ))
-            }),
-        None => document
-            .arrays
-            .first()
-            .ok_or_else(|| FormatProblem::syntax("no DataArray in <PointData>")),
+            .ok_or_else(|| FormatProblem::syntax(format!("<PointData Scalars=\"{wanted}\"> names no DataArray"))),
+        None => document.arrays.first().ok_or_else(|| FormatProblem::syntax("no DataArray in <PointData>")),
     }
 }
 
@@ -289,12 +223,9 @@ fn parse_document(xml: &str, cut_at_appended: bool) -> Result<Document, FormatPr
     // Index of the open DataArray in `document.arrays`, if inside PointData.
     let mut open_array: Option<usize> = None;
     loop {
-        let event = reader.read_event().map_err(|e| {
-            FormatProblem::syntax(format!(
-                "XML error near byte {}: {e}",
-                reader.error_position()
-            ))
-        })?;
+        let event = reader
+            .read_event()
+            .map_err(|e| FormatProblem::syntax(format!("XML error near byte {}: {e}", reader.error_position())))?;
         match event {
             Event::Start(tag) => {
                 let name = tag_name(&tag);
@@ -322,9 +253,7 @@ fn parse_document(xml: &str, cut_at_appended: bool) -> Result<Document, FormatPr
                 }
             }
             Event::GeneralRef(_) if open_array.is_some() => {
-                return Err(FormatProblem::syntax(
-                    "entity reference inside DataArray data",
-                ));
+                return Err(FormatProblem::syntax("entity reference inside DataArray data"));
             }
             Event::Eof => break,
             _ => {}
@@ -345,16 +274,12 @@ fn tag_name(tag: &BytesStart) -> String {
 }
 
 fn attribute(tag: &BytesStart, key: &str) -> Result<Option<String>, FormatProblem> {
-    let bad = |e: &dyn std::fmt::Display| {
-        FormatProblem::syntax(format!("bad attribute {key} of <{}>: {e}", tag_name(tag)))
-    };
+    let bad =
+        |e: &dyn std::fmt::Display| FormatProblem::syntax(format!("bad attribute {key} of <{}>: {e}", tag_name(tag)));
     match tag.try_get_attribute(key).map_err(|e| bad(&e))? {
-        Some(attribute) => Ok(Some(
-            attribute
-                .normalized_value(XmlVersion::Implicit1_0)
-                .map_err(|e| bad(&e))?
-                .into_owned(),
-        )),
+        Some(attribute) => {
+            Ok(Some(attribute.normalized_value(XmlVersion::Implicit1_0).map_err(|e| bad(&e))?.into_owned()))
+        }
         None => Ok(None),
     }
 }
@@ -374,11 +299,7 @@ fn visit_element(
             document.header_type = attribute(tag, "header_type")?;
             document.compressor = attribute(tag, "compressor")?;
         }
-        (None, other) => {
-            return Err(FormatProblem::syntax(format!(
-                "root element is <{other}>, not <VTKFile>"
-            )))
-        }
+        (None, other) => return Err(FormatProblem::syntax(format!("root element is <{other}>, not <VTKFile>"))),
         (Some("VTKFile"), "ImageData") => {
             document.whole_extent = attribute(tag, "WholeExtent")?;
             document.spacing = attribute(tag, "Spacing")?;
@@ -445,13 +366,7 @@ fn appended_section(bytes: &[u8], at: usize) -> Result<AppendedSection<'_>, Form
     let base64 = match encoding.as_deref() {
         None | Some("raw") => false,
         Some("base64") => true,
-        Some(other) => {
-            return Err(FormatProblem::bad_field(
-                "AppendedData encoding",
-                other,
-                "raw or base64",
-            ))
-        }
+        Some(other) => return Err(FormatProblem::bad_field("AppendedData encoding", other, "raw or base64")),
     };
     let after_tag = at + tag_len + 1;
     let underscore = bytes[after_tag..]
@@ -463,19 +378,14 @@ fn appended_section(bytes: &[u8], at: usize) -> Result<AppendedSection<'_>, Form
     let start = underscore + 1;
     let end = rfind(&bytes[start..], APPENDED_CLOSE)
         .map(|i| start + i)
-        .ok_or_else(|| {
-            FormatProblem::syntax("no </AppendedData> after the appended data (file truncated?)")
-        })?;
+        .ok_or_else(|| FormatProblem::syntax("no </AppendedData> after the appended data (file truncated?)"))?;
     let rest = &bytes[end + APPENDED_CLOSE.len()..];
     if rest.trim_ascii() != b"</VTKFile>" {
         return Err(FormatProblem::syntax(
             "the file does not end with </VTKFile> after </AppendedData> (file truncated?)",
         ));
     }
-    Ok(AppendedSection {
-        data: &bytes[start..end],
-        base64,
-    })
+    Ok(AppendedSection { data: &bytes[start..end], base64 })
 }
 
 /// Reads one size word of the binary header.
@@ -485,39 +395,24 @@ fn word(bytes: &[u8], index: usize, framing: Framing) -> u64 {
     match (framing.header_type, framing.endian) {
         (HeaderType::U32, Endian::Little) => u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as u64,
         (HeaderType::U32, Endian::Big) => u32::from_be_bytes([b[0], b[1], b[2], b[3]]) as u64,
-        (HeaderType::U64, Endian::Little) => {
-            u64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]])
-        }
-        (HeaderType::U64, Endian::Big) => {
-            u64::from_be_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]])
-        }
+        (HeaderType::U64, Endian::Little) => u64::from_le_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]),
+        (HeaderType::U64, Endian::Big) => u64::from_be_bytes([b[0], b[1], b[2], b[3], b[4], b[5], b[6], b[7]]),
     }
 }
 
 fn need(block: &[u8], bytes: u64, what: &str) -> Result<(), FormatProblem> {
     if (block.len() as u64) < bytes {
-        return Err(FormatProblem::Truncated {
-            what: what.to_string(),
-            expected: bytes,
-            found: block.len() as u64,
-        });
+        return Err(FormatProblem::Truncated { what: what.to_string(), expected: bytes, found: block.len() as u64 });
     }
     Ok(())
 }
 
 /// Decodes one binary array (its size header, then the data) starting at
 /// `block`, which may run on past the array; the array must hold `len` bytes.
-fn read_binary(
-    block: &[u8],
-    framing: Framing,
-    len: usize,
-    what: &str,
-) -> Result<Vec<u8>, FormatProblem> {
+fn read_binary(block: &[u8], framing: Framing, len: usize, what: &str) -> Result<Vec<u8>, FormatProblem> {
     let word_size = framing.header_type.size() as u64;
     let size_mismatch = |holds: u64| {
-        FormatProblem::syntax(format!(
-            "{what}: the DataArray holds {holds} bytes, but WholeExtent and type need {len}"
-        ))
+        FormatProblem::syntax(format!("{what}: the DataArray holds {holds} bytes, but WholeExtent and type need {len}"))
     };
     if !framing.compressed {
         need(block, word_size, &format!("{what} header"))?;
@@ -542,16 +437,10 @@ fn read_binary(
         .and_then(|w| w.checked_mul(word_size))
         .ok_or_else(|| FormatProblem::syntax(format!("{what}: absurd block count {blocks}")))?;
     need(block, header_len, &format!("{what} compression header"))?;
-    let last_size = if last_size == 0 {
-        block_size
-    } else {
-        last_size
-    };
+    let last_size = if last_size == 0 { block_size } else { last_size };
     let total = match blocks {
         0 => Some(0),
-        n => (n - 1)
-            .checked_mul(block_size)
-            .and_then(|t| t.checked_add(last_size)),
+        n => (n - 1).checked_mul(block_size).and_then(|t| t.checked_add(last_size)),
     };
     match total {
         Some(total) if total == len as u64 => {}
@@ -565,9 +454,7 @@ fn read_binary(
     }
 
     // The header fits in `block`, so `blocks` is bounded by the file size here.
-    let compressed_sizes: Vec<u64> = (0..blocks as usize)
-        .map(|i| word(block, 3 + i, framing))
-        .collect();
+    let compressed_sizes: Vec<u64> = (0..blocks as usize).map(|i| word(block, 3 + i, framing)).collect();
     let compressed_total = compressed_sizes
         .iter()
         .try_fold(0u64, |sum, &s| sum.checked_add(s))
@@ -580,18 +467,10 @@ fn read_binary(
         let block_what = format!("{what} block {index}");
         let available = (block.len() as u64).saturating_sub(position);
         if available < compressed {
-            return Err(FormatProblem::Truncated {
-                what: block_what,
-                expected: compressed,
-                found: available,
-            });
+            return Err(FormatProblem::Truncated { what: block_what, expected: compressed, found: available });
         }
         let input = &block[position as usize..(position + compressed) as usize];
-        let size = if index + 1 == compressed_sizes.len() {
-            last_size
-        } else {
-            block_size
-        };
+        let size = if index + 1 == compressed_sizes.len() { last_size } else { block_size };
         inflate_append(input, Stream::Zlib, size as usize, &block_what, &mut out)?;
         position += compressed;
     }

@@ -1,0 +1,240 @@
+//! IPSVI against the ground truth of model (ii), its per-line barrier under
+//! synchronization validation, what it leaves out, and extreme cases.
+mod common;
+
+use common::*;
+use glam::Vec3;
+use sweeplab::ipsvi::renderer::plans;
+use sweeplab::ipsvi::{render_with, IpsviSettings, LineSync};
+use sweeplab::linear_image::LinearImage;
+use sweeplab::metrics::{compare, ErrorStats};
+use sweeplab::render::{render, GpuScene, RenderOutput, Technique, VolumeTexels};
+use sweeplab::scene::synthetic::slab_under_sphere;
+use sweeplab::scene::{presets, Falloff, Light, LightKind, OpticalModel, Projection, Scene};
+use sweeplab::vk::{Context, Profiler};
+
+const SIZE: u32 = 48;
+
+/// The known-shadow scene: a sphere over a slab (synthetic::slab_under_sphere).
+fn slab_scene(lights: Vec<Light>) -> Scene {
+    let mut scene = scene_with(slab_under_sphere(32), lights, SIZE, SIZE);
+    scene.transfer = presets::preset("slab-sphere").unwrap();
+    scene.reference.model = OpticalModel::EmissiveScattering;
+    scene.reference.step_voxels = scene.render.step_voxels;
+    scene.reference.shadow_step_voxels = 0.5;
+    scene.reference.min_transmittance = 1e-4;
+    scene.render.emission = 0.2;
+    scene
+}
+
+fn point(position: Vec3) -> Light {
+    Light {
+        kind: LightKind::Point { position },
+        color: Vec3::new(1.0, 0.9, 0.8),
+        intensity: 1.5,
+        falloff: Falloff::None,
+    }
+}
+
+fn ipsvi_and_reference(ctx: &Context, scene: &Scene, settings: &IpsviSettings) -> (RenderOutput, LinearImage) {
+    let gpu = GpuScene::upload_with(ctx, scene, VolumeTexels::Float32).unwrap();
+    let mut profiler = Profiler::new(ctx, 8192).unwrap();
+    profiler.reset();
+    let frame = render_with(&gpu, settings, SIZE, SIZE, &mut profiler, LineSync::Barrier).unwrap();
+    let profile = profiler.resolve(ctx.memory.device_local_peak()).unwrap();
+    let ipsvi = RenderOutput {
+        technique: Technique::Ipsvi,
+        image: frame.image,
+        profile,
+        dispatches: frame.dispatches,
+        barriers: frame.barriers,
+    };
+    let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+    (ipsvi, reference)
+}
+
+/// Error relative to the brightest reference value.
+fn relative(stats: &ErrorStats, reference: &LinearImage) -> (f64, f64) {
+    let peak = reference.max_value() as f64;
+    (stats.rmse / peak, stats.max_abs / peak)
+}
+
+/// The stated tolerance of IPSVI (line width 1, piecewise integration, cache
+/// 128) against model (ii): RMSE within 2% and no pixel off by more than 25% of
+/// the brightest value (the cache's bilinear lookup softens shadow borders).
+const RMSE_TOLERANCE: f64 = 0.02;
+const MAX_TOLERANCE: f64 = 0.25;
+
+fn settings() -> IpsviSettings {
+    IpsviSettings { cache_size: 128, ..IpsviSettings::default() }
+}
+
+fn check_against_reference(scene: &Scene, what: &str) -> f64 {
+    let ctx = validated_context();
+    let (ipsvi, reference) = ipsvi_and_reference(&ctx, scene, &settings());
+    assert!(ipsvi.image.all_finite(), "{what}: non-finite pixels");
+    let stats = compare(&ipsvi.image, &reference).unwrap();
+    let (rmse, max) = relative(&stats, &reference);
+    println!("{what}: rmse {rmse:.4} max {max:.4} of peak {}", reference.max_value());
+    assert!(rmse <= RMSE_TOLERANCE && max <= MAX_TOLERANCE, "{what}: relative rmse {rmse:.4}, max {max:.4}");
+    assert_validation_clean(&ctx);
+    rmse
+}
+
+#[test]
+fn directional_light_shadow_of_the_sphere_matches_the_reference() {
+    check_against_reference(&slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]), "directional");
+}
+
+#[test]
+fn point_light_in_each_zone_and_inside_the_volume_matches_the_reference() {
+    // Camera at azimuth 30, elevation 20 looking at the origin: these positions
+    // project right of, left of, above and below the volume, and into it.
+    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
+    let basis = camera.basis(SIZE, SIZE);
+    let (r, u) = (basis.right.normalize(), basis.up.normalize());
+    for (what, position) in [
+        ("right zone", r * 1.2 + u * 0.3),
+        ("left zone", -r * 1.2 + u * 0.2),
+        ("up zone", u * 1.2 + r * 0.2),
+        ("down zone", -u * 1.2 - r * 0.2),
+        ("inside the volume", Vec3::new(0.15, 0.35, 0.1)),
+    ] {
+        check_against_reference(&slab_scene(vec![point(position)]), what);
+    }
+}
+
+#[test]
+fn orthographic_camera_and_spot_light_match_the_reference() {
+    let mut scene = slab_scene(vec![Light {
+        kind: LightKind::Spot {
+            position: Vec3::new(0.2, 1.2, 0.3),
+            direction: Vec3::new(-0.1, -1.0, -0.2),
+            inner_cone_deg: 15.0,
+            outer_cone_deg: 30.0,
+        },
+        color: Vec3::ONE,
+        intensity: 2.0,
+        falloff: Falloff::InverseSquare,
+    }]);
+    scene.camera.projection = Projection::Orthographic { height: 1.8 };
+    check_against_reference(&scene, "orthographic, spot");
+}
+
+#[test]
+fn piecewise_integration_lowers_the_error_of_wide_lines() {
+    let scene = slab_scene(vec![directional(Vec3::new(0.6, -1.0, 0.1), 2.0)]);
+    let ctx = validated_context();
+    let mut errors = Vec::new();
+    for piecewise in [false, true] {
+        let s = IpsviSettings { line_width: 8, piecewise, ..settings() };
+        let (ipsvi, reference) = ipsvi_and_reference(&ctx, &scene, &s);
+        errors.push(compare(&ipsvi.image, &reference).unwrap().rmse);
+    }
+    println!("line width 8: rmse without PI {:.5}, with PI {:.5}", errors[0], errors[1]);
+    assert!(errors[1] < errors[0] * 0.8, "piecewise integration should cut the error: {errors:?}");
+    assert_validation_clean(&ctx);
+}
+
+/// The barrier between line blocks is load-bearing: without it synchronization
+/// validation reports the hazard on the ping-pong cache.
+#[test]
+fn sweep_without_line_barriers_is_reported_by_synchronization_validation() {
+    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let ctx = validated_context();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    let s = IpsviSettings { cache_size: 32, ..IpsviSettings::default() };
+    profiler.reset();
+    render_with(&gpu, &s, 16, 16, &mut profiler, LineSync::Barrier).unwrap();
+    assert_validation_clean(&ctx);
+    profiler.reset();
+    render_with(&gpu, &s, 16, 16, &mut profiler, LineSync::RacyNoBarrier).unwrap();
+    let messages = ctx.take_validation_messages();
+    assert!(
+        messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
+        "missing line barrier not reported: {messages:?}"
+    );
+}
+
+#[test]
+fn one_dispatch_per_line_block_and_only_inside_the_projected_box() {
+    let mut scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    // Zoomed out: the volume covers a small part of the image.
+    scene.camera =
+        sweeplab::scene::Camera::orbit(Vec3::ZERO, 6.0, 30.0, 20.0, Projection::Perspective { fov_y_deg: 30.0 });
+    let ctx = validated_context();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let s = IpsviSettings { line_width: 4, cache_size: 32, ..IpsviSettings::default() };
+    let plan = &plans(&gpu, &s, SIZE, SIZE)[0];
+    let lines = plan.lines();
+    assert!(lines > 4 && lines < SIZE / 2, "the box spans {lines} of {SIZE} lines");
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    profiler.reset();
+    let frame = render_with(&gpu, &s, SIZE, SIZE, &mut profiler, LineSync::Barrier).unwrap();
+    // One cache init per sweep, one dispatch per block: first block 1 line, then 4.
+    assert_eq!(frame.dispatches, 1 + plan.dispatches());
+    assert_eq!(plan.dispatches(), 1 + (lines - 1).div_ceil(4));
+}
+
+#[test]
+fn no_light_means_no_sweep_and_no_cache() {
+    let ctx = validated_context();
+    let lit = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let dark = slab_scene(vec![]);
+    let mut memory = Vec::new();
+    for scene in [&dark, &lit] {
+        let gpu = GpuScene::upload(&ctx, scene).unwrap();
+        let mut profiler = Profiler::new(&ctx, 64).unwrap();
+        let out = render(&gpu, Technique::Ipsvi, 16, 16, &mut profiler).unwrap();
+        memory.push((out.dispatches, out.profile.gpu_memory_bytes));
+        if scene.lights.is_empty() {
+            assert_eq!(out.dispatches, 1, "emission-only ray casting, no sweep");
+            assert!(out.profile.passes.iter().all(|p| !p.name.starts_with("ipsvi")));
+        }
+    }
+    let cache_bytes = 256u64 * 256 * (8 + 2) * 2;
+    // The lit frame holds the cache pair on top of what the dark frame holds (plus
+    // small parameter buffers).
+    let extra = memory[1].1 - memory[0].1;
+    assert!(extra >= cache_bytes && extra < cache_bytes + 64 * 1024, "extra {extra} for a cache of {cache_bytes}");
+    assert_validation_clean(&ctx);
+}
+
+#[test]
+fn extreme_cases_stay_finite_and_lit() {
+    let ctx = validated_context();
+    let mut cases: Vec<(&str, Scene)> = Vec::new();
+    for intensity in [1e-6f32, 1e6] {
+        let mut s = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), intensity)]);
+        s.render.emission = 0.0;
+        cases.push((if intensity < 1.0 { "intensity 1e-6" } else { "intensity 1e6" }, s));
+    }
+    let mut opaque = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    for p in &mut opaque.transfer.points {
+        if p.rgba[3] > 0.0 {
+            p.rgba[3] = 0.999_999;
+        }
+    }
+    cases.push(("near-opaque", opaque));
+    cases.push(("grazing light", slab_scene(vec![directional(Vec3::new(1.0, -0.002, 0.0), 2.0)])));
+    let mut parallel = slab_scene(vec![]);
+    parallel.camera.projection = Projection::Orthographic { height: 1.8 };
+    let view = parallel.camera.forward();
+    parallel.lights = vec![directional(view, 2.0)];
+    cases.push(("light parallel to the view", parallel));
+    for (what, scene) in &cases {
+        let gpu = GpuScene::upload(&ctx, scene).unwrap();
+        let mut profiler = Profiler::new(&ctx, 64).unwrap();
+        let out = render(&gpu, Technique::Ipsvi, 24, 24, &mut profiler).unwrap();
+        assert!(out.image.all_finite(), "{what}: non-finite pixels");
+        assert!(out.image.max_value() > 0.0, "{what}: black image");
+        if what.starts_with("intensity") {
+            let reference = render(&gpu, Technique::Reference, 24, 24, &mut profiler).unwrap().image;
+            let stats = compare(&out.image, &reference).unwrap();
+            let (rmse, _) = relative(&stats, &reference);
+            assert!(rmse <= RMSE_TOLERANCE * 2.0, "{what}: relative rmse {rmse}");
+        }
+    }
+    assert_validation_clean(&ctx);
+}
