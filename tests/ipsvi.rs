@@ -21,9 +21,11 @@ fn slab_scene(lights: Vec<Light>) -> Scene {
     scene.transfer = presets::preset("slab-sphere").unwrap();
     scene.reference.model = OpticalModel::EmissiveScattering;
     scene.reference.step_voxels = scene.render.step_voxels;
-    scene.reference.shadow_step_voxels = 0.5;
+    scene.reference.shadow_step_voxels = 0.125;
     scene.reference.min_transmittance = 1e-4;
     scene.render.emission = 0.2;
+    // What `render` (no explicit settings) uses: the settings of the tolerance.
+    scene.techniques = toml::from_str("[ipsvi]\ncache_size = 256\nlight_step = 0.125\n").unwrap();
     scene
 }
 
@@ -59,14 +61,30 @@ fn relative(stats: &ErrorStats, reference: &LinearImage) -> (f64, f64) {
     (stats.rmse / peak, stats.max_abs / peak)
 }
 
-/// The stated tolerance of IPSVI (line width 1, piecewise integration, cache
-/// 128) against model (ii): RMSE within 2% and no pixel off by more than 25% of
-/// the brightest value (the cache's bilinear lookup softens shadow borders).
+/// The stated tolerance of IPSVI against model (ii) (line width 1, piecewise
+/// integration, cache 256, light step 0.125 voxel like the reference's shadow
+/// rays), relative to the brightest reference value: RMSE within 2%, and 99% of
+/// the pixels within 8%. Single pixels may be off by more: on these hard-surfaced
+/// test volumes the light terminator is one texel sharp, and the cache's bilinear
+/// lookup puts such a sample partly in shadow. (With a 0.5-voxel light step the
+/// discretization of the hard surfaces alone costs 3-6% RMSE: a speed knob.)
 const RMSE_TOLERANCE: f64 = 0.02;
-const MAX_TOLERANCE: f64 = 0.25;
+const P99_TOLERANCE: f64 = 0.08;
+
+/// The 99th percentile of per-pixel max-channel errors.
+fn p99_error(test: &LinearImage, reference: &LinearImage) -> f64 {
+    let mut e: Vec<f32> = test
+        .pixels
+        .iter()
+        .zip(&reference.pixels)
+        .map(|(a, b)| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f32::max))
+        .collect();
+    e.sort_by(f32::total_cmp);
+    e[(e.len() * 99 / 100).min(e.len() - 1)] as f64
+}
 
 fn settings() -> IpsviSettings {
-    IpsviSettings { cache_size: 128, ..IpsviSettings::default() }
+    IpsviSettings { cache_size: 256, light_step_voxels: 0.125, ..IpsviSettings::default() }
 }
 
 fn check_against_reference(scene: &Scene, what: &str) -> f64 {
@@ -75,8 +93,9 @@ fn check_against_reference(scene: &Scene, what: &str) -> f64 {
     assert!(ipsvi.image.all_finite(), "{what}: non-finite pixels");
     let stats = compare(&ipsvi.image, &reference).unwrap();
     let (rmse, max) = relative(&stats, &reference);
-    println!("{what}: rmse {rmse:.4} max {max:.4} of peak {}", reference.max_value());
-    assert!(rmse <= RMSE_TOLERANCE && max <= MAX_TOLERANCE, "{what}: relative rmse {rmse:.4}, max {max:.4}");
+    let p99 = p99_error(&ipsvi.image, &reference) / reference.max_value() as f64;
+    println!("{what}: relative rmse {rmse:.4}, p99 {p99:.4}, max {max:.4} of peak {}", reference.max_value());
+    assert!(rmse <= RMSE_TOLERANCE && p99 <= P99_TOLERANCE, "{what}: relative rmse {rmse:.4}, p99 {p99:.4}");
     assert_validation_clean(&ctx);
     rmse
 }
@@ -233,7 +252,7 @@ fn extreme_cases_stay_finite_and_lit() {
             let reference = render(&gpu, Technique::Reference, 24, 24, &mut profiler).unwrap().image;
             let stats = compare(&out.image, &reference).unwrap();
             let (rmse, _) = relative(&stats, &reference);
-            assert!(rmse <= RMSE_TOLERANCE * 2.0, "{what}: relative rmse {rmse}");
+            assert!(rmse <= RMSE_TOLERANCE, "{what}: relative rmse {rmse}");
         }
     }
     assert_validation_clean(&ctx);

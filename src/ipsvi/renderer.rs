@@ -129,7 +129,8 @@ pub fn render_with(
     let bx = scene.volume_box();
     let plans = plans(gpu, settings, width, height);
 
-    let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::render(scene));
+    let steps = MarchSteps { shadow_step_voxels: settings.light_step_voxels, ..MarchSteps::render(scene) };
+    let params = frame_params(scene, width, height, gpu.lut_size, steps);
     let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
     let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
     let cache = Cache::new(gpu, settings.cache_size)?;

@@ -19,6 +19,8 @@ pub struct IpsviSettings {
     pub cone_angle_deg: f32,
     /// Width in pixels over which the four zones of a point light are blended.
     pub zone_blend_px: f32,
+    /// Step along light rays (cache updates and piecewise integration), voxels.
+    pub light_step_voxels: f32,
 }
 
 impl Default for IpsviSettings {
@@ -31,12 +33,13 @@ impl Default for IpsviSettings {
             albedo: 0.0,
             cone_angle_deg: 15.0,
             zone_blend_px: 2.0,
+            light_step_voxels: 0.5,
         }
     }
 }
 
-const KEYS: [&str; 7] =
-    ["line_width", "cache_size", "piecewise", "early_termination", "albedo", "cone_angle", "zone_blend"];
+const KEYS: [&str; 8] =
+    ["line_width", "cache_size", "piecewise", "early_termination", "albedo", "cone_angle", "zone_blend", "light_step"];
 
 impl IpsviSettings {
     pub fn from_scene(scene: &Scene) -> Result<IpsviSettings, RenderError> {
@@ -60,6 +63,7 @@ impl IpsviSettings {
                 "albedo" => s.albedo = within(number()?, 0.0, 1.0, key)?,
                 "cone_angle" => s.cone_angle_deg = within(number()?, 0.0, 80.0, key)?,
                 "zone_blend" => s.zone_blend_px = within(number()?, 0.0, 64.0, key)?,
+                "light_step" => s.light_step_voxels = within(number()?, 0.01, 16.0, key)?,
                 other => return Err(bad(&format!("unknown key ipsvi.{other}; known: {}", KEYS.join(", ")))),
             }
         }
