@@ -13,8 +13,10 @@ layout(set = 0, binding = 6, rgba16f) writeonly uniform image2D cache_a;
 layout(set = 0, binding = 7, r16ui) writeonly uniform uimage2D front_a;
 layout(set = 0, binding = 8, rgba16f) writeonly uniform image2D cache_b;
 layout(set = 0, binding = 9, r16ui) writeonly uniform uimage2D front_b;
+layout(push_constant) uniform Push { uint light; } push;
 
 void main() {
+    sweep = sweeps[push.light];
     uvec2 k = gl_GlobalInvocationID.xy;
     if (k.x >= sweep.cache_size.x || k.y >= sweep.cache_size.x) return;
     vec4 start = vec4(0.0, 0.0, 0.0, 1.0);

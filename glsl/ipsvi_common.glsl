@@ -6,7 +6,7 @@
 #include "volume.glsl"
 #include "lights.glsl"
 
-layout(std140, set = 0, binding = 4) uniform Sweep {
+struct SweepParams {
     vec4 cache_origin;  // xyz: light position, or a point behind the volume for directional; w: projection
     vec4 cache_axis;    // xyz: light travel direction (directional) or frustum axis; w: texel size
     vec4 cache_u;       // xyz: first plane axis; w: a0 (start of the cache along u)
@@ -14,7 +14,14 @@ layout(std140, set = 0, binding = 4) uniform Sweep {
     vec4 anchor;        // xy: light anchor in pixels; z: zone blend width (px); w: light scale (cache stores E / scale)
     uvec4 cache_size;   // x: N (cache is N x N); y: light index; z: flags; w: max piecewise steps
     vec4 scatter;       // x: albedo (multiple-scattering share); y: tan(cone half-angle)
-} sweep;
+};
+
+// One record per light, found by index: on lavapipe a descriptor-set bind costs
+// about ten dispatches (examples/dispatch_probe.rs), so sets are bound per sweep
+// at most and dispatches pick their parameters from buffers.
+layout(std430, set = 0, binding = 4) readonly buffer Sweeps { SweepParams sweeps[]; };
+
+SweepParams sweep;
 
 // One plane per sweep line: rows 0..H-1, then columns 0..W-1: n.x + d = 0.
 layout(std430, set = 0, binding = 5) readonly buffer Planes { vec4 planes[]; };

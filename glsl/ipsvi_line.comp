@@ -2,12 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 // One IPSVI line block (one dispatch; src/ipsvi/): invocations below
 // `pixel_count` ray-cast the block's pixels, reading the illumination cache as
-// it stands at the previous line (cache_in / front_in); the rest advance the
-// light rays of the block's cache region to this block's last line and carry
-// the previous block's region forward (cache_out / front_out).
-// Reads and writes go to different images of the ping-pong pair, so the block
-// has no race inside it, and a missing barrier before the next block is a
-// hazard that synchronization validation reports.
+// it stands at the previous line; the rest advance the light rays of the
+// block's cache region to this block's last line and carry the previous block's
+// region forward into the other image of the ping-pong pair. Reads and writes go
+// to different images, so the block has no race inside it.
 
 layout(local_size_x = 64) in;
 layout(constant_id = 0) const bool EMISSIVE = true;  // model (ii): light carries emission
@@ -15,13 +13,22 @@ layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-c
 
 #include "ipsvi_common.glsl"
 
-layout(set = 0, binding = 6, rgba16f) readonly uniform image2D cache_in;
-layout(set = 0, binding = 7, r16ui) readonly uniform uimage2D front_in;
-layout(set = 0, binding = 8, rgba16f) writeonly uniform image2D cache_out;
-layout(set = 0, binding = 9, r16ui) writeonly uniform uimage2D front_out;
-layout(set = 0, binding = 10, rgba32f) uniform image2D out_image;
+// Both images of each ping-pong pair, bound once per sweep (on lavapipe a
+// descriptor-set bind costs ten dispatches): `block.parity` picks which one this
+// block reads and which it writes. Every image is bound readonly and writeonly
+// under separate names, so synchronization validation sees each block read and
+// write both, and reports any missing barrier between blocks.
+layout(set = 0, binding = 6, rgba16f) readonly uniform image2D cache_a_in;
+layout(set = 0, binding = 7, r16ui) readonly uniform uimage2D front_a_in;
+layout(set = 0, binding = 8, rgba16f) readonly uniform image2D cache_b_in;
+layout(set = 0, binding = 9, r16ui) readonly uniform uimage2D front_b_in;
+layout(set = 0, binding = 10, rgba16f) writeonly uniform image2D cache_a_out;
+layout(set = 0, binding = 11, r16ui) writeonly uniform uimage2D front_a_out;
+layout(set = 0, binding = 12, rgba16f) writeonly uniform image2D cache_b_out;
+layout(set = 0, binding = 13, r16ui) writeonly uniform uimage2D front_b_out;
+layout(set = 0, binding = 14, rgba32f) uniform image2D out_image;
 
-layout(push_constant) uniform Block {
+struct BlockParams {
     uint line_first;
     uint line_width;
     uint span_start;
@@ -31,7 +38,32 @@ layout(push_constant) uniform Block {
     uint plane;       // plane index of the block's last line
     uint pixel_count; // line_width * span_len
     uvec4 region;     // cache texels to advance: x0, y0, w, h
-} block;
+    uint parity;      // 0: read the a images, write b; 1: read b, write a
+    uint light;       // index into sweeps[]
+    uint pad0;
+    uint pad1;
+};
+
+// Every block of the frame, planned on the host; a dispatch gets its index as
+// its only push constant. (vkCmdDispatchBase would carry it for free, but the
+// validation layer we test with does not check synchronization of that command.)
+layout(std430, set = 0, binding = 15) readonly buffer Blocks { BlockParams blocks[]; };
+layout(push_constant) uniform Push { uint block_index; } push;
+
+BlockParams block;
+
+vec4 cache_load(ivec2 k) { return block.parity == 0u ? imageLoad(cache_a_in, k) : imageLoad(cache_b_in, k); }
+uint front_load(ivec2 k) { return block.parity == 0u ? imageLoad(front_a_in, k).r : imageLoad(front_b_in, k).r; }
+
+void cache_store(ivec2 k, vec4 v, uint code) {
+    if (block.parity == 0u) {
+        imageStore(cache_b_out, k, v);
+        imageStore(front_b_out, k, uvec4(code));
+    } else {
+        imageStore(cache_a_out, k, v);
+        imageStore(front_a_out, k, uvec4(code));
+    }
+}
 
 const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;
 
@@ -53,10 +85,10 @@ vec4 cache_bilinear(vec2 c) {
     vec2 f = t - vec2(i0);
     ivec2 a = clamp(i0, ivec2(0), n - 1);
     ivec2 b = clamp(i0 + 1, ivec2(0), n - 1);
-    vec4 v00 = imageLoad(cache_in, ivec2(a.x, a.y));
-    vec4 v10 = imageLoad(cache_in, ivec2(b.x, a.y));
-    vec4 v01 = imageLoad(cache_in, ivec2(a.x, b.y));
-    vec4 v11 = imageLoad(cache_in, ivec2(b.x, b.y));
+    vec4 v00 = cache_load(ivec2(a.x, a.y));
+    vec4 v10 = cache_load(ivec2(b.x, a.y));
+    vec4 v01 = cache_load(ivec2(a.x, b.y));
+    vec4 v11 = cache_load(ivec2(b.x, b.y));
     return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
 }
 
@@ -69,7 +101,7 @@ vec4 light_at(vec3 p) {
     Ray r = cache_ray(k);
     vec2 io = ray_in_box(r);
     if (io.x > io.y) return cached;
-    float front = front_param(r, imageLoad(front_in, ivec2(k)).r, io);
+    float front = front_param(r, front_load(ivec2(k)), io);
     // Piecewise integration: march from p toward the light back to the cache front.
     vec4 seg = light_segment(p, to_light(p), c.z - front, sweep.cache_size.w, EMISSIVE);
     float tr = exp(-seg.a);
@@ -119,19 +151,19 @@ void shade_pixel(uint index) {
 
 vec4 cone_average(uvec2 k, float radius) {
     ivec2 n = ivec2(sweep.cache_size.x);
-    vec4 sum = imageLoad(cache_in, ivec2(k));
+    vec4 sum = cache_load(ivec2(k));
     ivec2 r = ivec2(max(1.0, round(radius)));
-    sum += imageLoad(cache_in, clamp(ivec2(k) + ivec2(r.x, 0), ivec2(0), n - 1));
-    sum += imageLoad(cache_in, clamp(ivec2(k) - ivec2(r.x, 0), ivec2(0), n - 1));
-    sum += imageLoad(cache_in, clamp(ivec2(k) + ivec2(0, r.y), ivec2(0), n - 1));
-    sum += imageLoad(cache_in, clamp(ivec2(k) - ivec2(0, r.y), ivec2(0), n - 1));
+    sum += cache_load(clamp(ivec2(k) + ivec2(r.x, 0), ivec2(0), n - 1));
+    sum += cache_load(clamp(ivec2(k) - ivec2(r.x, 0), ivec2(0), n - 1));
+    sum += cache_load(clamp(ivec2(k) + ivec2(0, r.y), ivec2(0), n - 1));
+    sum += cache_load(clamp(ivec2(k) - ivec2(0, r.y), ivec2(0), n - 1));
     return sum * 0.2;
 }
 
 void advance_texel(uint index) {
     uvec2 k = block.region.xy + uvec2(index % block.region.z, index / block.region.z);
-    vec4 cached = imageLoad(cache_in, ivec2(k));
-    uint code = imageLoad(front_in, ivec2(k)).r;
+    vec4 cached = cache_load(ivec2(k));
+    uint code = front_load(ivec2(k));
     Ray r = cache_ray(k);
     vec2 io = ray_in_box(r);
     if (io.x <= io.y && code != FRONT_EXIT) {
@@ -154,11 +186,12 @@ void advance_texel(uint index) {
             code = new_front >= io.y ? FRONT_EXIT : block.plane;
         }
     }
-    imageStore(cache_out, ivec2(k), cached);
-    imageStore(front_out, ivec2(k), uvec4(code));
+    cache_store(ivec2(k), cached, code);
 }
 
 void main() {
+    block = blocks[push.block_index];
+    sweep = sweeps[block.light];
     uint id = gl_GlobalInvocationID.x;
     if (id < block.pixel_count) {
         shade_pixel(id);

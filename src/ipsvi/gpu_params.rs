@@ -24,10 +24,11 @@ pub struct SweepParams {
 
 impl GpuData for SweepParams {}
 
-/// Push constants of one line block (glsl/ipsvi_line.comp `Block`).
+/// One line block (glsl/ipsvi_line.comp `BlockParams`), read by its dispatch
+/// through the block index it gets as push constant.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
-pub struct BlockPush {
+pub struct BlockParams {
     pub line_first: u32,
     pub line_width: u32,
     pub span_start: u32,
@@ -38,7 +39,14 @@ pub struct BlockPush {
     pub pixel_count: u32,
     /// Cache texels this block advances (and carries forward): x0, y0, w, h.
     pub region: [u32; 4],
+    /// 0: read the a images and write b; 1: the other way round.
+    pub parity: u32,
+    /// Index of the light (and of its record in the sweeps buffer).
+    pub light: u32,
+    pub pad: [u32; 2],
 }
+
+impl GpuData for BlockParams {}
 
 pub struct SweepInputs<'a> {
     pub geometry: &'a CacheGeometry,

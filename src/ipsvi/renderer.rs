@@ -5,7 +5,8 @@
 use super::cache_geometry::CacheGeometry;
 use super::cache_region::{plane_region, TexelRect};
 use super::gpu_params::{
-    line_planes, sweep_params, BlockPush, SweepInputs, FLAG_EARLY_TERMINATION, FLAG_FIRST_LIGHT, FLAG_PIECEWISE,
+    line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_EARLY_TERMINATION, FLAG_FIRST_LIGHT,
+    FLAG_PIECEWISE,
 };
 use super::image_space::ImageSpace;
 use super::settings::IpsviSettings;
@@ -17,7 +18,7 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
@@ -34,18 +35,23 @@ pub enum LineSync {
     RacyNoBarrier,
 }
 
-const LINE_BINDINGS: [BindingKind; 11] = [
+const LINE_BINDINGS: [BindingKind; 16] = [
     BindingKind::UniformBuffer,
     BindingKind::SampledImage,
     BindingKind::StorageBuffer,
     BindingKind::StorageBuffer,
-    BindingKind::UniformBuffer,
+    BindingKind::StorageBuffer,
     BindingKind::StorageBuffer,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageBuffer,
 ];
 
 const INIT_BINDINGS: [BindingKind; 10] = [
@@ -53,7 +59,7 @@ const INIT_BINDINGS: [BindingKind; 10] = [
     BindingKind::SampledImage,
     BindingKind::StorageBuffer,
     BindingKind::StorageBuffer,
-    BindingKind::UniformBuffer,
+    BindingKind::StorageBuffer,
     BindingKind::StorageBuffer,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
@@ -151,12 +157,9 @@ pub fn render_with(
     let geometries: Vec<CacheGeometry> =
         scene.lights.iter().map(|l| CacheGeometry::fit(&l.kind, &bx, settings.cache_size)).collect();
     let light_scale = |i: usize| scene.lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
-    let sweep_buffers: Vec<Buffer> = scene
-        .lights
-        .iter()
-        .enumerate()
-        .map(|(i, _)| {
-            let p = sweep_params(&SweepInputs {
+    let sweep_records: Vec<SweepParams> = (0..scene.lights.len())
+        .map(|i| {
+            sweep_params(&SweepInputs {
                 geometry: &geometries[i],
                 anchor: plans[i].anchor,
                 blend_px: settings.zone_blend_px,
@@ -166,23 +169,24 @@ pub fn render_with(
                 max_piecewise_steps,
                 albedo: settings.albedo,
                 cone_angle_deg: settings.cone_angle_deg,
-            });
-            Buffer::with_data(ctx, &format!("ipsvi sweep light {i}"), &[p], vk::BufferUsageFlags::UNIFORM_BUFFER)
+            })
         })
-        .collect::<Result<_, _>>()?;
+        .collect();
+    let sweeps = Buffer::with_data(ctx, "ipsvi sweeps", &sweep_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+    let block_records = block_params(&plans, &geometries, &bx, &planes_host, height);
+    let blocks = Buffer::with_data(ctx, "ipsvi blocks", &block_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
 
     let emissive = scene.render.emission > 0.0;
     let scatter = settings.albedo > 0.0;
-    let n_lights = scene.lights.len() as u32;
     let mut init = ComputePipeline::new(
         ctx,
         &ComputePipelineDesc {
             name: "ipsvi_cache_init",
             spirv: shaders::IPSVI_CACHE_INIT,
             bindings: &INIT_BINDINGS,
-            push_constant_bytes: 0,
+            push_constant_bytes: 4,
             specialization: &[],
-            max_sets: n_lights,
+            max_sets: 1,
         },
     )?;
     let mut line = ComputePipeline::new(
@@ -191,56 +195,52 @@ pub fn render_with(
             name: "ipsvi_line",
             spirv: shaders::IPSVI_LINE,
             bindings: &LINE_BINDINGS,
-            push_constant_bytes: std::mem::size_of::<BlockPush>() as u32,
+            push_constant_bytes: 4,
             specialization: &[(0, emissive as u32), (1, scatter as u32)],
-            max_sets: 2 * n_lights,
+            max_sets: 2,
         },
     )?;
-    let common = |sweep| {
-        [
-            Resource::UniformBuffer(&frame),
-            Resource::SampledImage(&gpu.volume, &gpu.sampler),
-            Resource::StorageBuffer(&gpu.lut),
-            Resource::StorageBuffer(&gpu.lights),
-            Resource::UniformBuffer(sweep),
-            Resource::StorageBuffer(&planes),
+    let common = [
+        Resource::UniformBuffer(&frame),
+        Resource::SampledImage(&gpu.volume, &gpu.sampler),
+        Resource::StorageBuffer(&gpu.lut),
+        Resource::StorageBuffer(&gpu.lights),
+        Resource::StorageBuffer(&sweeps),
+        Resource::StorageBuffer(&planes),
+    ];
+    let [a, b] = [&cache.light[0], &cache.light[1]];
+    let [fa, fb] = [&cache.front[0], &cache.front[1]];
+    let init_set = init.create_set(
+        &[
+            &common[..],
+            &[
+                Resource::StorageImage(a),
+                Resource::StorageImage(fa),
+                Resource::StorageImage(b),
+                Resource::StorageImage(fb),
+            ],
         ]
+        .concat(),
+    )?;
+    // Slots: a_in, front a_in, b_in, front b_in, a_out, front a_out, b_out, front b_out.
+    // One set holding both sides (the block picks by parity), or one set per parity
+    // whose read slots hold only the side it reads and write slots only the side it
+    // writes, so that synchronization validation sees each block's real accesses.
+    let slot_sets: Vec<[&Image; 8]> = if settings.pingpong_sets {
+        vec![[a, fa, a, fa, b, fb, b, fb], [b, fb, b, fb, a, fa, a, fa]]
+    } else {
+        vec![[a, fa, b, fb, a, fa, b, fb]]
     };
-    let mut init_sets = Vec::new();
-    let mut line_sets = Vec::new();
-    for sweep in &sweep_buffers {
-        let [a, b, c, d, e, f]: [Resource; 6] = common(sweep);
-        init_sets.push(init.create_set(&[
-            a,
-            b,
-            c,
-            d,
-            e,
-            f,
-            Resource::StorageImage(&cache.light[0]),
-            Resource::StorageImage(&cache.front[0]),
-            Resource::StorageImage(&cache.light[1]),
-            Resource::StorageImage(&cache.front[1]),
-        ])?);
-        let mut pair = Vec::new();
-        for (src, dst) in [(0, 1), (1, 0)] {
-            let [a, b, c, d, e, f] = common(sweep);
-            pair.push(line.create_set(&[
-                a,
-                b,
-                c,
-                d,
-                e,
-                f,
-                Resource::StorageImage(&cache.light[src]),
-                Resource::StorageImage(&cache.front[src]),
-                Resource::StorageImage(&cache.light[dst]),
-                Resource::StorageImage(&cache.front[dst]),
-                Resource::StorageImage(&output.image),
-            ])?);
-        }
-        line_sets.push(pair);
-    }
+    let line_sets = slot_sets
+        .iter()
+        .map(|slots| {
+            let images = slots.map(Resource::StorageImage);
+            line.create_set(
+                &[&common[..], &images[..], &[Resource::StorageImage(&output.image), Resource::StorageBuffer(&blocks)]]
+                    .concat(),
+            )
+        })
+        .collect::<Result<Vec<_>, _>>()?;
 
     let readback = output.readback_buffer(ctx)?;
     let bg = scene.render.background;
@@ -273,11 +273,14 @@ pub fn render_with(
             ));
         }
         let frame_scope = profiler.begin(rec, "ipsvi")?;
+        let mut next_block = 0u32;
         for (li, plan) in plans.iter().enumerate() {
             for sweep in &plan.sweeps {
                 let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
-                rec.bind(&init, init_sets[li]);
-                rec.dispatch(settings.cache_size.div_ceil(8), settings.cache_size.div_ceil(8), 1);
+                rec.bind(&init, init_set);
+                let n = settings.cache_size.div_ceil(8);
+                rec.push(&init, &(li as u32).to_ne_bytes());
+                rec.dispatch(n, n, 1);
                 profiler.end(rec, init_scope)?;
                 rec.barrier(&Barrier::memory(
                     "cache_init_write_to_first_line_read",
@@ -285,30 +288,19 @@ pub fn render_with(
                     Access::COMPUTE_READ_WRITE,
                 ));
                 let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
-                let mut previous_region = TexelRect::default();
-                for (bi, block) in sweep.blocks.iter().enumerate() {
+                // Bound once per sweep: blocks find their parameters by index.
+                rec.bind(&line, line_sets[0]);
+                for _ in &sweep.blocks {
+                    let record = &block_records[next_block as usize];
+                    if line_sets.len() > 1 {
+                        rec.bind_set(&line, line_sets[record.parity as usize]);
+                    }
                     let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
-                    let columns = sweep.axis == LineAxis::Columns;
-                    let plane = if columns { height + block.last_line } else { block.last_line };
-                    let pixel_count = block.width * block.span_len;
-                    let region = plane_region(&geometries[li], &bx, planes_host[plane as usize]);
-                    let update = region.union(&previous_region);
-                    previous_region = region;
-                    let push = BlockPush {
-                        line_first: block.first,
-                        line_width: block.width,
-                        span_start: block.span_start,
-                        span_len: block.span_len,
-                        columns: columns as u32,
-                        zone: sweep.zone as u32,
-                        plane,
-                        pixel_count,
-                        region: [update.x0, update.y0, update.w, update.h],
-                    };
-                    rec.bind(&line, line_sets[li][bi % 2]);
-                    rec.push(&line, push_bytes(&push));
-                    rec.dispatch((pixel_count + update.count()).div_ceil(64), 1, 1);
+                    let invocations = record.pixel_count + record.region[2] * record.region[3];
+                    rec.push(&line, &next_block.to_ne_bytes());
+                    rec.dispatch(invocations.div_ceil(64), 1, 1);
                     profiler.end(rec, line_scope)?;
+                    next_block += 1;
                     if sync == LineSync::Barrier {
                         // This block's cache writes are the next block's reads; its reads
                         // of the other image precede the next block's writes to it.
@@ -327,4 +319,42 @@ pub fn render_with(
         Ok((rec.dispatch_count, rec.barrier_count))
     })?;
     Ok(FrameResult { image: output.read(&readback)?, dispatches, barriers })
+}
+
+/// The parameters of every line block of the frame, in dispatch order.
+fn block_params(
+    plans: &[SweepPlan],
+    geometries: &[CacheGeometry],
+    bx: &crate::scene::VolumeBox,
+    planes: &[[f32; 4]],
+    height: u32,
+) -> Vec<BlockParams> {
+    let mut out = Vec::new();
+    for (li, plan) in plans.iter().enumerate() {
+        for sweep in &plan.sweeps {
+            let mut previous_region = TexelRect::default();
+            for (bi, block) in sweep.blocks.iter().enumerate() {
+                let columns = sweep.axis == LineAxis::Columns;
+                let plane = if columns { height + block.last_line } else { block.last_line };
+                let region = plane_region(&geometries[li], bx, planes[plane as usize]);
+                let update = region.union(&previous_region);
+                previous_region = region;
+                out.push(BlockParams {
+                    line_first: block.first,
+                    line_width: block.width,
+                    span_start: block.span_start,
+                    span_len: block.span_len,
+                    columns: columns as u32,
+                    zone: sweep.zone as u32,
+                    plane,
+                    pixel_count: block.width * block.span_len,
+                    region: [update.x0, update.y0, update.w, update.h],
+                    parity: (bi % 2) as u32,
+                    light: li as u32,
+                    pad: [0; 2],
+                });
+            }
+        }
+    }
+    out
 }

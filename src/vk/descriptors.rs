@@ -27,6 +27,7 @@ impl BindingKind {
 }
 
 /// What goes into one binding.
+#[derive(Clone, Copy)]
 pub enum Resource<'a> {
     StorageImage(&'a Image),
     SampledImage(&'a Image, &'a Sampler),

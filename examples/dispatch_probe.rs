@@ -1,0 +1,98 @@
+//! Probe: GPU time of N back-to-back dispatches of the DVR pipeline at 1x1, with
+//! and without a barrier between them (lavapipe's per-dispatch cost).
+use std::time::Instant;
+use sweeplab::render::frame_params::{frame_params, MarchSteps};
+use sweeplab::render::{GpuScene, OutputImage};
+use sweeplab::scene::default_scene::default_scene;
+use sweeplab::vk::barriers::{Access, Barrier};
+use sweeplab::vk::commands::submit_and_wait;
+use sweeplab::vk::descriptors::{BindingKind, Resource};
+use sweeplab::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use sweeplab::vk::{Buffer, Context, ContextOptions, Profiler};
+
+fn main() {
+    let n: u32 = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(100);
+    let ctx = Context::new(&ContextOptions::default().with_env()).unwrap();
+    let scene = default_scene(&["volume.size=8".into()]).unwrap();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let params = frame_params(&scene, 1, 1, gpu.lut_size, MarchSteps::render(&scene));
+    let frame = Buffer::with_data(&ctx, "frame", &[params], ash::vk::BufferUsageFlags::UNIFORM_BUFFER).unwrap();
+    let out = OutputImage::new(&ctx, "out", 1, 1).unwrap();
+    let bindings = [
+        BindingKind::UniformBuffer,
+        BindingKind::SampledImage,
+        BindingKind::StorageBuffer,
+        BindingKind::StorageBuffer,
+        BindingKind::StorageImage,
+    ];
+    let mut p = ComputePipeline::new(
+        &ctx,
+        &ComputePipelineDesc {
+            name: "probe",
+            spirv: sweeplab::shaders::RAYCAST,
+            bindings: &bindings,
+            push_constant_bytes: 16,
+            specialization: &[(0, 0)],
+            max_sets: 1,
+        },
+    )
+    .unwrap();
+    let set = p
+        .create_set(&[
+            Resource::UniformBuffer(&frame),
+            Resource::SampledImage(&gpu.volume, &gpu.sampler),
+            Resource::StorageBuffer(&gpu.lut),
+            Resource::StorageBuffer(&gpu.lights),
+            Resource::StorageImage(&out.image),
+        ])
+        .unwrap();
+    let mut profiler = Profiler::new(&ctx, 16).unwrap();
+    let p2 = ComputePipeline::new(
+        &ctx,
+        &ComputePipelineDesc {
+            name: "probe2",
+            spirv: sweeplab::shaders::RAYCAST,
+            bindings: &bindings,
+            push_constant_bytes: 16,
+            specialization: &[(0, 1)],
+            max_sets: 1,
+        },
+    )
+    .unwrap();
+    for (barrier, rebind) in [(true, 0), (true, 1), (true, 2), (true, 3), (true, 4), (false, 0)] {
+        profiler.reset();
+        let t = Instant::now();
+        submit_and_wait(&ctx, "probe", |rec| {
+            out.prepare_for_compute_write(rec);
+            let s = profiler.begin(rec, "dispatches")?;
+            rec.bind(&p, set);
+            for _ in 0..n {
+                match rebind {
+                    1 => rec.bind_set(&p, set),
+                    2 => rec.bind(&p, set),
+                    3 => rec.push(&p, &[0u8; 16]),
+                    4 => rec.bind_pipeline(if rec.dispatch_count % 2 == 0 { &p } else { &p2 }),
+                    _ => {}
+                }
+                rec.dispatch(1, 1, 1);
+                if barrier {
+                    rec.barrier(&Barrier::memory("probe", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE));
+                }
+            }
+            profiler.end(rec, s)?;
+            Ok(())
+        })
+        .unwrap();
+        let wall = t.elapsed().as_secs_f64() * 1e3;
+        let r = profiler.resolve(0).unwrap();
+        println!(
+            "barrier {barrier} rebind {}: ",
+            ["nothing", "set", "pipeline+set", "push constants", "alternating pipelines, same set"][rebind]
+        );
+        println!(
+            "  {n} dispatches: gpu {:.3} ms ({:.1} us each), host wall {wall:.3} ms",
+            r.gpu_ms_total,
+            r.gpu_ms_total * 1e3 / n as f64
+        );
+    }
+}
