@@ -18,6 +18,40 @@ pub enum Command {
     Render(RenderArgs),
     /// Render a technique and the ground truth; print error and GPU time.
     Compare(CompareArgs),
+    /// Parameter sweeps: error against GPU time, CSV/JSON/Markdown and plots.
+    #[command(subcommand)]
+    Bench(BenchCommand),
+}
+
+#[derive(Subcommand, Debug)]
+pub enum BenchCommand {
+    /// IPSVI over line width x cache size x piecewise integration x early ray
+    /// termination x image size, each run compared with the GPU ground truth.
+    Ipsvi(BenchIpsviArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchIpsviArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    /// Output folder for ipsvi.csv, ipsvi.json, ipsvi.md and the plots.
+    #[arg(long, default_value = "bench-out")]
+    pub out: PathBuf,
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4, 8, 16])]
+    pub line_widths: Vec<u32>,
+    #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
+    pub cache_sizes: Vec<u32>,
+    /// Square image sizes.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![256, 512])]
+    pub sizes: Vec<u32>,
+    /// Runs per configuration; the median GPU time is reported.
+    #[arg(long, default_value_t = 3)]
+    pub repeat: u32,
+    /// Only the baseline settings and one factor varied at a time (no full grid).
+    #[arg(long)]
+    pub one_at_a_time: bool,
 }
 
 #[derive(Args, Debug)]

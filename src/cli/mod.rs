@@ -1,4 +1,5 @@
 pub mod args;
+mod bench_ipsvi;
 mod compare_cmd;
 mod devices_cmd;
 mod render_cmd;
@@ -12,5 +13,6 @@ pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
         args::Command::Devices(a) => devices_cmd::run(&a),
         args::Command::Render(a) => render_cmd::run(&a),
         args::Command::Compare(a) => compare_cmd::run(&a),
+        args::Command::Bench(args::BenchCommand::Ipsvi(a)) => bench_ipsvi::run(&a),
     }
 }

@@ -1,0 +1,178 @@
+//! `sweeplab bench ipsvi`: error against GPU time over IPSVI's parameters.
+
+use super::args::BenchIpsviArgs;
+use super::render_cmd::PROFILER_CAPACITY;
+use super::{scene_args, session};
+use anyhow::Context as _;
+use std::process::ExitCode;
+use sweeplab::bench::{plot_error_vs_time, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
+use sweeplab::ipsvi::renderer::plans;
+use sweeplab::ipsvi::{render_with, IpsviSettings, LineSync};
+use sweeplab::linear_image::LinearImage;
+use sweeplab::metrics::compare;
+use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::scene::OpticalModel;
+use sweeplab::vk::Profiler;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSettings> {
+    let mut out = Vec::new();
+    if args.one_at_a_time {
+        let mut push = |s: IpsviSettings| {
+            if !out.contains(&s) {
+                out.push(s)
+            }
+        };
+        push(base.clone());
+        for &lw in &args.line_widths {
+            push(IpsviSettings { line_width: lw, ..base.clone() });
+            push(IpsviSettings { line_width: lw, piecewise: false, ..base.clone() });
+        }
+        for &c in &args.cache_sizes {
+            push(IpsviSettings { cache_size: c, ..base.clone() });
+        }
+        push(IpsviSettings { early_termination: false, ..base.clone() });
+        return out;
+    }
+    for &lw in &args.line_widths {
+        for &c in &args.cache_sizes {
+            for piecewise in [true, false] {
+                for early_termination in [true, false] {
+                    out.push(IpsviSettings {
+                        line_width: lw,
+                        cache_size: c,
+                        piecewise,
+                        early_termination,
+                        ..base.clone()
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
+    let mut scene = scene_args::load(&args.scene)?;
+    scene.reference.model = OpticalModel::EmissiveScattering;
+    let base = IpsviSettings::from_scene(&scene)?;
+    let configs = configurations(args, &base);
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let ctx = session::open(&args.gpu)?;
+    let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
+    let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
+    let repeat = args.repeat.max(1);
+    let total = args.sizes.len() * (2 + configs.len());
+    let mut progress = Progress::new(total);
+    let mut table = BenchTable::new();
+    for &size in &args.sizes {
+        progress.start_step(&format!("{size}x{size} ground truth (GPU, model ii)"));
+        let reference = render(&gpu, Technique::Reference, size, size, &mut profiler)?;
+        progress.finish_step();
+        let reference_image: LinearImage = reference.image;
+        let mut row = BenchRow::new();
+        row.set("technique", "reference").set("width", size).set("height", size);
+        row.set("gpu_ms", reference.profile.gpu_ms_total).set("rmse", 0.0).set("max_abs", 0.0);
+        row.set("dispatches", reference.dispatches).set("gpu_memory_bytes", reference.profile.gpu_memory_bytes);
+        table.push(row);
+
+        progress.start_step(&format!("{size}x{size} unshaded DVR"));
+        let mut times = Vec::new();
+        let mut dvr = None;
+        for _ in 0..repeat {
+            let out = render(&gpu, Technique::Dvr, size, size, &mut profiler)?;
+            times.push(out.profile.gpu_ms_total);
+            dvr = Some(out);
+        }
+        progress.finish_step();
+        let dvr = dvr.expect("at least one run");
+        let stats = compare(&dvr.image, &reference_image)?;
+        let mut row = BenchRow::new();
+        row.set("technique", "dvr").set("width", size).set("height", size).set("gpu_ms", median(times));
+        row.set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
+        row.set("dispatches", dvr.dispatches).set("gpu_memory_bytes", dvr.profile.gpu_memory_bytes);
+        let dvr_ms = row.get_f64("gpu_ms").unwrap_or(f64::NAN);
+        let dvr_bytes = dvr.profile.gpu_memory_bytes;
+        table.push(row);
+
+        for s in &configs {
+            progress.start_step(&format!(
+                "{size}x{size} lw={} cache={} pi={} ert={}",
+                s.line_width, s.cache_size, s.piecewise, s.early_termination
+            ));
+            let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
+            let mut times = Vec::new();
+            let mut last = None;
+            for _ in 0..repeat {
+                profiler.reset();
+                ctx.memory.reset_peak();
+                let frame = render_with(&gpu, s, size, size, &mut profiler, LineSync::Barrier)?;
+                let profile = profiler.resolve(ctx.memory.device_local_peak())?;
+                times.push(profile.gpu_ms_total);
+                last = Some((frame, profile));
+            }
+            progress.finish_step();
+            let (frame, profile) = last.expect("at least one run");
+            let stats = compare(&frame.image, &reference_image)?;
+            let gpu_ms = median(times);
+            let mut row = BenchRow::new();
+            row.set("technique", "ipsvi").set("width", size).set("height", size);
+            row.set("line_width", s.line_width).set("cache_size", s.cache_size);
+            row.set("piecewise", s.piecewise).set("early_termination", s.early_termination);
+            row.set("gpu_ms", gpu_ms).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
+            row.set("lines", lines).set("dispatches", frame.dispatches).set("barriers", frame.barriers);
+            row.set("gpu_memory_bytes", profile.gpu_memory_bytes);
+            row.set("extra_memory_bytes_over_dvr", profile.gpu_memory_bytes as i64 - dvr_bytes as i64);
+            row.set("time_over_dvr", gpu_ms / dvr_ms);
+            row.set("ms_per_dispatch", gpu_ms / frame.dispatches.max(1) as f64);
+            table.push(row);
+        }
+    }
+    progress.finish();
+    drop(gpu);
+    // The Pareto front of IPSVI runs, per image size.
+    for &size in &args.sizes {
+        let idx: Vec<usize> = (0..table.rows.len())
+            .filter(|&i| {
+                let r = &table.rows[i];
+                r.get("technique").map(|t| t.to_string()) == Some("ipsvi".into())
+                    && r.get_f64("width") == Some(size as f64)
+            })
+            .collect();
+        let points: Vec<(f64, f64)> = idx
+            .iter()
+            .map(|&i| (table.rows[i].get_f64("gpu_ms").unwrap(), table.rows[i].get_f64("rmse").unwrap()))
+            .collect();
+        let front = sweeplab::bench::pareto_front(&points);
+        for (k, &i) in idx.iter().enumerate() {
+            table.rows[i].set("pareto", front.contains(&k));
+        }
+        let series: Vec<Series> = args
+            .line_widths
+            .iter()
+            .map(|&lw| {
+                let pts = idx
+                    .iter()
+                    .filter(|&&i| table.rows[i].get_f64("line_width") == Some(lw as f64))
+                    .map(|&i| (table.rows[i].get_f64("gpu_ms").unwrap(), table.rows[i].get_f64("rmse").unwrap()))
+                    .collect();
+                Series::new(format!("line width {lw}"), pts)
+            })
+            .collect();
+        let chart =
+            Chart::new(format!("IPSVI {size}x{size}: error against GPU time"), "GPU time (ms)", "RMSE vs ground truth")
+                .x_scale(AxisScale::Log10)
+                .y_scale(AxisScale::Log10);
+        plot_error_vs_time(args.out.join(format!("ipsvi_{size}_error_vs_time.png")), &chart, &series)?;
+    }
+    table.write_csv(args.out.join("ipsvi.csv"))?;
+    table.write_json(args.out.join("ipsvi.json"))?;
+    std::fs::write(args.out.join("ipsvi.md"), table.to_markdown()).context("writing ipsvi.md")?;
+    println!("{}", table.to_markdown());
+    println!("wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md and ipsvi_<size>_error_vs_time.png", args.out.display());
+    Ok(session::finish(&ctx))
+}
