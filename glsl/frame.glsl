@@ -18,9 +18,9 @@ layout(std140, set = 0, binding = 0) uniform Frame {
 
 struct Ray { vec3 origin; vec3 dir; };
 
-Ray camera_ray(uvec2 pixel) {
-    vec2 ndc = vec2((float(pixel.x) + 0.5) / float(frame.image_size.x) * 2.0 - 1.0,
-                    1.0 - (float(pixel.y) + 0.5) / float(frame.image_size.y) * 2.0);
+// Ray through continuous pixel position `pos` (pixel (x, y) spans [x, x+1)).
+Ray camera_ray_at(vec2 pos) {
+    vec2 ndc = vec2(pos.x / float(frame.image_size.x) * 2.0 - 1.0, 1.0 - pos.y / float(frame.image_size.y) * 2.0);
     Ray r;
     if (frame.cam_origin.w > 0.5) {
         r.origin = frame.cam_origin.xyz + frame.cam_right.xyz * ndc.x + frame.cam_up.xyz * ndc.y;
@@ -31,6 +31,8 @@ Ray camera_ray(uvec2 pixel) {
     }
     return r;
 }
+
+Ray camera_ray(uvec2 pixel) { return camera_ray_at(vec2(pixel) + 0.5); }
 
 // Slab test against [-half, half]; zero direction components never divide.
 // Returns (t_near, t_far) with t_near >= 0; t_near >= t_far means a miss.

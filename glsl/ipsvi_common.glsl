@@ -13,7 +13,7 @@ struct SweepParams {
     vec4 cache_v;       // xyz: second plane axis; w: b0
     vec4 anchor;        // xy: light anchor in pixels; z: zone blend width (px); w: light scale (cache stores E / scale)
     uvec4 cache_size;   // x: N (cache is N x N); y: light index; z: flags; w: max piecewise steps
-    vec4 scatter;       // x: albedo (multiple-scattering share); y: tan(cone half-angle)
+    vec4 scatter;       // x: albedo (multiple-scattering share); y: tan(cone half-angle); z: pre-pass scale
 };
 
 // One record per light, found by index: on lavapipe a descriptor-set bind costs
@@ -33,6 +33,7 @@ const float PROJ_OCTAHEDRAL = 2.0;
 const uint FLAG_FIRST_LIGHT = 1u;   // adds emission and background
 const uint FLAG_PIECEWISE = 2u;     // piecewise integration toward the cache front
 const uint FLAG_EARLY_TERMINATION = 4u;
+const uint FLAG_EXIT_POINTS = 8u;       // rays go on to l_max of the exit-point sweep
 
 // Front codes of the position image: a plane index, or the ray's box entry/exit.
 const uint FRONT_ENTRY = 0xFFFEu;

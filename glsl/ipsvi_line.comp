@@ -50,6 +50,10 @@ struct BlockParams {
 layout(std430, set = 0, binding = 15) readonly buffer Blocks { BlockParams blocks[]; };
 layout(push_constant) uniform Push { uint block_index; } push;
 
+// l_max of the exit-point sweep (section 5.1), at the pre-pass resolution; a 1x1
+// placeholder when that mode is off.
+layout(set = 0, binding = 16, r32f) readonly uniform image2D lmax;
+
 BlockParams block;
 
 vec4 cache_load(ivec2 k) { return block.parity == 0u ? imageLoad(cache_a_in, k) : imageLoad(cache_b_in, k); }
@@ -128,7 +132,9 @@ void shade_pixel(uint index) {
         float h = L / N;
         float hv = h / vl;
         int n = int(N);
-        bool ert = (sweep.cache_size.z & FLAG_EARLY_TERMINATION) != 0u;
+        bool exit_points = (sweep.cache_size.z & FLAG_EXIT_POINTS) != 0u;
+        bool ert = exit_points || (sweep.cache_size.z & FLAG_EARLY_TERMINATION) != 0u;
+        float keep_going = exit_points ? imageLoad(lmax, ivec2(vec2(px) / sweep.scatter.z)).r : 0.0;
         for (int i = 0; i < n; ++i) {
             vec3 p = r.origin + r.dir * (t.x + (float(i) + 0.5) * h);
             vec4 m = medium(p);
@@ -140,7 +146,7 @@ void shade_pixel(uint index) {
                 C += T * alpha * S;
                 T *= 1.0 - alpha;
             }
-            if (ert && T < EARLY_TERMINATION_TRANSMITTANCE) break;
+            if (ert && T < EARLY_TERMINATION_TRANSMITTANCE && t.x + (float(i) + 1.0) * h >= keep_going) break;
         }
     }
     // Cleared to the background: the first light replaces it by what shows through.

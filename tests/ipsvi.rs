@@ -257,3 +257,55 @@ fn extreme_cases_stay_finite_and_lit() {
     }
     assert_validation_clean(&ctx);
 }
+
+#[test]
+fn exit_point_termination_gives_the_same_image_and_allocates_only_when_on() {
+    use sweeplab::ipsvi::EarlyTermination;
+    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let ctx = validated_context();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 4096).unwrap();
+    let mut results = Vec::new();
+    for ert in [EarlyTermination::Off, EarlyTermination::Plain, EarlyTermination::ExitPoints] {
+        let s = IpsviSettings { early_termination: ert, cache_size: 64, ..IpsviSettings::default() };
+        profiler.reset();
+        ctx.memory.reset_peak();
+        let frame = render_with(&gpu, &s, SIZE, SIZE, &mut profiler, LineSync::Barrier).unwrap();
+        let profile = profiler.resolve(ctx.memory.device_local_peak()).unwrap();
+        let prepass = profile.passes.iter().any(|p| p.name == "ipsvi_ert_prepass");
+        assert_eq!(prepass, ert == EarlyTermination::ExitPoints, "{ert:?}: pre-pass recorded only in exit-points mode");
+        results.push((frame.image, profile.gpu_memory_bytes));
+    }
+    // Stopping at transmittance 1e-4 changes a pixel by at most 1e-4 of what lies behind.
+    let peak = results[0].0.max_value() as f64;
+    for (i, name) in [(1, "plain"), (2, "exit-points")] {
+        let stats = compare(&results[i].0, &results[0].0).unwrap();
+        assert!(stats.max_abs <= 1e-3 * peak, "{name}: {stats:?}");
+    }
+    let low = (SIZE.div_ceil(4) * SIZE.div_ceil(4)) as u64;
+    assert!(results[2].1 >= results[1].1 + low * (8 + 4 * 3) - 4, "pre-pass images not counted: {results:?}");
+    assert_eq!(results[0].1, results[1].1, "off and plain allocate the same");
+    assert_validation_clean(&ctx);
+}
+
+#[test]
+fn forward_cone_scattering_blurs_light_and_stays_finite() {
+    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let ctx = validated_context();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    let mut images = Vec::new();
+    for albedo in [0.0, 0.6] {
+        let s = IpsviSettings { albedo, cone_angle_deg: 30.0, cache_size: 64, ..IpsviSettings::default() };
+        profiler.reset();
+        images.push(render_with(&gpu, &s, SIZE, SIZE, &mut profiler, LineSync::Barrier).unwrap().image);
+    }
+    assert!(images[1].all_finite());
+    let change = compare(&images[1], &images[0]).unwrap();
+    assert!(change.rmse > 1e-3, "albedo 0.6 must change the image: {change:?}");
+    // Scattering only redistributes light inside the cone: the total stays close.
+    let sum = |img: &LinearImage| img.pixels.iter().map(|p| (p[0] + p[1] + p[2]) as f64).sum::<f64>();
+    let ratio = sum(&images[1]) / sum(&images[0]);
+    assert!((0.7..1.3).contains(&ratio), "total light changed by {ratio}");
+    assert_validation_clean(&ctx);
+}

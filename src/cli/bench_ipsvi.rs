@@ -7,7 +7,7 @@ use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::{plot_error_vs_time, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
 use sweeplab::ipsvi::renderer::plans;
-use sweeplab::ipsvi::{render_with, IpsviSettings, LineSync};
+use sweeplab::ipsvi::{render_with, EarlyTermination, IpsviSettings, LineSync};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique};
@@ -35,13 +35,16 @@ fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSetti
         for &c in &args.cache_sizes {
             push(IpsviSettings { cache_size: c, ..base.clone() });
         }
-        push(IpsviSettings { early_termination: false, ..base.clone() });
+        for ert in [EarlyTermination::Off, EarlyTermination::Plain, EarlyTermination::ExitPoints] {
+            push(IpsviSettings { early_termination: ert, ..base.clone() });
+        }
         return out;
     }
     for &lw in &args.line_widths {
         for &c in &args.cache_sizes {
             for piecewise in [true, false] {
-                for early_termination in [true, false] {
+                for early_termination in [EarlyTermination::Plain, EarlyTermination::Off, EarlyTermination::ExitPoints]
+                {
                     out.push(IpsviSettings {
                         line_width: lw,
                         cache_size: c,
@@ -102,7 +105,10 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         for s in &configs {
             progress.start_step(&format!(
                 "{size}x{size} lw={} cache={} pi={} ert={}",
-                s.line_width, s.cache_size, s.piecewise, s.early_termination
+                s.line_width,
+                s.cache_size,
+                s.piecewise,
+                s.early_termination.name()
             ));
             let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
             let mut times = Vec::new();
@@ -122,7 +128,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             let mut row = BenchRow::new();
             row.set("technique", "ipsvi").set("width", size).set("height", size);
             row.set("line_width", s.line_width).set("cache_size", s.cache_size);
-            row.set("piecewise", s.piecewise).set("early_termination", s.early_termination);
+            row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
             row.set("gpu_ms", gpu_ms).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
             row.set("lines", lines).set("dispatches", frame.dispatches).set("barriers", frame.barriers);
             row.set("gpu_memory_bytes", profile.gpu_memory_bytes);

@@ -9,6 +9,7 @@ use glam::{Vec3, Vec4};
 pub const FLAG_FIRST_LIGHT: u32 = 1;
 pub const FLAG_PIECEWISE: u32 = 2;
 pub const FLAG_EARLY_TERMINATION: u32 = 4;
+pub const FLAG_EXIT_POINTS: u32 = 8;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
@@ -58,6 +59,7 @@ pub struct SweepInputs<'a> {
     pub max_piecewise_steps: u32,
     pub albedo: f32,
     pub cone_angle_deg: f32,
+    pub ert_scale: u32,
 }
 
 pub fn sweep_params(s: &SweepInputs) -> SweepParams {
@@ -73,7 +75,7 @@ pub fn sweep_params(s: &SweepInputs) -> SweepParams {
         cache_v: g.v.extend(g.b0).to_array(),
         anchor: [anchor.x, anchor.y, s.blend_px, s.light_scale],
         cache_size: [g.size, s.light_index, s.flags, s.max_piecewise_steps],
-        scatter: [s.albedo, s.cone_angle_deg.to_radians().tan(), 0.0, 0.0],
+        scatter: [s.albedo, s.cone_angle_deg.to_radians().tan(), s.ert_scale as f32, 0.0],
     }
 }
 

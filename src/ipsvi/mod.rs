@@ -7,6 +7,7 @@
 
 pub mod cache_geometry;
 pub mod cache_region;
+pub mod exit_points;
 pub mod gpu_params;
 pub mod image_space;
 pub mod renderer;
@@ -14,4 +15,4 @@ pub mod settings;
 pub mod sweep_plan;
 
 pub use renderer::{render, render_with, LineSync};
-pub use settings::IpsviSettings;
+pub use settings::{EarlyTermination, IpsviSettings};

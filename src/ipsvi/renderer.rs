@@ -4,12 +4,13 @@
 
 use super::cache_geometry::CacheGeometry;
 use super::cache_region::{plane_region, TexelRect};
+use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{
-    line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_EARLY_TERMINATION, FLAG_FIRST_LIGHT,
-    FLAG_PIECEWISE,
+    line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_EARLY_TERMINATION, FLAG_EXIT_POINTS,
+    FLAG_FIRST_LIGHT, FLAG_PIECEWISE,
 };
 use super::image_space::ImageSpace;
-use super::settings::IpsviSettings;
+use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, SweepPlan};
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::technique::FrameResult;
@@ -35,7 +36,7 @@ pub enum LineSync {
     RacyNoBarrier,
 }
 
-const LINE_BINDINGS: [BindingKind; 16] = [
+const LINE_BINDINGS: [BindingKind; 17] = [
     BindingKind::UniformBuffer,
     BindingKind::SampledImage,
     BindingKind::StorageBuffer,
@@ -52,6 +53,7 @@ const LINE_BINDINGS: [BindingKind; 16] = [
     BindingKind::StorageImage,
     BindingKind::StorageImage,
     BindingKind::StorageBuffer,
+    BindingKind::StorageImage,
 ];
 
 const INIT_BINDINGS: [BindingKind; 10] = [
@@ -149,9 +151,30 @@ pub fn render_with(
     if settings.piecewise {
         flags |= FLAG_PIECEWISE;
     }
-    if settings.early_termination {
-        flags |= FLAG_EARLY_TERMINATION;
+    match settings.early_termination {
+        EarlyTermination::Off => {}
+        EarlyTermination::Plain => flags |= FLAG_EARLY_TERMINATION,
+        EarlyTermination::ExitPoints => flags |= FLAG_EXIT_POINTS,
     }
+    let exit_points = match settings.early_termination {
+        EarlyTermination::ExitPoints => Some(ExitPoints::new(
+            gpu,
+            &frame,
+            width,
+            height,
+            settings.ert_scale,
+            plans[0].bbox,
+            plans[0].anchor,
+            settings.pingpong_sets,
+        )?),
+        _ => None,
+    };
+    let placeholder = if exit_points.is_none() { Some(exit_points::placeholder(gpu)?) } else { None };
+    let lmax: &Image = match (&exit_points, &placeholder) {
+        (Some(e), _) => &e.lmax,
+        (None, Some(p)) => p,
+        (None, None) => unreachable!("one of them is always created"),
+    };
     let planes_host = line_planes(&space.basis, width, height);
     let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let geometries: Vec<CacheGeometry> =
@@ -169,6 +192,7 @@ pub fn render_with(
                 max_piecewise_steps,
                 albedo: settings.albedo,
                 cone_angle_deg: settings.cone_angle_deg,
+                ert_scale: settings.ert_scale,
             })
         })
         .collect();
@@ -236,8 +260,16 @@ pub fn render_with(
         .map(|slots| {
             let images = slots.map(Resource::StorageImage);
             line.create_set(
-                &[&common[..], &images[..], &[Resource::StorageImage(&output.image), Resource::StorageBuffer(&blocks)]]
-                    .concat(),
+                &[
+                    &common[..],
+                    &images[..],
+                    &[
+                        Resource::StorageImage(&output.image),
+                        Resource::StorageBuffer(&blocks),
+                        Resource::StorageImage(lmax),
+                    ],
+                ]
+                .concat(),
             )
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -272,7 +304,20 @@ pub fn render_with(
                 vk::ImageLayout::GENERAL,
             ));
         }
+        if let Some(p) = &placeholder {
+            rec.barrier(&Barrier::image(
+                "lmax_placeholder_to_shader_read",
+                p,
+                Access::NONE,
+                Access::COMPUTE_READ,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::GENERAL,
+            ));
+        }
         let frame_scope = profiler.begin(rec, "ipsvi")?;
+        if let Some(e) = &exit_points {
+            e.record(rec, profiler)?;
+        }
         let mut next_block = 0u32;
         for (li, plan) in plans.iter().enumerate() {
             for sweep in &plan.sweeps {

@@ -11,8 +11,8 @@ pub struct IpsviSettings {
     pub cache_size: u32,
     /// Piecewise integration from each sample toward the cache front (section 4.4).
     pub piecewise: bool,
-    /// Stop view rays once their transmittance is below 1e-4.
-    pub early_termination: bool,
+    /// When view rays stop (section 5.1).
+    pub early_termination: EarlyTermination,
     /// Share of light scattered in the forward cone (equation 2's albedo), 0..=1.
     pub albedo: f32,
     /// Half-angle of the forward scattering cone, degrees.
@@ -26,6 +26,32 @@ pub struct IpsviSettings {
     /// holding both. Synchronization validation can see a missing barrier only
     /// this way; on lavapipe the set switch costs about ten dispatches per line.
     pub pingpong_sets: bool,
+    /// Full-resolution pixels per pre-pass pixel, per axis (exit-points only).
+    pub ert_scale: u32,
+}
+
+/// When the view rays of the main pass stop.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EarlyTermination {
+    /// March every ray to its exit.
+    Off,
+    /// Stop once the transmittance is below 1e-4. Exact here: view rays never
+    /// feed the cache (docs/ipsvi.md), so nothing behind the stop is needed.
+    Plain,
+    /// The paper's section 5.1: a low-resolution pre-pass (first-opaque and
+    /// last-structure distances) and an exit-point sweep toward the light give
+    /// l_max; a ray stops once it is opaque *and* past l_max.
+    ExitPoints,
+}
+
+impl EarlyTermination {
+    pub fn name(self) -> &'static str {
+        match self {
+            EarlyTermination::Off => "off",
+            EarlyTermination::Plain => "plain",
+            EarlyTermination::ExitPoints => "exit-points",
+        }
+    }
 }
 
 impl Default for IpsviSettings {
@@ -34,17 +60,18 @@ impl Default for IpsviSettings {
             line_width: 1,
             cache_size: 256,
             piecewise: true,
-            early_termination: true,
+            early_termination: EarlyTermination::Plain,
             albedo: 0.0,
             cone_angle_deg: 15.0,
             zone_blend_px: 2.0,
             light_step_voxels: 0.5,
             pingpong_sets: false,
+            ert_scale: 4,
         }
     }
 }
 
-const KEYS: [&str; 9] = [
+const KEYS: [&str; 10] = [
     "line_width",
     "cache_size",
     "piecewise",
@@ -54,6 +81,7 @@ const KEYS: [&str; 9] = [
     "zone_blend",
     "light_step",
     "pingpong_sets",
+    "ert_scale",
 ];
 
 impl IpsviSettings {
@@ -74,7 +102,15 @@ impl IpsviSettings {
                 "line_width" => s.line_width = whole(number()?, 1, 32, key)?,
                 "cache_size" => s.cache_size = whole(number()?, 16, 4096, key)?,
                 "piecewise" => s.piecewise = boolean()?,
-                "early_termination" => s.early_termination = boolean()?,
+                "early_termination" => {
+                    s.early_termination = match (v.as_bool(), v.as_str()) {
+                        (Some(true), _) | (_, Some("plain")) => EarlyTermination::Plain,
+                        (Some(false), _) | (_, Some("off")) => EarlyTermination::Off,
+                        (_, Some("exit-points")) => EarlyTermination::ExitPoints,
+                        _ => return Err(bad("ipsvi.early_termination must be \"off\", \"plain\" or \"exit-points\"")),
+                    }
+                }
+                "ert_scale" => s.ert_scale = whole(number()?, 1, 16, key)?,
                 "albedo" => s.albedo = within(number()?, 0.0, 1.0, key)?,
                 "cone_angle" => s.cone_angle_deg = within(number()?, 0.0, 80.0, key)?,
                 "zone_blend" => s.zone_blend_px = within(number()?, 0.0, 64.0, key)?,

@@ -1,0 +1,237 @@
+//! Early ray termination as in the IPSVI paper's section 5.1: a low-resolution
+//! pre-pass records where each ray turns opaque (s_f) and where its farthest
+//! structure lies (s_b); an exit-point sweep toward the light turns them into
+//! l_max, how far each ray must go on so that the illumination cache stays
+//! complete; the main pass stops a ray once it is opaque and past l_max.
+//! Allocated and recorded only in `early_termination = "exit-points"` mode.
+
+use super::image_space::{LightAnchor, PixelRect};
+use super::sweep_plan::{plan, LineAxis, SweepPlan};
+use crate::render::{GpuScene, RenderError};
+use crate::shaders;
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::descriptors::{BindingKind, Resource};
+use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::resources::ImageDesc;
+use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
+use ash::vk;
+use glam::Vec2;
+
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct DepthsPush {
+    scale: u32,
+    width: u32,
+    height: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct SweepPush {
+    anchor: [f32; 2],
+    line: u32,
+    previous: i32,
+    span_start: u32,
+    span_len: u32,
+    columns: u32,
+    zone: u32,
+    parity: u32,
+}
+
+fn image(gpu: &GpuScene, name: &str, format: vk::Format, width: u32, height: u32) -> Result<Image, VkError> {
+    Image::new(
+        gpu.ctx,
+        name,
+        ImageDesc {
+            image_type: vk::ImageType::TYPE_2D,
+            format,
+            extent: vk::Extent3D { width, height, depth: 1 },
+            usage: vk::ImageUsageFlags::STORAGE,
+        },
+    )
+}
+
+/// The 1x1 image bound where the main pass would read l_max when this mode is off.
+pub fn placeholder(gpu: &GpuScene) -> Result<Image, VkError> {
+    image(gpu, "ipsvi lmax placeholder", vk::Format::R32_SFLOAT, 1, 1)
+}
+
+pub struct ExitPoints {
+    pub scale: u32,
+    pub width: u32,
+    pub height: u32,
+    depths: Image,
+    pair: [Image; 2],
+    /// l_max per pre-pass pixel, read by the main pass.
+    pub lmax: Image,
+    plan: SweepPlan,
+    depths_pipeline: ComputePipeline,
+    depths_set: vk::DescriptorSet,
+    sweep_pipeline: ComputePipeline,
+    sweep_sets: Vec<vk::DescriptorSet>,
+}
+
+impl ExitPoints {
+    /// `bbox` and `anchor` at full resolution, for the light the sweep follows.
+    pub fn new(
+        gpu: &GpuScene,
+        frame: &Buffer,
+        width: u32,
+        height: u32,
+        scale: u32,
+        bbox: PixelRect,
+        anchor: LightAnchor,
+        pingpong_sets: bool,
+    ) -> Result<ExitPoints, RenderError> {
+        let (w, h) = (width.div_ceil(scale), height.div_ceil(scale));
+        let depths = image(gpu, "ipsvi ert depths", vk::Format::R32G32_SFLOAT, w, h)?;
+        let pair = [
+            image(gpu, "ipsvi lmax a", vk::Format::R32_SFLOAT, w, h)?,
+            image(gpu, "ipsvi lmax b", vk::Format::R32_SFLOAT, w, h)?,
+        ];
+        let lmax = image(gpu, "ipsvi lmax", vk::Format::R32_SFLOAT, w, h)?;
+        let low = PixelRect {
+            x0: bbox.x0 / scale,
+            y0: bbox.y0 / scale,
+            x1: bbox.x1.div_ceil(scale),
+            y1: bbox.y1.div_ceil(scale),
+        };
+        let low_anchor = match anchor {
+            LightAnchor::AtInfinity(d) => LightAnchor::AtInfinity(d),
+            LightAnchor::Source(p) => LightAnchor::Source(p / scale as f32),
+            LightAnchor::Sink(p) => LightAnchor::Sink(p / scale as f32),
+        };
+        let plan = plan(low, low_anchor, 1, 0.0);
+        let mut depths_pipeline = ComputePipeline::new(
+            gpu.ctx,
+            &ComputePipelineDesc {
+                name: "ipsvi_ert_prepass",
+                spirv: shaders::IPSVI_ERT_DEPTHS,
+                bindings: &[
+                    BindingKind::UniformBuffer,
+                    BindingKind::SampledImage,
+                    BindingKind::StorageBuffer,
+                    BindingKind::StorageImage,
+                ],
+                push_constant_bytes: std::mem::size_of::<DepthsPush>() as u32,
+                specialization: &[],
+                max_sets: 1,
+            },
+        )?;
+        let depths_set = depths_pipeline.create_set(&[
+            Resource::UniformBuffer(frame),
+            Resource::SampledImage(&gpu.volume, &gpu.sampler),
+            Resource::StorageBuffer(&gpu.lut),
+            Resource::StorageImage(&depths),
+        ])?;
+        let mut sweep_pipeline = ComputePipeline::new(
+            gpu.ctx,
+            &ComputePipelineDesc {
+                name: "ipsvi_exit_sweep",
+                spirv: shaders::IPSVI_ERT_SWEEP,
+                bindings: &[BindingKind::StorageImage; 6],
+                push_constant_bytes: std::mem::size_of::<SweepPush>() as u32,
+                specialization: &[],
+                max_sets: 2,
+            },
+        )?;
+        let [a, b] = [&pair[0], &pair[1]];
+        // Slots: a_in, b_in, a_out, b_out (see glsl/ipsvi_ert_sweep.comp).
+        let slot_sets: Vec<[&Image; 4]> =
+            if pingpong_sets { vec![[a, a, b, b], [b, b, a, a]] } else { vec![[a, b, a, b]] };
+        let sweep_sets = slot_sets
+            .iter()
+            .map(|s| {
+                sweep_pipeline.create_set(&[
+                    Resource::StorageImage(&depths),
+                    Resource::StorageImage(s[0]),
+                    Resource::StorageImage(s[1]),
+                    Resource::StorageImage(s[2]),
+                    Resource::StorageImage(s[3]),
+                    Resource::StorageImage(&lmax),
+                ])
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(ExitPoints {
+            scale,
+            width: w,
+            height: h,
+            depths,
+            pair,
+            lmax,
+            plan,
+            depths_pipeline,
+            depths_set,
+            sweep_pipeline,
+            sweep_sets,
+        })
+    }
+
+    pub fn lines(&self) -> u32 {
+        self.plan.lines()
+    }
+
+    /// Pre-pass, then the exit-point sweep, one dispatch and barrier per line.
+    pub fn record(&self, rec: &mut Recorder, profiler: &mut Profiler) -> Result<(), VkError> {
+        for img in [&self.depths, &self.pair[0], &self.pair[1], &self.lmax] {
+            rec.barrier(&Barrier::image(
+                "ert_discard_to_compute_access",
+                img,
+                Access::NONE,
+                Access::COMPUTE_READ_WRITE,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::GENERAL,
+            ));
+        }
+        let scope = profiler.begin(rec, "ipsvi_ert_prepass")?;
+        rec.bind(&self.depths_pipeline, self.depths_set);
+        let push = DepthsPush { scale: self.scale, width: self.width, height: self.height };
+        rec.push(&self.depths_pipeline, push_bytes(&push));
+        rec.dispatch(self.width.div_ceil(8), self.height.div_ceil(8), 1);
+        profiler.end(rec, scope)?;
+        rec.barrier(&Barrier::memory(
+            "ert_depths_write_to_exit_sweep_read",
+            Access::COMPUTE_WRITE,
+            Access::COMPUTE_READ,
+        ));
+
+        let scope = profiler.begin(rec, "ipsvi_exit_sweep")?;
+        rec.bind(&self.sweep_pipeline, self.sweep_sets[0]);
+        let anchor = match self.plan.anchor {
+            LightAnchor::Source(p) | LightAnchor::Sink(p) => p,
+            LightAnchor::AtInfinity(_) => Vec2::ZERO,
+        };
+        for sweep in &self.plan.sweeps {
+            // Toward the light: the main sweep's lines in reverse.
+            let mut previous = -1i32;
+            for (k, block) in sweep.blocks.iter().rev().enumerate() {
+                let parity = (k % 2) as u32;
+                if self.sweep_sets.len() > 1 {
+                    rec.bind_set(&self.sweep_pipeline, self.sweep_sets[parity as usize]);
+                }
+                let line_scope = profiler.begin_detail(rec, "ipsvi_exit_line")?;
+                let push = SweepPush {
+                    anchor: anchor.to_array(),
+                    line: block.first,
+                    previous,
+                    span_start: block.span_start,
+                    span_len: block.span_len,
+                    columns: (sweep.axis == LineAxis::Columns) as u32,
+                    zone: sweep.zone as u32,
+                    parity,
+                };
+                rec.push(&self.sweep_pipeline, push_bytes(&push));
+                rec.dispatch(block.span_len.div_ceil(64), 1, 1);
+                profiler.end(rec, line_scope)?;
+                rec.barrier(&Barrier::memory(
+                    "lmax_write_to_next_line_read",
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ_WRITE,
+                ));
+                previous = block.first as i32;
+            }
+        }
+        profiler.end(rec, scope)?;
+        Ok(())
+    }
+}
