@@ -6,6 +6,7 @@
 //! Allocated and recorded only in `early_termination = "exit-points"` mode.
 
 use super::image_space::{LightAnchor, PixelRect};
+use super::settings::IpsviSettings;
 use super::sweep_plan::{plan, LineAxis, SweepPlan};
 use crate::render::{GpuScene, RenderError};
 use crate::shaders;
@@ -72,17 +73,16 @@ pub struct ExitPoints {
 }
 
 impl ExitPoints {
-    /// `bbox` and `anchor` at full resolution, for the light the sweep follows.
+    /// For the light of `main_plan` (the full-resolution sweep).
     pub fn new(
         gpu: &GpuScene,
         frame: &Buffer,
         width: u32,
         height: u32,
-        scale: u32,
-        bbox: PixelRect,
-        anchor: LightAnchor,
-        pingpong_sets: bool,
+        settings: &IpsviSettings,
+        main_plan: &SweepPlan,
     ) -> Result<ExitPoints, RenderError> {
+        let (scale, bbox, anchor) = (settings.ert_scale.max(1), main_plan.bbox, main_plan.anchor);
         let (w, h) = (width.div_ceil(scale), height.div_ceil(scale));
         let depths = image(gpu, "ipsvi ert depths", vk::Format::R32G32_SFLOAT, w, h)?;
         let pair = [

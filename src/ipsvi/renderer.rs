@@ -157,16 +157,7 @@ pub fn render_with(
         EarlyTermination::ExitPoints => flags |= FLAG_EXIT_POINTS,
     }
     let exit_points = match settings.early_termination {
-        EarlyTermination::ExitPoints => Some(ExitPoints::new(
-            gpu,
-            &frame,
-            width,
-            height,
-            settings.ert_scale,
-            plans[0].bbox,
-            plans[0].anchor,
-            settings.pingpong_sets,
-        )?),
+        EarlyTermination::ExitPoints => Some(ExitPoints::new(gpu, &frame, width, height, settings, &plans[0])?),
         _ => None,
     };
     let placeholder = if exit_points.is_none() { Some(exit_points::placeholder(gpu)?) } else { None };
