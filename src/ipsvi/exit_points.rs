@@ -138,7 +138,7 @@ impl ExitPoints {
         let [a, b] = [&pair[0], &pair[1]];
         // Slots: a_in, b_in, a_out, b_out (see glsl/ipsvi_ert_sweep.comp).
         let slot_sets: Vec<[&Image; 4]> =
-            if pingpong_sets { vec![[a, a, b, b], [b, b, a, a]] } else { vec![[a, b, a, b]] };
+            if settings.pingpong_sets { vec![[a, a, b, b], [b, b, a, a]] } else { vec![[a, b, a, b]] };
         let sweep_sets = slot_sets
             .iter()
             .map(|s| {
