@@ -56,8 +56,17 @@ layout(set = 0, binding = 16, r32f) readonly uniform image2D lmax;
 
 BlockParams block;
 
-vec4 cache_load(ivec2 k) { return block.parity == 0u ? imageLoad(cache_a_in, k) : imageLoad(cache_b_in, k); }
-uint front_load(ivec2 k) { return block.parity == 0u ? imageLoad(front_a_in, k).r : imageLoad(front_b_in, k).r; }
+// Branches rather than ?: so that only one image is read (llvmpipe evaluates
+// both operands of a select, and skips a branch no lane takes).
+vec4 cache_load(ivec2 k) {
+    if (block.parity == 0u) return imageLoad(cache_a_in, k);
+    return imageLoad(cache_b_in, k);
+}
+
+uint front_load(ivec2 k) {
+    if (block.parity == 0u) return imageLoad(front_a_in, k).r;
+    return imageLoad(front_b_in, k).r;
+}
 
 void cache_store(ivec2 k, vec4 v, uint code) {
     if (block.parity == 0u) {

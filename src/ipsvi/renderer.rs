@@ -27,6 +27,9 @@ use ash::vk;
 /// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
 const LOOP_BUDGET: u32 = 60_000;
 
+/// local_size_x of glsl/ipsvi_line.comp (16 measured no faster on lavapipe).
+const LINE_GROUP: u32 = 64;
+
 /// Whether consecutive line blocks are separated by their barrier.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LineSync {
@@ -334,7 +337,7 @@ pub fn render_with(
                     let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                     let invocations = record.pixel_count + record.region[2] * record.region[3];
                     rec.push(&line, &next_block.to_ne_bytes());
-                    rec.dispatch(invocations.div_ceil(64), 1, 1);
+                    rec.dispatch(invocations.div_ceil(LINE_GROUP), 1, 1);
                     profiler.end(rec, line_scope)?;
                     next_block += 1;
                     if sync == LineSync::Barrier {
