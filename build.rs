@@ -2,7 +2,11 @@
 //! and embeds the words through `$OUT_DIR/shaders.rs`.
 //!
 //! Shaders share code through `#include "file.glsl"` resolved in `glsl/`; variants
-//! come from specialization constants, so each `.comp` file is compiled once.
+//! come from specialization constants, so each `.comp` file is compiled once. The
+//! one exception is [`BINDING_VARIANTS`]: which images a shader *statically uses*
+//! is what synchronization validation checks, and a specialization constant
+//! cannot remove a binding from the SPIR-V, so the two sides of a ping-pong pair
+//! are compiled from the same file with a `PARITY` define.
 
 use std::env;
 use std::fs;
@@ -19,6 +23,15 @@ const GLSLANG_SPIRV_ARCHIVES: &[&str] = &[
     "glslang-default-resource-limits",
     "SPIRV-Tools-opt",
     "SPIRV-Tools",
+];
+
+/// (shader stem, [(constant suffix, defines)]): extra compilations of one file.
+/// PARITY=0 reads the a side of its ping-pong pair and writes b; PARITY=1 the
+/// opposite. Only those bindings are referenced, so each dispatch shows
+/// validation exactly what it reads and writes.
+const BINDING_VARIANTS: &[(&str, &[(&str, &str)])] = &[
+    ("ipsvi_line", &[("_READ_A", "0"), ("_READ_B", "1")]),
+    ("ipsvi_ert_sweep", &[("_READ_A", "0"), ("_READ_B", "1")]),
 ];
 
 fn main() {
@@ -66,37 +79,45 @@ fn compile_shaders() {
         }
         let stem = path.file_stem().unwrap().to_str().unwrap().to_string();
         let source = fs::read_to_string(path).expect("read shader");
-
-        let mut options = shaderc::CompileOptions::new().unwrap();
-        options.set_target_env(shaderc::TargetEnv::Vulkan, shaderc::EnvVersion::Vulkan1_2 as u32);
-        // SPIR-V 1.5: Vulkan 1.3 targets 1.6, whose LocalSizeId needs maintenance4.
-        options.set_target_spirv(shaderc::SpirvVersion::V1_5);
-        options.set_warnings_as_errors();
-        options.set_optimization_level(shaderc::OptimizationLevel::Performance);
-        options.set_generate_debug_info();
-        let include_dir = glsl_dir.clone();
-        options.set_include_callback(move |name, _kind, _from, _depth| {
-            let p = include_dir.join(name);
-            fs::read_to_string(&p)
-                .map(|content| shaderc::ResolvedInclude { resolved_name: p.display().to_string(), content })
-                .map_err(|e| format!("cannot include {}: {e}", p.display()))
-        });
-        let artifact = compiler
-            .compile_into_spirv(
-                &source,
-                shaderc::ShaderKind::Compute,
-                &path.display().to_string(),
-                "main",
-                Some(&options),
-            )
-            .unwrap_or_else(|e| panic!("shader {} failed to compile:\n{e}", path.display()));
-        let spv_path = out_dir.join(format!("{stem}.spv"));
-        fs::write(&spv_path, artifact.as_binary_u8()).expect("write spv");
-        index.push_str(&format!(
-            "pub const {}: &[u8] = include_bytes!(\"{}\");\n",
-            stem.to_uppercase().replace('-', "_"),
-            spv_path.display()
-        ));
+        let variants: Vec<(String, Option<&str>)> = match BINDING_VARIANTS.iter().find(|(s, _)| *s == stem) {
+            Some((_, list)) => list.iter().map(|(suffix, parity)| (format!("{stem}{suffix}"), Some(*parity))).collect(),
+            None => vec![(stem.clone(), None)],
+        };
+        for (name, parity) in variants {
+            let mut options = shaderc::CompileOptions::new().unwrap();
+            options.set_target_env(shaderc::TargetEnv::Vulkan, shaderc::EnvVersion::Vulkan1_2 as u32);
+            // SPIR-V 1.5: Vulkan 1.3 targets 1.6, whose LocalSizeId needs maintenance4.
+            options.set_target_spirv(shaderc::SpirvVersion::V1_5);
+            options.set_warnings_as_errors();
+            options.set_optimization_level(shaderc::OptimizationLevel::Performance);
+            options.set_generate_debug_info();
+            if let Some(p) = parity {
+                options.add_macro_definition("PARITY", Some(p));
+            }
+            let include_dir = glsl_dir.clone();
+            options.set_include_callback(move |name, _kind, _from, _depth| {
+                let p = include_dir.join(name);
+                fs::read_to_string(&p)
+                    .map(|content| shaderc::ResolvedInclude { resolved_name: p.display().to_string(), content })
+                    .map_err(|e| format!("cannot include {}: {e}", p.display()))
+            });
+            let artifact = compiler
+                .compile_into_spirv(
+                    &source,
+                    shaderc::ShaderKind::Compute,
+                    &path.display().to_string(),
+                    "main",
+                    Some(&options),
+                )
+                .unwrap_or_else(|e| panic!("shader {} failed to compile:\n{e}", path.display()));
+            let spv_path = out_dir.join(format!("{name}.spv"));
+            fs::write(&spv_path, artifact.as_binary_u8()).expect("write spv");
+            index.push_str(&format!(
+                "pub const {}: &[u8] = include_bytes!(\"{}\");\n",
+                name.to_uppercase().replace('-', "_"),
+                spv_path.display()
+            ));
+        }
     }
     fs::write(out_dir.join("shaders.rs"), index).expect("write shaders.rs");
 }

@@ -17,7 +17,7 @@ struct SweepParams {
 };
 
 // One record per light, found by index: on lavapipe a descriptor-set bind costs
-// about ten dispatches (examples/dispatch_probe.rs), so sets are bound per sweep
+// about ten dispatches (tools/dispatch_probe.rs), so sets are bound per sweep
 // at most and dispatches pick their parameters from buffers.
 layout(std430, set = 0, binding = 4) readonly buffer Sweeps { SweepParams sweeps[]; };
 

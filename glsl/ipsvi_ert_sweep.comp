@@ -11,11 +11,16 @@ layout(local_size_x = 64) in;
 
 layout(set = 0, binding = 0, rg32f) readonly uniform image2D depths;
 // Ping-pong pair: this line reads the previous line's l_max from one side and
-// writes its own to the other (chosen by parity); `lmax` keeps every line's result.
-layout(set = 0, binding = 1, r32f) readonly uniform image2D lmax_a_in;
-layout(set = 0, binding = 2, r32f) readonly uniform image2D lmax_b_in;
-layout(set = 0, binding = 3, r32f) writeonly uniform image2D lmax_a_out;
-layout(set = 0, binding = 4, r32f) writeonly uniform image2D lmax_b_out;
+// writes its own to the other; `lmax` keeps every line's result. Compiled twice
+// by build.rs (PARITY 0 reads a and writes b, 1 the opposite), each variant
+// referencing only its own sides, so validation sees what each line touches.
+#if PARITY == 0
+layout(set = 0, binding = 1, r32f) readonly uniform image2D lmax_in;
+layout(set = 0, binding = 4, r32f) writeonly uniform image2D lmax_out;
+#else
+layout(set = 0, binding = 2, r32f) readonly uniform image2D lmax_in;
+layout(set = 0, binding = 3, r32f) writeonly uniform image2D lmax_out;
+#endif
 layout(set = 0, binding = 5, r32f) writeonly uniform image2D lmax;
 
 layout(push_constant) uniform Push {
@@ -26,14 +31,12 @@ layout(push_constant) uniform Push {
     uint span_len;
     uint columns;     // 1: lines are columns
     uint zone;        // 0: parallel lines; else a zone around the anchor
-    uint parity;      // 0: read a, write b
 } push;
 
-float load_prev(ivec2 p) { return push.parity == 0u ? imageLoad(lmax_a_in, p).r : imageLoad(lmax_b_in, p).r; }
+float load_prev(ivec2 p) { return imageLoad(lmax_in, p).r; }
 
 void store(ivec2 p, float v) {
-    if (push.parity == 0u) imageStore(lmax_b_out, p, vec4(v));
-    else imageStore(lmax_a_out, p, vec4(v));
+    imageStore(lmax_out, p, vec4(v));
     imageStore(lmax, p, vec4(v));
 }
 

@@ -13,19 +13,26 @@ layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-c
 
 #include "ipsvi_common.glsl"
 
-// Both images of each ping-pong pair, bound once per sweep (on lavapipe a
-// descriptor-set bind costs ten dispatches): `block.parity` picks which one this
-// block reads and which it writes. Every image is bound readonly and writeonly
-// under separate names, so synchronization validation sees each block read and
-// write both, and reports any missing barrier between blocks.
-layout(set = 0, binding = 6, rgba16f) readonly uniform image2D cache_a_in;
-layout(set = 0, binding = 7, r16ui) readonly uniform uimage2D front_a_in;
-layout(set = 0, binding = 8, rgba16f) readonly uniform image2D cache_b_in;
-layout(set = 0, binding = 9, r16ui) readonly uniform uimage2D front_b_in;
-layout(set = 0, binding = 10, rgba16f) writeonly uniform image2D cache_a_out;
-layout(set = 0, binding = 11, r16ui) writeonly uniform uimage2D front_a_out;
-layout(set = 0, binding = 12, rgba16f) writeonly uniform image2D cache_b_out;
-layout(set = 0, binding = 13, r16ui) writeonly uniform uimage2D front_b_out;
+// The ping-pong pair, all four images in one descriptor set bound once per
+// sweep (on lavapipe a set bind costs as much as twenty dispatches; a pipeline
+// bind about nothing, tools/dispatch_probe.rs). build.rs compiles this file twice:
+// PARITY 0 reads the a side and writes b, PARITY 1 the opposite, and each
+// variant references only those bindings, so synchronization validation sees
+// exactly what a block reads and writes, and reports a missing barrier.
+#ifndef PARITY
+#error "compiled with PARITY=0 or PARITY=1 by build.rs"
+#endif
+#if PARITY == 0
+layout(set = 0, binding = 6, rgba16f) readonly uniform image2D cache_in;
+layout(set = 0, binding = 7, r16ui) readonly uniform uimage2D front_in;
+layout(set = 0, binding = 12, rgba16f) writeonly uniform image2D cache_out;
+layout(set = 0, binding = 13, r16ui) writeonly uniform uimage2D front_out;
+#else
+layout(set = 0, binding = 8, rgba16f) readonly uniform image2D cache_in;
+layout(set = 0, binding = 9, r16ui) readonly uniform uimage2D front_in;
+layout(set = 0, binding = 10, rgba16f) writeonly uniform image2D cache_out;
+layout(set = 0, binding = 11, r16ui) writeonly uniform uimage2D front_out;
+#endif
 layout(set = 0, binding = 14, rgba32f) uniform image2D out_image;
 
 struct BlockParams {
@@ -38,7 +45,7 @@ struct BlockParams {
     uint plane;       // plane index of the block's last line
     uint pixel_count; // line_width * span_len
     uvec4 region;     // cache texels to advance: x0, y0, w, h
-    uint parity;      // 0: read the a images, write b; 1: read b, write a
+    uint parity;      // which of the two pipelines runs this block (PARITY)
     uint light;       // index into sweeps[]
     uint pad0;
     uint pad1;
@@ -56,26 +63,12 @@ layout(set = 0, binding = 16, r32f) readonly uniform image2D lmax;
 
 BlockParams block;
 
-// Branches rather than ?: so that only one image is read (llvmpipe evaluates
-// both operands of a select, and skips a branch no lane takes).
-vec4 cache_load(ivec2 k) {
-    if (block.parity == 0u) return imageLoad(cache_a_in, k);
-    return imageLoad(cache_b_in, k);
-}
-
-uint front_load(ivec2 k) {
-    if (block.parity == 0u) return imageLoad(front_a_in, k).r;
-    return imageLoad(front_b_in, k).r;
-}
+vec4 cache_load(ivec2 k) { return imageLoad(cache_in, k); }
+uint front_load(ivec2 k) { return imageLoad(front_in, k).r; }
 
 void cache_store(ivec2 k, vec4 v, uint code) {
-    if (block.parity == 0u) {
-        imageStore(cache_b_out, k, v);
-        imageStore(front_b_out, k, uvec4(code));
-    } else {
-        imageStore(cache_a_out, k, v);
-        imageStore(front_a_out, k, uvec4(code));
-    }
+    imageStore(cache_out, k, v);
+    imageStore(front_out, k, uvec4(code));
 }
 
 const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;

@@ -36,7 +36,6 @@ struct SweepPush {
     span_len: u32,
     columns: u32,
     zone: u32,
-    parity: u32,
 }
 
 fn image(gpu: &GpuScene, name: &str, format: vk::Format, width: u32, height: u32) -> Result<Image, VkError> {
@@ -68,8 +67,9 @@ pub struct ExitPoints {
     plan: SweepPlan,
     depths_pipeline: ComputePipeline,
     depths_set: vk::DescriptorSet,
-    sweep_pipeline: ComputePipeline,
-    sweep_sets: Vec<vk::DescriptorSet>,
+    /// Reads side a and writes b, and the opposite (glsl/ipsvi_ert_sweep.comp).
+    sweep_pipelines: [ComputePipeline; 2],
+    sweep_set: vk::DescriptorSet,
 }
 
 impl ExitPoints {
@@ -124,34 +124,27 @@ impl ExitPoints {
             Resource::StorageBuffer(&gpu.lut),
             Resource::StorageImage(&depths),
         ])?;
-        let mut sweep_pipeline = ComputePipeline::new(
-            gpu.ctx,
-            &ComputePipelineDesc {
-                name: "ipsvi_exit_sweep",
-                spirv: shaders::IPSVI_ERT_SWEEP,
-                bindings: &[BindingKind::StorageImage; 6],
-                push_constant_bytes: std::mem::size_of::<SweepPush>() as u32,
-                specialization: &[],
-                max_sets: 2,
-            },
-        )?;
-        let [a, b] = [&pair[0], &pair[1]];
-        // Slots: a_in, b_in, a_out, b_out (see glsl/ipsvi_ert_sweep.comp).
-        let slot_sets: Vec<[&Image; 4]> =
-            if settings.pingpong_sets { vec![[a, a, b, b], [b, b, a, a]] } else { vec![[a, b, a, b]] };
-        let sweep_sets = slot_sets
-            .iter()
-            .map(|s| {
-                sweep_pipeline.create_set(&[
-                    Resource::StorageImage(&depths),
-                    Resource::StorageImage(s[0]),
-                    Resource::StorageImage(s[1]),
-                    Resource::StorageImage(s[2]),
-                    Resource::StorageImage(s[3]),
-                    Resource::StorageImage(&lmax),
-                ])
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let sweep_desc = |name, spirv| ComputePipelineDesc {
+            name,
+            spirv,
+            bindings: &[BindingKind::StorageImage; 6],
+            push_constant_bytes: std::mem::size_of::<SweepPush>() as u32,
+            specialization: &[],
+            max_sets: 1,
+        };
+        let mut sweep_pipelines = [
+            ComputePipeline::new(gpu.ctx, &sweep_desc("ipsvi_exit_sweep", shaders::IPSVI_ERT_SWEEP_READ_A))?,
+            ComputePipeline::new(gpu.ctx, &sweep_desc("ipsvi_exit_sweep", shaders::IPSVI_ERT_SWEEP_READ_B))?,
+        ];
+        // Slots: a_in, b_in, a_out, b_out, then the result.
+        let sweep_set = sweep_pipelines[0].create_set(&[
+            Resource::StorageImage(&depths),
+            Resource::StorageImage(&pair[0]),
+            Resource::StorageImage(&pair[1]),
+            Resource::StorageImage(&pair[0]),
+            Resource::StorageImage(&pair[1]),
+            Resource::StorageImage(&lmax),
+        ])?;
         Ok(ExitPoints {
             scale,
             width: w,
@@ -162,8 +155,8 @@ impl ExitPoints {
             plan,
             depths_pipeline,
             depths_set,
-            sweep_pipeline,
-            sweep_sets,
+            sweep_pipelines,
+            sweep_set,
         })
     }
 
@@ -196,7 +189,8 @@ impl ExitPoints {
         ));
 
         let scope = profiler.begin(rec, "ipsvi_exit_sweep")?;
-        rec.bind(&self.sweep_pipeline, self.sweep_sets[0]);
+        // One set for both pipelines (identical layouts): only the pipeline changes per line.
+        rec.bind(&self.sweep_pipelines[0], self.sweep_set);
         let anchor = match self.plan.anchor {
             LightAnchor::Source(p) | LightAnchor::Sink(p) => p,
             LightAnchor::AtInfinity(_) => Vec2::ZERO,
@@ -205,10 +199,8 @@ impl ExitPoints {
             // Toward the light: the main sweep's lines in reverse.
             let mut previous = -1i32;
             for (k, block) in sweep.blocks.iter().rev().enumerate() {
-                let parity = (k % 2) as u32;
-                if self.sweep_sets.len() > 1 {
-                    rec.bind_set(&self.sweep_pipeline, self.sweep_sets[parity as usize]);
-                }
+                let pipeline = &self.sweep_pipelines[k % 2];
+                rec.bind_pipeline(pipeline);
                 let line_scope = profiler.begin_detail(rec, "ipsvi_exit_line")?;
                 let push = SweepPush {
                     anchor: anchor.to_array(),
@@ -218,9 +210,8 @@ impl ExitPoints {
                     span_len: block.span_len,
                     columns: (sweep.axis == LineAxis::Columns) as u32,
                     zone: sweep.zone as u32,
-                    parity,
                 };
-                rec.push(&self.sweep_pipeline, push_bytes(&push));
+                rec.push(pipeline, push_bytes(&push));
                 rec.dispatch(block.span_len.div_ceil(64), 1, 1);
                 profiler.end(rec, line_scope)?;
                 rec.barrier(&Barrier::memory(

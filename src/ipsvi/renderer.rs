@@ -207,17 +207,21 @@ pub fn render_with(
             max_sets: 1,
         },
     )?;
-    let mut line = ComputePipeline::new(
-        ctx,
-        &ComputePipelineDesc {
-            name: "ipsvi_line",
-            spirv: shaders::IPSVI_LINE,
-            bindings: &LINE_BINDINGS,
-            push_constant_bytes: 4,
-            specialization: &[(0, emissive as u32), (1, scatter as u32)],
-            max_sets: 2,
-        },
-    )?;
+    let specialization = [(0, emissive as u32), (1, scatter as u32)];
+    let line_desc = |spirv| ComputePipelineDesc {
+        name: "ipsvi_line",
+        spirv,
+        bindings: &LINE_BINDINGS,
+        push_constant_bytes: 4,
+        specialization: &specialization,
+        max_sets: 1,
+    };
+    // Block parity 0 reads cache side a and writes b; parity 1 the opposite. Both
+    // pipelines share one descriptor set (identical layouts), bound once per sweep.
+    let mut lines = [
+        ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_A))?,
+        ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_B))?,
+    ];
     let common = [
         Resource::UniformBuffer(&frame),
         Resource::SampledImage(&gpu.volume, &gpu.sampler),
@@ -241,32 +245,14 @@ pub fn render_with(
         .concat(),
     )?;
     // Slots: a_in, front a_in, b_in, front b_in, a_out, front a_out, b_out, front b_out.
-    // One set holding both sides (the block picks by parity), or one set per parity
-    // whose read slots hold only the side it reads and write slots only the side it
-    // writes, so that synchronization validation sees each block's real accesses.
-    let slot_sets: Vec<[&Image; 8]> = if settings.pingpong_sets {
-        vec![[a, fa, a, fa, b, fb, b, fb], [b, fb, b, fb, a, fa, a, fa]]
-    } else {
-        vec![[a, fa, b, fb, a, fa, b, fb]]
-    };
-    let line_sets = slot_sets
-        .iter()
-        .map(|slots| {
-            let images = slots.map(Resource::StorageImage);
-            line.create_set(
-                &[
-                    &common[..],
-                    &images[..],
-                    &[
-                        Resource::StorageImage(&output.image),
-                        Resource::StorageBuffer(&blocks),
-                        Resource::StorageImage(lmax),
-                    ],
-                ]
-                .concat(),
-            )
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let line_set = lines[0].create_set(
+        &[
+            &common[..],
+            &[a, fa, b, fb, a, fa, b, fb].map(Resource::StorageImage)[..],
+            &[Resource::StorageImage(&output.image), Resource::StorageBuffer(&blocks), Resource::StorageImage(lmax)],
+        ]
+        .concat(),
+    )?;
 
     let readback = output.readback_buffer(ctx)?;
     let bg = scene.render.background;
@@ -328,15 +314,14 @@ pub fn render_with(
                 ));
                 let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
                 // Bound once per sweep: blocks find their parameters by index.
-                rec.bind(&line, line_sets[0]);
+                rec.bind(&lines[0], line_set);
                 for _ in &sweep.blocks {
                     let record = &block_records[next_block as usize];
-                    if line_sets.len() > 1 {
-                        rec.bind_set(&line, line_sets[record.parity as usize]);
-                    }
+                    let line = &lines[record.parity as usize];
+                    rec.bind_pipeline(line);
                     let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                     let invocations = record.pixel_count + record.region[2] * record.region[3];
-                    rec.push(&line, &next_block.to_ne_bytes());
+                    rec.push(line, &next_block.to_ne_bytes());
                     rec.dispatch(invocations.div_ceil(LINE_GROUP), 1, 1);
                     profiler.end(rec, line_scope)?;
                     next_block += 1;

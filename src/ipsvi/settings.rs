@@ -21,11 +21,6 @@ pub struct IpsviSettings {
     pub zone_blend_px: f32,
     /// Step along light rays (cache updates and piecewise integration), voxels.
     pub light_step_voxels: f32,
-    /// Bind the cache as two descriptor sets switched every line block (each
-    /// binding only the side it reads and the side it writes), instead of one set
-    /// holding both. Synchronization validation can see a missing barrier only
-    /// this way; on lavapipe the set switch costs about ten dispatches per line.
-    pub pingpong_sets: bool,
     /// Full-resolution pixels per pre-pass pixel, per axis (exit-points only).
     pub ert_scale: u32,
 }
@@ -65,13 +60,12 @@ impl Default for IpsviSettings {
             cone_angle_deg: 15.0,
             zone_blend_px: 2.0,
             light_step_voxels: 0.5,
-            pingpong_sets: false,
             ert_scale: 4,
         }
     }
 }
 
-const KEYS: [&str; 10] = [
+const KEYS: [&str; 9] = [
     "line_width",
     "cache_size",
     "piecewise",
@@ -80,7 +74,6 @@ const KEYS: [&str; 10] = [
     "cone_angle",
     "zone_blend",
     "light_step",
-    "pingpong_sets",
     "ert_scale",
 ];
 
@@ -115,7 +108,6 @@ impl IpsviSettings {
                 "cone_angle" => s.cone_angle_deg = within(number()?, 0.0, 80.0, key)?,
                 "zone_blend" => s.zone_blend_px = within(number()?, 0.0, 64.0, key)?,
                 "light_step" => s.light_step_voxels = within(number()?, 0.01, 16.0, key)?,
-                "pingpong_sets" => s.pingpong_sets = boolean()?,
                 other => return Err(bad(&format!("unknown key ipsvi.{other}; known: {}", KEYS.join(", ")))),
             }
         }

@@ -56,7 +56,7 @@ impl<'a> Recorder<'a> {
 
     /// Binds a compute pipeline and its descriptor set. On lavapipe each bind
     /// costs far more than a dispatch (about 0.7 ms for the pipeline against
-    /// 0.08 ms for a dispatch, measured by examples/dispatch_probe.rs): bind once
+    /// 0.08 ms for a dispatch, measured by tools/dispatch_probe.rs): bind once
     /// and switch only the set where a sweep needs it.
     pub fn bind(&self, pipeline: &ComputePipeline, set: vk::DescriptorSet) {
         self.bind_pipeline(pipeline);

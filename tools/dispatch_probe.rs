@@ -1,5 +1,6 @@
-//! Probe: GPU time of N back-to-back dispatches of the DVR pipeline at 1x1, with
-//! and without a barrier between them (lavapipe's per-dispatch cost).
+//! Probe (`cargo run --release --example dispatch_probe N`): GPU time of N back-to-back dispatches of the DVR pipeline at 1x1, with
+//! and without a barrier between them, and with a descriptor-set bind, a pipeline bind or a
+//! push-constant update before each (lavapipe's per-dispatch costs). Median of 5 frames.
 use std::time::Instant;
 use sweeplab::render::frame_params::{frame_params, MarchSteps};
 use sweeplab::render::{GpuScene, OutputImage};
@@ -60,39 +61,43 @@ fn main() {
     )
     .unwrap();
     for (barrier, rebind) in [(true, 0), (true, 1), (true, 2), (true, 3), (true, 4), (false, 0)] {
-        profiler.reset();
-        let t = Instant::now();
-        submit_and_wait(&ctx, "probe", |rec| {
-            out.prepare_for_compute_write(rec);
-            let s = profiler.begin(rec, "dispatches")?;
-            rec.bind(&p, set);
-            for _ in 0..n {
-                match rebind {
-                    1 => rec.bind_set(&p, set),
-                    2 => rec.bind(&p, set),
-                    3 => rec.push(&p, &[0u8; 16]),
-                    4 => rec.bind_pipeline(if rec.dispatch_count % 2 == 0 { &p } else { &p2 }),
-                    _ => {}
+        let mut samples = Vec::new();
+        let mut walls = Vec::new();
+        for _ in 0..5 {
+            profiler.reset();
+            let t = Instant::now();
+            submit_and_wait(&ctx, "probe", |rec| {
+                out.prepare_for_compute_write(rec);
+                let s = profiler.begin(rec, "dispatches")?;
+                rec.bind(&p, set);
+                for _ in 0..n {
+                    match rebind {
+                        1 => rec.bind_set(&p, set),
+                        2 => rec.bind(&p, set),
+                        3 => rec.push(&p, &[0u8; 16]),
+                        4 => rec.bind_pipeline(if rec.dispatch_count % 2 == 0 { &p } else { &p2 }),
+                        _ => {}
+                    }
+                    rec.dispatch(1, 1, 1);
+                    if barrier {
+                        rec.barrier(&Barrier::memory("probe", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE));
+                    }
                 }
-                rec.dispatch(1, 1, 1);
-                if barrier {
-                    rec.barrier(&Barrier::memory("probe", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE));
-                }
-            }
-            profiler.end(rec, s)?;
-            Ok(())
-        })
-        .unwrap();
-        let wall = t.elapsed().as_secs_f64() * 1e3;
-        let r = profiler.resolve(0).unwrap();
+                profiler.end(rec, s)?;
+                Ok(())
+            })
+            .unwrap();
+            walls.push(t.elapsed().as_secs_f64() * 1e3);
+            samples.push(profiler.resolve(0).unwrap().gpu_ms_total);
+        }
+        samples.sort_by(f64::total_cmp);
+        walls.sort_by(f64::total_cmp);
+        let (gpu_ms, wall) = (samples[2], walls[2]);
+        let what = ["nothing", "descriptor set", "pipeline + set", "push constants", "alternating pipelines, same set"]
+            [rebind];
         println!(
-            "barrier {barrier} rebind {}: ",
-            ["nothing", "set", "pipeline+set", "push constants", "alternating pipelines, same set"][rebind]
-        );
-        println!(
-            "  {n} dispatches: gpu {:.3} ms ({:.1} us each), host wall {wall:.3} ms",
-            r.gpu_ms_total,
-            r.gpu_ms_total * 1e3 / n as f64
+            "barrier {barrier:5}, before each dispatch: {what:32} {n} dispatches, median of 5: gpu {gpu_ms:.3} ms = {:.1} us each (host wall {wall:.3} ms)",
+            gpu_ms * 1e3 / n as f64
         );
     }
 }
