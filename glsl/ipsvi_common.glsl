@@ -5,6 +5,7 @@
 #define IPSVI_COMMON_GLSL
 #include "volume.glsl"
 #include "lights.glsl"
+#include "light_path.glsl"
 
 struct SweepParams {
     vec4 cache_origin;  // xyz: light position, or a point behind the volume for directional; w: projection
@@ -122,23 +123,8 @@ vec2 ray_in_box(Ray r) {
 // Integrates `len` world units from x toward the light with at most `max_steps`
 // midpoint samples: (emission arriving at x / light scale: rgb, optical depth).
 vec4 light_segment(vec3 x, vec3 dir, float len, uint max_steps, bool gather_emission) {
-    if (len <= 0.0) return vec4(0.0);
-    float vl = frame.box_half.w;
-    float M = clamp(ceil(len / (frame.march.y * vl)), 1.0, float(max_steps));
-    float g = len / M;
-    float gv = g / vl;
-    int m = int(M);
-    float tau = 0.0;
-    vec3 E = vec3(0.0);
-    for (int j = 0; j < m; ++j) {
-        vec4 med = medium(x + dir * ((float(j) + 0.5) * g));
-        if (gather_emission) {
-            float a = 1.0 - exp(-med.a * gv);
-            E += exp(-tau) * a * med.rgb;
-        }
-        tau += med.a * gv;
-    }
-    return vec4(E * (frame.background.w / sweep.anchor.w), tau);
+    vec4 path = integrate_light_path(x, dir, len, float(max_steps), gather_emission);
+    return vec4(path.rgb * (frame.background.w / sweep.anchor.w), path.a);
 }
 
 #endif

@@ -1,0 +1,28 @@
+// Integration along a path toward a light, shared by the ground truth's shadow
+// rays and IPSVI's cache updates and piecewise integration (docs/optical-model.md).
+#ifndef LIGHT_PATH_GLSL
+#define LIGHT_PATH_GLSL
+#include "volume.glsl"
+
+// Midpoint rule over `len` world units from x along `dir`, in steps of
+// frame.march.y voxels, at most `max_steps` of them (longer steps beyond that).
+// Returns (sum of T_before * alpha * rgb over the samples, optical depth): the
+// medium's emission arriving at x is rgb * emission scale.
+vec4 integrate_light_path(vec3 x, vec3 dir, float len, float max_steps, bool gather_emission) {
+    if (len <= 0.0) return vec4(0.0);
+    float vl = frame.box_half.w;
+    float M = clamp(ceil(len / (frame.march.y * vl)), 1.0, max_steps);
+    float g = len / M;
+    float gv = g / vl;
+    int m = int(M);
+    float tau = 0.0;
+    vec3 E = vec3(0.0);
+    for (int j = 0; j < m; ++j) {
+        vec4 med = medium(x + dir * ((float(j) + 0.5) * g));
+        if (gather_emission) E += exp(-tau) * (1.0 - exp(-med.a * gv)) * med.rgb;
+        tau += med.a * gv;
+    }
+    return vec4(E, tau);
+}
+
+#endif
