@@ -5,7 +5,7 @@ mod common;
 use common::*;
 use glam::Vec3;
 use sweeplab::ipsvi::renderer::plans;
-use sweeplab::ipsvi::{render_with, IpsviSettings, LineSync};
+use sweeplab::ipsvi::{render_with, IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::{compare, ErrorStats};
 use sweeplab::render::{render, GpuScene, RenderOutput, Technique, VolumeTexels};
@@ -42,7 +42,7 @@ fn ipsvi_and_reference(ctx: &Context, scene: &Scene, settings: &IpsviSettings) -
     let gpu = GpuScene::upload_with(ctx, scene, VolumeTexels::Float32).unwrap();
     let mut profiler = Profiler::new(ctx, 8192).unwrap();
     profiler.reset();
-    let frame = render_with(&gpu, settings, SIZE, SIZE, &mut profiler, LineSync::Barrier).unwrap();
+    let frame = render_with(&gpu, settings, SIZE, SIZE, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
     let profile = profiler.resolve(ctx.memory.device_local_peak()).unwrap();
     let ipsvi = RenderOutput {
         technique: Technique::Ipsvi,
@@ -165,10 +165,10 @@ fn sweep_without_line_barriers_is_reported_by_synchronization_validation() {
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     let s = IpsviSettings { cache_size: 32, ..IpsviSettings::default() };
     profiler.reset();
-    render_with(&gpu, &s, 16, 16, &mut profiler, LineSync::Barrier).unwrap();
+    render_with(&gpu, &s, 16, 16, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
     assert_validation_clean(&ctx);
     profiler.reset();
-    render_with(&gpu, &s, 16, 16, &mut profiler, LineSync::RacyNoBarrier).unwrap();
+    render_with(&gpu, &s, 16, 16, &mut profiler, SyncStrategy::Racy).unwrap();
     let messages = ctx.take_validation_messages();
     assert!(
         messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
@@ -190,7 +190,7 @@ fn one_dispatch_per_line_block_and_only_inside_the_projected_box() {
     assert!(lines > 4 && lines < SIZE / 2, "the box spans {lines} of {SIZE} lines");
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     profiler.reset();
-    let frame = render_with(&gpu, &s, SIZE, SIZE, &mut profiler, LineSync::Barrier).unwrap();
+    let frame = render_with(&gpu, &s, SIZE, SIZE, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
     // One cache init per sweep, one dispatch per block: first block 1 line, then 4.
     assert_eq!(frame.dispatches, 1 + plan.dispatches());
     assert_eq!(plan.dispatches(), 1 + (lines - 1).div_ceil(4));
@@ -270,7 +270,7 @@ fn exit_point_termination_gives_the_same_image_and_allocates_only_when_on() {
         let s = IpsviSettings { early_termination: ert, cache_size: 64, ..IpsviSettings::default() };
         profiler.reset();
         ctx.memory.reset_peak();
-        let frame = render_with(&gpu, &s, SIZE, SIZE, &mut profiler, LineSync::Barrier).unwrap();
+        let frame = render_with(&gpu, &s, SIZE, SIZE, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
         let profile = profiler.resolve(ctx.memory.device_local_peak()).unwrap();
         let prepass = profile.passes.iter().any(|p| p.name == "ipsvi_ert_prepass");
         assert_eq!(prepass, ert == EarlyTermination::ExitPoints, "{ert:?}: pre-pass recorded only in exit-points mode");
@@ -298,7 +298,7 @@ fn forward_cone_scattering_blurs_light_and_stays_finite() {
     for albedo in [0.0, 0.6] {
         let s = IpsviSettings { albedo, cone_angle_deg: 30.0, cache_size: 64, ..IpsviSettings::default() };
         profiler.reset();
-        images.push(render_with(&gpu, &s, SIZE, SIZE, &mut profiler, LineSync::Barrier).unwrap().image);
+        images.push(render_with(&gpu, &s, SIZE, SIZE, &mut profiler, SyncStrategy::BarrierGlobal).unwrap().image);
     }
     assert!(images[1].all_finite());
     let change = compare(&images[1], &images[0]).unwrap();

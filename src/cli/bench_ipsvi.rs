@@ -7,7 +7,7 @@ use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::{plot_error_vs_time, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
 use sweeplab::ipsvi::renderer::plans;
-use sweeplab::ipsvi::{render_with, EarlyTermination, IpsviSettings, LineSync};
+use sweeplab::ipsvi::{render_with, EarlyTermination, IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique};
@@ -116,7 +116,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             for _ in 0..repeat {
                 profiler.reset();
                 ctx.memory.reset_peak();
-                let frame = render_with(&gpu, s, size, size, &mut profiler, LineSync::Barrier)?;
+                let frame = render_with(&gpu, s, size, size, &mut profiler, SyncStrategy::BarrierGlobal)?;
                 let profile = profiler.resolve(ctx.memory.device_local_peak())?;
                 times.push(profile.gpu_ms_total);
                 last = Some((frame, profile));

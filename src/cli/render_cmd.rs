@@ -23,6 +23,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     };
     output.image.save_png(&args.out)?;
     print!("{}", output.profile.table());
+    if technique == Technique::Ipsvi {
+        let settings = sweeplab::ipsvi::IpsviSettings::from_scene(&scene)?;
+        println!("ipsvi sync strategy: {}", settings.sync);
+    }
     println!(
         "{technique}: {}x{} -> {} ({} dispatches, {} barriers)",
         scene.render.width,

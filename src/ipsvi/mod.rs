@@ -13,6 +13,8 @@ pub mod image_space;
 pub mod renderer;
 pub mod settings;
 pub mod sweep_plan;
+pub mod sync_strategy;
 
-pub use renderer::{render, render_with, LineSync};
+pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};
+pub use sync_strategy::SyncStrategy;

@@ -12,6 +12,7 @@ use super::gpu_params::{
 use super::image_space::ImageSpace;
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, SweepPlan};
+use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
@@ -19,6 +20,7 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{BindingKind, Resource};
+use crate::vk::events::EventPool;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Image, Profiler};
@@ -29,15 +31,6 @@ const LOOP_BUDGET: u32 = 60_000;
 
 /// local_size_x of glsl/ipsvi_line.comp (16 measured no faster on lavapipe).
 const LINE_GROUP: u32 = 64;
-
-/// Whether consecutive line blocks are separated by their barrier.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LineSync {
-    Barrier,
-    /// RACY: no barrier between line blocks, for proving the barrier is
-    /// load-bearing under synchronization validation. Its image is undefined.
-    RacyNoBarrier,
-}
 
 const LINE_BINDINGS: [BindingKind; 17] = [
     BindingKind::UniformBuffer,
@@ -119,7 +112,8 @@ pub fn plans(gpu: &GpuScene, settings: &IpsviSettings, width: u32, height: u32) 
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
-    render_with(gpu, &IpsviSettings::from_scene(gpu.scene)?, width, height, profiler, LineSync::Barrier)
+    let settings = IpsviSettings::from_scene(gpu.scene)?;
+    render_with(gpu, &settings, width, height, profiler, settings.sync)
 }
 
 pub fn render_with(
@@ -128,7 +122,7 @@ pub fn render_with(
     width: u32,
     height: u32,
     profiler: &mut Profiler,
-    sync: LineSync,
+    sync: SyncStrategy,
 ) -> Result<FrameResult, RenderError> {
     let scene = gpu.scene;
     if scene.lights.is_empty() {
@@ -254,6 +248,18 @@ pub fn render_with(
         .concat(),
     )?;
 
+    let events = match sync {
+        SyncStrategy::Events => Some(EventPool::new(ctx, block_records.len())?),
+        _ => None,
+    };
+    let line_dependency =
+        Barrier::memory("cache_write_to_next_line_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE);
+    let line_image_dependency = Barrier::images(
+        "cache_write_to_next_line_read",
+        &[a, b, fa, fb, &output.image],
+        Access::COMPUTE_WRITE,
+        Access::COMPUTE_READ_WRITE,
+    );
     let readback = output.readback_buffer(ctx)?;
     let bg = scene.render.background;
     let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
@@ -299,8 +305,12 @@ pub fn render_with(
             e.record(rec, profiler)?;
         }
         let mut next_block = 0u32;
+        let mut pending_event: Option<usize> = None;
         for (li, plan) in plans.iter().enumerate() {
             for sweep in &plan.sweeps {
+                if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
+                    rec.wait_event(pool.events[k], &line_dependency);
+                }
                 let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
                 rec.bind(&init, init_set);
                 let n = settings.cache_size.div_ceil(8);
@@ -317,6 +327,9 @@ pub fn render_with(
                 rec.bind(&lines[0], line_set);
                 for _ in &sweep.blocks {
                     let record = &block_records[next_block as usize];
+                    if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
+                        rec.wait_event(pool.events[k], &line_dependency);
+                    }
                     let line = &lines[record.parity as usize];
                     rec.bind_pipeline(line);
                     let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
@@ -324,19 +337,23 @@ pub fn render_with(
                     rec.push(line, &next_block.to_ne_bytes());
                     rec.dispatch(invocations.div_ceil(LINE_GROUP), 1, 1);
                     profiler.end(rec, line_scope)?;
-                    next_block += 1;
-                    if sync == LineSync::Barrier {
-                        // This block's cache writes are the next block's reads; its reads
-                        // of the other image precede the next block's writes to it.
-                        rec.barrier(&Barrier::memory(
-                            "cache_write_to_next_line_read",
-                            Access::COMPUTE_WRITE,
-                            Access::COMPUTE_READ_WRITE,
-                        ));
+                    match (sync, &events) {
+                        (SyncStrategy::BarrierGlobal, _) => rec.barrier(&line_dependency),
+                        (SyncStrategy::BarrierImage, _) => rec.barrier(&line_image_dependency),
+                        (SyncStrategy::Events, Some(pool)) => {
+                            rec.set_event(pool.events[next_block as usize], &line_dependency);
+                            pending_event = Some(next_block as usize);
+                        }
+                        // RACY: nothing between blocks.
+                        _ => {}
                     }
+                    next_block += 1;
                 }
                 profiler.end(rec, sweep_scope)?;
             }
+        }
+        if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
+            rec.wait_event(pool.events[k], &line_dependency);
         }
         profiler.end(rec, frame_scope)?;
         output.record_readback(rec, &readback);

@@ -1,5 +1,6 @@
 //! IPSVI parameters from the scene file's `[ipsvi]` table (or `--set ipsvi.key=value`).
 
+use super::sync_strategy::SyncStrategy;
 use crate::render::RenderError;
 use crate::scene::Scene;
 
@@ -23,6 +24,8 @@ pub struct IpsviSettings {
     pub light_step_voxels: f32,
     /// Full-resolution pixels per pre-pass pixel, per axis (exit-points only).
     pub ert_scale: u32,
+    /// How consecutive line blocks are synchronized (`racy` only for cost studies).
+    pub sync: SyncStrategy,
 }
 
 /// When the view rays of the main pass stop.
@@ -61,11 +64,12 @@ impl Default for IpsviSettings {
             zone_blend_px: 2.0,
             light_step_voxels: 0.5,
             ert_scale: 4,
+            sync: SyncStrategy::BarrierGlobal,
         }
     }
 }
 
-const KEYS: [&str; 9] = [
+const KEYS: [&str; 10] = [
     "line_width",
     "cache_size",
     "piecewise",
@@ -75,6 +79,7 @@ const KEYS: [&str; 9] = [
     "zone_blend",
     "light_step",
     "ert_scale",
+    "sync",
 ];
 
 impl IpsviSettings {
@@ -104,6 +109,10 @@ impl IpsviSettings {
                     }
                 }
                 "ert_scale" => s.ert_scale = whole(number()?, 1, 16, key)?,
+                "sync" => {
+                    let name = v.as_str().ok_or_else(|| bad("ipsvi.sync must be a strategy name"))?;
+                    s.sync = name.parse().map_err(|e: String| bad(&format!("ipsvi.sync: {e}")))?;
+                }
                 "albedo" => s.albedo = within(number()?, 0.0, 1.0, key)?,
                 "cone_angle" => s.cone_angle_deg = within(number()?, 0.0, 80.0, key)?,
                 "zone_blend" => s.zone_blend_px = within(number()?, 0.0, 64.0, key)?,

@@ -51,8 +51,24 @@ pub struct Barrier {
 
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum BarrierKind {
-    Memory { src: Access, dst: Access },
-    Image { image: vk::Image, src: Access, dst: Access, old_layout: vk::ImageLayout, new_layout: vk::ImageLayout },
+    Memory {
+        src: Access,
+        dst: Access,
+    },
+    Image {
+        image: vk::Image,
+        src: Access,
+        dst: Access,
+        old_layout: vk::ImageLayout,
+        new_layout: vk::ImageLayout,
+    },
+    /// Up to 8 images in GENERAL layout, no transition.
+    Images {
+        images: [vk::Image; 8],
+        count: usize,
+        src: Access,
+        dst: Access,
+    },
 }
 
 impl Barrier {
@@ -73,7 +89,31 @@ impl Barrier {
         Barrier { name, kind: BarrierKind::Image { image: image.raw, src, dst, old_layout, new_layout } }
     }
 
-    pub(crate) fn record(&self, device: &ash::Device, cb: vk::CommandBuffer) {
+    /// Image barriers narrowed to `images` (GENERAL layout, at most 8).
+    pub fn images(name: &'static str, images: &[&Image], src: Access, dst: Access) -> Barrier {
+        let mut raw = [vk::Image::null(); 8];
+        let count = images.len().min(8);
+        for (r, i) in raw.iter_mut().zip(images) {
+            *r = i.raw;
+        }
+        Barrier { name, kind: BarrierKind::Images { images: raw, count, src, dst } }
+    }
+
+    /// Calls `f` with this barrier as a `vk::DependencyInfo` (for barriers and events).
+    pub(crate) fn with_dependency<R>(&self, f: impl FnOnce(&vk::DependencyInfo) -> R) -> R {
+        let image_barrier = |image, src: Access, dst: Access, old, new| {
+            vk::ImageMemoryBarrier2::default()
+                .src_stage_mask(src.stage)
+                .src_access_mask(src.access)
+                .dst_stage_mask(dst.stage)
+                .dst_access_mask(dst.access)
+                .old_layout(old)
+                .new_layout(new)
+                .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                .image(image)
+                .subresource_range(color_range())
+        };
         match self.kind {
             BarrierKind::Memory { src, dst } => {
                 let b = [vk::MemoryBarrier2::default()
@@ -81,26 +121,23 @@ impl Barrier {
                     .src_access_mask(src.access)
                     .dst_stage_mask(dst.stage)
                     .dst_access_mask(dst.access)];
-                let dep = vk::DependencyInfo::default().memory_barriers(&b);
-                // SAFETY: cb is in the recording state (Recorder owns it).
-                unsafe { device.cmd_pipeline_barrier2(cb, &dep) };
+                f(&vk::DependencyInfo::default().memory_barriers(&b))
             }
             BarrierKind::Image { image, src, dst, old_layout, new_layout } => {
-                let b = [vk::ImageMemoryBarrier2::default()
-                    .src_stage_mask(src.stage)
-                    .src_access_mask(src.access)
-                    .dst_stage_mask(dst.stage)
-                    .dst_access_mask(dst.access)
-                    .old_layout(old_layout)
-                    .new_layout(new_layout)
-                    .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                    .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
-                    .image(image)
-                    .subresource_range(color_range())];
-                let dep = vk::DependencyInfo::default().image_memory_barriers(&b);
-                // SAFETY: cb is in the recording state (Recorder owns it).
-                unsafe { device.cmd_pipeline_barrier2(cb, &dep) };
+                let b = [image_barrier(image, src, dst, old_layout, new_layout)];
+                f(&vk::DependencyInfo::default().image_memory_barriers(&b))
+            }
+            BarrierKind::Images { images, count, src, dst } => {
+                let general = vk::ImageLayout::GENERAL;
+                let b: Vec<vk::ImageMemoryBarrier2> =
+                    images[..count].iter().map(|&i| image_barrier(i, src, dst, general, general)).collect();
+                f(&vk::DependencyInfo::default().image_memory_barriers(&b))
             }
         }
+    }
+
+    pub(crate) fn record(&self, device: &ash::Device, cb: vk::CommandBuffer) {
+        // SAFETY: cb is in the recording state (Recorder owns it).
+        self.with_dependency(|dep| unsafe { device.cmd_pipeline_barrier2(cb, dep) });
     }
 }

@@ -58,6 +58,25 @@ impl<'a> Recorder<'a> {
     /// costs far more than a dispatch (about 0.7 ms for the pipeline against
     /// 0.08 ms for a dispatch, measured by tools/dispatch_probe.rs): bind once
     /// and switch only the set where a sweep needs it.
+    /// First half of a split barrier: signals `event` once the work before it has
+    /// done what `barrier`'s source side names.
+    pub fn set_event(&mut self, event: vk::Event, barrier: &Barrier) {
+        self.insert_label(barrier.name);
+        // SAFETY: cb is recording; the event belongs to this device.
+        barrier.with_dependency(|dep| unsafe { self.ctx.device.cmd_set_event2(self.cb, event, dep) });
+    }
+
+    /// Second half: waits for `event` with the same dependency it was set with.
+    pub fn wait_event(&mut self, event: vk::Event, barrier: &Barrier) {
+        self.insert_label(barrier.name);
+        // SAFETY: cb is recording; the event was set earlier in this submission with
+        // an identical dependency.
+        barrier.with_dependency(|dep| unsafe {
+            self.ctx.device.cmd_wait_events2(self.cb, &[event], std::slice::from_ref(dep))
+        });
+        self.barrier_count += 1;
+    }
+
     pub fn bind(&self, pipeline: &ComputePipeline, set: vk::DescriptorSet) {
         self.bind_pipeline(pipeline);
         self.bind_set(pipeline, set);

@@ -8,6 +8,7 @@ pub mod context;
 pub mod descriptors;
 pub mod device_info;
 pub mod error;
+pub mod events;
 pub mod memory;
 pub mod pipeline;
 pub mod profiler;
