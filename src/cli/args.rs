@@ -28,6 +28,31 @@ pub enum BenchCommand {
     /// IPSVI over line width x cache size x piecewise integration x early ray
     /// termination x image size, each run compared with the GPU ground truth.
     Ipsvi(BenchIpsviArgs),
+    /// IPSVI sweep synchronization strategies x line width x image size: GPU time,
+    /// per-line overhead against a single dispatch, time inside dispatches and in
+    /// the gaps between them, the profiler's own perturbation, Perfetto traces.
+    Sync(BenchSyncArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchSyncArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    #[arg(long, default_value = "bench-sync")]
+    pub out: PathBuf,
+    /// barrier-global, barrier-image, events, racy
+    #[arg(long, value_delimiter = ',', default_values_t = vec!["barrier-global".to_string(), "barrier-image".to_string(), "events".to_string(), "racy".to_string()])]
+    pub strategies: Vec<String>,
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
+    pub line_widths: Vec<u32>,
+    /// Square image sizes.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512])]
+    pub sizes: Vec<u32>,
+    /// Frames per configuration; the median GPU time is reported.
+    #[arg(long, default_value_t = 3)]
+    pub repeat: u32,
 }
 
 #[derive(Args, Debug)]

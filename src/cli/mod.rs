@@ -1,5 +1,6 @@
 pub mod args;
 mod bench_ipsvi;
+mod bench_sync;
 mod compare_cmd;
 mod devices_cmd;
 mod render_cmd;
@@ -14,5 +15,6 @@ pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
         args::Command::Render(a) => render_cmd::run(&a),
         args::Command::Compare(a) => compare_cmd::run(&a),
         args::Command::Bench(args::BenchCommand::Ipsvi(a)) => bench_ipsvi::run(&a),
+        args::Command::Bench(args::BenchCommand::Sync(a)) => bench_sync::run(&a),
     }
 }

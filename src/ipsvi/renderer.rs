@@ -11,7 +11,7 @@ use super::gpu_params::{
 };
 use super::image_space::ImageSpace;
 use super::settings::{EarlyTermination, IpsviSettings};
-use super::sweep_plan::{plan, LineAxis, SweepPlan};
+use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::technique::FrameResult;
@@ -107,8 +107,26 @@ pub fn plans(gpu: &GpuScene, settings: &IpsviSettings, width: u32, height: u32) 
     gpu.scene
         .lights
         .iter()
-        .map(|l| plan(bbox, space.light_anchor(&l.kind), settings.line_width, settings.zone_blend_px))
+        .map(|l| {
+            let mut p = plan(bbox, space.light_anchor(&l.kind), settings.line_width, settings.zone_blend_px);
+            if settings.single_dispatch_baseline {
+                for sweep in &mut p.sweeps {
+                    sweep.blocks = vec![single_block(&sweep.blocks)];
+                }
+            }
+            p
+        })
         .collect()
+}
+
+/// All of a sweep's lines as one block (the single-dispatch study baseline).
+fn single_block(blocks: &[LineBlock]) -> LineBlock {
+    let first = blocks.iter().map(|b| b.first).min().unwrap_or(0);
+    let end = blocks.iter().map(|b| b.first + b.width).max().unwrap_or(0);
+    let span_start = blocks.iter().map(|b| b.span_start).min().unwrap_or(0);
+    let span_end = blocks.iter().map(|b| b.span_start + b.span_len).max().unwrap_or(0);
+    let last_line = blocks.last().map(|b| b.last_line).unwrap_or(0);
+    LineBlock { first, width: end - first, span_start, span_len: span_end - span_start, last_line }
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {

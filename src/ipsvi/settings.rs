@@ -26,6 +26,9 @@ pub struct IpsviSettings {
     pub ert_scale: u32,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     pub sync: SyncStrategy,
+    /// Study baseline, not an illumination result: every sweep is one dispatch
+    /// over all its lines (the same shader and pixels with no sweep to sync).
+    pub single_dispatch_baseline: bool,
 }
 
 /// When the view rays of the main pass stop.
@@ -65,6 +68,7 @@ impl Default for IpsviSettings {
             light_step_voxels: 0.5,
             ert_scale: 4,
             sync: SyncStrategy::BarrierGlobal,
+            single_dispatch_baseline: false,
         }
     }
 }

@@ -298,7 +298,38 @@ impl Drop for Profiler {
     }
 }
 
+/// Repeated scopes of one name (per-line dispatches) on the GPU timeline: time
+/// inside them and in the gaps between consecutive ones under the same parent
+/// (the synchronization bubble: barrier, hand-off, timestamps).
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct ScopeTimeline {
+    pub count: u32,
+    pub inside_ms: f64,
+    pub gap_ms: f64,
+    pub durations_us: Vec<f64>,
+    pub gaps_us: Vec<f64>,
+}
+
 impl ProfileReport {
+    /// The timeline of every scope called `name`, in start order.
+    pub fn timeline(&self, name: &str) -> ScopeTimeline {
+        let mut scopes: Vec<&ScopeTiming> = self.scopes.iter().filter(|s| s.name == name).collect();
+        scopes.sort_by(|a, b| a.start_ns.total_cmp(&b.start_ns));
+        let mut t = ScopeTimeline { count: scopes.len() as u32, ..Default::default() };
+        for (i, s) in scopes.iter().enumerate() {
+            t.durations_us.push(s.duration_ns * 1e-3);
+            t.inside_ms += s.duration_ns * 1e-6;
+            if let Some(next) = scopes.get(i + 1) {
+                if next.parent == s.parent {
+                    let gap = (next.start_ns - (s.start_ns + s.duration_ns)).max(0.0);
+                    t.gaps_us.push(gap * 1e-3);
+                    t.gap_ms += gap * 1e-6;
+                }
+            }
+        }
+        t
+    }
+
     /// GPU time of all passes with this name (any depth), in ms.
     pub fn pass_ms(&self, name: &str) -> f64 {
         self.passes.iter().filter(|p| p.name == name).map(|p| p.gpu_ms).sum()

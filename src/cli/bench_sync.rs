@@ -1,0 +1,205 @@
+//! `sweeplab bench sync`: what each way of synchronizing the IPSVI sweep costs.
+
+use super::args::BenchSyncArgs;
+use super::render_cmd::{write_json, PROFILER_CAPACITY};
+use super::{scene_args, session};
+use anyhow::Context as _;
+use std::process::ExitCode;
+use sweeplab::bench::{plot_error_vs_time, plot_lines, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
+use sweeplab::ipsvi::renderer::plans;
+use sweeplab::ipsvi::{render_with, IpsviSettings, SyncStrategy};
+use sweeplab::linear_image::LinearImage;
+use sweeplab::metrics::compare;
+use sweeplab::render::GpuScene;
+use sweeplab::vk::{Context, ProfileReport, Profiler};
+
+struct Frame {
+    gpu_ms: f64,
+    image: LinearImage,
+    dispatches: u32,
+    profile: ProfileReport,
+}
+
+/// Median GPU time of `repeat` frames; the last frame's image and profile.
+fn frames(
+    ctx: &Context,
+    gpu: &GpuScene,
+    s: &IpsviSettings,
+    size: u32,
+    profiler: &mut Profiler,
+    repeat: u32,
+) -> anyhow::Result<Frame> {
+    let mut times = Vec::new();
+    let mut last = None;
+    for _ in 0..repeat.max(1) {
+        profiler.reset();
+        let frame = render_with(gpu, s, size, size, profiler, s.sync)?;
+        let profile = profiler.resolve(ctx.memory.device_local_peak())?;
+        times.push(profile.gpu_ms_total);
+        last = Some((frame, profile));
+    }
+    times.sort_by(f64::total_cmp);
+    let (frame, profile) = last.expect("at least one frame");
+    Ok(Frame { gpu_ms: times[times.len() / 2], image: frame.image, dispatches: frame.dispatches, profile })
+}
+
+pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
+    let strategies: Vec<SyncStrategy> = args
+        .strategies
+        .iter()
+        .map(|s| s.parse().map_err(|e: String| anyhow::anyhow!("--strategies: {e}")))
+        .collect::<Result<_, _>>()?;
+    let scene = scene_args::load(&args.scene)?;
+    let base = IpsviSettings::from_scene(&scene)?;
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let ctx = session::open(&args.gpu)?;
+    let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
+    let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
+    let steps = args.sizes.len() * (1 + args.line_widths.len() * strategies.len());
+    let mut progress = Progress::new(steps);
+    let mut table = BenchTable::new();
+    let largest = args.sizes.iter().copied().max().unwrap_or(0);
+    for &size in &args.sizes {
+        progress.start_step(&format!("{size}x{size} single-dispatch baseline"));
+        let baseline_settings = IpsviSettings { single_dispatch_baseline: true, ..base.clone() };
+        let baseline = frames(&ctx, &gpu, &baseline_settings, size, &mut profiler, args.repeat)?;
+        progress.finish_step();
+        let mut row = BenchRow::new();
+        row.set("strategy", "single-dispatch")
+            .set("racy", false)
+            .set("line_width", 0)
+            .set("width", size)
+            .set("height", size);
+        row.set("dispatches", baseline.dispatches).set("gpu_ms", baseline.gpu_ms);
+        table.push(row);
+        for &lw in &args.line_widths {
+            let mut expected: Option<LinearImage> = None;
+            for &strategy in &strategies {
+                progress.start_step(&format!("{size}x{size} lw={lw} {}", strategy.name()));
+                let s = IpsviSettings { line_width: lw, sync: strategy, ..base.clone() };
+                let lines: u32 = plans(&gpu, &s, size, size).iter().map(|p| p.lines()).sum();
+                let timed = frames(&ctx, &gpu, &s, size, &mut profiler, args.repeat)?;
+                // The same frame once more with a timestamp around every dispatch.
+                profiler.set_detail(true);
+                let detailed = frames(&ctx, &gpu, &s, size, &mut profiler, 1)?;
+                profiler.set_detail(false);
+                progress.finish_step();
+                let timeline = detailed.profile.timeline("ipsvi_line");
+                if strategy == SyncStrategy::BarrierGlobal {
+                    expected = Some(timed.image.clone());
+                }
+                let rmse = match &expected {
+                    Some(e) => compare(&timed.image, e).map(|c| c.rmse).unwrap_or(f64::NAN),
+                    None => f64::NAN,
+                };
+                let mut row = BenchRow::new();
+                row.set("strategy", strategy.name()).set("racy", strategy.is_racy()).set("line_width", lw);
+                row.set("width", size).set("height", size).set("lines", lines).set("dispatches", timed.dispatches);
+                row.set("gpu_ms", timed.gpu_ms);
+                row.set("per_line_overhead_us", (timed.gpu_ms - baseline.gpu_ms) * 1e3 / lines.max(1) as f64);
+                row.set("rmse", rmse);
+                row.set("gpu_ms_with_line_timestamps", detailed.gpu_ms);
+                row.set("timestamp_perturbation_ms", detailed.gpu_ms - timed.gpu_ms);
+                row.set("inside_dispatches_ms", timeline.inside_ms).set("gaps_ms", timeline.gap_ms);
+                let median = |v: &[f64]| {
+                    let mut v = v.to_vec();
+                    v.sort_by(f64::total_cmp);
+                    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+                };
+                row.set("median_line_us", median(&timeline.durations_us))
+                    .set("median_gap_us", median(&timeline.gaps_us));
+                table.push(row);
+                if size == largest && lw == 1 {
+                    let name = strategy.name();
+                    write_json(&args.out.join(format!("trace_{name}.json")), &detailed.profile.chrome_trace())?;
+                    write_json(&args.out.join(format!("lines_{name}.json")), &serde_json::to_value(&timeline)?)?;
+                }
+            }
+        }
+    }
+    progress.finish();
+    drop(gpu);
+    write_reports(args, &strategies, &table)?;
+    println!("{}", table.to_markdown());
+    println!("racy rows are unsynchronized: their images are undefined and only their cost is meaningful.");
+    println!("wrote {}/sync.csv, sync.json, sync.md, plots and trace_<strategy>.json (Perfetto)", args.out.display());
+    Ok(session::finish(&ctx))
+}
+
+fn write_reports(args: &BenchSyncArgs, strategies: &[SyncStrategy], table: &BenchTable) -> anyhow::Result<()> {
+    table.write_csv(args.out.join("sync.csv"))?;
+    table.write_json(args.out.join("sync.json"))?;
+    std::fs::write(args.out.join("sync.md"), table.to_markdown()).context("writing sync.md")?;
+    let rows = |strategy: &str, lw: u32| -> Vec<&BenchRow> {
+        table
+            .rows
+            .iter()
+            .filter(|r| {
+                r.get("strategy").map(|v| v.to_string()) == Some(strategy.to_string())
+                    && r.get_f64("line_width") == Some(lw as f64)
+            })
+            .collect()
+    };
+    let label = |s: &SyncStrategy| if s.is_racy() { "racy (RACY)".to_string() } else { s.name().to_string() };
+    let series = |key: &str| -> Vec<Series> {
+        let mut out: Vec<Series> = strategies
+            .iter()
+            .map(|s| {
+                Series::new(
+                    label(s),
+                    rows(s.name(), 1)
+                        .into_iter()
+                        .filter_map(|r| Some((r.get_f64("width")?, r.get_f64(key)?)))
+                        .collect(),
+                )
+            })
+            .collect();
+        if key == "gpu_ms" {
+            out.push(Series::new(
+                "single dispatch",
+                rows("single-dispatch", 0)
+                    .into_iter()
+                    .filter_map(|r| Some((r.get_f64("width")?, r.get_f64(key)?)))
+                    .collect(),
+            ));
+        }
+        out
+    };
+    plot_lines(
+        args.out.join("sync_time_vs_size.png"),
+        &Chart::new("IPSVI sweep, line width 1: GPU time", "image size (pixels per side)", "GPU time (ms)")
+            .x_scale(AxisScale::Log2)
+            .y_scale(AxisScale::Log10),
+        &series("gpu_ms"),
+    )?;
+    plot_lines(
+        args.out.join("sync_overhead_per_line.png"),
+        &Chart::new(
+            "Per-line overhead against one dispatch, line width 1",
+            "image size (pixels per side)",
+            "us per line",
+        )
+        .x_scale(AxisScale::Log2),
+        &series("per_line_overhead_us"),
+    )?;
+    let scatter: Vec<Series> = strategies
+        .iter()
+        .map(|s| {
+            let pts = table
+                .rows
+                .iter()
+                .filter(|r| r.get("strategy").map(|v| v.to_string()) == Some(s.name().to_string()))
+                .filter_map(|r| Some((r.get_f64("gpu_ms")?, r.get_f64("rmse")?.max(1e-9))))
+                .collect();
+            Series::new(label(s), pts)
+        })
+        .collect();
+    plot_error_vs_time(
+        args.out.join("sync_error_vs_time.png"),
+        &Chart::new("Error against barrier-global, all runs", "GPU time (ms)", "RMSE (floor 1e-9)")
+            .x_scale(AxisScale::Log10)
+            .y_scale(AxisScale::Log10),
+        &scatter,
+    )?;
+    Ok(())
+}
