@@ -393,3 +393,44 @@ impl ProfileReport {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scope(name: &str, parent: Option<usize>, start_ns: f64, duration_ns: f64) -> ScopeTiming {
+        ScopeTiming {
+            name: name.into(),
+            path: name.into(),
+            depth: parent.map_or(0, |_| 1),
+            parent,
+            start_ns,
+            duration_ns,
+        }
+    }
+
+    #[test]
+    fn timeline_separates_time_inside_scopes_from_the_gaps_between_them() {
+        let report = ProfileReport {
+            device: "test".into(),
+            timestamps_supported: true,
+            gpu_ms_total: 0.0,
+            gpu_memory_bytes: 0,
+            passes: vec![],
+            scopes: vec![
+                scope("sweep", None, 0.0, 10_000.0),
+                scope("line", Some(0), 1_000.0, 2_000.0),
+                scope("line", Some(0), 4_000.0, 1_000.0),
+                scope("line", Some(0), 8_000.0, 1_500.0),
+                scope("sweep", None, 20_000.0, 5_000.0),
+                // First line of another sweep: no gap counted across sweeps.
+                scope("line", Some(4), 21_000.0, 1_000.0),
+            ],
+        };
+        let t = report.timeline("line");
+        assert_eq!(t.count, 4);
+        assert_eq!(t.durations_us, vec![2.0, 1.0, 1.5, 1.0]);
+        assert_eq!(t.gaps_us, vec![1.0, 3.0]);
+        assert!((t.inside_ms - 0.0055).abs() < 1e-12 && (t.gap_ms - 0.004).abs() < 1e-12);
+    }
+}
