@@ -30,7 +30,7 @@ fn every_strategy_gives_the_same_image_and_racy_is_reported() {
             profiler.reset();
             let expected = render_with(&gpu, &s, 24, 24, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
             assert_validation_clean(&ctx);
-            for strategy in [SyncStrategy::BarrierImage, SyncStrategy::Events] {
+            for strategy in [SyncStrategy::BarrierImage, SyncStrategy::Events, SyncStrategy::Submits] {
                 profiler.reset();
                 let frame = render_with(&gpu, &s, 24, 24, &mut profiler, strategy).unwrap();
                 assert_eq!(

@@ -42,8 +42,8 @@ pub struct BenchSyncArgs {
     pub gpu: GpuArgs,
     #[arg(long, default_value = "bench-sync")]
     pub out: PathBuf,
-    /// barrier-global, barrier-image, events, racy
-    #[arg(long, value_delimiter = ',', default_values_t = vec!["barrier-global".to_string(), "barrier-image".to_string(), "events".to_string(), "racy".to_string()])]
+    /// barrier-global, barrier-image, events, submits, racy
+    #[arg(long, value_delimiter = ',', default_values_t = ["barrier-global", "barrier-image", "events", "submits", "racy"].map(String::from).to_vec())]
     pub strategies: Vec<String>,
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
     pub line_widths: Vec<u32>,

@@ -349,7 +349,12 @@ pub fn render_with(
                         rec.wait_event(pool.events[k], &line_dependency);
                     }
                     let line = &lines[record.parity as usize];
-                    rec.bind_pipeline(line);
+                    if sync == SyncStrategy::Submits {
+                        // A new command buffer starts with nothing bound.
+                        rec.bind(line, line_set);
+                    } else {
+                        rec.bind_pipeline(line);
+                    }
                     let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                     let invocations = record.pixel_count + record.region[2] * record.region[3];
                     rec.push(line, &next_block.to_ne_bytes());
@@ -358,6 +363,7 @@ pub fn render_with(
                     match (sync, &events) {
                         (SyncStrategy::BarrierGlobal, _) => rec.barrier(&line_dependency),
                         (SyncStrategy::BarrierImage, _) => rec.barrier(&line_image_dependency),
+                        (SyncStrategy::Submits, _) => rec.split_submission()?,
                         (SyncStrategy::Events, Some(pool)) => {
                             rec.set_event(pool.events[next_block as usize], &line_dependency);
                             pending_event = Some(next_block as usize);

@@ -13,20 +13,29 @@ pub enum SyncStrategy {
     /// Split barriers: `vkCmdSetEvent2` after a block, `vkCmdWaitEvents2` before
     /// the next one, with the same dependency.
     Events,
+    /// One queue submission per line block, ordered by a timeline semaphore: the
+    /// cost of host-visible granularity.
+    Submits,
     /// RACY: no synchronization between blocks at all, for cost comparison only;
     /// its image is undefined and synchronization validation reports it.
     Racy,
 }
 
 impl SyncStrategy {
-    pub const ALL: [SyncStrategy; 4] =
-        [SyncStrategy::BarrierGlobal, SyncStrategy::BarrierImage, SyncStrategy::Events, SyncStrategy::Racy];
+    pub const ALL: [SyncStrategy; 5] = [
+        SyncStrategy::BarrierGlobal,
+        SyncStrategy::BarrierImage,
+        SyncStrategy::Events,
+        SyncStrategy::Submits,
+        SyncStrategy::Racy,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
             SyncStrategy::BarrierGlobal => "barrier-global",
             SyncStrategy::BarrierImage => "barrier-image",
             SyncStrategy::Events => "events",
+            SyncStrategy::Submits => "submits",
             SyncStrategy::Racy => "racy",
         }
     }

@@ -15,6 +15,13 @@ pub struct Recorder<'a> {
     /// Barriers recorded so far (tests and reports count them).
     pub barrier_count: u32,
     pub dispatch_count: u32,
+    /// Submissions so far, and what orders them: see `split_submission`.
+    pub submissions: u32,
+    pool: vk::CommandPool,
+    timeline: Option<vk::Semaphore>,
+    /// Debug labels open now: a split closes them in the old command buffer and
+    /// reopens them in the new one (labels do not span command buffers well).
+    open_labels: Vec<String>,
 }
 
 impl<'a> Recorder<'a> {
@@ -22,7 +29,12 @@ impl<'a> Recorder<'a> {
         &self.ctx.device
     }
 
-    pub fn begin_label(&self, name: &str) {
+    pub fn begin_label(&mut self, name: &str) {
+        self.open_labels.push(name.to_string());
+        self.raw_begin_label(name);
+    }
+
+    fn raw_begin_label(&self, name: &str) {
         if let Some(du) = &self.ctx.debug_utils {
             let Ok(name) = CString::new(name) else { return };
             let label = vk::DebugUtilsLabelEXT::default().label_name(&name);
@@ -31,7 +43,12 @@ impl<'a> Recorder<'a> {
         }
     }
 
-    pub fn end_label(&self) {
+    pub fn end_label(&mut self) {
+        self.open_labels.pop();
+        self.raw_end_label();
+    }
+
+    fn raw_end_label(&self) {
         if let Some(du) = &self.ctx.debug_utils {
             // SAFETY: paired with begin_label by the profiler's scopes.
             unsafe { du.cmd_end_debug_utils_label(self.cb) };
@@ -58,6 +75,38 @@ impl<'a> Recorder<'a> {
     /// costs far more than a dispatch (about 0.7 ms for the pipeline against
     /// 0.08 ms for a dispatch, measured by tools/dispatch_probe.rs): bind once
     /// and switch only the set where a sweep needs it.
+    /// Ends the command buffer recorded so far, submits it, and goes on in a new
+    /// one. Consecutive submissions are ordered by a timeline semaphore (signal
+    /// value n after all commands, wait for it before any command of the next):
+    /// a full execution and memory dependency at queue-submission granularity.
+    /// The new command buffer starts with nothing bound: bind again before use.
+    pub fn split_submission(&mut self) -> Result<(), VkError> {
+        let device = &self.ctx.device;
+        let timeline = match self.timeline {
+            Some(t) => t,
+            None => {
+                let mut kind = vk::SemaphoreTypeCreateInfo::default().semaphore_type(vk::SemaphoreType::TIMELINE);
+                let info = vk::SemaphoreCreateInfo::default().push_next(&mut kind);
+                // SAFETY: valid device; the semaphore is destroyed after the last wait.
+                let t = unsafe { device.create_semaphore(&info, None) }.call("vkCreateSemaphore")?;
+                self.timeline = Some(t);
+                t
+            }
+        };
+        for _ in &self.open_labels {
+            self.raw_end_label();
+        }
+        // SAFETY: cb is recording.
+        unsafe { device.end_command_buffer(self.cb) }.call("vkEndCommandBuffer")?;
+        submit_part(self.ctx, self.cb, timeline, self.submissions, vk::Fence::null())?;
+        self.submissions += 1;
+        self.cb = begin_command_buffer(self.ctx, self.pool, "frame (continued)")?;
+        for name in &self.open_labels {
+            self.raw_begin_label(name);
+        }
+        Ok(())
+    }
+
     /// First half of a split barrier: signals `event` once the work before it has
     /// done what `barrier`'s source side names.
     pub fn set_event(&mut self, event: vk::Event, barrier: &Barrier) {
@@ -160,7 +209,8 @@ impl<'a> Recorder<'a> {
     }
 }
 
-/// Records one primary command buffer with `record`, submits it and waits for it.
+/// Records one primary command buffer with `record` (or several, where it calls
+/// `Recorder::split_submission`), submits it and waits for it.
 pub fn submit_and_wait<R>(
     ctx: &Context,
     name: &str,
@@ -172,35 +222,39 @@ pub fn submit_and_wait<R>(
         .flags(vk::CommandPoolCreateFlags::TRANSIENT);
     // SAFETY: valid device and queue family.
     let pool = unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
-    let guard = PoolGuard { device, pool };
-    let alloc = vk::CommandBufferAllocateInfo::default()
-        .command_pool(pool)
-        .level(vk::CommandBufferLevel::PRIMARY)
-        .command_buffer_count(1);
-    // SAFETY: pool is valid.
-    let cb = unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?[0];
-    ctx.set_name(cb, name);
-    let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-    // SAFETY: cb is freshly allocated, in the initial state.
-    unsafe { device.begin_command_buffer(cb, &begin) }.call("vkBeginCommandBuffer")?;
-    let mut rec = Recorder { ctx, cb, barrier_count: 0, dispatch_count: 0 };
+    let mut guard = PoolGuard { device, pool, timeline: None };
+    let cb = begin_command_buffer(ctx, pool, name)?;
+    let mut rec = Recorder {
+        ctx,
+        cb,
+        barrier_count: 0,
+        dispatch_count: 0,
+        submissions: 0,
+        pool,
+        timeline: None,
+        open_labels: Vec::new(),
+    };
     rec.begin_label(name);
-    let result = record(&mut rec)?;
+    let result = record(&mut rec);
+    guard.timeline = rec.timeline;
+    let result = result?;
     rec.end_label();
-    // SAFETY: cb is recording.
-    unsafe { device.end_command_buffer(cb) }.call("vkEndCommandBuffer")?;
+    // SAFETY: rec.cb is recording.
+    unsafe { device.end_command_buffer(rec.cb) }.call("vkEndCommandBuffer")?;
     // SAFETY: valid device.
     let fence = unsafe { device.create_fence(&vk::FenceCreateInfo::default(), None) }.call("vkCreateFence")?;
-    let cbs = [cb];
-    let submit = [vk::SubmitInfo::default().command_buffers(&cbs)];
-    // SAFETY: cb is executable; the queue is used from this thread only; we wait on
-    // the fence before the pool (and the command buffer) is destroyed.
-    let waited = unsafe {
-        device
-            .queue_submit(ctx.queue, &submit, fence)
-            .call("vkQueueSubmit")
-            .and_then(|_| device.wait_for_fences(&[fence], true, u64::MAX).call("vkWaitForFences"))
+    let submitted = match rec.timeline {
+        Some(t) => submit_part(ctx, rec.cb, t, rec.submissions, fence),
+        None => {
+            let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(rec.cb)];
+            let submit = [vk::SubmitInfo2::default().command_buffer_infos(&cbs)];
+            // SAFETY: cb is executable; the queue is used from this thread only.
+            unsafe { device.queue_submit2(ctx.queue, &submit, fence) }.call("vkQueueSubmit2")
+        }
     };
+    // SAFETY: we wait on the fence before the pool (and its command buffers) is destroyed.
+    let waited =
+        submitted.and_then(|_| unsafe { device.wait_for_fences(&[fence], true, u64::MAX) }.call("vkWaitForFences"));
     // SAFETY: the fence is signalled or the submission failed; either way it is unused now.
     unsafe { device.destroy_fence(fence, None) };
     waited?;
@@ -208,15 +262,66 @@ pub fn submit_and_wait<R>(
     Ok(result)
 }
 
+fn begin_command_buffer(ctx: &Context, pool: vk::CommandPool, name: &str) -> Result<vk::CommandBuffer, VkError> {
+    let alloc = vk::CommandBufferAllocateInfo::default()
+        .command_pool(pool)
+        .level(vk::CommandBufferLevel::PRIMARY)
+        .command_buffer_count(1);
+    // SAFETY: pool is valid and used from this thread only.
+    let cb = unsafe { ctx.device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?[0];
+    ctx.set_name(cb, name);
+    let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+    // SAFETY: cb is freshly allocated, in the initial state.
+    unsafe { ctx.device.begin_command_buffer(cb, &begin) }.call("vkBeginCommandBuffer")?;
+    Ok(cb)
+}
+
+/// Submits part `index` of a split frame: waits for timeline value `index` (none
+/// for the first part) and signals `index + 1`.
+fn submit_part(
+    ctx: &Context,
+    cb: vk::CommandBuffer,
+    timeline: vk::Semaphore,
+    index: u32,
+    fence: vk::Fence,
+) -> Result<(), VkError> {
+    let waits = [vk::SemaphoreSubmitInfo::default()
+        .semaphore(timeline)
+        .value(index as u64)
+        .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
+    let signals = [vk::SemaphoreSubmitInfo::default()
+        .semaphore(timeline)
+        .value(index as u64 + 1)
+        .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
+    let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(cb)];
+    let mut submit = vk::SubmitInfo2::default().command_buffer_infos(&cbs).signal_semaphore_infos(&signals);
+    if index > 0 {
+        submit = submit.wait_semaphore_infos(&waits);
+    }
+    // SAFETY: cb is executable; the queue is used from this thread only; the pool and
+    // semaphore outlive the submission (the frame waits on its fence before both go).
+    unsafe { ctx.device.queue_submit2(ctx.queue, &[submit], fence) }.call("vkQueueSubmit2")
+}
+
 struct PoolGuard<'a> {
     device: &'a ash::Device,
     pool: vk::CommandPool,
+    timeline: Option<vk::Semaphore>,
 }
 
 impl Drop for PoolGuard<'_> {
     fn drop(&mut self) {
         // SAFETY: the pool's command buffers finished executing (or never ran): a
         // failed wait makes the device lost, where destruction is still allowed.
-        unsafe { self.device.destroy_command_pool(self.pool, None) };
+        unsafe {
+            // A failed split leaves submitted parts in flight: wait for the queue first.
+            if self.timeline.is_some() {
+                let _ = self.device.device_wait_idle();
+            }
+            self.device.destroy_command_pool(self.pool, None);
+            if let Some(t) = self.timeline {
+                self.device.destroy_semaphore(t, None);
+            }
+        };
     }
 }

@@ -144,7 +144,7 @@ impl Profiler {
         }
     }
 
-    fn write(&mut self, rec: &Recorder) -> Result<Option<u32>, VkError> {
+    fn write(&mut self, rec: &mut Recorder) -> Result<Option<u32>, VkError> {
         if !self.timestamps {
             return Ok(None);
         }
@@ -163,16 +163,16 @@ impl Profiler {
     }
 
     /// Opens a scope: a debug label and a begin timestamp of the same name.
-    pub fn begin(&mut self, rec: &Recorder, name: &str) -> Result<ScopeToken, VkError> {
+    pub fn begin(&mut self, rec: &mut Recorder, name: &str) -> Result<ScopeToken, VkError> {
         self.begin_scope(rec, name, false)
     }
 
     /// Like `begin` for per-dispatch detail: records nothing unless detail is on.
-    pub fn begin_detail(&mut self, rec: &Recorder, name: &str) -> Result<ScopeToken, VkError> {
+    pub fn begin_detail(&mut self, rec: &mut Recorder, name: &str) -> Result<ScopeToken, VkError> {
         self.begin_scope(rec, name, true)
     }
 
-    fn begin_scope(&mut self, rec: &Recorder, name: &str, detail: bool) -> Result<ScopeToken, VkError> {
+    fn begin_scope(&mut self, rec: &mut Recorder, name: &str, detail: bool) -> Result<ScopeToken, VkError> {
         let active = !detail || self.detail;
         let parent = self.stack.last().copied();
         let depth = self.stack.len() as u32;
@@ -195,7 +195,7 @@ impl Profiler {
         Ok(ScopeToken { index })
     }
 
-    pub fn end(&mut self, rec: &Recorder, token: ScopeToken) -> Result<(), VkError> {
+    pub fn end(&mut self, rec: &mut Recorder, token: ScopeToken) -> Result<(), VkError> {
         match self.stack.last() {
             Some(&top) if top == token.index => {}
             _ => {
