@@ -30,7 +30,9 @@ fn every_strategy_gives_the_same_image_and_racy_is_reported() {
             profiler.reset();
             let expected = render_with(&gpu, &s, 24, 24, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
             assert_validation_clean(&ctx);
-            for strategy in [SyncStrategy::BarrierImage, SyncStrategy::Events, SyncStrategy::Submits] {
+            for strategy in
+                [SyncStrategy::BarrierImage, SyncStrategy::Events, SyncStrategy::Submits, SyncStrategy::Secondary]
+            {
                 profiler.reset();
                 let frame = render_with(&gpu, &s, 24, 24, &mut profiler, strategy).unwrap();
                 assert_eq!(
@@ -59,4 +61,27 @@ fn strategy_names_round_trip_and_racy_is_labelled() {
         assert_eq!(s.to_string().contains("RACY"), s.is_racy());
     }
     assert!("barrier".parse::<SyncStrategy>().is_err());
+}
+
+/// The secondary strategy records each sweep once and replays it: frames of one
+/// renderer stay equal to each other and to barrier-global, validation-clean.
+#[test]
+fn secondary_sweeps_are_replayed_across_frames() {
+    use sweeplab::ipsvi::renderer::IpsviRenderer;
+    let mut scene = scene_with(slab_under_sphere(24), vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)], 24, 24);
+    scene.transfer = presets::preset("slab-sphere").unwrap();
+    let ctx = validated_context();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 256).unwrap();
+    let s = IpsviSettings { cache_size: 32, line_width: 2, ..IpsviSettings::default() };
+    let mut renderer = IpsviRenderer::new(&gpu, &s, 24, 24).unwrap();
+    profiler.reset();
+    let expected = renderer.frame(&mut profiler, SyncStrategy::BarrierGlobal).unwrap();
+    for _ in 0..3 {
+        profiler.reset();
+        let frame = renderer.frame(&mut profiler, SyncStrategy::Secondary).unwrap();
+        assert_eq!(frame.image, expected.image);
+        assert_eq!(frame.dispatches, expected.dispatches, "replayed dispatches are counted");
+    }
+    assert_validation_clean(&ctx);
 }

@@ -42,8 +42,8 @@ pub struct BenchSyncArgs {
     pub gpu: GpuArgs,
     #[arg(long, default_value = "bench-sync")]
     pub out: PathBuf,
-    /// barrier-global, barrier-image, events, submits, racy
-    #[arg(long, value_delimiter = ',', default_values_t = ["barrier-global", "barrier-image", "events", "submits", "racy"].map(String::from).to_vec())]
+    /// barrier-global, barrier-image, events, secondary, submits, racy
+    #[arg(long, value_delimiter = ',', default_values_t = ["barrier-global", "barrier-image", "events", "secondary", "submits", "racy"].map(String::from).to_vec())]
     pub strategies: Vec<String>,
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
     pub line_widths: Vec<u32>,

@@ -6,8 +6,8 @@ use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::{plot_error_vs_time, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
-use sweeplab::ipsvi::renderer::plans;
-use sweeplab::ipsvi::{render_with, EarlyTermination, IpsviSettings, SyncStrategy};
+use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
+use sweeplab::ipsvi::{EarlyTermination, IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique};
@@ -113,10 +113,11 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
             let mut times = Vec::new();
             let mut last = None;
+            ctx.memory.reset_peak();
+            let mut renderer = IpsviRenderer::new(&gpu, s, size, size)?;
             for _ in 0..repeat {
                 profiler.reset();
-                ctx.memory.reset_peak();
-                let frame = render_with(&gpu, s, size, size, &mut profiler, SyncStrategy::BarrierGlobal)?;
+                let frame = renderer.frame(&mut profiler, SyncStrategy::BarrierGlobal)?;
                 let profile = profiler.resolve(ctx.memory.device_local_peak())?;
                 times.push(profile.gpu_ms_total);
                 last = Some((frame, profile));

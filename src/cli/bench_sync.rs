@@ -6,8 +6,8 @@ use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::{plot_error_vs_time, plot_lines, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
-use sweeplab::ipsvi::renderer::plans;
-use sweeplab::ipsvi::{render_with, IpsviSettings, SyncStrategy};
+use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
+use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::GpuScene;
@@ -29,11 +29,13 @@ fn frames(
     profiler: &mut Profiler,
     repeat: u32,
 ) -> anyhow::Result<Frame> {
+    // One renderer for all frames: the secondary strategy replays what it recorded.
+    let mut renderer = IpsviRenderer::new(gpu, s, size, size)?;
     let mut times = Vec::new();
     let mut last = None;
     for _ in 0..repeat.max(1) {
         profiler.reset();
-        let frame = render_with(gpu, s, size, size, profiler, s.sync)?;
+        let frame = renderer.frame(profiler, s.sync)?;
         let profile = profiler.resolve(ctx.memory.device_local_peak())?;
         times.push(profile.gpu_ms_total);
         last = Some((frame, profile));

@@ -18,7 +18,7 @@ use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::commands::submit_and_wait;
+use crate::vk::commands::{submit_and_wait, SecondaryCommands};
 use crate::vk::descriptors::{BindingKind, Resource};
 use crate::vk::events::EventPool;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
@@ -142,248 +142,377 @@ pub fn render_with(
     profiler: &mut Profiler,
     sync: SyncStrategy,
 ) -> Result<FrameResult, RenderError> {
-    let scene = gpu.scene;
-    if scene.lights.is_empty() {
+    if gpu.scene.lights.is_empty() {
         // No light, no sweep: emission-absorption ray casting, nothing else allocated.
         return crate::dvr::render(gpu, crate::dvr::Shading::EmissionOnly, width, height, profiler);
     }
-    let ctx = gpu.ctx;
-    let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
-    let bx = scene.volume_box();
-    let plans = plans(gpu, settings, width, height);
+    IpsviRenderer::new(gpu, settings, width, height)?.frame(profiler, sync)
+}
 
-    let steps = MarchSteps { shadow_step_voxels: settings.light_step_voxels, ..MarchSteps::render(scene) };
-    let params = frame_params(scene, width, height, gpu.lut_size, steps);
-    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
-    let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
-    let cache = Cache::new(gpu, settings.cache_size)?;
+/// Everything one IPSVI configuration needs, created once: plans, parameter
+/// buffers, cache, pipelines, descriptor sets. `frame` records and runs a frame;
+/// benchmarks call it repeatedly without re-creating anything.
+pub struct IpsviRenderer<'a> {
+    ctx: &'a crate::vk::Context,
+    background: glam::Vec3,
+    settings: IpsviSettings,
+    plans: Vec<SweepPlan>,
+    block_records: Vec<BlockParams>,
+    _frame: Buffer,
+    _planes: Buffer,
+    _sweeps: Buffer,
+    _blocks: Buffer,
+    output: OutputImage,
+    cache: Cache,
+    exit_points: Option<ExitPoints>,
+    placeholder: Option<Image>,
+    init: ComputePipeline,
+    init_set: vk::DescriptorSet,
+    lines: [ComputePipeline; 2],
+    line_set: vk::DescriptorSet,
+    readback: Buffer,
+    /// The sweeps recorded once for `SyncStrategy::Secondary`, on first use.
+    secondaries: Option<SecondaryCommands>,
+}
 
-    let diagonal_voxels = 2.0 * bx.half_extent.length() / bx.voxel_length;
-    let max_view_samples = (diagonal_voxels / scene.render.step_voxels).ceil() as u32 + 1;
-    let max_piecewise_steps = (LOOP_BUDGET / max_view_samples).saturating_sub(1).max(1);
+impl<'a> IpsviRenderer<'a> {
+    /// For a scene with at least one light.
+    pub fn new(gpu: &GpuScene<'a>, settings: &IpsviSettings, width: u32, height: u32) -> Result<Self, RenderError> {
+        let scene = gpu.scene;
+        if scene.lights.is_empty() {
+            return Err(RenderError::Invalid("IPSVI sweeps need a light; render a scene without one with DVR".into()));
+        }
+        let ctx = gpu.ctx;
+        let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
+        let bx = scene.volume_box();
+        let plans = plans(gpu, settings, width, height);
 
-    let mut flags = 0;
-    if settings.piecewise {
-        flags |= FLAG_PIECEWISE;
-    }
-    match settings.early_termination {
-        EarlyTermination::Off => {}
-        EarlyTermination::Plain => flags |= FLAG_EARLY_TERMINATION,
-        EarlyTermination::ExitPoints => flags |= FLAG_EXIT_POINTS,
-    }
-    let exit_points = match settings.early_termination {
-        EarlyTermination::ExitPoints => Some(ExitPoints::new(gpu, &frame, width, height, settings, &plans[0])?),
-        _ => None,
-    };
-    let placeholder = if exit_points.is_none() { Some(exit_points::placeholder(gpu)?) } else { None };
-    let lmax: &Image = match (&exit_points, &placeholder) {
-        (Some(e), _) => &e.lmax,
-        (None, Some(p)) => p,
-        (None, None) => unreachable!("one of them is always created"),
-    };
-    let planes_host = line_planes(&space.basis, width, height);
-    let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
-    let geometries: Vec<CacheGeometry> =
-        scene.lights.iter().map(|l| CacheGeometry::fit(&l.kind, &bx, settings.cache_size)).collect();
-    let light_scale = |i: usize| scene.lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
-    let sweep_records: Vec<SweepParams> = (0..scene.lights.len())
-        .map(|i| {
-            sweep_params(&SweepInputs {
-                geometry: &geometries[i],
-                anchor: plans[i].anchor,
-                blend_px: settings.zone_blend_px,
-                light_scale: light_scale(i),
-                light_index: i as u32,
-                flags: flags | if i == 0 { FLAG_FIRST_LIGHT } else { 0 },
-                max_piecewise_steps,
-                albedo: settings.albedo,
-                cone_angle_deg: settings.cone_angle_deg,
-                ert_scale: settings.ert_scale,
+        let steps = MarchSteps { shadow_step_voxels: settings.light_step_voxels, ..MarchSteps::render(scene) };
+        let params = frame_params(scene, width, height, gpu.lut_size, steps);
+        let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+        let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
+        let cache = Cache::new(gpu, settings.cache_size)?;
+
+        let diagonal_voxels = 2.0 * bx.half_extent.length() / bx.voxel_length;
+        let max_view_samples = (diagonal_voxels / scene.render.step_voxels).ceil() as u32 + 1;
+        let max_piecewise_steps = (LOOP_BUDGET / max_view_samples).saturating_sub(1).max(1);
+
+        let mut flags = 0;
+        if settings.piecewise {
+            flags |= FLAG_PIECEWISE;
+        }
+        match settings.early_termination {
+            EarlyTermination::Off => {}
+            EarlyTermination::Plain => flags |= FLAG_EARLY_TERMINATION,
+            EarlyTermination::ExitPoints => flags |= FLAG_EXIT_POINTS,
+        }
+        let exit_points = match settings.early_termination {
+            EarlyTermination::ExitPoints => Some(ExitPoints::new(gpu, &frame, width, height, settings, &plans[0])?),
+            _ => None,
+        };
+        let placeholder = if exit_points.is_none() { Some(exit_points::placeholder(gpu)?) } else { None };
+        let lmax: &Image = match (&exit_points, &placeholder) {
+            (Some(e), _) => &e.lmax,
+            (None, Some(p)) => p,
+            (None, None) => unreachable!("one of them is always created"),
+        };
+        let planes_host = line_planes(&space.basis, width, height);
+        let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let geometries: Vec<CacheGeometry> =
+            scene.lights.iter().map(|l| CacheGeometry::fit(&l.kind, &bx, settings.cache_size)).collect();
+        let light_scale = |i: usize| scene.lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
+        let sweep_records: Vec<SweepParams> = (0..scene.lights.len())
+            .map(|i| {
+                sweep_params(&SweepInputs {
+                    geometry: &geometries[i],
+                    anchor: plans[i].anchor,
+                    blend_px: settings.zone_blend_px,
+                    light_scale: light_scale(i),
+                    light_index: i as u32,
+                    flags: flags | if i == 0 { FLAG_FIRST_LIGHT } else { 0 },
+                    max_piecewise_steps,
+                    albedo: settings.albedo,
+                    cone_angle_deg: settings.cone_angle_deg,
+                    ert_scale: settings.ert_scale,
+                })
             })
-        })
-        .collect();
-    let sweeps = Buffer::with_data(ctx, "ipsvi sweeps", &sweep_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
-    let block_records = block_params(&plans, &geometries, &bx, &planes_host, height);
-    let blocks = Buffer::with_data(ctx, "ipsvi blocks", &block_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+            .collect();
+        let sweeps = Buffer::with_data(ctx, "ipsvi sweeps", &sweep_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let block_records = block_params(&plans, &geometries, &bx, &planes_host, height);
+        let blocks = Buffer::with_data(ctx, "ipsvi blocks", &block_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
 
-    let emissive = scene.render.emission > 0.0;
-    let scatter = settings.albedo > 0.0;
-    let mut init = ComputePipeline::new(
-        ctx,
-        &ComputePipelineDesc {
-            name: "ipsvi_cache_init",
-            spirv: shaders::IPSVI_CACHE_INIT,
-            bindings: &INIT_BINDINGS,
+        let emissive = scene.render.emission > 0.0;
+        let scatter = settings.albedo > 0.0;
+        let mut init = ComputePipeline::new(
+            ctx,
+            &ComputePipelineDesc {
+                name: "ipsvi_cache_init",
+                spirv: shaders::IPSVI_CACHE_INIT,
+                bindings: &INIT_BINDINGS,
+                push_constant_bytes: 4,
+                specialization: &[],
+                max_sets: 1,
+            },
+        )?;
+        let specialization = [(0, emissive as u32), (1, scatter as u32)];
+        let line_desc = |spirv| ComputePipelineDesc {
+            name: "ipsvi_line",
+            spirv,
+            bindings: &LINE_BINDINGS,
             push_constant_bytes: 4,
-            specialization: &[],
+            specialization: &specialization,
             max_sets: 1,
-        },
-    )?;
-    let specialization = [(0, emissive as u32), (1, scatter as u32)];
-    let line_desc = |spirv| ComputePipelineDesc {
-        name: "ipsvi_line",
-        spirv,
-        bindings: &LINE_BINDINGS,
-        push_constant_bytes: 4,
-        specialization: &specialization,
-        max_sets: 1,
-    };
-    // Block parity 0 reads cache side a and writes b; parity 1 the opposite. Both
-    // pipelines share one descriptor set (identical layouts), bound once per sweep.
-    let mut lines = [
-        ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_A))?,
-        ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_B))?,
-    ];
-    let common = [
-        Resource::UniformBuffer(&frame),
-        Resource::SampledImage(&gpu.volume, &gpu.sampler),
-        Resource::StorageBuffer(&gpu.lut),
-        Resource::StorageBuffer(&gpu.lights),
-        Resource::StorageBuffer(&sweeps),
-        Resource::StorageBuffer(&planes),
-    ];
-    let [a, b] = [&cache.light[0], &cache.light[1]];
-    let [fa, fb] = [&cache.front[0], &cache.front[1]];
-    let init_set = init.create_set(
-        &[
-            &common[..],
+        };
+        // Block parity 0 reads cache side a and writes b; parity 1 the opposite. Both
+        // pipelines share one descriptor set (identical layouts), bound once per sweep.
+        let mut lines = [
+            ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_A))?,
+            ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_B))?,
+        ];
+        let common = [
+            Resource::UniformBuffer(&frame),
+            Resource::SampledImage(&gpu.volume, &gpu.sampler),
+            Resource::StorageBuffer(&gpu.lut),
+            Resource::StorageBuffer(&gpu.lights),
+            Resource::StorageBuffer(&sweeps),
+            Resource::StorageBuffer(&planes),
+        ];
+        let [a, b] = [&cache.light[0], &cache.light[1]];
+        let [fa, fb] = [&cache.front[0], &cache.front[1]];
+        let init_set = init.create_set(
             &[
-                Resource::StorageImage(a),
-                Resource::StorageImage(fa),
-                Resource::StorageImage(b),
-                Resource::StorageImage(fb),
-            ],
-        ]
-        .concat(),
-    )?;
-    // Slots: a_in, front a_in, b_in, front b_in, a_out, front a_out, b_out, front b_out.
-    let line_set = lines[0].create_set(
-        &[
-            &common[..],
-            &[a, fa, b, fb, a, fa, b, fb].map(Resource::StorageImage)[..],
-            &[Resource::StorageImage(&output.image), Resource::StorageBuffer(&blocks), Resource::StorageImage(lmax)],
-        ]
-        .concat(),
-    )?;
+                &common[..],
+                &[
+                    Resource::StorageImage(a),
+                    Resource::StorageImage(fa),
+                    Resource::StorageImage(b),
+                    Resource::StorageImage(fb),
+                ],
+            ]
+            .concat(),
+        )?;
+        // Slots: a_in, front a_in, b_in, front b_in, a_out, front a_out, b_out, front b_out.
+        let line_set = lines[0].create_set(
+            &[
+                &common[..],
+                &[a, fa, b, fb, a, fa, b, fb].map(Resource::StorageImage)[..],
+                &[
+                    Resource::StorageImage(&output.image),
+                    Resource::StorageBuffer(&blocks),
+                    Resource::StorageImage(lmax),
+                ],
+            ]
+            .concat(),
+        )?;
 
-    let events = match sync {
-        SyncStrategy::Events => Some(EventPool::new(ctx, block_records.len())?),
-        _ => None,
-    };
-    let line_dependency =
-        Barrier::memory("cache_write_to_next_line_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE);
-    let line_image_dependency = Barrier::images(
-        "cache_write_to_next_line_read",
-        &[a, b, fa, fb, &output.image],
-        Access::COMPUTE_WRITE,
-        Access::COMPUTE_READ_WRITE,
-    );
-    let readback = output.readback_buffer(ctx)?;
-    let bg = scene.render.background;
-    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
-        rec.barrier(&Barrier::image(
-            "output_discard_to_clear",
-            &output.image,
-            Access::NONE,
-            Access::CLEAR_WRITE,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-        ));
-        rec.clear_color_image(&output.image, [bg.x, bg.y, bg.z, 1.0]);
-        rec.barrier(&Barrier::image(
-            "output_clear_to_line_accumulate",
-            &output.image,
-            Access::CLEAR_WRITE,
-            Access::COMPUTE_READ_WRITE,
-            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            vk::ImageLayout::GENERAL,
-        ));
-        for image in cache.images() {
-            rec.barrier(&Barrier::image(
-                "cache_discard_to_init_write",
-                image,
-                Access::NONE,
-                Access::COMPUTE_READ_WRITE,
-                vk::ImageLayout::UNDEFINED,
-                vk::ImageLayout::GENERAL,
-            ));
-        }
-        if let Some(p) = &placeholder {
-            rec.barrier(&Barrier::image(
-                "lmax_placeholder_to_shader_read",
-                p,
-                Access::NONE,
-                Access::COMPUTE_READ,
-                vk::ImageLayout::UNDEFINED,
-                vk::ImageLayout::GENERAL,
-            ));
-        }
-        let frame_scope = profiler.begin(rec, "ipsvi")?;
-        if let Some(e) = &exit_points {
-            e.record(rec, profiler)?;
-        }
-        let mut next_block = 0u32;
-        let mut pending_event: Option<usize> = None;
-        for (li, plan) in plans.iter().enumerate() {
-            for sweep in &plan.sweeps {
-                if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
-                    rec.wait_event(pool.events[k], &line_dependency);
+        let readback = output.readback_buffer(ctx)?;
+        Ok(IpsviRenderer {
+            ctx,
+            background: scene.render.background,
+            settings: settings.clone(),
+            plans,
+            block_records,
+            _frame: frame,
+            _planes: planes,
+            _sweeps: sweeps,
+            _blocks: blocks,
+            output,
+            cache,
+            exit_points,
+            placeholder,
+            init,
+            init_set,
+            lines,
+            line_set,
+            readback,
+            secondaries: None,
+        })
+    }
+
+    /// One secondary command buffer per sweep (in frame order): its blocks and
+    /// the barrier after each, parameters read from the blocks buffer.
+    fn record_secondaries(&self) -> Result<SecondaryCommands, RenderError> {
+        let sweeps: Vec<(usize, usize)> = {
+            let mut first = 0;
+            let mut v = Vec::new();
+            for plan in &self.plans {
+                for sweep in &plan.sweeps {
+                    v.push((first, sweep.blocks.len()));
+                    first += sweep.blocks.len();
                 }
-                let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
-                rec.bind(&init, init_set);
-                let n = settings.cache_size.div_ceil(8);
-                rec.push(&init, &(li as u32).to_ne_bytes());
-                rec.dispatch(n, n, 1);
-                profiler.end(rec, init_scope)?;
-                rec.barrier(&Barrier::memory(
-                    "cache_init_write_to_first_line_read",
-                    Access::COMPUTE_WRITE,
+            }
+            v
+        };
+        let dependency =
+            Barrier::memory("cache_write_to_next_line_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE);
+        Ok(SecondaryCommands::record(self.ctx, "ipsvi sweep", sweeps.len(), |i, rec| {
+            let (first, count) = sweeps[i];
+            rec.bind(&self.lines[0], self.line_set);
+            for k in first..first + count {
+                let record = &self.block_records[k];
+                let line = &self.lines[record.parity as usize];
+                rec.bind_pipeline(line);
+                rec.push(line, &(k as u32).to_ne_bytes());
+                rec.dispatch((record.pixel_count + record.region[2] * record.region[3]).div_ceil(LINE_GROUP), 1, 1);
+                rec.barrier(&dependency);
+            }
+            Ok(())
+        })?)
+    }
+
+    /// Records, submits and waits for one frame with the given synchronization.
+    pub fn frame(&mut self, profiler: &mut Profiler, sync: SyncStrategy) -> Result<FrameResult, RenderError> {
+        if sync == SyncStrategy::Secondary && self.secondaries.is_none() {
+            self.secondaries = Some(self.record_secondaries()?);
+        }
+        let IpsviRenderer {
+            ctx,
+            background,
+            settings,
+            plans,
+            block_records,
+            output,
+            cache,
+            exit_points,
+            placeholder,
+            init,
+            init_set,
+            lines,
+            line_set,
+            readback,
+            secondaries,
+            ..
+        } = self;
+        let (ctx, init_set, line_set) = (*ctx, *init_set, *line_set);
+        let [a, b] = [&cache.light[0], &cache.light[1]];
+        let [fa, fb] = [&cache.front[0], &cache.front[1]];
+        let events = match sync {
+            SyncStrategy::Events => Some(EventPool::new(ctx, block_records.len())?),
+            _ => None,
+        };
+        let line_dependency =
+            Barrier::memory("cache_write_to_next_line_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE);
+        let line_image_dependency = Barrier::images(
+            "cache_write_to_next_line_read",
+            &[a, b, fa, fb, &output.image],
+            Access::COMPUTE_WRITE,
+            Access::COMPUTE_READ_WRITE,
+        );
+        let bg = *background;
+        let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
+            rec.barrier(&Barrier::image(
+                "output_discard_to_clear",
+                &output.image,
+                Access::NONE,
+                Access::CLEAR_WRITE,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            ));
+            rec.clear_color_image(&output.image, [bg.x, bg.y, bg.z, 1.0]);
+            rec.barrier(&Barrier::image(
+                "output_clear_to_line_accumulate",
+                &output.image,
+                Access::CLEAR_WRITE,
+                Access::COMPUTE_READ_WRITE,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                vk::ImageLayout::GENERAL,
+            ));
+            for image in cache.images() {
+                rec.barrier(&Barrier::image(
+                    "cache_discard_to_init_write",
+                    image,
+                    Access::NONE,
                     Access::COMPUTE_READ_WRITE,
+                    vk::ImageLayout::UNDEFINED,
+                    vk::ImageLayout::GENERAL,
                 ));
-                let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
-                // Bound once per sweep: blocks find their parameters by index.
-                rec.bind(&lines[0], line_set);
-                for _ in &sweep.blocks {
-                    let record = &block_records[next_block as usize];
+            }
+            if let Some(p) = &placeholder {
+                rec.barrier(&Barrier::image(
+                    "lmax_placeholder_to_shader_read",
+                    p,
+                    Access::NONE,
+                    Access::COMPUTE_READ,
+                    vk::ImageLayout::UNDEFINED,
+                    vk::ImageLayout::GENERAL,
+                ));
+            }
+            let frame_scope = profiler.begin(rec, "ipsvi")?;
+            if let Some(e) = &exit_points {
+                e.record(rec, profiler)?;
+            }
+            let mut next_block = 0u32;
+            let mut pending_event: Option<usize> = None;
+            let mut next_sweep = 0usize;
+            for (li, plan) in plans.iter().enumerate() {
+                for sweep in &plan.sweeps {
                     if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
                         rec.wait_event(pool.events[k], &line_dependency);
                     }
-                    let line = &lines[record.parity as usize];
-                    if sync == SyncStrategy::Submits {
-                        // A new command buffer starts with nothing bound.
-                        rec.bind(line, line_set);
-                    } else {
-                        rec.bind_pipeline(line);
+                    let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
+                    rec.bind(init, init_set);
+                    let n = settings.cache_size.div_ceil(8);
+                    rec.push(init, &(li as u32).to_ne_bytes());
+                    rec.dispatch(n, n, 1);
+                    profiler.end(rec, init_scope)?;
+                    rec.barrier(&Barrier::memory(
+                        "cache_init_write_to_first_line_read",
+                        Access::COMPUTE_WRITE,
+                        Access::COMPUTE_READ_WRITE,
+                    ));
+                    let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
+                    if let (SyncStrategy::Secondary, Some(recorded)) = (sync, &*secondaries) {
+                        rec.execute(recorded, next_sweep);
+                        next_sweep += 1;
+                        next_block += sweep.blocks.len() as u32;
+                        profiler.end(rec, sweep_scope)?;
+                        continue;
                     }
-                    let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
-                    let invocations = record.pixel_count + record.region[2] * record.region[3];
-                    rec.push(line, &next_block.to_ne_bytes());
-                    rec.dispatch(invocations.div_ceil(LINE_GROUP), 1, 1);
-                    profiler.end(rec, line_scope)?;
-                    match (sync, &events) {
-                        (SyncStrategy::BarrierGlobal, _) => rec.barrier(&line_dependency),
-                        (SyncStrategy::BarrierImage, _) => rec.barrier(&line_image_dependency),
-                        (SyncStrategy::Submits, _) => rec.split_submission()?,
-                        (SyncStrategy::Events, Some(pool)) => {
-                            rec.set_event(pool.events[next_block as usize], &line_dependency);
-                            pending_event = Some(next_block as usize);
+                    next_sweep += 1;
+                    // Bound once per sweep: blocks find their parameters by index.
+                    rec.bind(&lines[0], line_set);
+                    for _ in &sweep.blocks {
+                        let record = &block_records[next_block as usize];
+                        if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
+                            rec.wait_event(pool.events[k], &line_dependency);
                         }
-                        // RACY: nothing between blocks.
-                        _ => {}
+                        let line = &lines[record.parity as usize];
+                        if sync == SyncStrategy::Submits {
+                            // A new command buffer starts with nothing bound.
+                            rec.bind(line, line_set);
+                        } else {
+                            rec.bind_pipeline(line);
+                        }
+                        let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
+                        let invocations = record.pixel_count + record.region[2] * record.region[3];
+                        rec.push(line, &next_block.to_ne_bytes());
+                        rec.dispatch(invocations.div_ceil(LINE_GROUP), 1, 1);
+                        profiler.end(rec, line_scope)?;
+                        match (sync, &events) {
+                            (SyncStrategy::BarrierGlobal, _) => rec.barrier(&line_dependency),
+                            (SyncStrategy::BarrierImage, _) => rec.barrier(&line_image_dependency),
+                            (SyncStrategy::Submits, _) => rec.split_submission()?,
+                            (SyncStrategy::Events, Some(pool)) => {
+                                rec.set_event(pool.events[next_block as usize], &line_dependency);
+                                pending_event = Some(next_block as usize);
+                            }
+                            // RACY: nothing between blocks.
+                            _ => {}
+                        }
+                        next_block += 1;
                     }
-                    next_block += 1;
+                    profiler.end(rec, sweep_scope)?;
                 }
-                profiler.end(rec, sweep_scope)?;
             }
-        }
-        if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
-            rec.wait_event(pool.events[k], &line_dependency);
-        }
-        profiler.end(rec, frame_scope)?;
-        output.record_readback(rec, &readback);
-        Ok((rec.dispatch_count, rec.barrier_count))
-    })?;
-    Ok(FrameResult { image: output.read(&readback)?, dispatches, barriers })
+            if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
+                rec.wait_event(pool.events[k], &line_dependency);
+            }
+            profiler.end(rec, frame_scope)?;
+            output.record_readback(rec, readback);
+            Ok((rec.dispatch_count, rec.barrier_count))
+        })?;
+        Ok(FrameResult { image: output.read(readback)?, dispatches, barriers })
+    }
 }
 
 /// The parameters of every line block of the frame, in dispatch order.

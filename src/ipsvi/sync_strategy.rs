@@ -13,6 +13,10 @@ pub enum SyncStrategy {
     /// Split barriers: `vkCmdSetEvent2` after a block, `vkCmdWaitEvents2` before
     /// the next one, with the same dependency.
     Events,
+    /// Each sweep's blocks (dispatches and global barriers) recorded once into a
+    /// secondary command buffer and replayed every frame while the renderer (the
+    /// sweep geometry) lives; parameters come from buffers, nothing is re-recorded.
+    Secondary,
     /// One queue submission per line block, ordered by a timeline semaphore: the
     /// cost of host-visible granularity.
     Submits,
@@ -22,10 +26,11 @@ pub enum SyncStrategy {
 }
 
 impl SyncStrategy {
-    pub const ALL: [SyncStrategy; 5] = [
+    pub const ALL: [SyncStrategy; 6] = [
         SyncStrategy::BarrierGlobal,
         SyncStrategy::BarrierImage,
         SyncStrategy::Events,
+        SyncStrategy::Secondary,
         SyncStrategy::Submits,
         SyncStrategy::Racy,
     ];
@@ -36,6 +41,7 @@ impl SyncStrategy {
             SyncStrategy::BarrierImage => "barrier-image",
             SyncStrategy::Events => "events",
             SyncStrategy::Submits => "submits",
+            SyncStrategy::Secondary => "secondary",
             SyncStrategy::Racy => "racy",
         }
     }

@@ -107,6 +107,16 @@ impl<'a> Recorder<'a> {
         Ok(())
     }
 
+    /// Executes secondary command buffer `index` of `secondary` (recorded once,
+    /// replayed every frame).
+    pub fn execute(&mut self, secondary: &SecondaryCommands, index: usize) {
+        // SAFETY: the secondary was recorded for this device and is executable; it
+        // is not in use by another submission (every frame waits on its fence).
+        unsafe { self.ctx.device.cmd_execute_commands(self.cb, &[secondary.buffers[index]]) };
+        self.dispatch_count += secondary.dispatches[index];
+        self.barrier_count += secondary.barriers[index];
+    }
+
     /// First half of a split barrier: signals `event` once the work before it has
     /// done what `barrier`'s source side names.
     pub fn set_event(&mut self, event: vk::Event, barrier: &Barrier) {
@@ -323,5 +333,76 @@ impl Drop for PoolGuard<'_> {
                 self.device.destroy_semaphore(t, None);
             }
         };
+    }
+}
+
+/// Secondary command buffers recorded once and replayed by `Recorder::execute`.
+pub struct SecondaryCommands {
+    pool: vk::CommandPool,
+    pub buffers: Vec<vk::CommandBuffer>,
+    pub dispatches: Vec<u32>,
+    pub barriers: Vec<u32>,
+    device: ash::Device,
+}
+
+impl SecondaryCommands {
+    /// Records `count` secondaries; `record(i, rec)` fills the i-th. A secondary
+    /// inherits no state: it binds what it uses.
+    pub fn record(
+        ctx: &Context,
+        name: &str,
+        count: usize,
+        mut record: impl FnMut(usize, &mut Recorder) -> Result<(), VkError>,
+    ) -> Result<SecondaryCommands, VkError> {
+        let device = &ctx.device;
+        let pool_info = vk::CommandPoolCreateInfo::default().queue_family_index(ctx.queue_family);
+        // SAFETY: valid device and queue family.
+        let pool = unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
+        let mut out = SecondaryCommands {
+            pool,
+            buffers: Vec::new(),
+            dispatches: Vec::new(),
+            barriers: Vec::new(),
+            device: device.clone(),
+        };
+        if count == 0 {
+            return Ok(out);
+        }
+        let alloc = vk::CommandBufferAllocateInfo::default()
+            .command_pool(pool)
+            .level(vk::CommandBufferLevel::SECONDARY)
+            .command_buffer_count(count as u32);
+        // SAFETY: pool is valid; `out` frees the pool (and the buffers) on drop.
+        out.buffers = unsafe { device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?;
+        for (i, &cb) in out.buffers.clone().iter().enumerate() {
+            ctx.set_name(cb, &format!("{name} {i}"));
+            let inheritance = vk::CommandBufferInheritanceInfo::default();
+            let begin = vk::CommandBufferBeginInfo::default().inheritance_info(&inheritance);
+            // SAFETY: cb is freshly allocated, in the initial state.
+            unsafe { device.begin_command_buffer(cb, &begin) }.call("vkBeginCommandBuffer")?;
+            let mut rec = Recorder {
+                ctx,
+                cb,
+                barrier_count: 0,
+                dispatch_count: 0,
+                submissions: 0,
+                pool,
+                timeline: None,
+                open_labels: Vec::new(),
+            };
+            record(i, &mut rec)?;
+            // SAFETY: cb is recording.
+            unsafe { device.end_command_buffer(cb) }.call("vkEndCommandBuffer")?;
+            out.dispatches.push(rec.dispatch_count);
+            out.barriers.push(rec.barrier_count);
+        }
+        Ok(out)
+    }
+}
+
+impl Drop for SecondaryCommands {
+    fn drop(&mut self) {
+        // SAFETY: dropped after the frames that executed the secondaries completed.
+        unsafe { self.device.destroy_command_pool(self.pool, None) };
     }
 }
