@@ -32,6 +32,27 @@ pub enum BenchCommand {
     /// per-line overhead against a single dispatch, time inside dispatches and in
     /// the gaps between them, the profiler's own perturbation, Perfetto traces.
     Sync(BenchSyncArgs),
+    /// The IPSVI paper's Table 1: frame rates over image size and line width for
+    /// engine (CT Engine), aneurism (beside US Baby) and LIDC2 (anisotropic, beside
+    /// the giraffe), next to the paper's, with the ratios compared.
+    Table1(BenchTable1Args),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchTable1Args {
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    #[arg(long, default_value = "bench-table1")]
+    pub out: PathBuf,
+    /// Square image sizes (the paper's: 64,128,256,512,1024).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
+    pub sizes: Vec<u32>,
+    /// Frames per configuration; the median is reported.
+    #[arg(long, default_value_t = 2)]
+    pub repeat: u32,
+    /// Extra scene overrides applied to every data set.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
 }
 
 #[derive(Args, Debug)]

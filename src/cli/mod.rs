@@ -1,6 +1,7 @@
 pub mod args;
 mod bench_ipsvi;
 mod bench_sync;
+mod bench_table1;
 mod compare_cmd;
 mod devices_cmd;
 mod render_cmd;
@@ -16,5 +17,6 @@ pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
         args::Command::Compare(a) => compare_cmd::run(&a),
         args::Command::Bench(args::BenchCommand::Ipsvi(a)) => bench_ipsvi::run(&a),
         args::Command::Bench(args::BenchCommand::Sync(a)) => bench_sync::run(&a),
+        args::Command::Bench(args::BenchCommand::Table1(a)) => bench_table1::run(&a),
     }
 }

@@ -10,6 +10,7 @@ pub mod cache_region;
 pub mod exit_points;
 pub mod gpu_params;
 pub mod image_space;
+pub mod paper_table1;
 pub mod renderer;
 pub mod settings;
 pub mod sweep_plan;

@@ -1,0 +1,87 @@
+//! `sweeplab bench table1`: the IPSVI paper's Table 1 on our data and device.
+
+use super::args::BenchTable1Args;
+use super::render_cmd::PROFILER_CAPACITY;
+use super::session;
+use anyhow::Context as _;
+use std::process::ExitCode;
+use sweeplab::bench::{BenchRow, BenchTable, Progress};
+use sweeplab::ipsvi::paper_table1::{PaperColumn, CT_ENGINE, CT_GIRAFFE, LINE_WIDTHS, US_BABY};
+use sweeplab::ipsvi::renderer::IpsviRenderer;
+use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
+use sweeplab::render::GpuScene;
+use sweeplab::scene::default_scene::scene_for_volume_file;
+use sweeplab::scene::loaders::data_dir;
+use sweeplab::vk::Profiler;
+
+/// Our data set and the paper column it stands beside.
+const PAIRS: [(&str, &PaperColumn); 3] =
+    [("engine.vti", &CT_ENGINE), ("aneurism.vti", &US_BABY), ("LIDC2.mha", &CT_GIRAFFE)];
+
+pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let ctx = session::open(&args.gpu)?;
+    let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
+    let mut progress = Progress::new(PAIRS.len() * args.sizes.len() * LINE_WIDTHS.len());
+    let mut table = BenchTable::new();
+    for (file, paper) in PAIRS {
+        let path = data_dir().join(file);
+        let scene = scene_for_volume_file(&path, &args.set).with_context(|| format!("loading {}", path.display()))?;
+        let base = IpsviSettings { piecewise: true, ..IpsviSettings::from_scene(&scene)? };
+        let gpu = GpuScene::upload(&ctx, &scene).context("uploading the scene")?;
+        let mut fps = std::collections::BTreeMap::new();
+        for &size in &args.sizes {
+            for lw in LINE_WIDTHS {
+                progress.start_step(&format!("{file} {size}x{size} lw={lw}"));
+                let s = IpsviSettings { line_width: lw, ..base.clone() };
+                let mut renderer = IpsviRenderer::new(&gpu, &s, size, size)?;
+                // Untimed warm-up: llvmpipe compiles shader variants on first use.
+                profiler.reset();
+                renderer.frame(&mut profiler, SyncStrategy::BarrierGlobal)?;
+                profiler.resolve(0)?;
+                let mut times = Vec::new();
+                for _ in 0..args.repeat.max(1) {
+                    profiler.reset();
+                    renderer.frame(&mut profiler, SyncStrategy::BarrierGlobal)?;
+                    times.push(profiler.resolve(0)?.gpu_ms_total);
+                }
+                times.sort_by(f64::total_cmp);
+                progress.finish_step();
+                fps.insert((size, lw), 1000.0 / times[times.len() / 2]);
+            }
+        }
+        for &size in &args.sizes {
+            for lw in LINE_WIDTHS {
+                let ours = fps[&(size, lw)];
+                let mut row = BenchRow::new();
+                row.set("data_set", file)
+                    .set("paper_data_set", paper.data_set)
+                    .set("width", size)
+                    .set("line_width", lw);
+                row.set("fps", ours).set("paper_fps", paper.fps_at(size, lw).unwrap_or(f64::NAN));
+                if lw != 1 {
+                    row.set("fps_over_lw1", ours / fps[&(size, 1)]);
+                    row.set(
+                        "paper_fps_over_lw1",
+                        paper.fps_at(size, lw).unwrap_or(f64::NAN) / paper.fps_at(size, 1).unwrap_or(f64::NAN),
+                    );
+                }
+                if let Some(&half) = args.sizes.iter().find(|&&h| h * 2 == size) {
+                    row.set("fps_over_half_size", ours / fps[&(half, lw)]);
+                    row.set(
+                        "paper_fps_over_half_size",
+                        paper.fps_at(size, lw).unwrap_or(f64::NAN) / paper.fps_at(half, lw).unwrap_or(f64::NAN),
+                    );
+                }
+                table.push(row);
+            }
+        }
+    }
+    progress.finish();
+    table.write_csv(args.out.join("table1.csv"))?;
+    table.write_json(args.out.join("table1.json"))?;
+    std::fs::write(args.out.join("table1.md"), table.to_markdown()).context("writing table1.md")?;
+    println!("{}", table.to_markdown());
+    println!("wrote {}/table1.csv, table1.json, table1.md", args.out.display());
+    Ok(session::finish(&ctx))
+}
