@@ -7,6 +7,7 @@
 
 pub mod bench;
 pub mod dvr;
+pub mod half_angle;
 pub mod ipsvi;
 pub mod linear_image;
 pub mod metrics;

@@ -18,10 +18,13 @@ pub enum Technique {
     Reference,
     /// Image plane sweep volume illumination: one dispatch and barrier per line.
     Ipsvi,
+    /// Half-angle slicing: one dispatch and barrier per slice.
+    HalfAngle,
 }
 
 impl Technique {
-    pub const ALL: [Technique; 4] = [Technique::Dvr, Technique::Phong, Technique::Reference, Technique::Ipsvi];
+    pub const ALL: [Technique; 5] =
+        [Technique::Dvr, Technique::Phong, Technique::Reference, Technique::Ipsvi, Technique::HalfAngle];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -29,6 +32,7 @@ impl Technique {
             Technique::Phong => "phong",
             Technique::Reference => "reference",
             Technique::Ipsvi => "ipsvi",
+            Technique::HalfAngle => "half-angle",
         }
     }
 
@@ -93,6 +97,7 @@ pub fn render(
         Technique::Phong => crate::dvr::render(gpu, crate::dvr::Shading::BlinnPhong, width, height, profiler)?,
         Technique::Reference => crate::reference::gpu::render(gpu, width, height, profiler)?,
         Technique::Ipsvi => crate::ipsvi::render(gpu, width, height, profiler)?,
+        Technique::HalfAngle => crate::half_angle::render(gpu, width, height, profiler)?,
     };
     let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
     Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })

@@ -1,0 +1,133 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Half-angle slicing (Kniss et al. 2003), one dispatch per slice: slices are
+// planes perpendicular to the half-angle vector h between the view and light
+// directions, taken in order from the light's side. Invocations below
+// `pixel_count` composite the slice into the eye buffer, lit by the light buffer
+// as it stands after the previous slices; the rest attenuate the light buffer by
+// this slice, writing the other image of the ping-pong pair. Compiled twice by
+// build.rs (PARITY 0 reads light side a and writes b, 1 the opposite), each
+// variant referencing only its sides, so validation sees what a slice touches.
+
+layout(local_size_x = 64) in;
+
+#include "volume.glsl"
+#include "lights.glsl"
+
+struct LightBuffer {
+    vec4 origin;   // xyz, w projection (0 orthographic, 1 perspective, 2 octahedral)
+    vec4 axis;     // xyz, w texel size
+    vec4 u;        // xyz, w a0
+    vec4 v;        // xyz, w b0
+    uvec4 size;    // x N, y light index
+};
+layout(std430, set = 0, binding = 4) readonly buffer LightBuffers { LightBuffer light_buffer; };
+
+#if PARITY == 0
+layout(set = 0, binding = 5, r32f) readonly uniform image2D light_in;
+layout(set = 0, binding = 8, r32f) writeonly uniform image2D light_out;
+#else
+layout(set = 0, binding = 6, r32f) readonly uniform image2D light_in;
+layout(set = 0, binding = 7, r32f) writeonly uniform image2D light_out;
+#endif
+// Eye buffer: front to back rgb = colour, a = transmittance; back to front rgb
+// = colour composited over what lies behind.
+layout(set = 0, binding = 9, rgba32f) uniform image2D eye;
+
+layout(push_constant) uniform Slice {
+    vec4 half_vector;   // xyz h; w plane offset s (points x with dot(x, h) = s)
+    vec4 spacing;       // x slice spacing (world); y 1 = front to back; z first slice; w last slice
+    uvec4 rect;         // pixels x0, y0, w, h
+    uint pixel_count;
+} slice;
+
+vec3 light_coord(vec3 p) {
+    vec3 q = p - light_buffer.origin.xyz;
+    float s = light_buffer.axis.w;
+    if (light_buffer.origin.w == 0.0)
+        return vec3((dot(q, light_buffer.u.xyz) - light_buffer.u.w) / s, (dot(q, light_buffer.v.xyz) - light_buffer.v.w) / s, 0.0);
+    float z = max(dot(q, light_buffer.axis.xyz), 1e-12);
+    return vec3((dot(q, light_buffer.u.xyz) / z - light_buffer.u.w) / s, (dot(q, light_buffer.v.xyz) / z - light_buffer.v.w) / s, 0.0);
+}
+
+Ray light_ray(uvec2 t) {
+    vec2 ab = vec2(light_buffer.u.w, light_buffer.v.w) + (vec2(t) + 0.5) * light_buffer.axis.w;
+    Ray r;
+    if (light_buffer.origin.w == 0.0) {
+        r.origin = light_buffer.origin.xyz + light_buffer.u.xyz * ab.x + light_buffer.v.xyz * ab.y;
+        r.dir = light_buffer.axis.xyz;
+    } else {
+        r.origin = light_buffer.origin.xyz;
+        r.dir = normalize(light_buffer.axis.xyz + light_buffer.u.xyz * ab.x + light_buffer.v.xyz * ab.y);
+    }
+    return r;
+}
+
+float light_bilinear(vec2 c) {
+    ivec2 n = ivec2(light_buffer.size.x);
+    vec2 t = c - 0.5;
+    ivec2 i0 = ivec2(floor(t));
+    vec2 f = t - vec2(i0);
+    ivec2 a = clamp(i0, ivec2(0), n - 1);
+    ivec2 b = clamp(i0 + 1, ivec2(0), n - 1);
+    float v00 = imageLoad(light_in, a).r, v10 = imageLoad(light_in, ivec2(b.x, a.y)).r;
+    float v01 = imageLoad(light_in, ivec2(a.x, b.y)).r, v11 = imageLoad(light_in, b).r;
+    return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
+}
+
+bool inside_box(vec3 p) { return all(lessThanEqual(abs(p), frame.box_half.xyz)); }
+
+void shade(uint index) {
+    uvec2 px = slice.rect.xy + uvec2(index % slice.rect.z, index / slice.rect.z);
+    Ray r = camera_ray(px);
+    vec3 h = slice.half_vector.xyz;
+    float dh = dot(r.dir, h);
+    if (abs(dh) < 1e-6) return;
+    float t = (slice.half_vector.w - dot(r.origin, h)) / dh;
+    vec3 p = r.origin + r.dir * t;
+    if (t <= 0.0 || !inside_box(p)) return;
+    vec4 m = medium(p);
+    float alpha = 1.0 - exp(-m.a * (slice.spacing.x / abs(dh)) / frame.box_half.w);
+    if (alpha <= 0.0) return;
+    Light l = lights[light_buffer.size.y];
+    vec4 w = toward_light(l, p);
+    // The light buffer holds what passed the slices before this one; the sample
+    // sits in the middle of its slice, so half the slice's own extinction along
+    // the light applies too (the midpoint rule of the reference's shadow rays).
+    float dl = abs(dot(-w.xyz, h));
+    float lit = light_bilinear(light_coord(p).xy) * exp(-m.a * 0.5 * (slice.spacing.x / max(dl, 1e-6)) / frame.box_half.w);
+    vec3 S = m.rgb * (frame.background.w + l.radiance.rgb * light_shape(l, w) * lit);
+    ivec2 ip = ivec2(px);
+    vec4 acc = imageLoad(eye, ip);
+    if (slice.spacing.y > 0.5) {
+        acc.rgb += acc.a * alpha * S;
+        acc.a *= 1.0 - alpha;
+    } else {
+        acc.rgb = alpha * S + (1.0 - alpha) * acc.rgb;
+    }
+    imageStore(eye, ip, acc);
+}
+
+void attenuate(uint index) {
+    uint n = light_buffer.size.x;
+    uvec2 k = uvec2(index % n, index / n);
+    float T = imageLoad(light_in, ivec2(k)).r;
+    Ray r = light_ray(k);
+    vec3 h = slice.half_vector.xyz;
+    float dh = dot(r.dir, h);
+    if (abs(dh) > 1e-6) {
+        float t = (slice.half_vector.w - dot(r.origin, h)) / dh;
+        vec3 q = r.origin + r.dir * t;
+        if (t > 0.0 && inside_box(q)) T *= exp(-medium(q).a * (slice.spacing.x / abs(dh)) / frame.box_half.w);
+    }
+    imageStore(light_out, ivec2(k), vec4(T));
+}
+
+void main() {
+    uint id = gl_GlobalInvocationID.x;
+    if (id < slice.pixel_count) {
+        shade(id);
+    } else if (id - slice.pixel_count < light_buffer.size.x * light_buffer.size.x) {
+        attenuate(id - slice.pixel_count);
+    }
+}

@@ -1,0 +1,260 @@
+//! Half-angle slicing (Kniss, Premoze, Hansen, Shirley, McPherson 2003), the
+//! baseline the IPSVI paper compares against (its figure 8): the volume is cut
+//! into slices perpendicular to the half-angle vector between the view and light
+//! directions and processed in order from the light's side, each slice one
+//! dispatch followed by the barrier `slice_write_to_next_slice_read`. A light
+//! buffer (ping-pong pair in light space) carries the transmittance from slice to
+//! slice; the eye buffer accumulates the image. Approximates optical model (i)
+//! (docs/optical-model.md). One light (directional, or a point/spot light outside
+//! the volume's bounding sphere); none renders the emission term alone.
+
+use crate::ipsvi::cache_geometry::{CacheGeometry, CacheProjection};
+use crate::ipsvi::image_space::ImageSpace;
+use crate::render::frame_params::{frame_params, MarchSteps};
+use crate::render::technique::FrameResult;
+use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::scene::{LightKind, Scene};
+use crate::shaders;
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::commands::submit_and_wait;
+use crate::vk::descriptors::{BindingKind, Resource};
+use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::resources::{GpuData, ImageDesc};
+use crate::vk::{Buffer, Image, Profiler};
+use ash::vk;
+use glam::Vec3;
+
+/// `[half_angle]` table of the scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HalfAngleSettings {
+    /// Distance between slices, in voxels.
+    pub slice_step_voxels: f32,
+    /// The light buffer is N x N.
+    pub light_buffer_size: u32,
+}
+
+impl HalfAngleSettings {
+    pub fn from_scene(scene: &Scene) -> Result<Self, RenderError> {
+        let mut s = HalfAngleSettings { slice_step_voxels: scene.render.step_voxels, light_buffer_size: 256 };
+        let Some(table) = scene.techniques.get("half_angle") else { return Ok(s) };
+        let table = table.as_table().ok_or_else(|| RenderError::Invalid("[half_angle] must be a table".into()))?;
+        for (key, v) in table {
+            let n = v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+            match (key.as_str(), n) {
+                ("slice_step", Some(x)) if x.is_finite() && (0.01..=16.0).contains(&x) => s.slice_step_voxels = x as f32,
+                ("light_buffer_size", Some(x)) if x.fract() == 0.0 && (16.0..=4096.0).contains(&x) => {
+                    s.light_buffer_size = x as u32
+                }
+                _ => {
+                    return Err(RenderError::Invalid(format!(
+                        "half_angle.{key} = {v}: known keys are slice_step (0.01..=16 voxels) and light_buffer_size (16..=4096)"
+                    )))
+                }
+            }
+        }
+        Ok(s)
+    }
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Default)]
+struct LightBufferParams {
+    origin: [f32; 4],
+    axis: [f32; 4],
+    u: [f32; 4],
+    v: [f32; 4],
+    size: [u32; 4],
+}
+
+impl GpuData for LightBufferParams {}
+
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct SlicePush {
+    half_vector: [f32; 4],
+    spacing: [f32; 4],
+    rect: [u32; 4],
+    pixel_count: u32,
+}
+
+const BINDINGS: [BindingKind; 10] = [
+    BindingKind::UniformBuffer,
+    BindingKind::SampledImage,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageBuffer,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+    BindingKind::StorageImage,
+];
+
+/// The slicing of the volume: half-angle vector, order and slice planes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Slicing {
+    pub half_vector: Vec3,
+    /// True when the eye sees the slices front to back (light behind the viewer).
+    pub front_to_back: bool,
+    pub first_plane: f32,
+    pub spacing: f32,
+    pub count: u32,
+}
+
+pub fn slicing(scene: &Scene, settings: &HalfAngleSettings) -> Result<Slicing, RenderError> {
+    let bx = scene.volume_box();
+    let view = scene.camera.forward();
+    let light = match scene.lights.first().map(|l| l.kind) {
+        Some(LightKind::Directional { direction }) => direction.normalize_or(Vec3::NEG_Y),
+        Some(LightKind::Point { position }) | Some(LightKind::Spot { position, .. }) => {
+            (-position).normalize_or(Vec3::NEG_Y)
+        }
+        None => return Err(RenderError::Invalid("half-angle slicing needs a light".into())),
+    };
+    let (half_vector, front_to_back) =
+        if view.dot(light) >= 0.0 { ((view + light).normalize(), true) } else { ((light - view).normalize(), false) };
+    let (lo, hi) = bx.corners().iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), c| {
+        let s = c.dot(half_vector);
+        (lo.min(s), hi.max(s))
+    });
+    let spacing = settings.slice_step_voxels * bx.voxel_length;
+    let count = ((hi - lo) / spacing).ceil().max(1.0) as u32;
+    Ok(Slicing { half_vector, front_to_back, first_plane: lo, spacing, count })
+}
+
+fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Image, RenderError> {
+    Ok(Image::new(
+        gpu.ctx,
+        name,
+        ImageDesc {
+            image_type: vk::ImageType::TYPE_2D,
+            format: vk::Format::R32_SFLOAT,
+            extent: vk::Extent3D { width: n, height: n, depth: 1 },
+            usage: vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST,
+        },
+    )?)
+}
+
+pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
+    let scene = gpu.scene;
+    match scene.lights.len() {
+        0 => return crate::dvr::render(gpu, crate::dvr::Shading::EmissionOnly, width, height, profiler),
+        1 => {}
+        n => return Err(RenderError::Invalid(format!("half-angle slicing takes one light; the scene has {n}"))),
+    }
+    let settings = HalfAngleSettings::from_scene(scene)?;
+    let ctx = gpu.ctx;
+    let bx = scene.volume_box();
+    let geometry = CacheGeometry::fit(&scene.lights[0].kind, &bx, settings.light_buffer_size);
+    if geometry.projection == CacheProjection::Octahedral {
+        return Err(RenderError::Invalid(
+            "half-angle slicing needs the light outside the volume's bounding sphere".into(),
+        ));
+    }
+    let sl = slicing(scene, &settings)?;
+    let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
+    let rect = space.projected_box(&bx);
+    let rect = [rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0];
+    let pixel_count = rect[2] * rect[3];
+
+    let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::render(scene));
+    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let g = &geometry;
+    let light_params = LightBufferParams {
+        origin: g.origin.extend(g.projection as u32 as f32).to_array(),
+        axis: g.axis.extend(g.texel).to_array(),
+        u: g.u.extend(g.a0).to_array(),
+        v: g.v.extend(g.b0).to_array(),
+        size: [g.size, 0, 0, 0],
+    };
+    let light_buffer_params =
+        Buffer::with_data(ctx, "half-angle light buffer", &[light_params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
+    let n = settings.light_buffer_size;
+    let light = [r32f(gpu, "half-angle light a", n)?, r32f(gpu, "half-angle light b", n)?];
+    let eye = OutputImage::new(ctx, "half-angle eye buffer", width, height)?;
+    let desc = |spirv| ComputePipelineDesc {
+        name: "half_angle_slice",
+        spirv,
+        bindings: &BINDINGS,
+        push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
+        specialization: &[],
+        max_sets: 1,
+    };
+    // Slice parity 0 reads light side a and writes b; parity 1 the opposite.
+    let mut pipelines = [
+        ComputePipeline::new(ctx, &desc(shaders::HALF_ANGLE_SLICE_READ_A))?,
+        ComputePipeline::new(ctx, &desc(shaders::HALF_ANGLE_SLICE_READ_B))?,
+    ];
+    let set = pipelines[0].create_set(&[
+        Resource::UniformBuffer(&frame),
+        Resource::SampledImage(&gpu.volume, &gpu.sampler),
+        Resource::StorageBuffer(&gpu.lut),
+        Resource::StorageBuffer(&gpu.lights),
+        Resource::StorageBuffer(&light_buffer_params),
+        Resource::StorageImage(&light[0]),
+        Resource::StorageImage(&light[1]),
+        Resource::StorageImage(&light[0]),
+        Resource::StorageImage(&light[1]),
+        Resource::StorageImage(&eye.image),
+    ])?;
+    let readback = eye.readback_buffer(ctx)?;
+    let bg = scene.render.background;
+    let start = if sl.front_to_back { [0.0, 0.0, 0.0, 1.0] } else { [bg.x, bg.y, bg.z, 1.0] };
+    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
+        for (image, value) in [(&light[0], [1.0f32; 4]), (&light[1], [1.0; 4]), (&eye.image, start)] {
+            rec.barrier(&Barrier::image(
+                "slice_buffers_discard_to_clear",
+                image,
+                Access::NONE,
+                Access::CLEAR_WRITE,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            ));
+            rec.clear_color_image(image, value);
+            rec.barrier(&Barrier::image(
+                "slice_buffers_clear_to_first_slice",
+                image,
+                Access::CLEAR_WRITE,
+                Access::COMPUTE_READ_WRITE,
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                vk::ImageLayout::GENERAL,
+            ));
+        }
+        let scope = profiler.begin(rec, "half_angle")?;
+        rec.bind(&pipelines[0], set);
+        for k in 0..sl.count {
+            let detail = profiler.begin_detail(rec, "half_angle_slice")?;
+            let pipeline = &pipelines[(k % 2) as usize];
+            rec.bind_pipeline(pipeline);
+            let push = SlicePush {
+                half_vector: sl.half_vector.extend(sl.first_plane + (k as f32 + 0.5) * sl.spacing).to_array(),
+                spacing: [sl.spacing, if sl.front_to_back { 1.0 } else { 0.0 }, 0.0, 0.0],
+                rect,
+                pixel_count,
+            };
+            rec.push(pipeline, push_bytes(&push));
+            rec.dispatch((pixel_count + n * n).div_ceil(64), 1, 1);
+            profiler.end(rec, detail)?;
+            // This slice's light and eye writes are what the next slice reads.
+            rec.barrier(&Barrier::memory(
+                "slice_write_to_next_slice_read",
+                Access::COMPUTE_WRITE,
+                Access::COMPUTE_READ_WRITE,
+            ));
+        }
+        profiler.end(rec, scope)?;
+        eye.record_readback(rec, &readback);
+        Ok((rec.dispatch_count, rec.barrier_count))
+    })?;
+    let mut image = eye.read(&readback)?;
+    if sl.front_to_back {
+        // What shows through the volume: transmittance (alpha) times the background.
+        let texels: Vec<[f32; 4]> = readback.read(width as usize * height as usize)?;
+        for (p, t) in image.pixels.iter_mut().zip(&texels) {
+            for c in 0..3 {
+                p[c] += t[3] * bg[c];
+            }
+        }
+    }
+    Ok(FrameResult { image, dispatches, barriers })
+}
