@@ -98,6 +98,10 @@ pub struct BenchIpsviArgs {
     /// Only the baseline settings and one factor varied at a time (no full grid).
     #[arg(long)]
     pub one_at_a_time: bool,
+    /// Half-angle slicing runs beside IPSVI (slice spacing in voxels), compared
+    /// with the ground truth of model (i); empty to leave them out.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1.0, 0.5, 0.25])]
+    pub half_angle_slices: Vec<f32>,
 }
 
 #[derive(Args, Debug)]

@@ -69,7 +69,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let repeat = args.repeat.max(1);
-    let total = args.sizes.len() * (2 + configs.len());
+    let total = args.sizes.len() * (2 + configs.len() + 1 + args.half_angle_slices.len());
     let mut progress = Progress::new(total);
     let mut table = BenchTable::new();
     for &size in &args.sizes {
@@ -138,6 +138,9 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             row.set("ms_per_dispatch", gpu_ms / frame.dispatches.max(1) as f64);
             table.push(row);
         }
+        if !args.half_angle_slices.is_empty() && scene.lights.len() == 1 {
+            half_angle_rows(args, &ctx, &scene, size, &mut profiler, &mut progress, &mut table)?;
+        }
     }
     progress.finish();
     drop(gpu);
@@ -169,6 +172,18 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
                     .collect();
                 Series::new(format!("line width {lw}"), pts)
             })
+            .chain(std::iter::once(Series::new(
+                "half-angle (model i)",
+                table
+                    .rows
+                    .iter()
+                    .filter(|r| {
+                        r.get("technique").map(|t| t.to_string()) == Some("half-angle".into())
+                            && r.get_f64("width") == Some(size as f64)
+                    })
+                    .filter_map(|r| Some((r.get_f64("gpu_ms")?, r.get_f64("rmse")?)))
+                    .collect(),
+            )))
             .collect();
         let chart =
             Chart::new(format!("IPSVI {size}x{size}: error against GPU time"), "GPU time (ms)", "RMSE vs ground truth")
@@ -182,4 +197,49 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     println!("{}", table.to_markdown());
     println!("wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md and ipsvi_<size>_error_vs_time.png", args.out.display());
     Ok(session::finish(&ctx))
+}
+
+/// Half-angle slicing at each slice spacing, against a model (i) ground truth
+/// (half-angle slicing carries no emission along the light), at one image size.
+fn half_angle_rows(
+    args: &BenchIpsviArgs,
+    ctx: &sweeplab::vk::Context,
+    scene: &sweeplab::scene::Scene,
+    size: u32,
+    profiler: &mut Profiler,
+    progress: &mut Progress,
+    table: &mut BenchTable,
+) -> anyhow::Result<()> {
+    let mut scene = scene.clone();
+    scene.reference.model = OpticalModel::SingleScattering;
+    progress.start_step(&format!("{size}x{size} ground truth (GPU, model i)"));
+    let reference = {
+        let gpu = GpuScene::upload_with(ctx, &scene, session::volume_texels(&args.gpu))?;
+        render(&gpu, Technique::Reference, size, size, profiler)?.image
+    };
+    progress.finish_step();
+    for &step in &args.half_angle_slices {
+        progress.start_step(&format!("{size}x{size} half-angle slices {step} voxel"));
+        let mut table_toml = toml::Table::new();
+        table_toml.insert("slice_step".into(), toml::Value::Float(step as f64));
+        scene.techniques.insert("half_angle".into(), toml::Value::Table(table_toml));
+        let gpu = GpuScene::upload_with(ctx, &scene, session::volume_texels(&args.gpu))?;
+        let mut times = Vec::new();
+        let mut last = None;
+        for _ in 0..args.repeat.max(1) {
+            let out = render(&gpu, Technique::HalfAngle, size, size, profiler)?;
+            times.push(out.profile.gpu_ms_total);
+            last = Some(out);
+        }
+        progress.finish_step();
+        let out = last.expect("at least one run");
+        let stats = compare(&out.image, &reference)?;
+        let mut row = BenchRow::new();
+        row.set("technique", "half-angle").set("width", size).set("height", size).set("slice_step_voxels", step);
+        row.set("gpu_ms", median(times)).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
+        row.set("dispatches", out.dispatches).set("gpu_memory_bytes", out.profile.gpu_memory_bytes);
+        row.set("reference_model", "single-scattering");
+        table.push(row);
+    }
+    Ok(())
 }

@@ -115,6 +115,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
                     let name = strategy.name();
                     write_json(&args.out.join(format!("trace_{name}.json")), &detailed.profile.chrome_trace())?;
                     write_json(&args.out.join(format!("lines_{name}.json")), &serde_json::to_value(&timeline)?)?;
+                    write_histogram(args, strategy, &timeline)?;
                 }
             }
         }
@@ -202,6 +203,41 @@ fn write_reports(args: &BenchSyncArgs, strategies: &[SyncStrategy], table: &Benc
             .x_scale(AxisScale::Log10)
             .y_scale(AxisScale::Log10),
         &scatter,
+    )?;
+    Ok(())
+}
+
+/// Histogram (log-spaced bins) of per-line dispatch times and of the gaps between
+/// consecutive dispatches, one PNG per strategy.
+fn write_histogram(
+    args: &BenchSyncArgs,
+    strategy: SyncStrategy,
+    t: &sweeplab::vk::ScopeTimeline,
+) -> anyhow::Result<()> {
+    let all: Vec<f64> = t.durations_us.iter().chain(&t.gaps_us).copied().filter(|v| *v > 0.0).collect();
+    if all.is_empty() {
+        return Ok(());
+    }
+    let lo = all.iter().copied().fold(f64::INFINITY, f64::min).max(0.1).log10().floor();
+    let hi = all.iter().copied().fold(0.0, f64::max).log10().ceil().max(lo + 1.0);
+    let bins = 24;
+    let edge = |i: usize| 10f64.powf(lo + (hi - lo) * i as f64 / bins as f64);
+    let histogram = |values: &[f64]| -> Vec<(f64, f64)> {
+        (0..bins)
+            .map(|i| {
+                let (a, b) = (edge(i), edge(i + 1));
+                ((a * b).sqrt(), values.iter().filter(|&&v| v >= a && v < b).count() as f64)
+            })
+            .collect()
+    };
+    let label = if strategy.is_racy() { format!("{} (RACY)", strategy.name()) } else { strategy.name().to_string() };
+    plot_lines(
+        args.out.join(format!("lines_{}.png", strategy.name())),
+        &Chart::new(format!("{label}: per-line times, one frame"), "microseconds", "lines").x_scale(AxisScale::Log10),
+        &[
+            Series::new("inside the dispatch", histogram(&t.durations_us)),
+            Series::new("gap to the next", histogram(&t.gaps_us)),
+        ],
     )?;
     Ok(())
 }

@@ -20,5 +20,5 @@ pub use commands::Recorder;
 pub use context::{Context, ContextOptions};
 pub use error::VkError;
 pub use pipeline::{ComputePipeline, ComputePipelineDesc};
-pub use profiler::{ProfileReport, Profiler};
+pub use profiler::{ProfileReport, Profiler, ScopeTimeline};
 pub use resources::{Buffer, Image};
