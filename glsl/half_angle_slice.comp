@@ -13,15 +13,10 @@ layout(local_size_x = 64) in;
 
 #include "volume.glsl"
 #include "lights.glsl"
+#include "light_space.glsl"
 
-struct LightBuffer {
-    vec4 origin;   // xyz, w projection (0 orthographic, 1 perspective, 2 octahedral)
-    vec4 axis;     // xyz, w texel size
-    vec4 u;        // xyz, w a0
-    vec4 v;        // xyz, w b0
-    uvec4 size;    // x N, y light index
-};
-layout(std430, set = 0, binding = 4) readonly buffer LightBuffers { LightBuffer light_buffer; };
+// size.y: index of the light.
+layout(std430, set = 0, binding = 4) readonly buffer LightBuffers { LightSpace light_buffer; };
 
 #if PARITY == 0
 layout(set = 0, binding = 5, r32f) readonly uniform image2D light_in;
@@ -40,28 +35,6 @@ layout(push_constant) uniform Slice {
     uvec4 rect;         // pixels x0, y0, w, h
     uint pixel_count;
 } slice;
-
-vec3 light_coord(vec3 p) {
-    vec3 q = p - light_buffer.origin.xyz;
-    float s = light_buffer.axis.w;
-    if (light_buffer.origin.w == 0.0)
-        return vec3((dot(q, light_buffer.u.xyz) - light_buffer.u.w) / s, (dot(q, light_buffer.v.xyz) - light_buffer.v.w) / s, 0.0);
-    float z = max(dot(q, light_buffer.axis.xyz), 1e-12);
-    return vec3((dot(q, light_buffer.u.xyz) / z - light_buffer.u.w) / s, (dot(q, light_buffer.v.xyz) / z - light_buffer.v.w) / s, 0.0);
-}
-
-Ray light_ray(uvec2 t) {
-    vec2 ab = vec2(light_buffer.u.w, light_buffer.v.w) + (vec2(t) + 0.5) * light_buffer.axis.w;
-    Ray r;
-    if (light_buffer.origin.w == 0.0) {
-        r.origin = light_buffer.origin.xyz + light_buffer.u.xyz * ab.x + light_buffer.v.xyz * ab.y;
-        r.dir = light_buffer.axis.xyz;
-    } else {
-        r.origin = light_buffer.origin.xyz;
-        r.dir = normalize(light_buffer.axis.xyz + light_buffer.u.xyz * ab.x + light_buffer.v.xyz * ab.y);
-    }
-    return r;
-}
 
 float light_bilinear(vec2 c) {
     ivec2 n = ivec2(light_buffer.size.x);
@@ -95,7 +68,7 @@ void shade(uint index) {
     // sits in the middle of its slice, so half the slice's own extinction along
     // the light applies too (the midpoint rule of the reference's shadow rays).
     float dl = abs(dot(-w.xyz, h));
-    float lit = light_bilinear(light_coord(p).xy) * exp(-m.a * 0.5 * (slice.spacing.x / max(dl, 1e-6)) / frame.box_half.w);
+    float lit = light_bilinear(light_space_coord(light_buffer, p).xy) * exp(-m.a * 0.5 * (slice.spacing.x / max(dl, 1e-6)) / frame.box_half.w);
     vec3 S = m.rgb * (frame.background.w + l.radiance.rgb * light_shape(l, w) * lit);
     ivec2 ip = ivec2(px);
     vec4 acc = imageLoad(eye, ip);
@@ -112,7 +85,7 @@ void attenuate(uint index) {
     uint n = light_buffer.size.x;
     uvec2 k = uvec2(index % n, index / n);
     float T = imageLoad(light_in, ivec2(k)).r;
-    Ray r = light_ray(k);
+    Ray r = light_space_ray(light_buffer, k);
     vec3 h = slice.half_vector.xyz;
     float dh = dot(r.dir, h);
     if (abs(dh) > 1e-6) {

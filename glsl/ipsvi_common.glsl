@@ -6,6 +6,7 @@
 #include "volume.glsl"
 #include "lights.glsl"
 #include "light_path.glsl"
+#include "light_space.glsl"
 
 struct SweepParams {
     vec4 cache_origin;  // xyz: light position, or a point behind the volume for directional; w: projection
@@ -27,10 +28,6 @@ SweepParams sweep;
 // One plane per sweep line: rows 0..H-1, then columns 0..W-1: n.x + d = 0.
 layout(std430, set = 0, binding = 5) readonly buffer Planes { vec4 planes[]; };
 
-const float PROJ_ORTHOGRAPHIC = 0.0;
-const float PROJ_PERSPECTIVE = 1.0;
-const float PROJ_OCTAHEDRAL = 2.0;
-
 const uint FLAG_FIRST_LIGHT = 1u;   // adds emission and background
 const uint FLAG_PIECEWISE = 2u;     // piecewise integration toward the cache front
 const uint FLAG_EARLY_TERMINATION = 4u;
@@ -40,54 +37,16 @@ const uint FLAG_EXIT_POINTS = 8u;       // rays go on to l_max of the exit-point
 const uint FRONT_ENTRY = 0xFFFEu;
 const uint FRONT_EXIT = 0xFFFFu;
 
-vec2 oct_encode(vec3 d) {
-    d /= abs(d.x) + abs(d.y) + abs(d.z);
-    vec2 e = d.xy;
-    if (d.z < 0.0) e = (1.0 - abs(d.yx)) * vec2(d.x >= 0.0 ? 1.0 : -1.0, d.y >= 0.0 ? 1.0 : -1.0);
-    return e;
-}
-
-vec3 oct_decode(vec2 e) {
-    vec3 d = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (d.z < 0.0) d.xy = (1.0 - abs(d.yx)) * vec2(d.x >= 0.0 ? 1.0 : -1.0, d.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(d);
+// The cache as a light space (glsl/light_space.glsl).
+LightSpace cache_space() {
+    return LightSpace(sweep.cache_origin, sweep.cache_axis, sweep.cache_u, sweep.cache_v, uvec4(sweep.cache_size.x, 0u, 0u, 0u));
 }
 
 // The light ray of cache texel `t`: origin and unit direction of light travel.
-Ray cache_ray(uvec2 t) {
-    float n = float(sweep.cache_size.x);
-    float s = sweep.cache_axis.w;
-    vec2 ab = vec2(sweep.cache_u.w, sweep.cache_v.w) + (vec2(t) + 0.5) * s;
-    Ray r;
-    if (sweep.cache_origin.w == PROJ_ORTHOGRAPHIC) {
-        r.origin = sweep.cache_origin.xyz + sweep.cache_u.xyz * ab.x + sweep.cache_v.xyz * ab.y;
-        r.dir = sweep.cache_axis.xyz;
-    } else if (sweep.cache_origin.w == PROJ_PERSPECTIVE) {
-        r.origin = sweep.cache_origin.xyz;
-        r.dir = normalize(sweep.cache_axis.xyz + sweep.cache_u.xyz * ab.x + sweep.cache_v.xyz * ab.y);
-    } else {
-        r.origin = sweep.cache_origin.xyz;
-        r.dir = oct_decode((vec2(t) + 0.5) / n * 2.0 - 1.0);
-    }
-    return r;
-}
+Ray cache_ray(uvec2 t) { return light_space_ray(cache_space(), t); }
 
-// Continuous cache coordinates (texel centres at i + 0.5) of world point p, and
-// p's distance along its light ray (z).
-vec3 cache_coord(vec3 p) {
-    vec3 q = p - sweep.cache_origin.xyz;
-    float s = sweep.cache_axis.w;
-    if (sweep.cache_origin.w == PROJ_ORTHOGRAPHIC) {
-        return vec3((dot(q, sweep.cache_u.xyz) - sweep.cache_u.w) / s, (dot(q, sweep.cache_v.xyz) - sweep.cache_v.w) / s, dot(q, sweep.cache_axis.xyz));
-    }
-    float len = length(q);
-    if (sweep.cache_origin.w == PROJ_PERSPECTIVE) {
-        float z = max(dot(q, sweep.cache_axis.xyz), 1e-12);
-        return vec3((dot(q, sweep.cache_u.xyz) / z - sweep.cache_u.w) / s, (dot(q, sweep.cache_v.xyz) / z - sweep.cache_v.w) / s, len);
-    }
-    vec2 e = len > 0.0 ? oct_encode(q / len) : vec2(0.0);
-    return vec3((e * 0.5 + 0.5) * float(sweep.cache_size.x), len);
-}
+// Continuous cache coordinates of world point p, and its distance along its light ray (z).
+vec3 cache_coord(vec3 p) { return light_space_coord(cache_space(), p); }
 
 // Unit vector from p toward the light.
 vec3 to_light(vec3 p) {
