@@ -2,6 +2,7 @@
 //! dispatch each (glsl/raycast.comp, variant chosen by specialization constant).
 
 use crate::render::frame_params::{frame_params, MarchSteps};
+use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::shaders;
@@ -29,13 +30,8 @@ impl Shading {
     }
 }
 
-const BINDINGS: [BindingKind; 5] = [
-    BindingKind::UniformBuffer,
-    BindingKind::SampledImage,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageImage,
-];
+/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
+const BINDINGS_OWN: [BindingKind; 1] = [BindingKind::StorageImage];
 
 pub fn render(
     gpu: &GpuScene,
@@ -54,19 +50,14 @@ pub fn render(
         &ComputePipelineDesc {
             name,
             spirv: shaders::RAYCAST,
-            bindings: &BINDINGS,
+            bindings: &bindings_after_scene(&BINDINGS_OWN),
             push_constant_bytes: 0,
             specialization: &[(0, shading as u32)],
             max_sets: 1,
         },
     )?;
-    let set = pipeline.create_set(&[
-        Resource::UniformBuffer(&frame),
-        Resource::SampledImage(&gpu.volume, &gpu.sampler),
-        Resource::StorageBuffer(&gpu.lut),
-        Resource::StorageBuffer(&gpu.lights),
-        Resource::StorageImage(&output.image),
-    ])?;
+    let set =
+        pipeline.create_set(&[&gpu.scene_resources(&frame)[..], &[Resource::StorageImage(&output.image)]].concat())?;
     let readback = output.readback_buffer(ctx)?;
     let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
         output.prepare_for_compute_write(rec);

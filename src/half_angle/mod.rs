@@ -11,6 +11,7 @@
 use crate::ipsvi::cache_geometry::{CacheGeometry, CacheProjection};
 use crate::ipsvi::image_space::ImageSpace;
 use crate::render::frame_params::{frame_params, MarchSteps};
+use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::scene::{LightKind, Scene};
@@ -77,11 +78,8 @@ struct SlicePush {
     pixel_count: u32,
 }
 
-const BINDINGS: [BindingKind; 10] = [
-    BindingKind::UniformBuffer,
-    BindingKind::SampledImage,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageBuffer,
+/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
+const BINDINGS_OWN: [BindingKind; 6] = [
     BindingKind::StorageBuffer,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
@@ -172,10 +170,11 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
     let n = settings.light_buffer_size;
     let light = [r32f(gpu, "half-angle light a", n)?, r32f(gpu, "half-angle light b", n)?];
     let eye = OutputImage::new(ctx, "half-angle eye buffer", width, height)?;
+    let bindings = bindings_after_scene(&BINDINGS_OWN);
     let desc = |spirv| ComputePipelineDesc {
         name: "half_angle_slice",
         spirv,
-        bindings: &BINDINGS,
+        bindings: &bindings,
         push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
         specialization: &[],
         max_sets: 1,
@@ -185,18 +184,20 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
         ComputePipeline::new(ctx, &desc(shaders::HALF_ANGLE_SLICE_READ_A))?,
         ComputePipeline::new(ctx, &desc(shaders::HALF_ANGLE_SLICE_READ_B))?,
     ];
-    let set = pipelines[0].create_set(&[
-        Resource::UniformBuffer(&frame),
-        Resource::SampledImage(&gpu.volume, &gpu.sampler),
-        Resource::StorageBuffer(&gpu.lut),
-        Resource::StorageBuffer(&gpu.lights),
-        Resource::StorageBuffer(&light_buffer_params),
-        Resource::StorageImage(&light[0]),
-        Resource::StorageImage(&light[1]),
-        Resource::StorageImage(&light[0]),
-        Resource::StorageImage(&light[1]),
-        Resource::StorageImage(&eye.image),
-    ])?;
+    let set = pipelines[0].create_set(
+        &[
+            &gpu.scene_resources(&frame)[..],
+            &[
+                Resource::StorageBuffer(&light_buffer_params),
+                Resource::StorageImage(&light[0]),
+                Resource::StorageImage(&light[1]),
+                Resource::StorageImage(&light[0]),
+                Resource::StorageImage(&light[1]),
+                Resource::StorageImage(&eye.image),
+            ],
+        ]
+        .concat(),
+    )?;
     let readback = eye.readback_buffer(ctx)?;
     let bg = scene.render.background;
     let start = if sl.front_to_back { [0.0, 0.0, 0.0, 1.0] } else { [bg.x, bg.y, bg.z, 1.0] };

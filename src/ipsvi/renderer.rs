@@ -14,6 +14,7 @@ use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
+use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::shaders;
@@ -32,11 +33,8 @@ const LOOP_BUDGET: u32 = 60_000;
 /// local_size_x of glsl/ipsvi_line.comp (16 measured no faster on lavapipe).
 const LINE_GROUP: u32 = 64;
 
-const LINE_BINDINGS: [BindingKind; 17] = [
-    BindingKind::UniformBuffer,
-    BindingKind::SampledImage,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageBuffer,
+/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
+const LINE_BINDINGS_OWN: [BindingKind; 13] = [
     BindingKind::StorageBuffer,
     BindingKind::StorageBuffer,
     BindingKind::StorageImage,
@@ -52,11 +50,8 @@ const LINE_BINDINGS: [BindingKind; 17] = [
     BindingKind::StorageImage,
 ];
 
-const INIT_BINDINGS: [BindingKind; 10] = [
-    BindingKind::UniformBuffer,
-    BindingKind::SampledImage,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageBuffer,
+/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
+const INIT_BINDINGS_OWN: [BindingKind; 6] = [
     BindingKind::StorageBuffer,
     BindingKind::StorageBuffer,
     BindingKind::StorageImage,
@@ -248,17 +243,18 @@ impl<'a> IpsviRenderer<'a> {
             &ComputePipelineDesc {
                 name: "ipsvi_cache_init",
                 spirv: shaders::IPSVI_CACHE_INIT,
-                bindings: &INIT_BINDINGS,
+                bindings: &bindings_after_scene(&INIT_BINDINGS_OWN),
                 push_constant_bytes: 4,
                 specialization: &[],
                 max_sets: 1,
             },
         )?;
         let specialization = [(0, emissive as u32), (1, scatter as u32)];
+        let line_bindings = bindings_after_scene(&LINE_BINDINGS_OWN);
         let line_desc = |spirv| ComputePipelineDesc {
             name: "ipsvi_line",
             spirv,
-            bindings: &LINE_BINDINGS,
+            bindings: &line_bindings,
             push_constant_bytes: 4,
             specialization: &specialization,
             max_sets: 1,
@@ -269,14 +265,9 @@ impl<'a> IpsviRenderer<'a> {
             ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_A))?,
             ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_B))?,
         ];
-        let common = [
-            Resource::UniformBuffer(&frame),
-            Resource::SampledImage(&gpu.volume, &gpu.sampler),
-            Resource::StorageBuffer(&gpu.lut),
-            Resource::StorageBuffer(&gpu.lights),
-            Resource::StorageBuffer(&sweeps),
-            Resource::StorageBuffer(&planes),
-        ];
+        let common =
+            [&gpu.scene_resources(&frame)[..], &[Resource::StorageBuffer(&sweeps), Resource::StorageBuffer(&planes)]]
+                .concat();
         let [a, b] = [&cache.light[0], &cache.light[1]];
         let [fa, fb] = [&cache.front[0], &cache.front[1]];
         let init_set = init.create_set(

@@ -5,6 +5,7 @@
 //! travel between dispatches through a ping-pong pair of images.
 
 use crate::render::frame_params::{frame_params, MarchSteps};
+use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::scene::OpticalModel;
@@ -19,14 +20,8 @@ use ash::vk;
 /// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
 pub const LOOP_BUDGET: u64 = 60_000;
 
-const BINDINGS: [BindingKind; 6] = [
-    BindingKind::UniformBuffer,
-    BindingKind::SampledImage,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-];
+/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
+const BINDINGS_OWN: [BindingKind; 2] = [BindingKind::StorageImage, BindingKind::StorageImage];
 
 #[repr(C)]
 #[derive(Clone, Copy)]
@@ -118,7 +113,7 @@ pub fn render_with(
         &ComputePipelineDesc {
             name: "reference",
             spirv: shaders::REFERENCE,
-            bindings: &BINDINGS,
+            bindings: &bindings_after_scene(&BINDINGS_OWN),
             push_constant_bytes: 16,
             specialization: &[(0, model)],
             max_sets: 2,
@@ -126,14 +121,15 @@ pub fn render_with(
     )?;
     let mut sets = Vec::new();
     for (src, dst) in [(0, 1), (1, 0)] {
-        sets.push(pipeline.create_set(&[
-            Resource::UniformBuffer(&frame),
-            Resource::SampledImage(&gpu.volume, &gpu.sampler),
-            Resource::StorageBuffer(&gpu.lut),
-            Resource::StorageBuffer(&gpu.lights),
-            Resource::StorageImage(&accum[src].image),
-            Resource::StorageImage(&accum[dst].image),
-        ])?);
+        sets.push(
+            pipeline.create_set(
+                &[
+                    &gpu.scene_resources(&frame)[..],
+                    &[Resource::StorageImage(&accum[src].image), Resource::StorageImage(&accum[dst].image)],
+                ]
+                .concat(),
+            )?,
+        );
     }
     let plan = plan_for(gpu);
     let readback = accum[0].readback_buffer(ctx)?;

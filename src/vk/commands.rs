@@ -25,6 +25,20 @@ pub struct Recorder<'a> {
 }
 
 impl<'a> Recorder<'a> {
+    /// A recorder for `cb` (already begun), allocated from `pool`.
+    fn fresh(ctx: &'a Context, cb: vk::CommandBuffer, pool: vk::CommandPool) -> Self {
+        Recorder {
+            ctx,
+            cb,
+            barrier_count: 0,
+            dispatch_count: 0,
+            submissions: 0,
+            pool,
+            timeline: None,
+            open_labels: Vec::new(),
+        }
+    }
+
     pub fn device(&self) -> &ash::Device {
         &self.ctx.device
     }
@@ -234,16 +248,7 @@ pub fn submit_and_wait<R>(
     let pool = unsafe { device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
     let mut guard = PoolGuard { device, pool, timeline: None };
     let cb = begin_command_buffer(ctx, pool, name)?;
-    let mut rec = Recorder {
-        ctx,
-        cb,
-        barrier_count: 0,
-        dispatch_count: 0,
-        submissions: 0,
-        pool,
-        timeline: None,
-        open_labels: Vec::new(),
-    };
+    let mut rec = Recorder::fresh(ctx, cb, pool);
     rec.begin_label(name);
     let result = record(&mut rec);
     guard.timeline = rec.timeline;
@@ -380,16 +385,7 @@ impl SecondaryCommands {
             let begin = vk::CommandBufferBeginInfo::default().inheritance_info(&inheritance);
             // SAFETY: cb is freshly allocated, in the initial state.
             unsafe { device.begin_command_buffer(cb, &begin) }.call("vkBeginCommandBuffer")?;
-            let mut rec = Recorder {
-                ctx,
-                cb,
-                barrier_count: 0,
-                dispatch_count: 0,
-                submissions: 0,
-                pool,
-                timeline: None,
-                open_labels: Vec::new(),
-            };
+            let mut rec = Recorder::fresh(ctx, cb, pool);
             record(i, &mut rec)?;
             // SAFETY: cb is recording.
             unsafe { device.end_command_buffer(cb) }.call("vkEndCommandBuffer")?;
