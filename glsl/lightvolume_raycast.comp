@@ -13,19 +13,35 @@ layout(set = 0, binding = 3, rgba32f) readonly uniform image3D illumination;
 layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
 
 const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;
+const float LOG_FLOOR = 1e-3;
 
-// Trilinear, clamp to edge, texel centres at (i + 0.5) / n like the sampler.
+// Trilinear, clamp to edge, texel centres at (i + 0.5) / n like the sampler,
+// of the logarithm of the light: light decays exponentially through the
+// medium, so interpolating log(light) between voxel centres reproduces the
+// decay inside an opaque surface where a linear blend of the centres would
+// light the surface's first voxel far too brightly. The floor keeps fully
+// shadowed corners finite, relative to the brightest corner.
 vec3 illumination_at(vec3 p) {
     ivec3 n = imageSize(illumination);
     vec3 c = clamp(to_uvw(p) * vec3(n) - 0.5, vec3(0.0), vec3(n - 1));
     ivec3 i0 = ivec3(floor(c));
-    ivec3 i1 = min(i0 + 1, n - 1);
     vec3 f = c - vec3(i0);
-    vec3 x00 = mix(imageLoad(illumination, i0).rgb, imageLoad(illumination, ivec3(i1.x, i0.y, i0.z)).rgb, f.x);
-    vec3 x10 = mix(imageLoad(illumination, ivec3(i0.x, i1.y, i0.z)).rgb, imageLoad(illumination, ivec3(i1.x, i1.y, i0.z)).rgb, f.x);
-    vec3 x01 = mix(imageLoad(illumination, ivec3(i0.x, i0.y, i1.z)).rgb, imageLoad(illumination, ivec3(i1.x, i0.y, i1.z)).rgb, f.x);
-    vec3 x11 = mix(imageLoad(illumination, ivec3(i0.x, i1.y, i1.z)).rgb, imageLoad(illumination, i1).rgb, f.x);
-    return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+    vec3 v[8];
+    vec3 peak = vec3(0.0);
+    for (int k = 0; k < 8; ++k) {
+        ivec3 i = min(i0 + ivec3(k & 1, (k >> 1) & 1, k >> 2), n - 1);
+        v[k] = imageLoad(illumination, i).rgb;
+        peak = max(peak, v[k]);
+    }
+    if (all(equal(peak, vec3(0.0)))) return vec3(0.0);
+    vec3 floor_value = max(peak * LOG_FLOOR, vec3(1e-37));
+    vec3 acc = vec3(0.0);
+    for (int k = 0; k < 8; ++k) {
+        vec3 w3 = mix(1.0 - f, f, vec3(k & 1, (k >> 1) & 1, k >> 2));
+        acc += w3.x * w3.y * w3.z * log(max(v[k], floor_value));
+    }
+    vec3 r = exp(acc);
+    return mix(vec3(0.0), r, greaterThan(peak, vec3(0.0)));
 }
 
 void main() {

@@ -42,9 +42,13 @@ layout(push_constant) uniform Pass {
     ivec4 grid;   // xyz illumination volume size, w first entry of the group
 } pass;
 
-// Sub-steps of the medium integration between two slices: a few data voxels at
-// most (scale <= 4, grazing paths longer), far below llvmpipe's loop limit.
-const int MAX_SUBSTEPS = 32;
+// Sub-steps of the medium integration between two slices, in data voxels: fine
+// enough for transfer functions whose opaque band is narrow (a single midpoint
+// per voxel lands between voxel centres and steps over thin shells). At most
+// MAX_SUBSTEPS per slice (scale 4 straight along the axis needs 16; grazing
+// paths take longer sub-steps), far below llvmpipe's loop limit.
+const float SUBSTEP_VOXELS = 0.25;
+const int MAX_SUBSTEPS = 64;
 
 vec3 voxel_centre(ivec3 g) {
     return ((vec3(g) + 0.5) / vec3(pass.grid.xyz) * 2.0 - 1.0) * frame.box_half.xyz;
@@ -54,7 +58,7 @@ vec3 voxel_centre(ivec3 g) {
 float optical_depth(vec3 p, vec3 dir, float len) {
     if (len <= 0.0) return 0.0;
     float vl = frame.box_half.w;
-    int n = int(clamp(ceil(len / vl), 1.0, float(MAX_SUBSTEPS)));
+    int n = int(clamp(ceil(len / (SUBSTEP_VOXELS * vl)), 1.0, float(MAX_SUBSTEPS)));
     float g = len / float(n);
     float tau = 0.0;
     for (int j = 0; j < n; ++j) tau += medium(p + dir * ((float(j) + 0.5) * g)).a;
@@ -62,19 +66,25 @@ float optical_depth(vec3 p, vec3 dir, float len) {
 }
 
 // Transmittance stored in the previous slice at lateral texel position c
-// (continuous, texel centres at i + 0.5), bilinear; taps outside the slice lie
-// outside the volume, where the light is not attenuated.
-float previous_transmittance(vec2 c, ivec2 size, int slot) {
-    vec2 t = c - 0.5;
+// (continuous, texel centres at i + 0.5; callers only ask for points inside the
+// volume), bilinear between texel centres. Between the outermost texel centre
+// and a face the light enters through (`enters`: per lateral axis, -1 low face,
+// +1 high face, 0 neither) it blends toward 1, the transmittance at that face;
+// elsewhere it clamps to the edge.
+float previous_transmittance(vec2 c, ivec2 size, int slot, ivec2 enters) {
+    vec2 cc = clamp(c, vec2(0.5), vec2(size) - 0.5);
+    vec2 t = cc - 0.5;
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
     float v[4];
     for (int k = 0; k < 4; ++k) {
-        ivec2 i = i0 + ivec2(k & 1, k >> 1);
-        bool inside = all(greaterThanEqual(i, ivec2(0))) && all(lessThan(i, size));
-        v[k] = inside ? imageLoad(slice_in, ivec3(i, slot)).a : 1.0;
+        ivec2 i = min(i0 + ivec2(k & 1, k >> 1), size - 1);
+        v[k] = imageLoad(slice_in, ivec3(i, slot)).a;
     }
-    return mix(mix(v[0], v[1], f.x), mix(v[2], v[3], f.x), f.y);
+    float T = mix(mix(v[0], v[1], f.x), mix(v[2], v[3], f.x), f.y);
+    // How far past the outermost texel centre, in half texels, toward an entry face.
+    vec2 excess = (c - cc) * vec2(enters) * 2.0;
+    return mix(T, 1.0, clamp(max(excess.x, excess.y), 0.0, 1.0));
 }
 
 void main() {
@@ -106,13 +116,20 @@ void main() {
         if (c > 1e-4) {
             // The first slice takes the light at the volume face, half a slice away.
             float along = (k == 0 ? 0.5 : 1.0) * dstep / c;
-            float len = min(along, w.w);
+            // Where the light enters the volume (through any face) or leaves the
+            // light itself before the previous slice, nothing attenuates it
+            // beyond: the path ends there with transmittance 1.
+            float reach = min(intersect_box(p, w.xyz).y, w.w);
+            float len = min(along, reach);
             float T = 1.0;
-            if (k > 0 && along < w.w) {
+            if (k > 0 && along < reach) {
                 vec3 q = p + w.xyz * along;
                 vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
                                (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
-                T = previous_transmittance(cq, size, int(entry.slot));
+                // The light enters through a lateral face where it travels inward:
+                // toward the light (w) points out of the face.
+                ivec2 enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
+                T = previous_transmittance(cq, size, int(entry.slot), enters);
             }
             T *= exp(-optical_depth(p, w.xyz, len));
             vec3 light = l.radiance.rgb * light_shape(l, w) * T;
