@@ -7,15 +7,20 @@
 //! then lights each sample by the interpolated volume ([`raycast`]).
 //!
 //! Approximates optical model (i) (docs/optical-model.md): the propagated
-//! quantity is the light's transmittance alone, so the paper's blend of the
-//! material colour into the propagated light (model (ii)-like) is left out.
-//! Where it falls short of the model: shadows are blurred by the coarser grid
-//! and by bilinear resampling from slice to slice, and a light splits between
-//! two groups by the factors of equations 5a/5b, each of which follows the
-//! light's own direction, so for directional lights both agree up to
-//! resampling. Light travelling against a group's direction (only possible for
-//! the second group of a point or spot light near the volume) is not carried
-//! by that group.
+//! quantity is each light's transmittance (its colour, falloff and cone are
+//! applied per voxel), so the paper's blend of the material colour into the
+//! propagated light (model (ii)-like) is left out. Between slices the medium is
+//! integrated in quarter-voxel sub-steps (exact for homogeneous media); a path
+//! ends where the light enters the volume, through any face, or at the light.
+//! Where it falls short of the model: light is known at illumination voxel
+//! centres only, so shadows are blurred by the grid and by bilinear resampling
+//! from slice to slice (which overestimates the convex exp(-depth), most for
+//! oblique light), and surfaces sharper than a voxel are lit by interpolation
+//! (log-space in the ray cast, which follows the exponential decay into a
+//! surface). A light splits between two groups by the factors of equations
+//! 5a/5b, each following the light's own direction. Light travelling against a
+//! group's direction (only possible for the second group of a point or spot
+//! light near or inside the volume) is not carried by that group.
 
 pub mod groups;
 pub mod illumination;
