@@ -33,6 +33,7 @@ const BINDING_VARIANTS: &[(&str, &[(&str, &str)])] = &[
     ("ipsvi_line", &[("_READ_A", "0"), ("_READ_B", "1")]),
     ("ipsvi_ert_sweep", &[("_READ_A", "0"), ("_READ_B", "1")]),
     ("half_angle_slice", &[("_READ_A", "0"), ("_READ_B", "1")]),
+    ("lightvolume_slice", &[("_READ_A", "0"), ("_READ_B", "1")]),
 ];
 
 fn main() {

@@ -9,6 +9,7 @@ pub mod bench;
 pub mod dvr;
 pub mod half_angle;
 pub mod ipsvi;
+pub mod lightvolume;
 pub mod linear_image;
 pub mod metrics;
 pub mod reference;

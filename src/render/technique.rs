@@ -20,11 +20,20 @@ pub enum Technique {
     Ipsvi,
     /// Half-angle slicing: one dispatch and barrier per slice.
     HalfAngle,
+    /// Light volume: slice-by-slice propagation in coherence-based groups, one
+    /// secondary command buffer per group, then a ray cast.
+    LightVolume,
 }
 
 impl Technique {
-    pub const ALL: [Technique; 5] =
-        [Technique::Dvr, Technique::Phong, Technique::Reference, Technique::Ipsvi, Technique::HalfAngle];
+    pub const ALL: [Technique; 6] = [
+        Technique::Dvr,
+        Technique::Phong,
+        Technique::Reference,
+        Technique::Ipsvi,
+        Technique::HalfAngle,
+        Technique::LightVolume,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -33,15 +42,18 @@ impl Technique {
             Technique::Reference => "reference",
             Technique::Ipsvi => "ipsvi",
             Technique::HalfAngle => "half-angle",
+            Technique::LightVolume => "lightvolume",
         }
     }
 
     /// The ground-truth model this technique approximates (docs/optical-model.md):
-    /// IPSVI carries emission along its light rays (model ii); the others are
-    /// compared with the model the scene names.
+    /// IPSVI carries emission along its light rays (model ii); the light volume
+    /// propagates transmittance alone (model i); the others are compared with
+    /// the model the scene names.
     pub fn reference_model(self, scene: &crate::scene::Scene) -> crate::scene::OpticalModel {
         match self {
             Technique::Ipsvi => crate::scene::OpticalModel::EmissiveScattering,
+            Technique::LightVolume => crate::scene::OpticalModel::SingleScattering,
             _ => scene.reference.model,
         }
     }
@@ -98,6 +110,7 @@ pub fn render(
         Technique::Reference => crate::reference::gpu::render(gpu, width, height, profiler)?,
         Technique::Ipsvi => crate::ipsvi::render(gpu, width, height, profiler)?,
         Technique::HalfAngle => crate::half_angle::render(gpu, width, height, profiler)?,
+        Technique::LightVolume => crate::lightvolume::render(gpu, width, height, profiler)?,
     };
     let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
     Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })

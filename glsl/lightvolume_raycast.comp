@@ -1,0 +1,74 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Light volume ray cast, one dispatch per frame, front to back with the
+// discretization of raycast.comp: the source term is
+// rgb * (emission + illumination(p)), the illumination read trilinearly from
+// the propagated illumination volume (storage image, so filtered by hand).
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "volume.glsl"
+
+layout(set = 0, binding = 3, rgba32f) readonly uniform image3D illumination;
+layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
+
+const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;
+const float LOG_FLOOR = 1e-3;
+
+// Trilinear, clamp to edge, texel centres at (i + 0.5) / n like the sampler,
+// of the logarithm of the light: light decays exponentially through the
+// medium, so interpolating log(light) between voxel centres reproduces the
+// decay inside an opaque surface where a linear blend of the centres would
+// light the surface's first voxel far too brightly. The floor keeps fully
+// shadowed corners finite, relative to the brightest corner.
+vec3 illumination_at(vec3 p) {
+    ivec3 n = imageSize(illumination);
+    vec3 c = clamp(to_uvw(p) * vec3(n) - 0.5, vec3(0.0), vec3(n - 1));
+    ivec3 i0 = ivec3(floor(c));
+    vec3 f = c - vec3(i0);
+    vec3 v[8];
+    vec3 peak = vec3(0.0);
+    for (int k = 0; k < 8; ++k) {
+        ivec3 i = min(i0 + ivec3(k & 1, (k >> 1) & 1, k >> 2), n - 1);
+        v[k] = imageLoad(illumination, i).rgb;
+        peak = max(peak, v[k]);
+    }
+    if (all(equal(peak, vec3(0.0)))) return vec3(0.0);
+    vec3 floor_value = max(peak * LOG_FLOOR, vec3(1e-37));
+    vec3 acc = vec3(0.0);
+    for (int k = 0; k < 8; ++k) {
+        vec3 w3 = mix(1.0 - f, f, vec3(k & 1, (k >> 1) & 1, k >> 2));
+        acc += w3.x * w3.y * w3.z * log(max(v[k], floor_value));
+    }
+    vec3 r = exp(acc);
+    return mix(vec3(0.0), r, greaterThan(peak, vec3(0.0)));
+}
+
+void main() {
+    uvec2 px = gl_GlobalInvocationID.xy;
+    if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
+    Ray r = camera_ray(px);
+    vec2 t = intersect_box(r.origin, r.dir);
+    vec3 C = vec3(0.0);
+    float T = 1.0;
+    if (t.x < t.y) {
+        float vl = frame.box_half.w;
+        float L = t.y - t.x;
+        float N = max(1.0, ceil(L / (frame.march.x * vl)));
+        float h = L / N;
+        float hv = h / vl;
+        int n = int(N);
+        for (int i = 0; i < n; ++i) {
+            vec3 p = r.origin + r.dir * (t.x + (float(i) + 0.5) * h);
+            vec4 m = medium(p);
+            float alpha = 1.0 - exp(-m.a * hv);
+            if (alpha > 0.0) {
+                C += T * alpha * m.rgb * (frame.background.w + illumination_at(p));
+                T *= 1.0 - alpha;
+            }
+            if (T < EARLY_TERMINATION_TRANSMITTANCE) break;
+        }
+    }
+    C += T * frame.background.rgb;
+    imageStore(out_image, ivec2(px), vec4(C, T));
+}

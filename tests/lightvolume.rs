@@ -1,0 +1,345 @@
+//! The light volume technique: its illumination volume against the analytic
+//! transmittance of a homogeneous slab, its propagation groups and their
+//! secondary command buffers, its image against the ground truth of model (i),
+//! validation, and extreme intensities.
+mod common;
+
+use common::*;
+use glam::{UVec3, Vec3};
+use sweeplab::lightvolume::{render_frame, LightVolumeFrame};
+use sweeplab::linear_image::LinearImage;
+use sweeplab::metrics::compare;
+use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
+use sweeplab::scene::synthetic::slab_under_sphere;
+use sweeplab::scene::{
+    presets, ControlPoint, Falloff, Light, LightKind, OpticalModel, Scene, TransferFunction, TransferLut, Volume,
+    VoxelData,
+};
+use sweeplab::vk::{Context, Profiler};
+
+const SIZE: u32 = 48;
+
+fn with_scale(mut scene: Scene, scale: u32) -> Scene {
+    scene.techniques = toml::from_str(&format!("[lightvolume]\nscale = {scale}\n")).unwrap();
+    scene
+}
+
+fn frame(ctx: &Context, scene: &Scene, size: u32, read_illumination: bool) -> (LightVolumeFrame, Profiler) {
+    let gpu = GpuScene::upload_with(ctx, scene, VolumeTexels::Float32).unwrap();
+    let mut profiler = Profiler::new(ctx, 64).unwrap();
+    profiler.reset();
+    let out = render_frame(&gpu, size, size, &mut profiler, read_illumination).unwrap();
+    (out, profiler)
+}
+
+/// An n^3 volume of one value: a homogeneous slab filling the whole box.
+fn homogeneous_scene(n: u32, direction: Vec3, scale: u32) -> (Scene, f64) {
+    let mut scene = with_scale(scene_with(homogeneous(n), vec![directional(direction, 1.5)], 16, 16), scale);
+    scene.lights[0].color = Vec3::new(1.0, 0.5, 0.25);
+    scene.transfer = TransferFunction {
+        points: vec![
+            ControlPoint { value: 0.0, rgba: [1.0, 1.0, 1.0, 0.0] },
+            ControlPoint { value: 1.0, rgba: [1.0, 1.0, 1.0, 0.15] },
+        ],
+    };
+    let sigma = scene.transfer.bake(TransferLut::DEFAULT_SIZE).sample(1.0)[3];
+    (scene, sigma)
+}
+
+/// Errors of the illumination volume against `radiance * exp(-sigma * path(p))`,
+/// `path` in data voxels from the voxel centre p to the box exit toward the
+/// light: (largest relative error, largest absolute error over the radiance,
+/// mean relative error).
+fn errors_against_analytic(out: &LightVolumeFrame, sigma: f64, path: impl Fn(Vec3) -> f64) -> (f64, f64, f64) {
+    let grid = out.grid;
+    let volume = out.illumination.as_ref().unwrap();
+    let (mut worst, mut worst_abs, mut sum, mut count) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for z in 0..grid.z {
+        for y in 0..grid.y {
+            for x in 0..grid.x {
+                let v = volume[(x + grid.x * (y + grid.y * z)) as usize];
+                // Centre in [0, 1]^3 box coordinates.
+                let uvw = (Vec3::new(x as f32, y as f32, z as f32) + 0.5) / grid.as_vec3();
+                let expected = (-sigma * path(uvw)).exp() * 1.5;
+                for (c, colour) in [1.0, 0.5, 0.25].into_iter().enumerate() {
+                    let e = expected * colour;
+                    let abs = (v[c] as f64 - e).abs();
+                    worst = worst.max(abs / e);
+                    worst_abs = worst_abs.max(abs / (1.5 * colour));
+                    sum += abs / e;
+                    count += 1.0;
+                }
+            }
+        }
+    }
+    (worst, worst_abs, sum / count)
+}
+
+fn homogeneous(n: u32) -> Volume {
+    Volume {
+        name: "homogeneous".into(),
+        dims: UVec3::splat(n),
+        spacing: Vec3::ONE,
+        data: VoxelData::U8(vec![255; (n * n * n) as usize]),
+        value_range: (0.0, 255.0),
+    }
+}
+
+/// Stated tolerance of the slab test: the propagation integrates a homogeneous
+/// medium exactly (opacity-corrected sub-steps), so what is left is f32
+/// rounding of a few dozen products: relative error below 1e-4.
+const SLAB_TOLERANCE: f64 = 1e-4;
+
+#[test]
+fn directional_light_straight_down_through_a_homogeneous_slab_gives_the_analytic_transmittance() {
+    let ctx = validated_context();
+    let n = 16;
+    for scale in [1, 2, 4] {
+        let (scene, sigma) = homogeneous_scene(n, Vec3::NEG_Y, scale);
+        let (out, _) = frame(&ctx, &scene, 16, true);
+        assert_eq!(out.groups.len(), 1, "one group for a light straight down");
+        assert_eq!(out.groups[0].direction_name(), "-y");
+        assert_eq!(out.grid, UVec3::splat(n / scale));
+        // Depth below the top face in data voxels.
+        let (worst, _, _) = errors_against_analytic(&out, sigma, |uvw| (1.0 - uvw.y as f64) * n as f64);
+        println!("scale {scale}: grid {}, worst relative error {worst:.2e}", out.grid);
+        assert!(worst <= SLAB_TOLERANCE, "scale {scale}: worst relative error {worst:.2e}");
+        assert!(out.frame.image.all_finite());
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// Stated tolerances of the oblique test, measured on lavapipe: bilinear
+/// resampling from slice to slice overestimates the convex exp(-path), most
+/// along the ridge where the face the light enters through changes, and the
+/// error compounds with depth: mean relative error MEAN and largest absolute
+/// error (transmittance units) ABS, measured 0.0513 and 0.1053 for this 16^3
+/// volume at scale 1; the largest relative error, 0.81 in the deepest and
+/// darkest voxels, is printed, not bounded.
+const OBLIQUE_MEAN_TOLERANCE: f64 = 0.06;
+const OBLIQUE_ABS_TOLERANCE: f64 = 0.12;
+
+#[test]
+fn oblique_directional_light_splits_into_two_groups_that_agree_with_the_analytic_transmittance() {
+    let ctx = validated_context();
+    let n = 16;
+    let direction = Vec3::new(0.5, -1.0, 0.25);
+    let (scene, sigma) = homogeneous_scene(n, direction, 1);
+    let (out, _) = frame(&ctx, &scene, 16, true);
+    let names: Vec<String> = out.groups.iter().map(|g| g.direction_name()).collect();
+    assert_eq!(names, ["+x", "-y"], "light travelling mostly down and toward +x");
+    let sum: f32 = out.groups.iter().map(|g| g.members[0].factor).sum();
+    assert!((sum - 1.0).abs() < 1e-5);
+    let w = -direction.normalize();
+    // Distance (data voxels) to the box exit along w from uvw in the unit cube.
+    let path = |uvw: Vec3| {
+        let t = (0..3)
+            .map(|a| {
+                if w[a] > 0.0 {
+                    (1.0 - uvw[a]) / w[a]
+                } else if w[a] < 0.0 {
+                    -uvw[a] / w[a]
+                } else {
+                    f32::MAX
+                }
+            })
+            .fold(f32::MAX, f32::min);
+        t as f64 * n as f64
+    };
+    let (worst, worst_abs, mean) = errors_against_analytic(&out, sigma, path);
+    println!("oblique: mean relative error {mean:.4}, largest absolute {worst_abs:.4}, largest relative {worst:.4}");
+    assert!(mean <= OBLIQUE_MEAN_TOLERANCE, "mean relative error {mean:.4}");
+    assert!(worst_abs <= OBLIQUE_ABS_TOLERANCE, "largest absolute error {worst_abs:.4}");
+    assert_validation_clean(&ctx);
+}
+
+#[test]
+fn lights_in_exactly_two_groups_record_exactly_two_group_passes() {
+    let ctx = validated_context();
+    let lights =
+        vec![directional(Vec3::NEG_Y, 1.0), directional(Vec3::new(0.0, -1.0, 0.0), 0.5), directional(Vec3::X, 0.7)];
+    let scene = with_scale(scene_with(slab_under_sphere(16), lights, 16, 16), 2);
+    let (out, mut profiler) = frame(&ctx, &scene, 16, false);
+    let profile = profiler.resolve(ctx.memory.device_local_peak()).unwrap();
+    let groups: Vec<&str> =
+        profile.scopes.iter().map(|s| s.name.as_str()).filter(|n| n.starts_with("lightvolume_group_")).collect();
+    assert_eq!(groups, ["lightvolume_group_+x_1lights", "lightvolume_group_-y_2lights"]);
+    // One dispatch per slice of each group (8 slices each) and the ray cast.
+    assert_eq!(out.frame.dispatches, 8 + 8 + 1);
+    assert!(out.frame.image.all_finite());
+    assert_validation_clean(&ctx);
+}
+
+fn slab_sphere_scene(lights: Vec<Light>, scale: u32) -> Scene {
+    let mut scene = with_scale(scene_with(slab_under_sphere(32), lights, SIZE, SIZE), scale);
+    scene.transfer = presets::preset("slab-sphere").unwrap();
+    scene.reference.model = OpticalModel::SingleScattering;
+    // The same view march as the technique, and fine shadow rays: the error
+    // left is the light volume's own.
+    scene.reference.step_voxels = scene.render.step_voxels;
+    scene.reference.shadow_step_voxels = 0.125;
+    scene.render.emission = 0.2;
+    scene
+}
+
+fn relative_rmse(test: &LinearImage, reference: &LinearImage) -> f64 {
+    compare(test, reference).unwrap().rmse / reference.max_value() as f64
+}
+
+/// Stated tolerance against model (i) on the sphere-over-slab scene, 32^3 data,
+/// 48x48, relative RMSE against the brightest reference value, measured on
+/// lavapipe: scale 1 0.0496, unshaded DVR 0.1398. The light volume is an
+/// approximation: light is known at illumination voxel centres only, and these
+/// test volumes have surfaces one data voxel sharp, so the view samples on a
+/// surface see light interpolated between a voxel in air and one already deep
+/// in shadow (log-space interpolation in the ray cast limits this), and the
+/// sphere's shadow is resampled bilinearly from slice to slice. At scale 2
+/// (16^3 illumination voxels for this 32^3 volume) the surfaces lie within half
+/// an illumination voxel and the error, 0.1295, is no better than unshaded
+/// DVR's: that is printed and held as a regression bound, not claimed as a win.
+const RMSE_TOLERANCE: f64 = 0.055;
+const SCALE_2_REGRESSION_BOUND: f64 = 0.135;
+
+#[test]
+fn sphere_over_slab_matches_model_i_within_the_stated_tolerance() {
+    let ctx = validated_context();
+    for (scale, tolerance) in [(1, RMSE_TOLERANCE), (2, SCALE_2_REGRESSION_BOUND)] {
+        let scene = slab_sphere_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)], scale);
+        let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+        let mut profiler = Profiler::new(&ctx, 64).unwrap();
+        let out = render(&gpu, Technique::LightVolume, SIZE, SIZE, &mut profiler).unwrap();
+        assert!(out.image.all_finite());
+        let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+        let unshaded = render(&gpu, Technique::Dvr, SIZE, SIZE, &mut profiler).unwrap().image;
+        let rmse = relative_rmse(&out.image, &reference);
+        let dvr = relative_rmse(&unshaded, &reference);
+        println!("scale {scale}: relative rmse {rmse:.4} (unshaded DVR {dvr:.4})");
+        assert!(rmse <= tolerance, "scale {scale}: relative rmse {rmse:.4} above {tolerance}");
+        if scale == 1 {
+            assert!(rmse < 0.5 * dvr, "rmse {rmse:.4} not clearly below unshaded DVR's {dvr:.4}");
+        }
+    }
+    assert_validation_clean(&ctx);
+}
+
+fn every_light_kind(intensity: f32) -> Vec<Light> {
+    vec![
+        Light {
+            kind: LightKind::Directional { direction: Vec3::new(-0.4, -1.0, 0.3) },
+            color: Vec3::new(1.0, 0.9, 0.8),
+            intensity,
+            falloff: Falloff::None,
+        },
+        Light {
+            kind: LightKind::Point { position: Vec3::new(0.9, 0.4, -0.3) },
+            color: Vec3::new(0.6, 0.8, 1.0),
+            intensity,
+            falloff: Falloff::InverseSquare,
+        },
+        Light {
+            kind: LightKind::Spot {
+                position: Vec3::new(0.2, 1.2, 0.3),
+                direction: Vec3::new(-0.1, -1.0, -0.2),
+                inner_cone_deg: 15.0,
+                outer_cone_deg: 30.0,
+            },
+            color: Vec3::ONE,
+            intensity,
+            falloff: Falloff::InverseSquare,
+        },
+        // Inside the volume: its second group carries light against its direction.
+        Light {
+            kind: LightKind::Point { position: Vec3::new(0.1, 0.2, 0.05) },
+            color: Vec3::ONE,
+            intensity,
+            falloff: Falloff::None,
+        },
+    ]
+}
+
+#[test]
+fn every_light_kind_renders_validation_clean() {
+    let ctx = validated_context();
+    for scale in [1, 2, 4] {
+        let scene = slab_sphere_scene(every_light_kind(1.0), scale);
+        let (out, _) = frame(&ctx, &scene, 24, true);
+        assert!(out.frame.image.all_finite(), "scale {scale}");
+        let volume = out.illumination.unwrap();
+        assert!(volume.iter().all(|v| v.iter().all(|c| c.is_finite() && *c >= 0.0)), "scale {scale}");
+        assert!(volume.iter().any(|v| v[0] > 0.0), "scale {scale}: no light at all");
+    }
+    assert_validation_clean(&ctx);
+}
+
+#[test]
+fn extreme_intensities_give_finite_output() {
+    let ctx = validated_context();
+    for intensity in [1e-6, 1e6] {
+        let scene = slab_sphere_scene(every_light_kind(intensity), 2);
+        let (out, _) = frame(&ctx, &scene, 16, true);
+        assert!(out.frame.image.all_finite(), "intensity {intensity}");
+        assert!(out.illumination.unwrap().iter().all(|v| v.iter().all(|c| c.is_finite())), "intensity {intensity}");
+    }
+    assert_validation_clean(&ctx);
+}
+
+#[test]
+fn no_lights_renders_the_emission_term_and_bad_settings_are_errors() {
+    let ctx = validated_context();
+    let scene = slab_sphere_scene(vec![], 2);
+    let (out, _) = frame(&ctx, &scene, 16, false);
+    assert!(out.groups.is_empty());
+    assert_eq!(out.frame.dispatches, 1, "the ray cast alone");
+    assert!(out.frame.image.all_finite());
+    for table in ["[lightvolume]\nscale = 3\n", "[lightvolume]\nscale = 2\nalbedo = 1\n", "lightvolume = 2\n"] {
+        let mut bad = slab_sphere_scene(vec![directional(Vec3::NEG_Y, 1.0)], 2);
+        bad.techniques = toml::from_str(table).unwrap();
+        let gpu = GpuScene::upload(&ctx, &bad).unwrap();
+        let mut profiler = Profiler::new(&ctx, 64).unwrap();
+        assert!(render(&gpu, Technique::LightVolume, 8, 8, &mut profiler).is_err(), "{table}");
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// Point and spot lights against model (i) at scale 1 on the sphere-over-slab
+/// scene (48x48), relative RMSE measured on lavapipe: point light outside the
+/// volume 0.0487, spot light 0.0282, point light inside the volume 0.0559
+/// (its second group cannot carry the light travelling against it); unshaded
+/// DVR 0.137, 0.122, 0.197. At scale 2 the same lights measured 0.120, 0.056,
+/// 0.104.
+#[test]
+fn point_and_spot_lights_match_model_i_at_full_resolution() {
+    let ctx = validated_context();
+    let cases = [
+        ("point outside", LightKind::Point { position: Vec3::new(0.3, 1.2, 0.2) }, Falloff::None, 2.0, 0.055),
+        (
+            "spot",
+            LightKind::Spot {
+                position: Vec3::new(0.2, 1.2, 0.3),
+                direction: Vec3::new(-0.1, -1.0, -0.2),
+                inner_cone_deg: 15.0,
+                outer_cone_deg: 30.0,
+            },
+            Falloff::InverseSquare,
+            2.0,
+            0.035,
+        ),
+        ("point inside", LightKind::Point { position: Vec3::new(0.15, 0.35, 0.1) }, Falloff::None, 1.5, 0.065),
+    ];
+    for (what, kind, falloff, intensity, tolerance) in cases {
+        let light = Light { kind, color: Vec3::ONE, intensity, falloff };
+        let scene = slab_sphere_scene(vec![light], 1);
+        let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+        let mut profiler = Profiler::new(&ctx, 64).unwrap();
+        let out = render(&gpu, Technique::LightVolume, SIZE, SIZE, &mut profiler).unwrap().image;
+        let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+        let unshaded = render(&gpu, Technique::Dvr, SIZE, SIZE, &mut profiler).unwrap().image;
+        let rmse = relative_rmse(&out, &reference);
+        let dvr = relative_rmse(&unshaded, &reference);
+        println!("{what}: relative rmse {rmse:.4} (unshaded DVR {dvr:.4})");
+        assert!(out.all_finite(), "{what}");
+        assert!(rmse <= tolerance, "{what}: relative rmse {rmse:.4} above {tolerance}");
+        assert!(rmse < 0.5 * dvr, "{what}: rmse {rmse:.4} not clearly below unshaded DVR's {dvr:.4}");
+    }
+    assert_validation_clean(&ctx);
+}
