@@ -203,23 +203,7 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
     let start = if sl.front_to_back { [0.0, 0.0, 0.0, 1.0] } else { [bg.x, bg.y, bg.z, 1.0] };
     let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
         for (image, value) in [(&light[0], [1.0f32; 4]), (&light[1], [1.0; 4]), (&eye.image, start)] {
-            rec.barrier(&Barrier::image(
-                "slice_buffers_discard_to_clear",
-                image,
-                Access::NONE,
-                Access::CLEAR_WRITE,
-                vk::ImageLayout::UNDEFINED,
-                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            ));
-            rec.clear_color_image(image, value);
-            rec.barrier(&Barrier::image(
-                "slice_buffers_clear_to_first_slice",
-                image,
-                Access::CLEAR_WRITE,
-                Access::COMPUTE_READ_WRITE,
-                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                vk::ImageLayout::GENERAL,
-            ));
+            rec.clear_for_compute(image, value, "slice_buffers_discard_to_clear", "slice_buffers_clear_to_first_slice");
         }
         let scope = profiler.begin(rec, "half_angle")?;
         rec.bind(&pipelines[0], set);

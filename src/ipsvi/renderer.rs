@@ -391,23 +391,12 @@ impl<'a> IpsviRenderer<'a> {
         );
         let bg = *background;
         let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
-            rec.barrier(&Barrier::image(
+            rec.clear_for_compute(
+                &output.image,
+                [bg.x, bg.y, bg.z, 1.0],
                 "output_discard_to_clear",
-                &output.image,
-                Access::NONE,
-                Access::CLEAR_WRITE,
-                vk::ImageLayout::UNDEFINED,
-                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            ));
-            rec.clear_color_image(&output.image, [bg.x, bg.y, bg.z, 1.0]);
-            rec.barrier(&Barrier::image(
                 "output_clear_to_line_accumulate",
-                &output.image,
-                Access::CLEAR_WRITE,
-                Access::COMPUTE_READ_WRITE,
-                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                vk::ImageLayout::GENERAL,
-            ));
+            );
             for image in cache.images() {
                 rec.barrier(&Barrier::image(
                     "cache_discard_to_init_write",

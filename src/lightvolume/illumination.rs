@@ -53,23 +53,12 @@ impl IlluminationVolume {
 
     /// Zeroes the volume before the group passes add into it.
     pub fn record_clear(&self, rec: &mut Recorder) {
-        rec.barrier(&Barrier::image(
+        rec.clear_for_compute(
+            &self.image,
+            [0.0; 4],
             "illumination_discard_to_clear",
-            &self.image,
-            Access::NONE,
-            Access::CLEAR_WRITE,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-        ));
-        rec.clear_color_image(&self.image, [0.0; 4]);
-        rec.barrier(&Barrier::image(
             "illumination_clear_to_propagation",
-            &self.image,
-            Access::CLEAR_WRITE,
-            Access::COMPUTE_READ_WRITE,
-            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            vk::ImageLayout::GENERAL,
-        ));
+        );
     }
 
     pub fn readback_buffer(&self, ctx: &Context) -> Result<Buffer, RenderError> {

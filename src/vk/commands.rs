@@ -210,6 +210,36 @@ impl<'a> Recorder<'a> {
         unsafe { self.ctx.device.cmd_copy_image_to_buffer(self.cb, src.raw, layout, dst.raw, &region) };
     }
 
+    /// Discards `image`, clears it to `rgba` and hands it to compute shaders in
+    /// GENERAL layout: barrier `discard_to_clear`, the clear, barrier
+    /// `clear_to_compute` (the caller names both for what they protect).
+    pub fn clear_for_compute(
+        &mut self,
+        image: &Image,
+        rgba: [f32; 4],
+        discard_to_clear: &'static str,
+        clear_to_compute: &'static str,
+    ) {
+        use super::barriers::Access;
+        self.barrier(&Barrier::image(
+            discard_to_clear,
+            image,
+            Access::NONE,
+            Access::CLEAR_WRITE,
+            vk::ImageLayout::UNDEFINED,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+        ));
+        self.clear_color_image(image, rgba);
+        self.barrier(&Barrier::image(
+            clear_to_compute,
+            image,
+            Access::CLEAR_WRITE,
+            Access::COMPUTE_READ_WRITE,
+            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+            vk::ImageLayout::GENERAL,
+        ));
+    }
+
     /// Clears a colour image that is in TRANSFER_DST_OPTIMAL.
     pub fn clear_color_image(&self, image: &Image, rgba: [f32; 4]) {
         let value = vk::ClearColorValue { float32: rgba };
