@@ -47,13 +47,13 @@ impl Technique {
     }
 
     /// The ground-truth model this technique approximates (docs/optical-model.md):
-    /// IPSVI carries emission along its light rays (model ii); the light volume
-    /// propagates transmittance alone (model i); the others are compared with
-    /// the model the scene names.
+    /// IPSVI carries emission along its light rays (model ii); the light volume and
+    /// half-angle slicing carry transmittance alone (model i); the baselines are
+    /// compared with the model the scene names.
     pub fn reference_model(self, scene: &crate::scene::Scene) -> crate::scene::OpticalModel {
         match self {
             Technique::Ipsvi => crate::scene::OpticalModel::EmissiveScattering,
-            Technique::LightVolume => crate::scene::OpticalModel::SingleScattering,
+            Technique::LightVolume | Technique::HalfAngle => crate::scene::OpticalModel::SingleScattering,
             _ => scene.reference.model,
         }
     }
