@@ -6,6 +6,7 @@
 
 use super::groups::PropagationGroup;
 use super::illumination::IlluminationVolume;
+use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::{GpuScene, RenderError};
 use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
@@ -37,11 +38,8 @@ struct SlicePush {
     grid: [i32; 4],
 }
 
-const BINDINGS: [BindingKind; 10] = [
-    BindingKind::UniformBuffer,
-    BindingKind::SampledImage,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageBuffer,
+/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
+const OWN_BINDINGS: [BindingKind; 6] = [
     BindingKind::StorageBuffer,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
@@ -103,10 +101,12 @@ impl Propagation {
             )
         };
         let slices = [slice_image("lightvolume slice a")?, slice_image("lightvolume slice b")?];
+        let bindings = bindings_after_scene(&OWN_BINDINGS);
+        let scene = gpu.scene_resources(frame);
         let desc = |spirv| ComputePipelineDesc {
             name: "lightvolume_slice",
             spirv,
-            bindings: &BINDINGS,
+            bindings: &bindings,
             push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
             specialization: &[],
             max_sets: 1,
@@ -116,18 +116,21 @@ impl Propagation {
             ComputePipeline::new(ctx, &desc(shaders::LIGHTVOLUME_SLICE_READ_A))?,
             ComputePipeline::new(ctx, &desc(shaders::LIGHTVOLUME_SLICE_READ_B))?,
         ];
-        let set = pipelines[0].create_set(&[
-            Resource::UniformBuffer(frame),
-            Resource::SampledImage(&gpu.volume, &gpu.sampler),
-            Resource::StorageBuffer(&gpu.lut),
-            Resource::StorageBuffer(&gpu.lights),
-            Resource::StorageBuffer(&entries_buffer),
-            Resource::StorageImage(&slices[0]),
-            Resource::StorageImage(&slices[1]),
-            Resource::StorageImage(&slices[0]),
-            Resource::StorageImage(&slices[1]),
-            Resource::StorageImage(&illumination.image),
-        ])?;
+        // Slots: a_in, b_in, a_out, b_out, then the illumination volume.
+        let set = pipelines[0].create_set(
+            &[
+                &scene[..],
+                &[
+                    Resource::StorageBuffer(&entries_buffer),
+                    Resource::StorageImage(&slices[0]),
+                    Resource::StorageImage(&slices[1]),
+                    Resource::StorageImage(&slices[0]),
+                    Resource::StorageImage(&slices[1]),
+                    Resource::StorageImage(&illumination.image),
+                ],
+            ]
+            .concat(),
+        )?;
         Ok(Propagation { groups, grid, first_entry, pipelines, set, slices, _entries: entries_buffer })
     }
 
