@@ -220,6 +220,9 @@ fn half_angle_rows(
     progress.finish_step();
     for &step in &args.half_angle_slices {
         progress.start_step(&format!("{size}x{size} half-angle slices {step} voxel"));
+        if !(step.is_finite() && (0.01..=16.0).contains(&step)) {
+            anyhow::bail!("--half-angle-slices: {step} is not a slice spacing in 0.01..=16 voxels");
+        }
         let mut table_toml = toml::Table::new();
         table_toml.insert("slice_step".into(), toml::Value::Float(step as f64));
         scene.techniques.insert("half_angle".into(), toml::Value::Table(table_toml));

@@ -141,6 +141,9 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
         n => return Err(RenderError::Invalid(format!("half-angle slicing takes one light; the scene has {n}"))),
     }
     let settings = HalfAngleSettings::from_scene(scene)?;
+    if width == 0 || height == 0 {
+        return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
+    }
     let ctx = gpu.ctx;
     let bx = scene.volume_box();
     let geometry = CacheGeometry::fit(&scene.lights[0].kind, &bx, settings.light_buffer_size);

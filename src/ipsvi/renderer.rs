@@ -177,6 +177,10 @@ impl<'a> IpsviRenderer<'a> {
         if scene.lights.is_empty() {
             return Err(RenderError::Invalid("IPSVI sweeps need a light; render a scene without one with DVR".into()));
         }
+        if width == 0 || height == 0 {
+            return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
+        }
+        settings.check()?;
         let ctx = gpu.ctx;
         let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
         let bx = scene.volume_box();

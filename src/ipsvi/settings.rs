@@ -87,6 +87,16 @@ const KEYS: [&str; 10] = [
 ];
 
 impl IpsviSettings {
+    /// The ranges `from_scene` enforces, for settings built in code (benchmarks).
+    pub fn check(&self) -> Result<(), RenderError> {
+        whole(self.line_width as f64, 1, 32, "line_width")?;
+        whole(self.cache_size as f64, 16, 4096, "cache_size")?;
+        within(self.albedo as f64, 0.0, 1.0, "albedo")?;
+        within(self.light_step_voxels as f64, 0.01, 16.0, "light_step")?;
+        whole(self.ert_scale as f64, 1, 16, "ert_scale")?;
+        Ok(())
+    }
+
     pub fn from_scene(scene: &Scene) -> Result<IpsviSettings, RenderError> {
         let mut s = IpsviSettings::default();
         let Some(value) = scene.techniques.get("ipsvi") else {
