@@ -120,6 +120,14 @@ fn bad_input_gives_clear_errors_not_panics() {
         "line_width",
     );
     assert_user_error(&sweeplab(&["render", "--device", "no-such-gpu"]), "no-such-gpu");
+    let out = dir.join("bench");
+    let out = out.to_str().unwrap();
+    assert_user_error(&sweeplab(&["bench", "ipsvi", "--sizes", "0", "--out", out]), "empty");
+    assert_user_error(
+        &sweeplab(&["bench", "ipsvi", "--sizes", "8", "--line-widths", "99", "--repeat", "1", "--out", out]),
+        "line_width",
+    );
+    assert_user_error(&sweeplab(&["bench", "sync", "--strategies", "fences", "--out", out]), "fences");
     let unwritable = dir.join("no-such-dir").join("out.png");
     assert_user_error(&sweeplab(&["render", "--size", "8x8", "--out", unwritable.to_str().unwrap()]), "out.png");
 }
