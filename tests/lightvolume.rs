@@ -343,3 +343,35 @@ fn point_and_spot_lights_match_model_i_at_full_resolution() {
     }
     assert_validation_clean(&ctx);
 }
+
+/// Coherence-based propagation shares group passes between lights; sequential
+/// propagation (the paper's baseline) gives every light and face its own pass.
+/// Both must build the same illumination volume.
+#[test]
+fn coherent_and_sequential_propagation_give_the_same_volume() {
+    let ctx = validated_context();
+    let lights = vec![
+        directional(Vec3::new(0.2, -1.0, 0.1), 1.0),
+        directional(Vec3::new(-0.3, -1.0, 0.2), 0.5),
+        directional(Vec3::new(1.0, -0.4, 0.0), 0.7),
+    ];
+    let mut volumes = Vec::new();
+    let mut passes = Vec::new();
+    for coherent in [true, false] {
+        let mut scene = scene_with(slab_under_sphere(16), lights.clone(), 16, 16);
+        scene.techniques = toml::from_str(&format!("[lightvolume]\nscale = 2\ncoherent = {coherent}\n")).unwrap();
+        let (out, _) = frame(&ctx, &scene, 16, true);
+        passes.push(out.groups.len());
+        volumes.push(out.illumination.unwrap());
+    }
+    assert!(passes[1] > passes[0], "sequential must take more passes: {passes:?}");
+    let peak = volumes[0].iter().flat_map(|v| v[..3].iter().copied()).fold(0.0f32, f32::max);
+    assert!(peak > 0.1);
+    let worst = volumes[0]
+        .iter()
+        .zip(&volumes[1])
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
+        .fold(0.0f32, f32::max);
+    assert!(worst <= 1e-5 * peak, "coherent and sequential volumes differ by {worst} (peak {peak})");
+    assert_validation_clean(&ctx);
+}

@@ -86,6 +86,18 @@ pub fn propagation_groups(lights: &[Light]) -> Vec<PropagationGroup> {
     groups
 }
 
+/// Sequential propagation, the paper's baseline: every (light, face) membership
+/// of [`propagation_groups`] as a group of its own, in the same order, so each
+/// light is propagated on its own and nothing is shared between lights.
+pub fn sequential_groups(lights: &[Light]) -> Vec<PropagationGroup> {
+    propagation_groups(lights)
+        .into_iter()
+        .flat_map(|g| {
+            g.members.into_iter().map(move |m| PropagationGroup { axis: g.axis, travel: g.travel, members: vec![m] })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -28,7 +28,7 @@ pub mod propagation;
 pub mod raycast;
 pub mod settings;
 
-pub use groups::{propagation_groups, PropagationGroup};
+pub use groups::{propagation_groups, sequential_groups, PropagationGroup};
 pub use illumination::IlluminationVolume;
 pub use settings::LightVolumeSettings;
 
@@ -73,7 +73,7 @@ pub fn render_frame(
     let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
     let illumination = IlluminationVolume::new(ctx, scene.volume.dims, settings.scale)?;
     let output = OutputImage::new(ctx, "lightvolume output", width, height)?;
-    let groups = propagation_groups(&scene.lights);
+    let groups = if settings.coherent { propagation_groups(&scene.lights) } else { sequential_groups(&scene.lights) };
     let propagation =
         if groups.is_empty() { None } else { Some(Propagation::new(gpu, &frame, &illumination, groups.clone())?) };
     let secondaries = match &propagation {

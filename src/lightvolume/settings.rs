@@ -8,13 +8,16 @@ use crate::scene::Scene;
 pub struct LightVolumeSettings {
     /// Data voxels per illumination voxel along each axis: 1, 2 or 4.
     pub scale: u32,
+    /// Coherence-based propagation (the lights of a group share its passes) or
+    /// sequential (one pass per light and face, the paper's baseline).
+    pub coherent: bool,
 }
 
 impl Default for LightVolumeSettings {
     fn default() -> Self {
         // Half resolution: the paper's trade of memory and propagation time
         // against shadow sharpness.
-        LightVolumeSettings { scale: 2 }
+        LightVolumeSettings { scale: 2, coherent: true }
     }
 }
 
@@ -26,11 +29,12 @@ impl LightVolumeSettings {
         let Some(table) = scene.techniques.get("lightvolume") else { return Ok(s) };
         let table = table.as_table().ok_or_else(|| RenderError::Invalid("[lightvolume] must be a table".into()))?;
         for (key, v) in table {
-            match (key.as_str(), v.as_integer()) {
-                ("scale", Some(x)) if matches!(x, 1 | 2 | 4) => s.scale = x as u32,
+            match (key.as_str(), v.as_integer(), v.as_bool()) {
+                ("scale", Some(x), _) if matches!(x, 1 | 2 | 4) => s.scale = x as u32,
+                ("coherent", _, Some(b)) => s.coherent = b,
                 _ => {
                     return Err(RenderError::Invalid(format!(
-                        "lightvolume.{key} = {v}: the known key is scale (1, 2 or 4)"
+                        "lightvolume.{key} = {v}: the known keys are scale (1, 2 or 4) and coherent (true or false)"
                     )))
                 }
             }
