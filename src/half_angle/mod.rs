@@ -19,7 +19,7 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipelineDesc};
 use crate::vk::resources::{GpuData, ImageDesc};
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
@@ -174,19 +174,16 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
     let light = [r32f(gpu, "half-angle light a", n)?, r32f(gpu, "half-angle light b", n)?];
     let eye = OutputImage::new(ctx, "half-angle eye buffer", width, height)?;
     let bindings = bindings_after_scene(&BINDINGS_OWN);
-    let desc = |spirv| ComputePipelineDesc {
+    let desc = ComputePipelineDesc {
         name: "half_angle_slice",
-        spirv,
+        spirv: &[],
         bindings: &bindings,
         push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
         specialization: &[],
         max_sets: 1,
     };
     // Slice parity 0 reads light side a and writes b; parity 1 the opposite.
-    let mut pipelines = [
-        ComputePipeline::new(ctx, &desc(shaders::HALF_ANGLE_SLICE_READ_A))?,
-        ComputePipeline::new(ctx, &desc(shaders::HALF_ANGLE_SLICE_READ_B))?,
-    ];
+    let mut pipelines = parity_pair(ctx, &desc, shaders::HALF_ANGLE_SLICE_READ_A, shaders::HALF_ANGLE_SLICE_READ_B)?;
     let set = pipelines[0].create_set(
         &[
             &gpu.scene_resources(&frame)[..],

@@ -12,7 +12,7 @@ use crate::render::{GpuScene, RenderError};
 use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipeline, ComputePipelineDesc};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
@@ -124,18 +124,16 @@ impl ExitPoints {
             Resource::StorageBuffer(&gpu.lut),
             Resource::StorageImage(&depths),
         ])?;
-        let sweep_desc = |name, spirv| ComputePipelineDesc {
-            name,
-            spirv,
+        let sweep_desc = ComputePipelineDesc {
+            name: "ipsvi_exit_sweep",
+            spirv: &[],
             bindings: &[BindingKind::StorageImage; 6],
             push_constant_bytes: std::mem::size_of::<SweepPush>() as u32,
             specialization: &[],
             max_sets: 1,
         };
-        let mut sweep_pipelines = [
-            ComputePipeline::new(gpu.ctx, &sweep_desc("ipsvi_exit_sweep", shaders::IPSVI_ERT_SWEEP_READ_A))?,
-            ComputePipeline::new(gpu.ctx, &sweep_desc("ipsvi_exit_sweep", shaders::IPSVI_ERT_SWEEP_READ_B))?,
-        ];
+        let mut sweep_pipelines =
+            parity_pair(gpu.ctx, &sweep_desc, shaders::IPSVI_ERT_SWEEP_READ_A, shaders::IPSVI_ERT_SWEEP_READ_B)?;
         // Slots: a_in, b_in, a_out, b_out, then the result.
         let sweep_set = sweep_pipelines[0].create_set(&[
             Resource::StorageImage(&depths),
@@ -166,16 +164,10 @@ impl ExitPoints {
 
     /// Pre-pass, then the exit-point sweep, one dispatch and barrier per line.
     pub fn record(&self, rec: &mut Recorder, profiler: &mut Profiler) -> Result<(), VkError> {
-        for img in [&self.depths, &self.pair[0], &self.pair[1], &self.lmax] {
-            rec.barrier(&Barrier::image(
-                "ert_discard_to_compute_access",
-                img,
-                Access::NONE,
-                Access::COMPUTE_READ_WRITE,
-                vk::ImageLayout::UNDEFINED,
-                vk::ImageLayout::GENERAL,
-            ));
-        }
+        rec.discard_for_compute(
+            "ert_discard_to_compute_access",
+            &[&self.depths, &self.pair[0], &self.pair[1], &self.lmax],
+        );
         let scope = profiler.begin(rec, "ipsvi_ert_prepass")?;
         rec.bind(&self.depths_pipeline, self.depths_set);
         let push = DepthsPush { scale: self.scale, width: self.width, height: self.height };

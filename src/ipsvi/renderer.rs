@@ -22,7 +22,7 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait, SecondaryCommands};
 use crate::vk::descriptors::{BindingKind, Resource};
 use crate::vk::events::EventPool;
-use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
@@ -255,9 +255,9 @@ impl<'a> IpsviRenderer<'a> {
         )?;
         let specialization = [(0, emissive as u32), (1, scatter as u32)];
         let line_bindings = bindings_after_scene(&LINE_BINDINGS_OWN);
-        let line_desc = |spirv| ComputePipelineDesc {
+        let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
-            spirv,
+            spirv: &[],
             bindings: &line_bindings,
             push_constant_bytes: 4,
             specialization: &specialization,
@@ -265,10 +265,7 @@ impl<'a> IpsviRenderer<'a> {
         };
         // Block parity 0 reads cache side a and writes b; parity 1 the opposite. Both
         // pipelines share one descriptor set (identical layouts), bound once per sweep.
-        let mut lines = [
-            ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_A))?,
-            ComputePipeline::new(ctx, &line_desc(shaders::IPSVI_LINE_READ_B))?,
-        ];
+        let mut lines = parity_pair(ctx, &line_desc, shaders::IPSVI_LINE_READ_A, shaders::IPSVI_LINE_READ_B)?;
         let common =
             [&gpu.scene_resources(&frame)[..], &[Resource::StorageBuffer(&sweeps), Resource::StorageBuffer(&planes)]]
                 .concat();
@@ -401,25 +398,9 @@ impl<'a> IpsviRenderer<'a> {
                 "output_discard_to_clear",
                 "output_clear_to_line_accumulate",
             );
-            for image in cache.images() {
-                rec.barrier(&Barrier::image(
-                    "cache_discard_to_init_write",
-                    image,
-                    Access::NONE,
-                    Access::COMPUTE_READ_WRITE,
-                    vk::ImageLayout::UNDEFINED,
-                    vk::ImageLayout::GENERAL,
-                ));
-            }
+            rec.discard_for_compute("cache_discard_to_init_write", &cache.images());
             if let Some(p) = &placeholder {
-                rec.barrier(&Barrier::image(
-                    "lmax_placeholder_to_shader_read",
-                    p,
-                    Access::NONE,
-                    Access::COMPUTE_READ,
-                    vk::ImageLayout::UNDEFINED,
-                    vk::ImageLayout::GENERAL,
-                ));
+                rec.discard_for_compute("lmax_placeholder_to_shader_read", &[p]);
             }
             let frame_scope = profiler.begin(rec, "ipsvi")?;
             if let Some(e) = &exit_points {

@@ -4,7 +4,6 @@
 //! allocates it.
 
 use crate::render::RenderError;
-use crate::vk::barriers::{Access, Barrier};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Recorder, VkError};
 use ash::vk;
@@ -74,20 +73,12 @@ impl IlluminationVolume {
 
     /// After the ray cast: copies the volume into `readback` (x fastest, then y, z).
     pub fn record_readback(&self, rec: &mut Recorder, readback: &Buffer) {
-        rec.barrier(&Barrier::image(
-            "illumination_compute_access_to_readback_copy",
+        rec.readback_image(
             &self.image,
-            Access::COMPUTE_WRITE,
-            Access::TRANSFER_READ,
-            vk::ImageLayout::GENERAL,
-            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-        ));
-        rec.copy_image_to_buffer(&self.image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, readback);
-        rec.barrier(&Barrier::memory(
+            readback,
+            "illumination_compute_access_to_readback_copy",
             "illumination_readback_copy_to_host_read",
-            Access::TRANSFER_WRITE,
-            Access::HOST_READ,
-        ));
+        );
     }
 
     pub fn read(&self, readback: &Buffer) -> Result<Vec<[f32; 4]>, RenderError> {

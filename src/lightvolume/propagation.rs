@@ -12,7 +12,7 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::SecondaryCommands;
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipeline, ComputePipelineDesc};
 use crate::vk::resources::{GpuData, ImageDesc};
 use crate::vk::{Buffer, Context, Image, Recorder};
 use ash::vk;
@@ -103,19 +103,17 @@ impl Propagation {
         let slices = [slice_image("lightvolume slice a")?, slice_image("lightvolume slice b")?];
         let bindings = bindings_after_scene(&OWN_BINDINGS);
         let scene = gpu.scene_resources(frame);
-        let desc = |spirv| ComputePipelineDesc {
+        let desc = ComputePipelineDesc {
             name: "lightvolume_slice",
-            spirv,
+            spirv: &[],
             bindings: &bindings,
             push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
             specialization: &[],
             max_sets: 1,
         };
         // Slice parity 0 reads side a and writes b; parity 1 the opposite.
-        let mut pipelines = [
-            ComputePipeline::new(ctx, &desc(shaders::LIGHTVOLUME_SLICE_READ_A))?,
-            ComputePipeline::new(ctx, &desc(shaders::LIGHTVOLUME_SLICE_READ_B))?,
-        ];
+        let mut pipelines =
+            parity_pair(ctx, &desc, shaders::LIGHTVOLUME_SLICE_READ_A, shaders::LIGHTVOLUME_SLICE_READ_B)?;
         // Slots: a_in, b_in, a_out, b_out, then the illumination volume.
         let set = pipelines[0].create_set(
             &[
@@ -137,16 +135,7 @@ impl Propagation {
     /// Before the first group pass: the slice buffers' old contents are discarded
     /// (the first slice of every pass writes before anything reads).
     pub fn record_prepare(&self, rec: &mut Recorder) {
-        for image in &self.slices {
-            rec.barrier(&Barrier::image(
-                "slice_buffers_discard_to_propagation",
-                image,
-                Access::NONE,
-                Access::COMPUTE_READ_WRITE,
-                vk::ImageLayout::UNDEFINED,
-                vk::ImageLayout::GENERAL,
-            ));
-        }
+        rec.discard_for_compute("slice_buffers_discard_to_propagation", &[&self.slices[0], &self.slices[1]]);
     }
 
     /// Slices of `group`: the illumination volume's size along its axis.

@@ -47,14 +47,7 @@ impl OutputImage {
     /// Like `prepare_for_compute_write` for an image that shaders also bind for
     /// reading (one side of a ping-pong pair).
     pub fn prepare_for_compute_read_write(&self, rec: &mut Recorder) {
-        rec.barrier(&Barrier::image(
-            "pingpong_discard_to_compute_access",
-            &self.image,
-            Access::NONE,
-            Access::COMPUTE_READ_WRITE,
-            vk::ImageLayout::UNDEFINED,
-            vk::ImageLayout::GENERAL,
-        ));
+        rec.discard_for_compute("pingpong_discard_to_compute_access", &[&self.image]);
     }
 
     /// Host-visible buffer big enough for the image.
@@ -65,16 +58,12 @@ impl OutputImage {
 
     /// Copies the finished frame (written by compute shaders) into `readback`.
     pub fn record_readback(&self, rec: &mut Recorder, readback: &Buffer) {
-        rec.barrier(&Barrier::image(
-            "output_compute_write_to_readback_copy",
+        rec.readback_image(
             &self.image,
-            Access::COMPUTE_WRITE,
-            Access::TRANSFER_READ,
-            vk::ImageLayout::GENERAL,
-            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-        ));
-        rec.copy_image_to_buffer(&self.image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, readback);
-        rec.barrier(&Barrier::memory("readback_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
+            readback,
+            "output_compute_write_to_readback_copy",
+            "readback_copy_to_host_read",
+        );
     }
 
     pub fn read(&self, readback: &Buffer) -> Result<LinearImage, RenderError> {

@@ -240,6 +240,44 @@ impl<'a> Recorder<'a> {
         ));
     }
 
+    /// Hands images whose old contents do not matter to compute shaders: one
+    /// image barrier each, UNDEFINED -> GENERAL, named `name` by the caller.
+    pub fn discard_for_compute(&mut self, name: &'static str, images: &[&Image]) {
+        use super::barriers::Access;
+        for image in images {
+            self.barrier(&Barrier::image(
+                name,
+                image,
+                Access::NONE,
+                Access::COMPUTE_READ_WRITE,
+                vk::ImageLayout::UNDEFINED,
+                vk::ImageLayout::GENERAL,
+            ));
+        }
+    }
+
+    /// Copies an image that compute shaders wrote (GENERAL) into a host-visible
+    /// buffer: barrier `write_to_copy`, the copy, barrier `copy_to_host`.
+    pub fn readback_image(
+        &mut self,
+        image: &Image,
+        readback: &Buffer,
+        write_to_copy: &'static str,
+        copy_to_host: &'static str,
+    ) {
+        use super::barriers::Access;
+        self.barrier(&Barrier::image(
+            write_to_copy,
+            image,
+            Access::COMPUTE_WRITE,
+            Access::TRANSFER_READ,
+            vk::ImageLayout::GENERAL,
+            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+        ));
+        self.copy_image_to_buffer(image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, readback);
+        self.barrier(&Barrier::memory(copy_to_host, Access::TRANSFER_WRITE, Access::HOST_READ));
+    }
+
     /// Clears a colour image that is in TRANSFER_DST_OPTIMAL.
     pub fn clear_color_image(&self, image: &Image, rgba: [f32; 4]) {
         let value = vk::ClearColorValue { float32: rgba };

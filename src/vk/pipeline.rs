@@ -119,6 +119,22 @@ impl Drop for ComputePipeline {
     }
 }
 
+/// The two builds of a ping-pong shader (build.rs `BINDING_VARIANTS`): index 0
+/// reads side a of its pair and writes b, index 1 the opposite. Their layouts are
+/// identical, so one descriptor set (allocated from index 0) serves both and a
+/// block switches sides by binding the other pipeline. `desc.spirv` is unused.
+pub fn parity_pair(
+    ctx: &Context,
+    desc: &ComputePipelineDesc,
+    read_a: &[u8],
+    read_b: &[u8],
+) -> Result<[ComputePipeline; 2], VkError> {
+    Ok([
+        ComputePipeline::new(ctx, &ComputePipelineDesc { spirv: read_a, ..*desc })?,
+        ComputePipeline::new(ctx, &ComputePipelineDesc { spirv: read_b, ..*desc })?,
+    ])
+}
+
 /// Push-constant bytes of a `#[repr(C)]` plain-data struct.
 pub fn push_bytes<T: Copy>(value: &T) -> &[u8] {
     // SAFETY: callers pass #[repr(C)] structs of u32/f32/i32 fields (std430-like
