@@ -20,7 +20,7 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{BindingKind, Resource};
 use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipelineDesc};
-use crate::vk::resources::{GpuData, ImageDesc};
+use crate::vk::resources::GpuData;
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
 use glam::Vec3;
@@ -121,16 +121,7 @@ pub fn slicing(scene: &Scene, settings: &HalfAngleSettings) -> Result<Slicing, R
 }
 
 fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Image, RenderError> {
-    Ok(Image::new(
-        gpu.ctx,
-        name,
-        ImageDesc {
-            image_type: vk::ImageType::TYPE_2D,
-            format: vk::Format::R32_SFLOAT,
-            extent: vk::Extent3D { width: n, height: n, depth: 1 },
-            usage: vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST,
-        },
-    )?)
+    Ok(Image::storage_2d(gpu.ctx, name, vk::Format::R32_SFLOAT, n, n, vk::ImageUsageFlags::TRANSFER_DST)?)
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {

@@ -13,7 +13,6 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::descriptors::{BindingKind, Resource};
 use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipeline, ComputePipelineDesc};
-use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
 use glam::Vec2;
@@ -39,16 +38,7 @@ struct SweepPush {
 }
 
 fn image(gpu: &GpuScene, name: &str, format: vk::Format, width: u32, height: u32) -> Result<Image, VkError> {
-    Image::new(
-        gpu.ctx,
-        name,
-        ImageDesc {
-            image_type: vk::ImageType::TYPE_2D,
-            format,
-            extent: vk::Extent3D { width, height, depth: 1 },
-            usage: vk::ImageUsageFlags::STORAGE,
-        },
-    )
+    Image::storage_2d(gpu.ctx, name, format, width, height, vk::ImageUsageFlags::empty())
 }
 
 /// The 1x1 image bound where the main pass would read l_max when this mode is off.

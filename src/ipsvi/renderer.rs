@@ -23,7 +23,6 @@ use crate::vk::commands::{submit_and_wait, SecondaryCommands};
 use crate::vk::descriptors::{BindingKind, Resource};
 use crate::vk::events::EventPool;
 use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
-use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
 
@@ -69,18 +68,8 @@ struct Cache {
 
 impl Cache {
     fn new(gpu: &GpuScene, size: u32) -> Result<Cache, RenderError> {
-        let image = |name: &str, format| {
-            Image::new(
-                gpu.ctx,
-                name,
-                ImageDesc {
-                    image_type: vk::ImageType::TYPE_2D,
-                    format,
-                    extent: vk::Extent3D { width: size, height: size, depth: 1 },
-                    usage: vk::ImageUsageFlags::STORAGE,
-                },
-            )
-        };
+        let image =
+            |name: &str, format| Image::storage_2d(gpu.ctx, name, format, size, size, vk::ImageUsageFlags::empty());
         Ok(Cache {
             light: [
                 image("ipsvi cache a", vk::Format::R16G16B16A16_SFLOAT)?,

@@ -4,7 +4,6 @@
 use super::error::RenderError;
 use crate::linear_image::LinearImage;
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Recorder};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -17,17 +16,13 @@ pub struct OutputImage {
 
 impl OutputImage {
     pub fn new(ctx: &Context, name: &str, width: u32, height: u32) -> Result<OutputImage, RenderError> {
-        let image = Image::new(
+        let image = Image::storage_2d(
             ctx,
             name,
-            ImageDesc {
-                image_type: vk::ImageType::TYPE_2D,
-                format: vk::Format::R32G32B32A32_SFLOAT,
-                extent: vk::Extent3D { width, height, depth: 1 },
-                usage: vk::ImageUsageFlags::STORAGE
-                    | vk::ImageUsageFlags::TRANSFER_SRC
-                    | vk::ImageUsageFlags::TRANSFER_DST,
-            },
+            vk::Format::R32G32B32A32_SFLOAT,
+            width,
+            height,
+            vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST,
         )?;
         Ok(OutputImage { image, width, height })
     }

@@ -226,6 +226,25 @@ impl Image {
         Ok(Image { raw, view, desc, allocation: Some(allocation), memory: ctx.memory.clone() })
     }
 
+    /// A 2D storage image (compute shaders' buffers, caches, outputs); `extra`
+    /// adds usages such as TRANSFER_SRC for readback or TRANSFER_DST for clears.
+    pub fn storage_2d(
+        ctx: &Context,
+        name: &str,
+        format: vk::Format,
+        width: u32,
+        height: u32,
+        extra: vk::ImageUsageFlags,
+    ) -> Result<Image, VkError> {
+        let desc = ImageDesc {
+            image_type: vk::ImageType::TYPE_2D,
+            format,
+            extent: vk::Extent3D { width, height, depth: 1 },
+            usage: vk::ImageUsageFlags::STORAGE | extra,
+        };
+        Image::new(ctx, name, desc)
+    }
+
     pub fn extent(&self) -> vk::Extent3D {
         self.desc.extent
     }
