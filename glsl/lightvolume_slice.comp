@@ -6,12 +6,18 @@
 // the group (so the read-modify-write of the illumination voxel is race free).
 // Per light it takes the transmittance arriving at the previous slice along the
 // light's direction, attenuates it by the medium between the two slices, writes
-// it to its slice buffer and adds factor * light into the illumination volume.
+// it to its slice buffer and adds factor * light into the illumination volume
+// (a negative factor subtracts a light's old state: selective updates).
 // Compiled twice by build.rs (PARITY 0 reads slice side a and writes b, 1 the
 // opposite), each variant referencing only its sides, so synchronization
 // validation sees what a slice really reads and writes.
 
 layout(local_size_x = 8, local_size_y = 8) in;
+
+// Compensated (two-float) sums: the illumination volume is hi + lo, so a
+// subtraction cancels the earlier addition of the same contribution to about
+// u^2 of the running sum instead of u (selective updates do not drift).
+layout(constant_id = 0) const bool COMPENSATED = true;
 
 #include "volume.glsl"
 #include "lights.glsl"
@@ -36,6 +42,8 @@ layout(set = 0, binding = 6, rgba32f) readonly uniform image3D slice_in;
 layout(set = 0, binding = 7, rgba32f) writeonly uniform image3D slice_out;
 #endif
 layout(set = 0, binding = 9, rgba32f) uniform image3D illumination;
+// Low words of the compensated sums (a one-voxel placeholder when not compensated).
+layout(set = 0, binding = 10, rgba32f) uniform image3D illumination_low;
 
 layout(push_constant) uniform Pass {
     ivec4 axis;   // x propagation axis, y direction the light travels (+1/-1), z slice index k, w light count
@@ -87,6 +95,26 @@ float previous_transmittance(vec2 c, ivec2 size, int slot, ivec2 enters) {
     return mix(T, 1.0, clamp(max(excess.x, excess.y), 0.0, 1.0));
 }
 
+// (s, e) with s + e == a + b exactly (TwoSum; `precise` keeps the compiler
+// from reassociating the error terms away).
+void two_sum(vec3 a, vec3 b, out vec3 s, out vec3 e) {
+    precise vec3 sum = a + b;
+    precise vec3 bv = sum - a;
+    precise vec3 err = (a - (sum - bv)) + (b - bv);
+    s = sum;
+    e = err;
+}
+
+// hi + lo += x, renormalised so that hi is the rounded sum.
+void compensated_add(inout vec3 hi, inout vec3 lo, vec3 x) {
+    vec3 s, e, h, l;
+    two_sum(hi, x, s, e);
+    precise vec3 low = lo + e;
+    two_sum(s, low, h, l);
+    hi = h;
+    lo = l;
+}
+
 void main() {
     int a = pass.axis.x;
     int u = (a + 1) % 3;
@@ -103,7 +131,8 @@ void main() {
     vec3 p = voxel_centre(g);
     // Distance between slice centres along the axis, world units.
     float dstep = 2.0 * frame.box_half[a] / float(pass.grid[a]);
-    vec3 added = vec3(0.0);
+    vec4 hi = imageLoad(illumination, g);
+    vec3 lo = COMPENSATED ? imageLoad(illumination_low, g).rgb : vec3(0.0);
     for (int e = 0; e < pass.axis.w; ++e) {
         GroupEntry entry = entries[pass.grid.w + e];
         Light l = lights[entry.light];
@@ -134,10 +163,17 @@ void main() {
             T *= exp(-optical_depth(p, w.xyz, len));
             vec3 light = l.radiance.rgb * light_shape(l, w) * T;
             result = vec4(light, T);
-            added += entry.factor * light;
+            // Each entry on its own: a contribution's value does not depend on
+            // which other lights share the pass.
+            vec3 x = entry.factor * light;
+            if (COMPENSATED) {
+                compensated_add(hi.rgb, lo, x);
+            } else {
+                hi.rgb += x;
+            }
         }
         imageStore(slice_out, ivec3(t, int(entry.slot)), result);
     }
-    vec4 old = imageLoad(illumination, g);
-    imageStore(illumination, g, vec4(old.rgb + added, 1.0));
+    imageStore(illumination, g, vec4(hi.rgb, 1.0));
+    if (COMPENSATED) imageStore(illumination_low, g, vec4(lo, 0.0));
 }

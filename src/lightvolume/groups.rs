@@ -1,8 +1,11 @@
-//! Coherence-based propagation groups (selective light updates, section 5):
+//! Coherence-based propagation groups (selective light updates, section 4):
 //! six groups, one per propagation direction (+-x, +-y, +-z). Each light joins
 //! the group of the volume face closest to it with factor alpha_c (equation 5a)
 //! and the group of the second closest face with alpha_sc = 1 - alpha_c (5b).
+//! A light's share of one group is a [`Contribution`]; passes are built from
+//! contributions, each with a sign (+1 adds it to the volume, -1 subtracts it).
 
+use crate::render::frame_params::{gpu_light, GpuLight};
 use crate::scene::{Light, LightKind};
 use glam::Vec3;
 use std::f32::consts::PI;
@@ -11,13 +14,37 @@ use std::f32::consts::PI;
 /// the cost of a whole group pass.
 const MIN_FACTOR: f32 = 1e-6;
 
-/// One light's membership in a group.
+/// One light's membership in a group pass.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GroupMember {
-    /// Index into the scene's lights.
+    /// Index into the scene's lights (the light's id).
     pub light: usize,
-    /// Contribution factor alpha (equations 5a/5b).
+    /// Contribution factor alpha (equations 5a/5b), negative where the pass
+    /// subtracts the light's earlier state.
     pub factor: f32,
+    /// The light as propagated (for a subtraction: its old state).
+    pub state: GpuLight,
+}
+
+/// What one light in one state adds to the volume through one group. Equal
+/// contributions propagate to bit-equal values (same shader, same inputs,
+/// whatever else shares the pass), which is what lets a subtraction cancel an
+/// earlier addition.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contribution {
+    pub light: usize,
+    pub state: GpuLight,
+    pub axis: usize,
+    pub travel: i32,
+    /// Positive alpha.
+    pub factor: f32,
+}
+
+impl Contribution {
+    /// Group index in pass order: +x, -x, +y, -y, +z, -z.
+    pub fn group_slot(&self) -> usize {
+        self.axis * 2 + if self.travel > 0 { 0 } else { 1 }
+    }
 }
 
 /// The lights propagated along one axis direction.
@@ -37,9 +64,16 @@ impl PropagationGroup {
         format!("{}{}", if self.travel > 0 { '+' } else { '-' }, ['x', 'y', 'z'][self.axis])
     }
 
-    /// Profiler scope of the group pass, e.g. `lightvolume_group_-y_2lights`.
+    /// Profiler scope of the group pass, e.g. `lightvolume_group_-y_2lights`;
+    /// a pass that subtracts says how many it adds and subtracts, e.g.
+    /// `lightvolume_group_-y_1add_1sub`.
     pub fn scope_name(&self) -> String {
-        format!("lightvolume_group_{}_{}lights", self.direction_name(), self.members.len())
+        let subs = self.members.iter().filter(|m| m.factor < 0.0).count();
+        if subs == 0 {
+            format!("lightvolume_group_{}_{}lights", self.direction_name(), self.members.len())
+        } else {
+            format!("lightvolume_group_{}_{}add_{subs}sub", self.direction_name(), self.members.len() - subs)
+        }
     }
 }
 
@@ -69,33 +103,61 @@ pub fn face_factors(l_pos: Vec3) -> [(usize, i32, f32); 2] {
     [(closest, travel(closest), alpha_c), (second, travel(second), 1.0 - alpha_c)]
 }
 
-/// The non-empty groups of `lights`, in a fixed order (+x, -x, +y, -y, +z, -z).
-pub fn propagation_groups(lights: &[Light]) -> Vec<PropagationGroup> {
-    let mut groups: Vec<PropagationGroup> = (0..6)
-        .map(|i| PropagationGroup { axis: i / 2, travel: if i % 2 == 0 { 1 } else { -1 }, members: Vec::new() })
-        .collect();
+/// Every contribution of the lights that are on (`None` is a light switched
+/// off), in light order.
+pub fn contributions(lights: &[Option<Light>]) -> Vec<Contribution> {
+    let mut out = Vec::new();
     for (index, light) in lights.iter().enumerate() {
+        let Some(light) = light else { continue };
+        let state = gpu_light(light);
         for (axis, travel, factor) in face_factors(light_position_direction(light)) {
             if factor > MIN_FACTOR {
-                let slot = axis * 2 + if travel > 0 { 0 } else { 1 };
-                groups[slot].members.push(GroupMember { light: index, factor });
+                out.push(Contribution { light: index, state, axis, travel, factor });
             }
         }
     }
-    groups.retain(|g| !g.members.is_empty());
-    groups
+    out
+}
+
+/// Passes for `items` (a contribution and the sign it enters with), in group
+/// order (+x, -x, +y, -y, +z, -z, so each axis runs consecutively and its slice
+/// buffers are reused). Coherent: one pass per non-empty group, split after
+/// `pass_lights` members; sequential: one pass per item.
+pub fn group_passes(items: &[(Contribution, f32)], coherent: bool, pass_lights: usize) -> Vec<PropagationGroup> {
+    let mut by_group: Vec<Vec<GroupMember>> = vec![Vec::new(); 6];
+    for (c, sign) in items {
+        by_group[c.group_slot()].push(GroupMember { light: c.light, factor: sign * c.factor, state: c.state });
+    }
+    let per_pass = if coherent { pass_lights.max(1) } else { 1 };
+    let mut passes = Vec::new();
+    for (slot, members) in by_group.into_iter().enumerate() {
+        for chunk in members.chunks(per_pass) {
+            passes.push(PropagationGroup {
+                axis: slot / 2,
+                travel: if slot % 2 == 0 { 1 } else { -1 },
+                members: chunk.to_vec(),
+            });
+        }
+    }
+    passes
+}
+
+fn all_on(lights: &[Light]) -> Vec<Option<Light>> {
+    lights.iter().copied().map(Some).collect()
+}
+
+/// The non-empty groups of `lights`, in a fixed order (+x, -x, +y, -y, +z, -z).
+pub fn propagation_groups(lights: &[Light]) -> Vec<PropagationGroup> {
+    let items: Vec<_> = contributions(&all_on(lights)).into_iter().map(|c| (c, 1.0)).collect();
+    group_passes(&items, true, usize::MAX)
 }
 
 /// Sequential propagation, the paper's baseline: every (light, face) membership
 /// of [`propagation_groups`] as a group of its own, in the same order, so each
 /// light is propagated on its own and nothing is shared between lights.
 pub fn sequential_groups(lights: &[Light]) -> Vec<PropagationGroup> {
-    propagation_groups(lights)
-        .into_iter()
-        .flat_map(|g| {
-            g.members.into_iter().map(move |m| PropagationGroup { axis: g.axis, travel: g.travel, members: vec![m] })
-        })
-        .collect()
+    let items: Vec<_> = contributions(&all_on(lights)).into_iter().map(|c| (c, 1.0)).collect();
+    group_passes(&items, false, 1)
 }
 
 #[cfg(test)]

@@ -1,9 +1,13 @@
-//! The illumination volume: an RGBA32F 3D storage image holding the coloured,
+//! The illumination volume: RGBA32F 3D storage images holding the coloured,
 //! HDR light arriving at each voxel (summed over lights, weighted by their group
-//! factors), at 1, 1/2 or 1/4 of the data resolution. Only this technique
-//! allocates it.
+//! factors), at 1, 1/2 or 1/4 of the data resolution. With compensated sums the
+//! light is `high + low` (the low words in a second volume); otherwise `low` is
+//! a one-voxel placeholder the shader never touches. Only this technique
+//! allocates them. The volume stays in GENERAL layout from the first clear on,
+//! so selective updates can add to what earlier frames left.
 
 use crate::render::RenderError;
+use crate::vk::barriers::{Access, Barrier};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Recorder, VkError};
 use ash::vk;
@@ -14,7 +18,36 @@ const FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 
 pub struct IlluminationVolume {
     pub image: Image,
+    pub low: Image,
+    pub compensated: bool,
     pub size: UVec3,
+}
+
+/// The volume read back: per voxel (x fastest) the high words, and the low words
+/// where the sums are compensated.
+pub struct IlluminationReadback {
+    pub high: Vec<[f32; 4]>,
+    pub low: Option<Vec<[f32; 4]>>,
+}
+
+impl IlluminationReadback {
+    /// Voxel i's light, channel c, as the exact value of its two-float sum.
+    pub fn value(&self, i: usize, c: usize) -> f64 {
+        self.high[i][c] as f64 + self.low.as_ref().map_or(0.0, |l| l[i][c] as f64)
+    }
+}
+
+fn volume_image(ctx: &Context, name: &str, size: UVec3) -> Result<Image, VkError> {
+    Image::new(
+        ctx,
+        name,
+        ImageDesc {
+            image_type: vk::ImageType::TYPE_3D,
+            format: FORMAT,
+            extent: vk::Extent3D { width: size.x, height: size.y, depth: size.z },
+            usage: vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC,
+        },
+    )
 }
 
 impl IlluminationVolume {
@@ -25,7 +58,7 @@ impl IlluminationVolume {
         UVec3::new(dims.x.div_ceil(s), dims.y.div_ceil(s), dims.z.div_ceil(s)).max(UVec3::ONE)
     }
 
-    pub fn new(ctx: &Context, dims: UVec3, scale: u32) -> Result<IlluminationVolume, RenderError> {
+    pub fn new(ctx: &Context, dims: UVec3, scale: u32, compensated: bool) -> Result<IlluminationVolume, RenderError> {
         if !ctx.format_supports(FORMAT, vk::FormatFeatureFlags::STORAGE_IMAGE) {
             return Err(VkError::NoFormat {
                 kind: "illumination volume",
@@ -35,22 +68,16 @@ impl IlluminationVolume {
             .into());
         }
         let size = Self::size_for(dims, scale);
-        let image = Image::new(
-            ctx,
-            "lightvolume illumination",
-            ImageDesc {
-                image_type: vk::ImageType::TYPE_3D,
-                format: FORMAT,
-                extent: vk::Extent3D { width: size.x, height: size.y, depth: size.z },
-                usage: vk::ImageUsageFlags::STORAGE
-                    | vk::ImageUsageFlags::TRANSFER_DST
-                    | vk::ImageUsageFlags::TRANSFER_SRC,
-            },
-        )?;
-        Ok(IlluminationVolume { image, size })
+        let image = volume_image(ctx, "lightvolume illumination", size)?;
+        let low = if compensated {
+            volume_image(ctx, "lightvolume illumination low words", size)?
+        } else {
+            volume_image(ctx, "lightvolume illumination low placeholder", UVec3::ONE)?
+        };
+        Ok(IlluminationVolume { image, low, compensated, size })
     }
 
-    /// Zeroes the volume before the group passes add into it.
+    /// Zeroes the volume before an entire update adds into it.
     pub fn record_clear(&self, rec: &mut Recorder) {
         rec.clear_for_compute(
             &self.image,
@@ -58,30 +85,73 @@ impl IlluminationVolume {
             "illumination_discard_to_clear",
             "illumination_clear_to_propagation",
         );
-    }
-
-    pub fn readback_buffer(&self, ctx: &Context) -> Result<Buffer, RenderError> {
-        let bytes = self.size.x as u64 * self.size.y as u64 * self.size.z as u64 * 16;
-        Ok(Buffer::staging(
-            ctx,
-            "illumination readback",
-            bytes,
-            vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuToCpu,
-        )?)
-    }
-
-    /// After the ray cast: copies the volume into `readback` (x fastest, then y, z).
-    pub fn record_readback(&self, rec: &mut Recorder, readback: &Buffer) {
-        rec.readback_image(
-            &self.image,
-            readback,
-            "illumination_compute_access_to_readback_copy",
-            "illumination_readback_copy_to_host_read",
+        rec.clear_for_compute(
+            &self.low,
+            [0.0; 4],
+            "illumination_low_discard_to_clear",
+            "illumination_low_clear_to_propagation",
         );
     }
 
-    pub fn read(&self, readback: &Buffer) -> Result<Vec<[f32; 4]>, RenderError> {
-        Ok(readback.read((self.size.x * self.size.y * self.size.z) as usize)?)
+    /// Voxels of the volume (of each of its two images when compensated).
+    pub fn voxel_count(&self) -> usize {
+        (self.size.x * self.size.y * self.size.z) as usize
+    }
+
+    pub fn readback_buffers(&self, ctx: &Context) -> Result<[Buffer; 2], RenderError> {
+        let bytes = self.voxel_count() as u64 * 16;
+        let low_bytes = if self.compensated { bytes } else { 16 };
+        let buffer = |name, bytes| {
+            Buffer::staging(ctx, name, bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)
+        };
+        Ok([buffer("illumination readback", bytes)?, buffer("illumination low readback", low_bytes)?])
+    }
+
+    /// After the ray cast: copies the volume into `readback` (x fastest, then y,
+    /// z), leaving it in GENERAL for the next update.
+    pub fn record_readback(&self, rec: &mut Recorder, readback: &[Buffer; 2]) {
+        let images: Vec<&Image> = if self.compensated { vec![&self.image, &self.low] } else { vec![&self.image] };
+        for (image, name) in
+            images.iter().zip(["illumination_write_to_readback_copy", "illumination_low_write_to_readback_copy"])
+        {
+            rec.barrier(&Barrier::image(
+                name,
+                image,
+                Access::COMPUTE_WRITE,
+                Access::TRANSFER_READ,
+                vk::ImageLayout::GENERAL,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+            ));
+        }
+        for (image, buffer) in images.iter().zip(readback) {
+            rec.copy_image_to_buffer(image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, buffer);
+        }
+        // Back to GENERAL for the next update, which adds to what is there.
+        for (image, name) in images
+            .iter()
+            .zip(["illumination_readback_copy_to_next_update", "illumination_low_readback_copy_to_next_update"])
+        {
+            rec.barrier(&Barrier::image(
+                name,
+                image,
+                Access::TRANSFER_READ,
+                Access::COMPUTE_READ_WRITE,
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                vk::ImageLayout::GENERAL,
+            ));
+        }
+        rec.barrier(&Barrier::memory(
+            "illumination_readback_copy_to_host_read",
+            Access::TRANSFER_WRITE,
+            Access::HOST_READ,
+        ));
+    }
+
+    pub fn read(&self, readback: &[Buffer; 2]) -> Result<IlluminationReadback, RenderError> {
+        let n = self.voxel_count();
+        Ok(IlluminationReadback {
+            high: readback[0].read(n)?,
+            low: if self.compensated { Some(readback[1].read(n)?) } else { None },
+        })
     }
 }

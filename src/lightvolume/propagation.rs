@@ -1,11 +1,16 @@
-//! Slice-by-slice propagation of each group's lights through the volume
+//! Slice-by-slice propagation of each pass's lights through the volume
 //! (glsl/lightvolume_slice.comp): per light a pair of slice buffers used as a
-//! ping-pong, one dispatch per slice for all lights of the group, each followed
-//! by the barrier `slice_write_to_next_slice_read`. Every group pass is recorded
-//! into its own secondary command buffer.
+//! ping-pong, one dispatch per slice for all lights of the pass, each followed
+//! by the barrier `slice_write_to_next_slice_read`. Every pass is recorded into
+//! its own secondary command buffer. The lights a pass reads come from a slot
+//! buffer (current states and, for subtractions, old ones) and its entries
+//! (slot, signed factor, slice layer) from its own region of an entries buffer,
+//! so a recorded pass stays valid as long as its slots and region keep their
+//! contents.
 
 use super::groups::PropagationGroup;
 use super::illumination::IlluminationVolume;
+use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
 use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::{GpuScene, RenderError};
 use crate::shaders;
@@ -13,19 +18,23 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::SecondaryCommands;
 use crate::vk::descriptors::{BindingKind, Resource};
 use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipeline, ComputePipelineDesc};
-use crate::vk::resources::{GpuData, ImageDesc};
+use crate::vk::resources::{as_bytes, GpuData, ImageDesc};
 use crate::vk::{Buffer, Context, Image, Recorder};
 use ash::vk;
 use glam::UVec3;
+use gpu_allocator::MemoryLocation;
 
 /// Mirrors `GroupEntry` in glsl/lightvolume_slice.comp.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-struct GroupEntry {
-    light: u32,
-    factor: f32,
-    slot: u32,
-    pad: u32,
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GroupEntry {
+    /// Slot of the light's state in the slot buffer.
+    pub light: u32,
+    /// Signed contribution factor.
+    pub factor: f32,
+    /// Layer of the slice buffers.
+    pub slot: u32,
+    pub pad: u32,
 }
 
 impl GpuData for GroupEntry {}
@@ -38,9 +47,11 @@ struct SlicePush {
     grid: [i32; 4],
 }
 
-/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
-const OWN_BINDINGS: [BindingKind; 6] = [
+/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS; binding 3, the
+/// scene's lights, is replaced by the slot buffer).
+const OWN_BINDINGS: [BindingKind; 7] = [
     BindingKind::StorageBuffer,
+    BindingKind::StorageImage,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
     BindingKind::StorageImage,
@@ -50,44 +61,54 @@ const OWN_BINDINGS: [BindingKind; 6] = [
 
 const GROUP_SIZE: u32 = 8;
 
+/// How much a [`Propagation`] holds: slice layers (lights per pass), light
+/// slots and pass entries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Capacity {
+    pub layers: u32,
+    pub slots: usize,
+    pub entries: usize,
+}
+
+impl Capacity {
+    pub fn holds(&self, other: &Capacity) -> bool {
+        self.layers >= other.layers && self.slots >= other.slots && self.entries >= other.entries
+    }
+}
+
 pub struct Propagation {
-    pub groups: Vec<PropagationGroup>,
+    pub capacity: Capacity,
     grid: UVec3,
-    first_entry: Vec<u32>,
     pipelines: [ComputePipeline; 2],
     set: vk::DescriptorSet,
-    /// Slice buffer sides a and b: x, y a slice texel, z the light's slot in
-    /// its group (a 3D image stands in for a 2D array: one layer per light).
+    /// Slice buffer sides a and b: x, y a slice texel, z the light's layer in
+    /// its pass (a 3D image stands in for a 2D array: one layer per light).
     slices: [Image; 2],
-    _entries: Buffer,
+    slots: Buffer,
+    entries: Buffer,
+    _frame: Buffer,
 }
 
 impl Propagation {
-    /// Resources and pipelines for `groups` (non-empty, each with members).
     pub fn new(
         gpu: &GpuScene,
-        frame: &Buffer,
         illumination: &IlluminationVolume,
-        groups: Vec<PropagationGroup>,
+        capacity: Capacity,
     ) -> Result<Propagation, RenderError> {
         let ctx = gpu.ctx;
-        let mut entries = Vec::new();
-        let mut first_entry = Vec::new();
-        for g in &groups {
-            first_entry.push(entries.len() as u32);
-            for (slot, m) in g.members.iter().enumerate() {
-                entries.push(GroupEntry { light: m.light as u32, factor: m.factor, slot: slot as u32, pad: 0 });
-            }
-        }
-        if entries.is_empty() {
-            return Err(RenderError::Invalid("light volume propagation without lights".into()));
-        }
-        let entries_buffer =
-            Buffer::with_data(ctx, "lightvolume group entries", &entries, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let scene = gpu.scene;
+        // Only the box geometry is read: any image size will do.
+        let params = frame_params(scene, 1, 1, gpu.lut_size, MarchSteps::render(scene));
+        let frame =
+            Buffer::with_data(ctx, "lightvolume frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+        let host_buffer = |name: &str, bytes: usize| {
+            Buffer::new(ctx, name, bytes as u64, vk::BufferUsageFlags::STORAGE_BUFFER, MemoryLocation::CpuToGpu)
+        };
+        let slots = host_buffer("lightvolume light slots", capacity.slots * std::mem::size_of::<GpuLight>())?;
+        let entries = host_buffer("lightvolume pass entries", capacity.entries * std::mem::size_of::<GroupEntry>())?;
         let grid = illumination.size;
         // Every slice of every group fits: lateral sizes are at most the largest axis.
         let side = grid.max_element();
-        let layers = groups.iter().map(|g| g.members.len() as u32).max().unwrap_or(1).max(1);
         let slice_image = |name: &str| {
             Image::new(
                 ctx,
@@ -95,45 +116,58 @@ impl Propagation {
                 ImageDesc {
                     image_type: vk::ImageType::TYPE_3D,
                     format: vk::Format::R32G32B32A32_SFLOAT,
-                    extent: vk::Extent3D { width: side, height: side, depth: layers },
+                    extent: vk::Extent3D { width: side, height: side, depth: capacity.layers },
                     usage: vk::ImageUsageFlags::STORAGE,
                 },
             )
         };
         let slices = [slice_image("lightvolume slice a")?, slice_image("lightvolume slice b")?];
         let bindings = bindings_after_scene(&OWN_BINDINGS);
-        let scene = gpu.scene_resources(frame);
+        let mut scene_resources = gpu.scene_resources(&frame);
+        scene_resources[3] = Resource::StorageBuffer(&slots);
+        let compensated = illumination.compensated as u32;
         let desc = ComputePipelineDesc {
             name: "lightvolume_slice",
             spirv: &[],
             bindings: &bindings,
             push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
-            specialization: &[],
+            specialization: &[(0, compensated)],
             max_sets: 1,
         };
         // Slice parity 0 reads side a and writes b; parity 1 the opposite.
         let mut pipelines =
             parity_pair(ctx, &desc, shaders::LIGHTVOLUME_SLICE_READ_A, shaders::LIGHTVOLUME_SLICE_READ_B)?;
-        // Slots: a_in, b_in, a_out, b_out, then the illumination volume.
+        // Slots: a_in, b_in, a_out, b_out, then the illumination volume's two words.
         let set = pipelines[0].create_set(
             &[
-                &scene[..],
+                &scene_resources[..],
                 &[
-                    Resource::StorageBuffer(&entries_buffer),
+                    Resource::StorageBuffer(&entries),
                     Resource::StorageImage(&slices[0]),
                     Resource::StorageImage(&slices[1]),
                     Resource::StorageImage(&slices[0]),
                     Resource::StorageImage(&slices[1]),
                     Resource::StorageImage(&illumination.image),
+                    Resource::StorageImage(&illumination.low),
                 ],
             ]
             .concat(),
         )?;
-        Ok(Propagation { groups, grid, first_entry, pipelines, set, slices, _entries: entries_buffer })
+        Ok(Propagation { capacity, grid, pipelines, set, slices, slots, entries, _frame: frame })
     }
 
-    /// Before the first group pass: the slice buffers' old contents are discarded
-    /// (the first slice of every pass writes before anything reads).
+    /// Writes light states into the slot buffer from slot `first` on (between
+    /// frames: the previous frame has completed).
+    pub fn write_slots(&mut self, first: usize, states: &[GpuLight]) -> Result<(), RenderError> {
+        Ok(self.slots.write_bytes(first * std::mem::size_of::<GpuLight>(), as_bytes(states))?)
+    }
+
+    pub fn write_entries(&mut self, first: usize, entries: &[GroupEntry]) -> Result<(), RenderError> {
+        Ok(self.entries.write_bytes(first * std::mem::size_of::<GroupEntry>(), as_bytes(entries))?)
+    }
+
+    /// Before the first pass of a frame: the slice buffers' old contents are
+    /// discarded (the first slice of every pass writes before anything reads).
     pub fn record_prepare(&self, rec: &mut Recorder) {
         rec.discard_for_compute("slice_buffers_discard_to_propagation", &[&self.slices[0], &self.slices[1]]);
     }
@@ -143,13 +177,19 @@ impl Propagation {
         self.grid[group.axis]
     }
 
-    /// One secondary command buffer per group, in the order of `groups`.
-    pub fn record_secondaries(&self, ctx: &Context) -> Result<SecondaryCommands, RenderError> {
+    /// Records `group` into a secondary command buffer; its entries lie at
+    /// `first_entry` of the entries buffer.
+    pub fn record_pass(
+        &self,
+        ctx: &Context,
+        group: &PropagationGroup,
+        first_entry: u32,
+    ) -> Result<SecondaryCommands, RenderError> {
         let dependency =
             Barrier::memory("slice_write_to_next_slice_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE);
         let grid = self.grid.as_ivec3();
-        Ok(SecondaryCommands::record(ctx, "lightvolume group", self.groups.len(), |i, rec| {
-            let group = &self.groups[i];
+        let name = group.scope_name();
+        Ok(SecondaryCommands::record(ctx, &name, 1, |_, rec| {
             let (u, v) = ((group.axis + 1) % 3, (group.axis + 2) % 3);
             rec.bind(&self.pipelines[0], self.set);
             for k in 0..self.slice_count(group) {
@@ -157,12 +197,12 @@ impl Propagation {
                 rec.bind_pipeline(pipeline);
                 let push = SlicePush {
                     axis: [group.axis as i32, group.travel, k as i32, group.members.len() as i32],
-                    grid: [grid.x, grid.y, grid.z, self.first_entry[i] as i32],
+                    grid: [grid.x, grid.y, grid.z, first_entry as i32],
                 };
                 rec.push(pipeline, push_bytes(&push));
                 rec.dispatch(self.grid[u].div_ceil(GROUP_SIZE), self.grid[v].div_ceil(GROUP_SIZE), 1);
                 // This slice's buffer and illumination writes are what the next
-                // slice (or the next group, or the ray cast) reads.
+                // slice (or the next pass, or the ray cast) reads.
                 rec.barrier(&dependency);
             }
             Ok(())

@@ -4,22 +4,66 @@
 use crate::render::RenderError;
 use crate::scene::Scene;
 
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// Section 5's cost estimates deciding between a selective and an entire update.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CostEstimate {
+    /// Selective when at most half of the lights changed.
+    Share,
+    /// Selective when it needs fewer propagation passes than an entire update;
+    /// on a tie, the share decides.
+    Passes,
+}
+
+impl CostEstimate {
+    pub fn name(self) -> &'static str {
+        match self {
+            CostEstimate::Share => "share",
+            CostEstimate::Passes => "passes",
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
 pub struct LightVolumeSettings {
     /// Data voxels per illumination voxel along each axis: 1, 2 or 4.
     pub scale: u32,
     /// Coherence-based propagation (the lights of a group share its passes) or
     /// sequential (one pass per light and face, the paper's baseline).
     pub coherent: bool,
+    /// Compensated (two-float) summation into the illumination volume, so that
+    /// subtracting a light cancels its addition to about 1e-14 of the largest
+    /// value instead of 6e-8 (one more RGBA32F volume).
+    pub compensated: bool,
+    pub cost_estimate: CostEstimate,
+    /// Incremental mode: at most this many propagation passes per frame (0: all).
+    pub max_passes_per_frame: u32,
+    /// Most lights one pass carries (a larger group is split): the slice buffers
+    /// hold this many layers.
+    pub pass_lights: u32,
+    /// Re-base (entire update) once the bound on the rounding error that
+    /// selective updates have accumulated exceeds this share of the weakest
+    /// light's peak contribution.
+    pub rebase_tolerance: f64,
 }
 
 impl Default for LightVolumeSettings {
     fn default() -> Self {
         // Half resolution: the paper's trade of memory and propagation time
         // against shadow sharpness.
-        LightVolumeSettings { scale: 2, coherent: true }
+        LightVolumeSettings {
+            scale: 2,
+            coherent: true,
+            compensated: true,
+            cost_estimate: CostEstimate::Passes,
+            max_passes_per_frame: 0,
+            pass_lights: 16,
+            rebase_tolerance: 1e-6,
+        }
     }
 }
+
+const KNOWN: &str = "scale (1, 2 or 4), coherent, compensated (true or false), cost_estimate (\"share\" or \
+                     \"passes\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0)";
 
 impl LightVolumeSettings {
     /// Reads `[lightvolume]`; a missing table gives the defaults, unknown keys
@@ -29,14 +73,21 @@ impl LightVolumeSettings {
         let Some(table) = scene.techniques.get("lightvolume") else { return Ok(s) };
         let table = table.as_table().ok_or_else(|| RenderError::Invalid("[lightvolume] must be a table".into()))?;
         for (key, v) in table {
-            match (key.as_str(), v.as_integer(), v.as_bool()) {
-                ("scale", Some(x), _) if matches!(x, 1 | 2 | 4) => s.scale = x as u32,
-                ("coherent", _, Some(b)) => s.coherent = b,
-                _ => {
-                    return Err(RenderError::Invalid(format!(
-                        "lightvolume.{key} = {v}: the known keys are scale (1, 2 or 4) and coherent (true or false)"
-                    )))
+            let float = v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+            match (key.as_str(), v.as_integer(), v.as_bool(), v.as_str()) {
+                ("scale", Some(x), _, _) if matches!(x, 1 | 2 | 4) => s.scale = x as u32,
+                ("coherent", _, Some(b), _) => s.coherent = b,
+                ("compensated", _, Some(b), _) => s.compensated = b,
+                ("cost_estimate", _, _, Some("share")) => s.cost_estimate = CostEstimate::Share,
+                ("cost_estimate", _, _, Some("passes")) => s.cost_estimate = CostEstimate::Passes,
+                ("max_passes_per_frame", Some(x), _, _) if (0..=1_000_000).contains(&x) => {
+                    s.max_passes_per_frame = x as u32
                 }
+                ("pass_lights", Some(x), _, _) if (1..=64).contains(&x) => s.pass_lights = x as u32,
+                ("rebase_tolerance", _, _, _) if float.is_some_and(|f| f.is_finite() && f > 0.0) => {
+                    s.rebase_tolerance = float.unwrap_or_default()
+                }
+                _ => return Err(RenderError::Invalid(format!("lightvolume.{key} = {v}: the known keys are {KNOWN}"))),
             }
         }
         Ok(s)

@@ -1,7 +1,7 @@
 //! Host mirrors of the shader-side `Frame` uniform block and `Light` records
 //! (glsl/frame.glsl, glsl/lights.glsl): all vec4s, so std140 and std430 agree.
 
-use crate::scene::{Falloff, LightKind, Scene};
+use crate::scene::{Falloff, Light, LightKind, Scene};
 use crate::vk::resources::GpuData;
 
 #[repr(C)]
@@ -22,7 +22,7 @@ pub struct FrameParams {
 impl GpuData for FrameParams {}
 
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct GpuLight {
     pub pos_type: [f32; 4],
     pub spot_dir: [f32; 4],
@@ -78,35 +78,31 @@ pub fn frame_params(scene: &Scene, width: u32, height: u32, lut_size: usize, ste
 }
 
 pub fn gpu_lights(scene: &Scene) -> Vec<GpuLight> {
-    scene
-        .lights
-        .iter()
-        .map(|l| {
-            let rad = l.radiance();
-            let falloff = if l.falloff == Falloff::InverseSquare { 1.0 } else { 0.0 };
-            match l.kind {
-                LightKind::Directional { direction } => GpuLight {
-                    pos_type: direction.normalize_or(glam::Vec3::NEG_Y).extend(0.0).to_array(),
-                    spot_dir: [0.0, 0.0, 0.0, 1.0],
-                    radiance: rad.extend(0.0).to_array(),
-                    params: [falloff, 0.0, 0.0, 0.0],
-                },
-                LightKind::Point { position } => GpuLight {
-                    pos_type: position.extend(1.0).to_array(),
-                    spot_dir: [0.0, 0.0, 0.0, 1.0],
-                    radiance: rad.extend(0.0).to_array(),
-                    params: [falloff, 0.0, 0.0, 0.0],
-                },
-                LightKind::Spot { position, direction, inner_cone_deg, outer_cone_deg } => GpuLight {
-                    pos_type: position.extend(2.0).to_array(),
-                    spot_dir: direction
-                        .normalize_or(glam::Vec3::NEG_Y)
-                        .extend(inner_cone_deg.to_radians().cos())
-                        .to_array(),
-                    radiance: rad.extend(outer_cone_deg.to_radians().cos()).to_array(),
-                    params: [falloff, 0.0, 0.0, 0.0],
-                },
-            }
-        })
-        .collect()
+    scene.lights.iter().map(gpu_light).collect()
+}
+
+/// One light as the shaders read it (glsl/lights.glsl).
+pub fn gpu_light(l: &Light) -> GpuLight {
+    let rad = l.radiance();
+    let falloff = if l.falloff == Falloff::InverseSquare { 1.0 } else { 0.0 };
+    match l.kind {
+        LightKind::Directional { direction } => GpuLight {
+            pos_type: direction.normalize_or(glam::Vec3::NEG_Y).extend(0.0).to_array(),
+            spot_dir: [0.0, 0.0, 0.0, 1.0],
+            radiance: rad.extend(0.0).to_array(),
+            params: [falloff, 0.0, 0.0, 0.0],
+        },
+        LightKind::Point { position } => GpuLight {
+            pos_type: position.extend(1.0).to_array(),
+            spot_dir: [0.0, 0.0, 0.0, 1.0],
+            radiance: rad.extend(0.0).to_array(),
+            params: [falloff, 0.0, 0.0, 0.0],
+        },
+        LightKind::Spot { position, direction, inner_cone_deg, outer_cone_deg } => GpuLight {
+            pos_type: position.extend(2.0).to_array(),
+            spot_dir: direction.normalize_or(glam::Vec3::NEG_Y).extend(inner_cone_deg.to_radians().cos()).to_array(),
+            radiance: rad.extend(outer_cone_deg.to_radians().cos()).to_array(),
+            params: [falloff, 0.0, 0.0, 0.0],
+        },
+    }
 }

@@ -39,6 +39,14 @@ impl Access {
     pub const CLEAR_WRITE: Access =
         Access { stage: vk::PipelineStageFlags2::ALL_TRANSFER, access: vk::AccessFlags2::TRANSFER_WRITE };
     pub const HOST_READ: Access = Access { stage: vk::PipelineStageFlags2::HOST, access: vk::AccessFlags2::HOST_READ };
+    /// Any device access: for resources kept from one submission to the next,
+    /// where the earlier frame's last use varies.
+    pub const ANY: Access = Access {
+        stage: vk::PipelineStageFlags2::ALL_COMMANDS,
+        access: vk::AccessFlags2::from_raw(
+            vk::AccessFlags2::MEMORY_READ.as_raw() | vk::AccessFlags2::MEMORY_WRITE.as_raw(),
+        ),
+    };
 }
 
 /// A barrier about to be recorded: a global memory barrier or an image barrier

@@ -1,0 +1,366 @@
+//! The light volume kept from frame to frame: the illumination volume, what it
+//! holds (contributions), the recorded passes, and the view pass. Each frame
+//! plans an update (plan.rs), runs its passes from their secondary command
+//! buffers and ray casts the image.
+
+use super::groups::{contributions, Contribution, PropagationGroup};
+use super::illumination::{IlluminationReadback, IlluminationVolume};
+use super::pass_cache::{PassCache, PassKey, RecordedPass};
+use super::plan::{apply, drift_after, plan_update, PeakGeometry, PlanState, UpdateKind, UpdatePlan};
+use super::propagation::{Capacity, GroupEntry, Propagation};
+use super::raycast::RayCast;
+use super::settings::LightVolumeSettings;
+use crate::linear_image::LinearImage;
+use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
+use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::scene::Light;
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::commands::submit_and_wait;
+use crate::vk::{Buffer, Profiler};
+use ash::vk;
+use glam::UVec3;
+
+/// What an update did and why.
+#[derive(Clone, Debug)]
+pub struct UpdateReport {
+    pub plan: UpdatePlan,
+    /// Passes recorded into new secondary command buffers this frame, and
+    /// passes replayed from earlier ones.
+    pub recorded: usize,
+    pub reused: usize,
+    /// Bound on the rounding error selective updates have left since the last
+    /// entire update (volume units).
+    pub drift_bound: f64,
+}
+
+/// One frame: the update, and the image when a view was asked for.
+pub struct LightVolumeFrame {
+    pub image: Option<LinearImage>,
+    pub dispatches: u32,
+    pub barriers: u32,
+    /// Illumination volume size.
+    pub grid: UVec3,
+    /// The passes that ran, in order.
+    pub groups: Vec<PropagationGroup>,
+    pub update: UpdateReport,
+    /// The illumination volume after the frame, when asked for.
+    pub illumination: Option<IlluminationReadback>,
+}
+
+struct ViewPass {
+    width: u32,
+    height: u32,
+    _frame: Buffer,
+    output: OutputImage,
+    raycast: RayCast,
+    readback: Buffer,
+}
+
+pub struct LightVolumeRenderer<'s> {
+    gpu: &'s GpuScene<'s>,
+    pub settings: LightVolumeSettings,
+    illumination: IlluminationVolume,
+    propagation: Option<Propagation>,
+    cache: PassCache,
+    /// Mirror of the slot buffer (None: never written).
+    slot_states: Vec<Option<GpuLight>>,
+    /// What the volume holds.
+    present: Vec<Contribution>,
+    plan_state: PlanState,
+    geometry: PeakGeometry,
+    view: Option<ViewPass>,
+    updates: u64,
+}
+
+impl<'s> LightVolumeRenderer<'s> {
+    pub fn new(gpu: &'s GpuScene<'s>) -> Result<Self, RenderError> {
+        let settings = LightVolumeSettings::from_scene(gpu.scene)?;
+        let illumination =
+            IlluminationVolume::new(gpu.ctx, gpu.scene.volume.dims, settings.scale, settings.compensated)?;
+        let bx = gpu.scene.volume_box();
+        Ok(LightVolumeRenderer {
+            gpu,
+            settings,
+            illumination,
+            propagation: None,
+            cache: PassCache::default(),
+            slot_states: Vec::new(),
+            present: Vec::new(),
+            plan_state: PlanState { invalid: true, ..Default::default() },
+            geometry: PeakGeometry { box_half: bx.half_extent, voxel_length: bx.voxel_length },
+            view: None,
+            updates: 0,
+        })
+    }
+
+    pub fn grid(&self) -> UVec3 {
+        self.illumination.size
+    }
+
+    /// The next update rebuilds the volume entirely (after a change of the
+    /// data or the transfer function, which every light sees).
+    pub fn invalidate(&mut self) {
+        self.plan_state.invalid = true;
+    }
+
+    /// Brings the volume up to `lights` (`None`: a light switched off; the
+    /// index is the light's identity) without rendering an image.
+    pub fn update(
+        &mut self,
+        lights: &[Option<Light>],
+        profiler: &mut Profiler,
+    ) -> Result<LightVolumeFrame, RenderError> {
+        self.frame(lights, None, profiler, false)
+    }
+
+    /// Updates the volume and ray casts a `width` x `height` image.
+    pub fn render(
+        &mut self,
+        lights: &[Option<Light>],
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+        read_illumination: bool,
+    ) -> Result<LightVolumeFrame, RenderError> {
+        self.frame(lights, Some((width, height)), profiler, read_illumination)
+    }
+
+    fn frame(
+        &mut self,
+        lights: &[Option<Light>],
+        view: Option<(u32, u32)>,
+        profiler: &mut Profiler,
+        read_illumination: bool,
+    ) -> Result<LightVolumeFrame, RenderError> {
+        self.updates += 1;
+        let target = contributions(lights);
+        let plan = plan_update(&self.present, &target, &self.settings, &self.plan_state, self.geometry);
+        let (pass_indices, recorded) = self.prepare_passes(lights, &plan.passes)?;
+        if let Some((width, height)) = view {
+            self.prepare_view(width, height)?;
+        }
+        let ctx = self.gpu.ctx;
+        let illumination_readback =
+            if read_illumination { Some(self.illumination.readback_buffers(ctx)?) } else { None };
+        let view_pass = if view.is_some() { self.view.as_ref() } else { None };
+        let (illumination, propagation, cache) = (&self.illumination, &self.propagation, &self.cache);
+        let (dispatches, barriers) = submit_and_wait(ctx, "lightvolume frame", |rec| {
+            // The volume, slots and entries carry over from the previous frame,
+            // whose last use of them varies (propagation, ray cast or readback).
+            rec.barrier(&Barrier::memory("previous_frame_to_this_frame", Access::ANY, Access::ANY));
+            if plan.kind != UpdateKind::Unchanged {
+                let update_scope = profiler.begin(rec, plan.kind.scope_name())?;
+                if plan.kind == UpdateKind::Entire {
+                    illumination.record_clear(rec);
+                }
+                if let (Some(p), false) = (propagation, pass_indices.is_empty()) {
+                    p.record_prepare(rec);
+                    for &i in &pass_indices {
+                        let pass = &cache.passes[i];
+                        let scope = profiler.begin(rec, &pass.name)?;
+                        rec.execute(&pass.commands, 0);
+                        profiler.end(rec, scope)?;
+                    }
+                }
+                profiler.end(rec, update_scope)?;
+            }
+            if let Some(v) = view_pass {
+                v.output.prepare_for_compute_write(rec);
+                let scope = profiler.begin(rec, "lightvolume_raycast")?;
+                v.raycast.record(rec, v.width, v.height);
+                profiler.end(rec, scope)?;
+                v.output.record_readback(rec, &v.readback);
+            }
+            if let Some(buffers) = &illumination_readback {
+                illumination.record_readback(rec, buffers);
+            }
+            Ok((rec.dispatch_count, rec.barrier_count))
+        })?;
+        let image = match view_pass {
+            Some(v) => Some(v.output.read(&v.readback)?),
+            None => None,
+        };
+        let volume = match &illumination_readback {
+            Some(buffers) => Some(self.illumination.read(buffers)?),
+            None => None,
+        };
+        let drift = drift_after(&self.plan_state, &self.present, &plan, &self.settings, self.geometry);
+        apply(&mut self.present, plan.kind == UpdateKind::Entire, &plan.passes);
+        self.plan_state = PlanState { invalid: false, pending: plan.deferred > 0, drift };
+        let update = UpdateReport {
+            recorded,
+            reused: plan.passes.len() - recorded,
+            drift_bound: drift.bound,
+            plan: plan.clone(),
+        };
+        Ok(LightVolumeFrame {
+            image,
+            dispatches,
+            barriers,
+            grid: self.illumination.size,
+            groups: plan.passes,
+            update,
+            illumination: volume,
+        })
+    }
+
+    /// Reads the illumination volume back (its own submission).
+    pub fn read_illumination(&self) -> Result<IlluminationReadback, RenderError> {
+        let ctx = self.gpu.ctx;
+        let buffers = self.illumination.readback_buffers(ctx)?;
+        submit_and_wait(ctx, "lightvolume readback", |rec| {
+            rec.barrier(&Barrier::memory("previous_frame_to_readback", Access::ANY, Access::ANY));
+            self.illumination.record_readback(rec, &buffers);
+            Ok(())
+        })?;
+        self.illumination.read(&buffers)
+    }
+
+    fn prepare_view(&mut self, width: u32, height: u32) -> Result<(), RenderError> {
+        if self.view.as_ref().is_some_and(|v| v.width == width && v.height == height) {
+            return Ok(());
+        }
+        let (gpu, ctx) = (self.gpu, self.gpu.ctx);
+        let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
+        let frame = Buffer::with_data(ctx, "lightvolume view params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+        let output = OutputImage::new(ctx, "lightvolume output", width, height)?;
+        let raycast = RayCast::new(gpu, &frame, &self.illumination, &output)?;
+        let readback = output.readback_buffer(ctx)?;
+        self.view = Some(ViewPass { width, height, _frame: frame, output, raycast, readback });
+        Ok(())
+    }
+
+    /// Slot of every member of `passes`, the light states to write and the slots
+    /// needed: light i's current state in slot i, old states (subtractions) in
+    /// any slot already holding them, else in extra slots after the lights.
+    fn assign_slots(
+        &self,
+        lights: &[Option<Light>],
+        passes: &[PropagationGroup],
+    ) -> (Vec<Vec<u32>>, Vec<(usize, GpuLight)>, usize) {
+        let mut states = self.slot_states.clone();
+        states.resize(states.len().max(lights.len()), None);
+        let mut writes = Vec::new();
+        for (i, light) in lights.iter().enumerate() {
+            if let Some(l) = light {
+                let s = crate::render::frame_params::gpu_light(l);
+                if states[i] != Some(s) {
+                    states[i] = Some(s);
+                    writes.push((i, s));
+                }
+            }
+        }
+        let mut next_extra = lights.len();
+        let mut slots = Vec::new();
+        for pass in passes {
+            let mut pass_slots = Vec::new();
+            for m in &pass.members {
+                // Additions read the current state; a subtraction too when the
+                // light's own slot still holds its old state (it was switched off).
+                let slot = if m.factor > 0.0 || states.get(m.light) == Some(&Some(m.state)) {
+                    m.light
+                } else if let Some(j) = states[lights.len()..next_extra].iter().position(|s| *s == Some(m.state)) {
+                    lights.len() + j
+                } else {
+                    if states.len() <= next_extra {
+                        states.resize(next_extra + 1, None);
+                    }
+                    states[next_extra] = Some(m.state);
+                    writes.push((next_extra, m.state));
+                    next_extra += 1;
+                    next_extra - 1
+                };
+                pass_slots.push(slot as u32);
+            }
+            slots.push(pass_slots);
+        }
+        (slots, writes, next_extra.max(lights.len()))
+    }
+
+    /// Makes every pass of `passes` available as a recorded secondary: reused
+    /// where the cache has it, recorded otherwise. Returns their cache indices
+    /// and how many were recorded.
+    fn prepare_passes(
+        &mut self,
+        lights: &[Option<Light>],
+        passes: &[PropagationGroup],
+    ) -> Result<(Vec<usize>, usize), RenderError> {
+        if passes.is_empty() {
+            return Ok((Vec::new(), 0));
+        }
+        let (slots, writes, slots_needed) = self.assign_slots(lights, passes);
+        let layers = passes.iter().map(|p| p.members.len()).max().unwrap_or(1) as u32;
+        let entries_needed: usize = passes.iter().map(|p| p.members.len()).sum();
+        let need = Capacity { layers, slots: slots_needed, entries: entries_needed };
+        let fits = self.propagation.as_ref().is_some_and(|p| p.capacity.holds(&need));
+        if !fits {
+            let old = self.propagation.as_ref().map(|p| p.capacity);
+            let grow = |now: Option<usize>, needed: usize, least: usize| {
+                needed.max(now.unwrap_or(0)).max(least).next_power_of_two()
+            };
+            let capacity = Capacity {
+                layers: grow(old.map(|c| c.layers as usize), layers as usize, 1)
+                    .min(self.settings.pass_lights as usize)
+                    .max(layers as usize) as u32,
+                slots: grow(old.map(|c| c.slots), slots_needed, 8),
+                entries: grow(old.map(|c| c.entries), 4 * entries_needed, 64),
+            };
+            // New buffers: nothing recorded against the old ones survives.
+            self.cache = PassCache::default();
+            self.slot_states.clear();
+            self.propagation = None;
+            self.propagation = Some(Propagation::new(self.gpu, &self.illumination, capacity)?);
+            return self.prepare_passes(lights, passes);
+        }
+        let propagation = self.propagation.as_mut().expect("checked above");
+        for (slot, state) in &writes {
+            propagation.write_slots(*slot, std::slice::from_ref(state))?;
+            if self.slot_states.len() <= *slot {
+                self.slot_states.resize(*slot + 1, None);
+            }
+            self.slot_states[*slot] = Some(*state);
+        }
+        self.cache.retain_valid(&self.slot_states);
+        // Before this update's passes join, so the indices handed out stay put.
+        self.cache.trim();
+        let mut indices = Vec::new();
+        let mut recorded = 0;
+        for (pass, pass_slots) in passes.iter().zip(&slots) {
+            let key = PassKey::new(pass, pass_slots);
+            if let Some(i) = self.cache.find(&key) {
+                if !indices.contains(&i) {
+                    self.cache.passes[i].last_used = self.updates;
+                    indices.push(i);
+                    continue;
+                }
+            }
+            let capacity = propagation.capacity.entries;
+            let Some(first) = self.cache.free_region(pass.members.len(), capacity) else {
+                // Fragmented: start over with every pass laid out afresh.
+                self.cache = PassCache::default();
+                self.slot_states.clear();
+                self.propagation = None;
+                return self.prepare_passes(lights, passes);
+            };
+            let entries: Vec<GroupEntry> = pass
+                .members
+                .iter()
+                .zip(pass_slots)
+                .enumerate()
+                .map(|(layer, (m, &slot))| GroupEntry { light: slot, factor: m.factor, slot: layer as u32, pad: 0 })
+                .collect();
+            propagation.write_entries(first, &entries)?;
+            let commands = propagation.record_pass(self.gpu.ctx, pass, first as u32)?;
+            recorded += 1;
+            self.cache.passes.push(RecordedPass {
+                key,
+                name: pass.scope_name(),
+                first_entry: first,
+                commands,
+                last_used: self.updates,
+            });
+            indices.push(self.cache.passes.len() - 1);
+        }
+        Ok((indices, recorded))
+    }
+}
