@@ -203,6 +203,8 @@ pub fn plan_update(
             CostEstimate::Share => share_selective,
             CostEstimate::Passes if selective.passes != entire.passes => selective.passes < entire.passes,
             CostEstimate::Passes => share_selective,
+            CostEstimate::Selective => true,
+            CostEstimate::Entire => false,
         };
         let kind = if pick_selective { UpdateKind::Selective } else { UpdateKind::Entire };
         (kind, format!("cost estimate '{}': {share}; {counts}", settings.cost_estimate.name()))

@@ -12,6 +12,10 @@ pub enum CostEstimate {
     /// Selective when it needs fewer propagation passes than an entire update;
     /// on a tie, the share decides.
     Passes,
+    /// Always selective (benchmarks; a re-base still forces an entire update).
+    Selective,
+    /// Always entire, like a renderer without selective updates.
+    Entire,
 }
 
 impl CostEstimate {
@@ -19,6 +23,8 @@ impl CostEstimate {
         match self {
             CostEstimate::Share => "share",
             CostEstimate::Passes => "passes",
+            CostEstimate::Selective => "selective",
+            CostEstimate::Entire => "entire",
         }
     }
 }
@@ -62,8 +68,8 @@ impl Default for LightVolumeSettings {
     }
 }
 
-const KNOWN: &str = "scale (1, 2 or 4), coherent, compensated (true or false), cost_estimate (\"share\" or \
-                     \"passes\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0)";
+const KNOWN: &str = "scale (1, 2 or 4), coherent, compensated (true or false), cost_estimate (\"share\", \
+                     \"passes\", \"selective\" or \"entire\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0)";
 
 impl LightVolumeSettings {
     /// Reads `[lightvolume]`; a missing table gives the defaults, unknown keys
@@ -80,6 +86,8 @@ impl LightVolumeSettings {
                 ("compensated", _, Some(b), _) => s.compensated = b,
                 ("cost_estimate", _, _, Some("share")) => s.cost_estimate = CostEstimate::Share,
                 ("cost_estimate", _, _, Some("passes")) => s.cost_estimate = CostEstimate::Passes,
+                ("cost_estimate", _, _, Some("selective")) => s.cost_estimate = CostEstimate::Selective,
+                ("cost_estimate", _, _, Some("entire")) => s.cost_estimate = CostEstimate::Entire,
                 ("max_passes_per_frame", Some(x), _, _) if (0..=1_000_000).contains(&x) => {
                     s.max_passes_per_frame = x as u32
                 }
