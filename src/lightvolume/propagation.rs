@@ -178,21 +178,24 @@ impl Propagation {
     }
 
     /// Records `group` into a secondary command buffer; its entries lie at
-    /// `first_entry` of the entries buffer.
+    /// `first_entry` of the entries buffer. `racy` leaves the barriers between
+    /// slices out (only the last, toward the next pass, stays).
     pub fn record_pass(
         &self,
         ctx: &Context,
         group: &PropagationGroup,
         first_entry: u32,
+        racy: bool,
     ) -> Result<SecondaryCommands, RenderError> {
         let dependency =
             Barrier::memory("slice_write_to_next_slice_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE);
         let grid = self.grid.as_ivec3();
         let name = group.scope_name();
+        let slices = self.slice_count(group);
         Ok(SecondaryCommands::record(ctx, &name, 1, |_, rec| {
             let (u, v) = ((group.axis + 1) % 3, (group.axis + 2) % 3);
             rec.bind(&self.pipelines[0], self.set);
-            for k in 0..self.slice_count(group) {
+            for k in 0..slices {
                 let pipeline = &self.pipelines[(k % 2) as usize];
                 rec.bind_pipeline(pipeline);
                 let push = SlicePush {
@@ -203,7 +206,9 @@ impl Propagation {
                 rec.dispatch(self.grid[u].div_ceil(GROUP_SIZE), self.grid[v].div_ceil(GROUP_SIZE), 1);
                 // This slice's buffer and illumination writes are what the next
                 // slice (or the next pass, or the ray cast) reads.
-                rec.barrier(&dependency);
+                if !racy || k + 1 == slices {
+                    rec.barrier(&dependency);
+                }
             }
             Ok(())
         })?)

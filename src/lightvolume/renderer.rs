@@ -350,11 +350,11 @@ impl<'s> LightVolumeRenderer<'s> {
                 .map(|(layer, (m, &slot))| GroupEntry { light: slot, factor: m.factor, slot: layer as u32, pad: 0 })
                 .collect();
             propagation.write_entries(first, &entries)?;
-            let commands = propagation.record_pass(self.gpu.ctx, pass, first as u32)?;
+            let commands = propagation.record_pass(self.gpu.ctx, pass, first as u32, self.settings.racy)?;
             recorded += 1;
             self.cache.passes.push(RecordedPass {
                 key,
-                name: pass.scope_name(),
+                name: if self.settings.racy { format!("{}_RACY", pass.scope_name()) } else { pass.scope_name() },
                 first_entry: first,
                 commands,
                 last_used: self.updates,

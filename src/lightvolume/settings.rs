@@ -50,6 +50,9 @@ pub struct LightVolumeSettings {
     /// selective updates have accumulated exceeds this share of the weakest
     /// light's peak contribution.
     pub rebase_tolerance: f64,
+    /// RACY: leaves out the barrier between the slices of a pass, so that
+    /// synchronization validation can be shown to catch it (the volume is wrong).
+    pub racy: bool,
 }
 
 impl Default for LightVolumeSettings {
@@ -64,12 +67,13 @@ impl Default for LightVolumeSettings {
             max_passes_per_frame: 0,
             pass_lights: 16,
             rebase_tolerance: 1e-6,
+            racy: false,
         }
     }
 }
 
 const KNOWN: &str = "scale (1, 2 or 4), coherent, compensated (true or false), cost_estimate (\"share\", \
-                     \"passes\", \"selective\" or \"entire\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0)";
+                     \"passes\", \"selective\" or \"entire\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0), racy (true or false)";
 
 impl LightVolumeSettings {
     /// Reads `[lightvolume]`; a missing table gives the defaults, unknown keys
@@ -84,6 +88,7 @@ impl LightVolumeSettings {
                 ("scale", Some(x), _, _) if matches!(x, 1 | 2 | 4) => s.scale = x as u32,
                 ("coherent", _, Some(b), _) => s.coherent = b,
                 ("compensated", _, Some(b), _) => s.compensated = b,
+                ("racy", _, Some(b), _) => s.racy = b,
                 ("cost_estimate", _, _, Some("share")) => s.cost_estimate = CostEstimate::Share,
                 ("cost_estimate", _, _, Some("passes")) => s.cost_estimate = CostEstimate::Passes,
                 ("cost_estimate", _, _, Some("selective")) => s.cost_estimate = CostEstimate::Selective,
