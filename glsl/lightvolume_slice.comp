@@ -55,7 +55,8 @@ layout(push_constant) uniform Pass {
 // per voxel lands between voxel centres and steps over thin shells). At most
 // MAX_SUBSTEPS per slice (scale 4 straight along the axis needs 16; grazing
 // paths take longer sub-steps), far below llvmpipe's loop limit.
-const float SUBSTEP_VOXELS = 0.25;
+// The sub-step length is `lightvolume.substep_voxels` (a speed knob).
+layout(constant_id = 1) const float SUBSTEP_VOXELS = 0.25;
 const int MAX_SUBSTEPS = 64;
 
 vec3 voxel_centre(ivec3 g) {

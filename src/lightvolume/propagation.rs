@@ -94,6 +94,7 @@ impl Propagation {
         gpu: &GpuScene,
         illumination: &IlluminationVolume,
         capacity: Capacity,
+        substep_voxels: f32,
     ) -> Result<Propagation, RenderError> {
         let ctx = gpu.ctx;
         let scene = gpu.scene;
@@ -131,7 +132,7 @@ impl Propagation {
             spirv: &[],
             bindings: &bindings,
             push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
-            specialization: &[(0, compensated)],
+            specialization: &[(0, compensated), (1, substep_voxels.to_bits())],
             max_sets: 1,
         };
         // Slice parity 0 reads side a and writes b; parity 1 the opposite.
