@@ -255,38 +255,45 @@ fn measure(
 /// they share): first an untimed entire update of all `lights` (it records
 /// the passes, and llvmpipe compiles the shaders on first use), whose memory
 /// is kept in each result.
+/// What every measurement uses: the device, the profiler, the progress line
+/// and the number of timed repeats.
+struct Meter<'c> {
+    ctx: &'c Context,
+    profiler: Profiler,
+    progress: Progress,
+    repeat: u32,
+}
+
 fn measure_all(
-    ctx: &Context,
+    meter: &mut Meter,
     scene: &Scene,
     lights: &[Light],
     updates: &[Update],
-    repeat: u32,
-    profiler: &mut Profiler,
-    progress: &mut Progress,
     label: &str,
 ) -> anyhow::Result<Vec<Measured>> {
-    let gpu = GpuScene::upload(ctx, scene).context("uploading the scene")?;
-    let before = ctx.memory.device_local_bytes();
+    let gpu = GpuScene::upload(meter.ctx, scene).context("uploading the scene")?;
+    let before = meter.ctx.memory.device_local_bytes();
     let mut renderer = LightVolumeRenderer::new(&gpu)?;
-    let with_renderer = ctx.memory.device_local_bytes();
+    let with_renderer = meter.ctx.memory.device_local_bytes();
     let first: Vec<Option<Light>> = lights.iter().copied().map(Some).collect();
-    timed_update(ctx, &mut renderer, profiler, &first, true)?;
-    let with_passes = ctx.memory.device_local_bytes();
+    timed_update(meter.ctx, &mut renderer, &mut meter.profiler, &first, true)?;
+    let with_passes = meter.ctx.memory.device_local_bytes();
     let mut out = Vec::new();
     for &update in updates {
-        progress.start_step(&format!("{label}: {}", update.name()));
+        meter.progress.start_step(&format!("{label}: {}", update.name()));
         let mut second = first.clone();
         match update {
             Update::StateChange => second[0] = Some(moved(&lights[0])),
             Update::Toggle => second[0] = None,
             Update::EntireSequential | Update::EntireCoherent => {}
         }
-        let mut m = measure(ctx, &mut renderer, profiler, update, (&first, &second), repeat)?;
-        progress.finish_step();
+        let mut m = measure(meter.ctx, &mut renderer, &mut meter.profiler, update, (&first, &second), meter.repeat)?;
+        meter.progress.finish_step();
         if m.other_kind > 0 {
-            progress.message(&format!(
-                "  {} of {repeat} timed updates were {:?}, not {:?} ({}); left out",
+            meter.progress.message(&format!(
+                "  {} of {} timed updates were {:?}, not {:?} ({}); left out",
                 m.other_kind,
+                meter.repeat,
                 m.kind,
                 update.expected_kind(),
                 m.reason
@@ -305,7 +312,9 @@ fn check_args(args: &BenchLightsArgs) -> anyhow::Result<()> {
             bail!("--{name}: give at least one scale (1, 2 or 4)");
         }
         if let Some(s) = scales.iter().find(|s| !matches!(s, 1 | 2 | 4)) {
-            bail!("--{name}: {s} is not an illumination volume scale; use 1, 2 or 4 data voxels per illumination voxel");
+            bail!(
+                "--{name}: {s} is not an illumination volume scale; use 1, 2 or 4 data voxels per illumination voxel"
+            );
         }
         Ok(())
     };
@@ -344,15 +353,19 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     scene.reference.model = Technique::LightVolume.reference_model(&scene);
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let ctx = session::open(&args.gpu)?;
-    let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let table1_steps = args.scales.len() * args.light_counts.len() * Update::ALL.len();
     let steps = table1_steps + 2 * args.scaling_counts.len() + 2 + args.error_scales.len();
-    let mut progress = Progress::new(steps);
+    let mut meter = Meter {
+        ctx: &ctx,
+        profiler: Profiler::new(&ctx, PROFILER_CAPACITY)?,
+        progress: Progress::new(steps),
+        repeat: args.repeat,
+    };
     let mut report = Report::default();
-    table1(args, &ctx, &scene, &mut profiler, &mut progress, &mut report)?;
-    scaling(args, &ctx, &scene, &mut profiler, &mut progress, &mut report)?;
-    error_rows(args, &ctx, &scene, (width, height), &mut profiler, &mut progress, &mut report)?;
-    progress.finish();
+    table1(args, &mut meter, &scene, &mut report)?;
+    scaling(args, &mut meter, &scene, &mut report)?;
+    error_rows(args, &mut meter, &scene, (width, height), &mut report)?;
+    meter.progress.finish();
     report.write(args)?;
     Ok(session::finish(&ctx))
 }
@@ -367,14 +380,7 @@ struct Report {
     error: BenchTable,
 }
 
-fn table1(
-    args: &BenchLightsArgs,
-    ctx: &Context,
-    scene: &Scene,
-    profiler: &mut Profiler,
-    progress: &mut Progress,
-    report: &mut Report,
-) -> anyhow::Result<()> {
+fn table1(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mut Report) -> anyhow::Result<()> {
     let data = scene.volume.name.clone();
     for &scale in &args.scales {
         for &count in &args.light_counts {
@@ -392,7 +398,7 @@ fn table1(
             ] {
                 let mut s = scene.clone();
                 s.techniques = lightvolume_table(scale, coherent, if coherent { "selective" } else { "entire" });
-                let results = measure_all(ctx, &s, &lights, updates, args.repeat, profiler, progress, &label)?;
+                let results = measure_all(meter, &s, &lights, updates, &label)?;
                 measured.extend(updates.iter().copied().zip(results));
             }
             for (update, m) in measured {
@@ -464,14 +470,7 @@ fn memory_row(scale: u32, count: u32, propagation: &str, m: &Measured) -> BenchR
     row
 }
 
-fn scaling(
-    args: &BenchLightsArgs,
-    ctx: &Context,
-    scene: &Scene,
-    profiler: &mut Profiler,
-    progress: &mut Progress,
-    report: &mut Report,
-) -> anyhow::Result<()> {
+fn scaling(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mut Report) -> anyhow::Result<()> {
     let scale = args.scaling_scale;
     let mut points: [Vec<(f64, f64)>; 2] = [Vec::new(), Vec::new()];
     for &count in &args.scaling_counts {
@@ -481,9 +480,7 @@ fn scaling(
             let mut s = scene.clone();
             s.techniques = lightvolume_table(scale, update == Update::EntireCoherent, "entire");
             let label = format!("scaling {} {count} lights", resolution_label(scale));
-            let m = measure_all(ctx, &s, &lights, &[update], args.repeat, profiler, progress, &label)?
-                .pop()
-                .context("no measurement")?;
+            let m = measure_all(meter, &s, &lights, &[update], &label)?.pop().context("no measurement")?;
             let ms = median(&m.ms);
             points[i].push((count as f64, ms));
             let mut row = BenchRow::new();
@@ -507,7 +504,10 @@ fn scaling(
         row.set("intercept_ms", fit.map_or(f64::NAN, |f| f.intercept));
         row.set("r_squared", fit.map_or(f64::NAN, |f| f.r_squared));
         row.set("paper_ms_per_added_light", paper);
-        row.set("paper_note", if propagation == "coherent" { "1-2 ms, GTX 670, 256^3" } else { "30 ms, GTX 670, 256^3" });
+        row.set(
+            "paper_note",
+            if propagation == "coherent" { "1-2 ms, GTX 670, 256^3" } else { "30 ms, GTX 670, 256^3" },
+        );
         report.scaling_fit.push(row);
     }
     if let (Some(c), Some(s)) = (fit_line(&points[0]), fit_line(&points[1])) {
@@ -523,36 +523,34 @@ fn scaling(
 
 fn error_rows(
     args: &BenchLightsArgs,
-    ctx: &Context,
+    meter: &mut Meter,
     scene: &Scene,
     (width, height): (u32, u32),
-    profiler: &mut Profiler,
-    progress: &mut Progress,
     report: &mut Report,
 ) -> anyhow::Result<()> {
     let count = args.light_counts.iter().copied().max().unwrap_or(2);
     let mut lit = scene.clone();
     lit.lights = table1_lights(count as usize);
     let texels = session::volume_texels(&args.gpu);
-    progress.start_step(&format!("{width}x{height} ground truth (GPU, model i), {count} lights"));
+    meter.progress.start_step(&format!("{width}x{height} ground truth (GPU, model i), {count} lights"));
     let reference: LinearImage = {
-        let gpu = GpuScene::upload_with(ctx, &lit, texels).context("uploading the scene")?;
-        render(&gpu, Technique::Reference, width, height, profiler)?.image
+        let gpu = GpuScene::upload_with(meter.ctx, &lit, texels).context("uploading the scene")?;
+        render(&gpu, Technique::Reference, width, height, &mut meter.profiler)?.image
     };
-    progress.finish_step();
-    progress.start_step(&format!("{width}x{height} unshaded DVR"));
+    meter.progress.finish_step();
+    meter.progress.start_step(&format!("{width}x{height} unshaded DVR"));
     let mut times = Vec::new();
     let mut dvr = None;
     {
-        let gpu = GpuScene::upload_with(ctx, &lit, texels).context("uploading the scene")?;
-        render(&gpu, Technique::Dvr, width, height, profiler)?; // untimed warm-up
+        let gpu = GpuScene::upload_with(meter.ctx, &lit, texels).context("uploading the scene")?;
+        render(&gpu, Technique::Dvr, width, height, &mut meter.profiler)?; // untimed warm-up
         for _ in 0..args.repeat {
-            let out = render(&gpu, Technique::Dvr, width, height, profiler)?;
+            let out = render(&gpu, Technique::Dvr, width, height, &mut meter.profiler)?;
             times.push(out.profile.gpu_ms_total);
             dvr = Some(out);
         }
     }
-    progress.finish_step();
+    meter.progress.finish_step();
     let dvr = dvr.context("no DVR frame")?;
     let stats = compare(&dvr.image, &reference)?;
     let mut row = BenchRow::new();
@@ -562,29 +560,29 @@ fn error_rows(
     report.error.push(row);
     let all_on: Vec<Option<Light>> = lit.lights.iter().copied().map(Some).collect();
     for &scale in &args.error_scales {
-        progress.start_step(&format!("{width}x{height} light volume {} frame", resolution_label(scale)));
+        meter.progress.start_step(&format!("{width}x{height} light volume {} frame", resolution_label(scale)));
         let mut s = lit.clone();
         s.techniques = lightvolume_table(scale, true, "passes");
-        let gpu = GpuScene::upload_with(ctx, &s, texels).context("uploading the scene")?;
-        ctx.memory.reset_peak();
+        let gpu = GpuScene::upload_with(meter.ctx, &s, texels).context("uploading the scene")?;
+        meter.ctx.memory.reset_peak();
         let mut renderer = LightVolumeRenderer::new(&gpu)?;
         // Untimed: records the passes and compiles the shaders.
-        profiler.reset();
-        renderer.render(&all_on, width, height, profiler, false)?;
-        profiler.resolve(0)?;
+        meter.profiler.reset();
+        renderer.render(&all_on, width, height, &mut meter.profiler, false)?;
+        meter.profiler.resolve(0)?;
         let (mut total, mut update, mut raycast) = (Vec::new(), Vec::new(), Vec::new());
         let mut last = None;
         for _ in 0..args.repeat {
             renderer.invalidate();
-            profiler.reset();
-            let frame = renderer.render(&all_on, width, height, profiler, false)?;
-            let profile = profiler.resolve(ctx.memory.device_local_peak())?;
+            meter.profiler.reset();
+            let frame = renderer.render(&all_on, width, height, &mut meter.profiler, false)?;
+            let profile = meter.profiler.resolve(meter.ctx.memory.device_local_peak())?;
             total.push(profile.gpu_ms_total);
             update.push(profile.pass_ms(UpdateKind::Entire.scope_name()));
             raycast.push(profile.pass_ms("lightvolume_raycast"));
             last = Some((frame, profile.gpu_memory_bytes));
         }
-        progress.finish_step();
+        meter.progress.finish_step();
         let (frame, bytes) = last.context("no light volume frame")?;
         let image = frame.image.context("light volume frame without an image")?;
         let stats = compare(&image, &reference)?;
