@@ -131,3 +131,61 @@ fn bad_input_gives_clear_errors_not_panics() {
     let unwritable = dir.join("no-such-dir").join("out.png");
     assert_user_error(&sweeplab(&["render", "--size", "8x8", "--out", unwritable.to_str().unwrap()]), "out.png");
 }
+
+#[test]
+fn bench_lights_writes_table1_scaling_memory_and_error_rows_validation_clean() {
+    let dir = temp_dir("bench-lights");
+    let out = dir.join("lights");
+    #[rustfmt::skip]
+    let o = sweeplab(&[
+        "bench", "lights", "--scales", "4", "--light-counts", "2", "--scaling-counts", "1,2",
+        "--error-scales", "4", "--repeat", "1", "--size", "16x16", "--out", out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("validation: clean"), "{}", stderr(&o));
+    for file in ["lights.csv", "lights.md", "lights_scaling.png", "lights_table1_4.png", "lights_error_vs_time.png"] {
+        assert!(out.join(file).is_file(), "{file} missing");
+    }
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(out.join("lights.json")).unwrap()).unwrap();
+    let part = |p: &str| rows.iter().filter(|r| r["part"] == p).collect::<Vec<_>>();
+    let table1 = part("table1");
+    assert_eq!(table1.len(), 2, "ours and the paper's DR*1/4 2-light row: {table1:?}");
+    assert_eq!(table1[1]["coherent_ms"], 18.0);
+    for key in ["sequential_ms", "coherent_ms", "state_change_ms", "toggle_ms", "state_change_over_toggle"] {
+        assert!(table1[0][key].as_f64().is_some_and(|v| v > 0.0), "{key}: {}", table1[0]);
+    }
+    let kinds: Vec<(&str, &str)> =
+        part("update").iter().map(|r| (r["update"].as_str().unwrap(), r["kind"].as_str().unwrap())).collect();
+    assert_eq!(
+        kinds,
+        [
+            ("entire-sequential", "Entire"),
+            ("entire-coherent", "Entire"),
+            ("state-change", "Selective"),
+            ("toggle", "Selective")
+        ]
+    );
+    assert_eq!(part("scaling").len(), 4, "two light counts, coherent and sequential");
+    assert!(part("scaling_fit").iter().any(|r| r["propagation"] == "sequential" && r["ms_per_added_light"].is_f64()));
+    assert!(part("memory").iter().all(|r| r["illumination_bytes"].as_u64().is_some_and(|b| b > 0)));
+    let error = part("error");
+    assert_eq!(error.len(), 2, "DVR and the light volume at scale 4");
+    assert!(error.iter().all(|r| r["rmse"].as_f64().is_some_and(f64::is_finite)));
+    let markdown = std::fs::read_to_string(out.join("lights.md")).unwrap();
+    assert!(markdown.contains("paper (GTX 670)") && markdown.contains("ms_per_added_light"));
+}
+
+#[test]
+fn bench_lights_rejects_bad_parameters_clearly() {
+    let out = temp_dir("bench-lights-errors");
+    let out = out.to_str().unwrap();
+    assert_user_error(&sweeplab(&["bench", "lights", "--scales", "3", "--out", out]), "--scales");
+    assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "0", "--out", out]), "--light-counts");
+    assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "7", "--out", out]), "--light-counts");
+    assert_user_error(&sweeplab(&["bench", "lights", "--scaling-counts", "0", "--out", out]), "--scaling-counts");
+    assert_user_error(&sweeplab(&["bench", "lights", "--scaling-scale", "8", "--out", out]), "--scaling-scale");
+    assert_user_error(&sweeplab(&["bench", "lights", "--error-scales", "1,5", "--out", out]), "--error-scales");
+    assert_user_error(&sweeplab(&["bench", "lights", "--repeat", "0", "--out", out]), "--repeat");
+    assert_user_error(&sweeplab(&["bench", "lights", "--scales", "x", "--out", out]), "--scales");
+}

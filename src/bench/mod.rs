@@ -11,6 +11,7 @@ pub mod pareto;
 pub mod plot;
 pub mod progress;
 pub mod rows;
+pub mod stats;
 
 pub use axis::AxisScale;
 pub use error::BenchError;
@@ -18,3 +19,4 @@ pub use pareto::pareto_front;
 pub use plot::{palette_color, plot_error_vs_time, plot_lines, render_error_vs_time, render_lines, Chart, Series};
 pub use progress::Progress;
 pub use rows::{BenchRow, BenchTable, BenchValue};
+pub use stats::{fit_line, median, LineFit};

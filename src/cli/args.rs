@@ -36,6 +36,41 @@ pub enum BenchCommand {
     /// engine (CT Engine), aneurism (beside US Baby) and LIDC2 (anisotropic, beside
     /// the giraffe), next to the paper's, with the ratios compared.
     Table1(BenchTable1Args),
+    /// The selective-light-updates paper's Table 1 and Figure 10 for the light
+    /// volume: entire updates (sequential and coherence-based propagation),
+    /// selective updates of one light (state change, on/off), scaling over 1-40
+    /// lights, memory, and error against time.
+    Lights(BenchLightsArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchLightsArgs {
+    /// --size sets the image of the error rows (default 256x256).
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    #[arg(long, default_value = "bench-lights")]
+    pub out: PathBuf,
+    /// Data voxels per illumination voxel for the Table 1 rows (the paper's DR*1 and DR*1/4).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 4])]
+    pub scales: Vec<u32>,
+    /// Lights of the Table 1 rows (2..=6, taken in order from a fixed coloured set;
+    /// the paper's Engine rows have 2 and 3).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![2, 3])]
+    pub light_counts: Vec<u32>,
+    /// Light counts of the scaling test (the paper's Figure 10: 1-40 lights of one direction).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4, 8, 16, 24, 32, 40])]
+    pub scaling_counts: Vec<u32>,
+    /// Scale of the scaling test (sequential propagation at 40 lights is 80 passes).
+    #[arg(long, default_value_t = 4)]
+    pub scaling_scale: u32,
+    /// Scales of the error-against-time rows (one full frame each, against the ground truth).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
+    pub error_scales: Vec<u32>,
+    /// Timed updates per measurement after an untimed warm-up; the median is reported.
+    #[arg(long, default_value_t = 3)]
+    pub repeat: u32,
 }
 
 #[derive(Args, Debug)]

@@ -5,7 +5,7 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::bench::{plot_error_vs_time, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
+use sweeplab::bench::{median, plot_error_vs_time, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{EarlyTermination, IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
@@ -13,11 +13,6 @@ use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique};
 use sweeplab::scene::OpticalModel;
 use sweeplab::vk::Profiler;
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
 
 fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSettings> {
     let mut out = Vec::new();
@@ -95,7 +90,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         let dvr = dvr.expect("at least one run");
         let stats = compare(&dvr.image, &reference_image)?;
         let mut row = BenchRow::new();
-        row.set("technique", "dvr").set("width", size).set("height", size).set("gpu_ms", median(times));
+        row.set("technique", "dvr").set("width", size).set("height", size).set("gpu_ms", median(&times));
         row.set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
         row.set("dispatches", dvr.dispatches).set("gpu_memory_bytes", dvr.profile.gpu_memory_bytes);
         let dvr_ms = row.get_f64("gpu_ms").unwrap_or(f64::NAN);
@@ -125,7 +120,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             progress.finish_step();
             let (frame, profile) = last.expect("at least one run");
             let stats = compare(&frame.image, &reference_image)?;
-            let gpu_ms = median(times);
+            let gpu_ms = median(&times);
             let mut row = BenchRow::new();
             row.set("technique", "ipsvi").set("width", size).set("height", size);
             row.set("line_width", s.line_width).set("cache_size", s.cache_size);
@@ -239,7 +234,7 @@ fn half_angle_rows(
         let stats = compare(&out.image, &reference)?;
         let mut row = BenchRow::new();
         row.set("technique", "half-angle").set("width", size).set("height", size).set("slice_step_voxels", step);
-        row.set("gpu_ms", median(times)).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
+        row.set("gpu_ms", median(&times)).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
         row.set("dispatches", out.dispatches).set("gpu_memory_bytes", out.profile.gpu_memory_bytes);
         row.set("reference_model", "single-scattering");
         table.push(row);

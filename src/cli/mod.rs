@@ -1,5 +1,6 @@
 pub mod args;
 mod bench_ipsvi;
+mod bench_lights;
 mod bench_sync;
 mod bench_table1;
 mod compare_cmd;
@@ -18,5 +19,6 @@ pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
         args::Command::Bench(args::BenchCommand::Ipsvi(a)) => bench_ipsvi::run(&a),
         args::Command::Bench(args::BenchCommand::Sync(a)) => bench_sync::run(&a),
         args::Command::Bench(args::BenchCommand::Table1(a)) => bench_table1::run(&a),
+        args::Command::Bench(args::BenchCommand::Lights(a)) => bench_lights::run(&a),
     }
 }
