@@ -55,8 +55,15 @@ layout(push_constant) uniform Pass {
 // per voxel lands between voxel centres and steps over thin shells). At most
 // MAX_SUBSTEPS per slice (scale 4 straight along the axis needs 16; grazing
 // paths take longer sub-steps), far below llvmpipe's loop limit.
-// The sub-step length is `lightvolume.substep_voxels` (a speed knob).
+// The sub-step length in data voxels: `lightvolume.substep` illumination voxels.
 layout(constant_id = 1) const float SUBSTEP_VOXELS = 0.25;
+// Shared medium (`lightvolume.shared_medium`, the paper's propagation): the
+// medium between two slices is integrated once per voxel, along the axis, and
+// every light of the pass scales that optical depth by its own path length
+// (1/c), so per light only the previous slice's lookup and an exp remain.
+// Otherwise each light integrates along its own direction (more accurate for
+// oblique light through thin structures, and as costly per light as a pass).
+layout(constant_id = 2) const bool SHARED_MEDIUM = false;
 const int MAX_SUBSTEPS = 64;
 
 vec3 voxel_centre(ivec3 g) {
@@ -132,6 +139,11 @@ void main() {
     vec3 p = voxel_centre(g);
     // Distance between slice centres along the axis, world units.
     float dstep = 2.0 * frame.box_half[a] / float(pass.grid[a]);
+    // The first slice takes the light at the volume face, half a slice away.
+    float segment = (k == 0 ? 0.5 : 1.0) * dstep;
+    vec3 back_along_axis = vec3(0.0);
+    back_along_axis[a] = -travel;
+    float axis_depth = SHARED_MEDIUM ? optical_depth(p, back_along_axis, segment) : 0.0;
     vec4 hi = imageLoad(illumination, g);
     vec3 lo = COMPENSATED ? imageLoad(illumination_low, g).rgb : vec3(0.0);
     for (int e = 0; e < pass.axis.w; ++e) {
@@ -144,8 +156,7 @@ void main() {
         // Light travelling against this group's direction (possible for the
         // second group of a point light) cannot arrive from the previous slice.
         if (c > 1e-4) {
-            // The first slice takes the light at the volume face, half a slice away.
-            float along = (k == 0 ? 0.5 : 1.0) * dstep / c;
+            float along = segment / c;
             // Where the light enters the volume (through any face) or leaves the
             // light itself before the previous slice, nothing attenuates it
             // beyond: the path ends there with transmittance 1.
@@ -161,7 +172,7 @@ void main() {
                 ivec2 enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
                 T = previous_transmittance(cq, size, int(entry.slot), enters);
             }
-            T *= exp(-optical_depth(p, w.xyz, len));
+            T *= exp(-(SHARED_MEDIUM ? axis_depth * (len / segment) : optical_depth(p, w.xyz, len)));
             vec3 light = l.radiance.rgb * light_shape(l, w) * T;
             result = vec4(light, T);
             // Each entry on its own: a contribution's value does not depend on

@@ -182,7 +182,7 @@ fn bench_lights_rejects_bad_parameters_clearly() {
     let out = out.to_str().unwrap();
     assert_user_error(&sweeplab(&["bench", "lights", "--scales", "3", "--out", out]), "--scales");
     assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "0", "--out", out]), "--light-counts");
-    assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "7", "--out", out]), "--light-counts");
+    assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "17", "--out", out]), "--light-counts");
     assert_user_error(&sweeplab(&["bench", "lights", "--scaling-counts", "0", "--out", out]), "--scaling-counts");
     assert_user_error(&sweeplab(&["bench", "lights", "--scaling-scale", "8", "--out", out]), "--scaling-scale");
     assert_user_error(&sweeplab(&["bench", "lights", "--error-scales", "1,5", "--out", out]), "--error-scales");

@@ -19,6 +19,13 @@ use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 48;
 
+/// `lightvolume.shared_medium`: the medium sampled along the axis and shared by
+/// the lights of a pass (exact for a homogeneous medium, like per light).
+fn set_shared_medium(scene: &mut Scene, shared: bool) {
+    let table = scene.techniques.entry("lightvolume").or_insert(toml::Value::Table(toml::Table::new()));
+    table.as_table_mut().unwrap().insert("shared_medium".into(), toml::Value::Boolean(shared));
+}
+
 fn with_scale(mut scene: Scene, scale: u32) -> Scene {
     scene.techniques = toml::from_str(&format!("[lightvolume]\nscale = {scale}\n")).unwrap();
     scene
@@ -94,16 +101,17 @@ const SLAB_TOLERANCE: f64 = 1e-4;
 fn directional_light_straight_down_through_a_homogeneous_slab_gives_the_analytic_transmittance() {
     let ctx = validated_context();
     let n = 16;
-    for scale in [1, 2, 4] {
-        let (scene, sigma) = homogeneous_scene(n, Vec3::NEG_Y, scale);
+    for (scale, shared) in [(1, false), (2, false), (4, false), (1, true), (4, true)] {
+        let (mut scene, sigma) = homogeneous_scene(n, Vec3::NEG_Y, scale);
+        set_shared_medium(&mut scene, shared);
         let (out, _) = frame(&ctx, &scene, 16, true);
         assert_eq!(out.groups.len(), 1, "one group for a light straight down");
         assert_eq!(out.groups[0].direction_name(), "-y");
         assert_eq!(out.grid, UVec3::splat(n / scale));
         // Depth below the top face in data voxels.
         let (worst, _, _) = errors_against_analytic(&out, sigma, |uvw| (1.0 - uvw.y as f64) * n as f64);
-        println!("scale {scale}: grid {}, worst relative error {worst:.2e}", out.grid);
-        assert!(worst <= SLAB_TOLERANCE, "scale {scale}: worst relative error {worst:.2e}");
+        println!("scale {scale}, shared medium {shared}: grid {}, worst relative error {worst:.2e}", out.grid);
+        assert!(worst <= SLAB_TOLERANCE, "scale {scale}, shared {shared}: worst relative error {worst:.2e}");
         assert!(out.image.as_ref().unwrap().all_finite());
     }
     assert_validation_clean(&ctx);
@@ -124,32 +132,35 @@ fn oblique_directional_light_splits_into_two_groups_that_agree_with_the_analytic
     let ctx = validated_context();
     let n = 16;
     let direction = Vec3::new(0.5, -1.0, 0.25);
-    let (scene, sigma) = homogeneous_scene(n, direction, 1);
-    let (out, _) = frame(&ctx, &scene, 16, true);
-    let names: Vec<String> = out.groups.iter().map(|g| g.direction_name()).collect();
-    assert_eq!(names, ["+x", "-y"], "light travelling mostly down and toward +x");
-    let sum: f32 = out.groups.iter().map(|g| g.members[0].factor).sum();
-    assert!((sum - 1.0).abs() < 1e-5);
-    let w = -direction.normalize();
-    // Distance (data voxels) to the box exit along w from uvw in the unit cube.
-    let path = |uvw: Vec3| {
-        let t = (0..3)
-            .map(|a| {
-                if w[a] > 0.0 {
-                    (1.0 - uvw[a]) / w[a]
-                } else if w[a] < 0.0 {
-                    -uvw[a] / w[a]
-                } else {
-                    f32::MAX
-                }
-            })
-            .fold(f32::MAX, f32::min);
-        t as f64 * n as f64
-    };
-    let (worst, worst_abs, mean) = errors_against_analytic(&out, sigma, path);
-    println!("oblique: mean relative error {mean:.4}, largest absolute {worst_abs:.4}, largest relative {worst:.4}");
-    assert!(mean <= OBLIQUE_MEAN_TOLERANCE, "mean relative error {mean:.4}");
-    assert!(worst_abs <= OBLIQUE_ABS_TOLERANCE, "largest absolute error {worst_abs:.4}");
+    for shared in [false, true] {
+        let (mut scene, sigma) = homogeneous_scene(n, direction, 1);
+        set_shared_medium(&mut scene, shared);
+        let (out, _) = frame(&ctx, &scene, 16, true);
+        let names: Vec<String> = out.groups.iter().map(|g| g.direction_name()).collect();
+        assert_eq!(names, ["+x", "-y"], "light travelling mostly down and toward +x");
+        let sum: f32 = out.groups.iter().map(|g| g.members[0].factor).sum();
+        assert!((sum - 1.0).abs() < 1e-5);
+        let w = -direction.normalize();
+        // Distance (data voxels) to the box exit along w from uvw in the unit cube.
+        let path = |uvw: Vec3| {
+            let t = (0..3)
+                .map(|a| {
+                    if w[a] > 0.0 {
+                        (1.0 - uvw[a]) / w[a]
+                    } else if w[a] < 0.0 {
+                        -uvw[a] / w[a]
+                    } else {
+                        f32::MAX
+                    }
+                })
+                .fold(f32::MAX, f32::min);
+            t as f64 * n as f64
+        };
+        let (worst, worst_abs, mean) = errors_against_analytic(&out, sigma, path);
+        println!("oblique, shared medium {shared}: mean relative error {mean:.4}, largest absolute {worst_abs:.4}, largest relative {worst:.4}");
+        assert!(mean <= OBLIQUE_MEAN_TOLERANCE, "shared {shared}: mean relative error {mean:.4}");
+        assert!(worst_abs <= OBLIQUE_ABS_TOLERANCE, "shared {shared}: largest absolute error {worst_abs:.4}");
+    }
     assert_validation_clean(&ctx);
 }
 
@@ -195,16 +206,21 @@ fn relative_rmse(test: &LinearImage, reference: &LinearImage) -> f64 {
 /// in shadow (log-space interpolation in the ray cast limits this), and the
 /// sphere's shadow is resampled bilinearly from slice to slice. At scale 2
 /// (16^3 illumination voxels for this 32^3 volume) the surfaces lie within half
-/// an illumination voxel and the error, 0.1295, is no better than unshaded
+/// an illumination voxel and the error, 0.1155, is no better than unshaded
 /// DVR's: that is printed and held as a regression bound, not claimed as a win.
 const RMSE_TOLERANCE: f64 = 0.055;
 const SCALE_2_REGRESSION_BOUND: f64 = 0.135;
+/// With the medium shared by the lights of a pass (sampled along the axis, not
+/// along the light), scale 1: measured 0.0575 (0.0496 per light).
+const SHARED_MEDIUM_TOLERANCE: f64 = 0.065;
 
 #[test]
 fn sphere_over_slab_matches_model_i_within_the_stated_tolerance() {
     let ctx = validated_context();
-    for (scale, tolerance) in [(1, RMSE_TOLERANCE), (2, SCALE_2_REGRESSION_BOUND)] {
-        let scene = slab_sphere_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)], scale);
+    let cases = [(1, false, RMSE_TOLERANCE), (2, false, SCALE_2_REGRESSION_BOUND), (1, true, SHARED_MEDIUM_TOLERANCE)];
+    for (scale, shared, tolerance) in cases {
+        let mut scene = slab_sphere_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)], scale);
+        set_shared_medium(&mut scene, shared);
         let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
         let mut profiler = Profiler::new(&ctx, 64).unwrap();
         let out = render(&gpu, Technique::LightVolume, SIZE, SIZE, &mut profiler).unwrap();
@@ -213,8 +229,8 @@ fn sphere_over_slab_matches_model_i_within_the_stated_tolerance() {
         let unshaded = render(&gpu, Technique::Dvr, SIZE, SIZE, &mut profiler).unwrap().image;
         let rmse = relative_rmse(&out.image, &reference);
         let dvr = relative_rmse(&unshaded, &reference);
-        println!("scale {scale}: relative rmse {rmse:.4} (unshaded DVR {dvr:.4})");
-        assert!(rmse <= tolerance, "scale {scale}: relative rmse {rmse:.4} above {tolerance}");
+        println!("scale {scale}, shared medium {shared}: relative rmse {rmse:.4} (unshaded DVR {dvr:.4})");
+        assert!(rmse <= tolerance, "scale {scale}, shared {shared}: relative rmse {rmse:.4} above {tolerance}");
         if scale == 1 {
             assert!(rmse < 0.5 * dvr, "rmse {rmse:.4} not clearly below unshaded DVR's {dvr:.4}");
         }
@@ -347,6 +363,14 @@ fn point_and_spot_lights_match_model_i_at_full_resolution() {
     assert_validation_clean(&ctx);
 }
 
+fn peak_of(volume: &[[f32; 4]]) -> f32 {
+    volume.iter().flat_map(|v| v[..3].iter().copied()).fold(0.0f32, f32::max)
+}
+
+fn largest_difference(a: &[[f32; 4]], b: &[[f32; 4]]) -> f32 {
+    a.iter().zip(b).flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs())).fold(0.0f32, f32::max)
+}
+
 /// Coherence-based propagation shares group passes between lights; sequential
 /// propagation (the paper's baseline) gives every light and face its own pass.
 /// Both must build the same illumination volume.
@@ -360,21 +384,26 @@ fn coherent_and_sequential_propagation_give_the_same_volume() {
     ];
     let mut volumes = Vec::new();
     let mut passes = Vec::new();
-    for coherent in [true, false] {
+    for (coherent, shared) in [(true, false), (false, false), (true, true), (false, true)] {
         let mut scene = scene_with(slab_under_sphere(16), lights.clone(), 16, 16);
-        scene.techniques = toml::from_str(&format!("[lightvolume]\nscale = 2\ncoherent = {coherent}\n")).unwrap();
+        scene.techniques =
+            toml::from_str(&format!("[lightvolume]\nscale = 2\ncoherent = {coherent}\nshared_medium = {shared}\n"))
+                .unwrap();
         let (out, _) = frame(&ctx, &scene, 16, true);
         passes.push(out.groups.len());
         volumes.push(out.illumination.unwrap().high);
     }
     assert!(passes[1] > passes[0], "sequential must take more passes: {passes:?}");
-    let peak = volumes[0].iter().flat_map(|v| v[..3].iter().copied()).fold(0.0f32, f32::max);
-    assert!(peak > 0.1);
-    let worst = volumes[0]
-        .iter()
-        .zip(&volumes[1])
-        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
-        .fold(0.0f32, f32::max);
-    assert!(worst <= 1e-5 * peak, "coherent and sequential volumes differ by {worst} (peak {peak})");
+    for pair in [0, 2] {
+        let (peak, worst) = (peak_of(&volumes[pair]), largest_difference(&volumes[pair], &volumes[pair + 1]));
+        assert!(peak > 0.1);
+        let shared = pair == 2;
+        assert!(worst <= 1e-5 * peak, "coherent and sequential differ by {worst} (peak {peak}, shared {shared})");
+    }
+    // Sharing the medium changes the volume (it is an approximation), not wildly.
+    let peak = peak_of(&volumes[0]);
+    let shared_change = largest_difference(&volumes[0], &volumes[2]);
+    println!("shared medium changes the volume by up to {:.4} of its peak", shared_change / peak);
+    assert!(shared_change > 0.0 && shared_change < 0.5 * peak);
     assert_validation_clean(&ctx);
 }

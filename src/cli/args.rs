@@ -55,7 +55,7 @@ pub struct BenchLightsArgs {
     /// Data voxels per illumination voxel for the Table 1 rows (the paper's DR*1 and DR*1/4).
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 4])]
     pub scales: Vec<u32>,
-    /// Lights of the Table 1 rows (2..=6, taken in order from a fixed coloured set;
+    /// Lights of the Table 1 rows (2..=16, taken in order from a fixed coloured set;
     /// the paper's Engine rows have 2 and 3).
     #[arg(long, value_delimiter = ',', default_values_t = vec![2, 3])]
     pub light_counts: Vec<u32>,

@@ -34,7 +34,7 @@ const PAPER_SLOPE_COHERENT: f64 = 1.5;
 const PAPER_SLOPE_SEQUENTIAL: f64 = 30.0;
 const PAPER_DEVICE: &str = "paper (GTX 670)";
 
-const MAX_TABLE1_LIGHTS: u32 = 6;
+const MAX_TABLE1_LIGHTS: u32 = 16;
 const MAX_SCALING_LIGHTS: u32 = 256;
 const DEFAULT_ERROR_IMAGE: u32 = 256;
 
@@ -76,12 +76,15 @@ impl Update {
     }
 }
 
-fn lightvolume_table(scale: u32, coherent: bool, cost_estimate: &str) -> toml::Table {
-    let mut lv = toml::Table::new();
+/// The scene's techniques with `[lightvolume]` set to what a measurement needs;
+/// other light volume keys from the scene (`--set lightvolume.shared_medium=true`)
+/// are kept.
+fn lightvolume_table(scene: &Scene, scale: u32, coherent: bool, cost_estimate: &str) -> toml::Table {
+    let mut techniques = scene.techniques.clone();
+    let mut lv = techniques.get("lightvolume").and_then(|v| v.as_table()).cloned().unwrap_or_default();
     lv.insert("scale".into(), toml::Value::Integer(scale.into()));
     lv.insert("coherent".into(), toml::Value::Boolean(coherent));
     lv.insert("cost_estimate".into(), toml::Value::String(cost_estimate.into()));
-    let mut techniques = toml::Table::new();
     techniques.insert("lightvolume".into(), toml::Value::Table(lv));
     techniques
 }
@@ -94,9 +97,10 @@ fn directional(direction: Vec3, color: Vec3, intensity: f32) -> Light {
 /// taken in order: two directional lights from above sharing the -y group
 /// (one also in +x, one in -x), a point light sharing -x and -y, a blue light
 /// from the front (-z, -y), a spot light from above (-y, -z), a grazing light
-/// (-x, +z). The first light is the one that changes.
+/// (-x, +z); beyond six, dimmer white directional lights from the upper
+/// hemisphere at golden-angle azimuths. The first light is the one that changes.
 fn table1_lights(count: usize) -> Vec<Light> {
-    let all = [
+    let mut all = vec![
         directional(Vec3::new(0.45, -1.0, 0.3), Vec3::ONE, 1.0),
         directional(Vec3::new(-0.5, -1.0, -0.2), Vec3::new(1.0, 0.85, 0.6), 0.8),
         Light {
@@ -119,7 +123,13 @@ fn table1_lights(count: usize) -> Vec<Light> {
         },
         directional(Vec3::new(-1.0, -0.35, 0.5), Vec3::new(1.0, 0.7, 0.9), 0.5),
     ];
-    all[..count.min(all.len())].to_vec()
+    for i in all.len()..count {
+        let azimuth = i as f32 * 2.399_963;
+        let direction = Vec3::new(azimuth.cos(), -1.2, azimuth.sin());
+        all.push(directional(direction, Vec3::ONE, 0.4));
+    }
+    all.truncate(count);
+    all
 }
 
 /// The changed light's second state: its direction turned by about 3 degrees,
@@ -251,10 +261,6 @@ fn measure(
     })
 }
 
-/// Measures `updates` on one renderer of `scene` (whose `[lightvolume]` table
-/// they share): first an untimed entire update of all `lights` (it records
-/// the passes, and llvmpipe compiles the shaders on first use), whose memory
-/// is kept in each result.
 /// What every measurement uses: the device, the profiler, the progress line
 /// and the number of timed repeats.
 struct Meter<'c> {
@@ -264,6 +270,10 @@ struct Meter<'c> {
     repeat: u32,
 }
 
+/// Measures `updates` on one renderer of `scene` (whose `[lightvolume]` table
+/// they share): first an untimed entire update of all `lights` (it records
+/// the passes, and llvmpipe compiles the shaders on first use), whose memory
+/// is kept in each result.
 fn measure_all(
     meter: &mut Meter,
     scene: &Scene,
@@ -326,8 +336,8 @@ fn check_args(args: &BenchLightsArgs) -> anyhow::Result<()> {
     }
     if let Some(n) = args.light_counts.iter().find(|n| !(2..=MAX_TABLE1_LIGHTS).contains(n)) {
         bail!(
-            "--light-counts: {n} is outside 2..={MAX_TABLE1_LIGHTS} (the Table 1 set has {MAX_TABLE1_LIGHTS} lights, \
-             and toggling one needs another left on)"
+            "--light-counts: {n} is outside 2..={MAX_TABLE1_LIGHTS} (toggling one light needs another left on; \
+             more than {MAX_TABLE1_LIGHTS} is the scaling test's job)"
         );
     }
     if args.scaling_counts.is_empty() {
@@ -397,7 +407,7 @@ fn table1(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mut
                 (true, &[Update::EntireCoherent, Update::StateChange, Update::Toggle][..]),
             ] {
                 let mut s = scene.clone();
-                s.techniques = lightvolume_table(scale, coherent, if coherent { "selective" } else { "entire" });
+                s.techniques = lightvolume_table(&s, scale, coherent, if coherent { "selective" } else { "entire" });
                 let results = measure_all(meter, &s, &lights, updates, &label)?;
                 measured.extend(updates.iter().copied().zip(results));
             }
@@ -478,7 +488,7 @@ fn scaling(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mu
         for (i, update) in [Update::EntireCoherent, Update::EntireSequential].into_iter().enumerate() {
             let propagation = if update == Update::EntireCoherent { "coherent" } else { "sequential" };
             let mut s = scene.clone();
-            s.techniques = lightvolume_table(scale, update == Update::EntireCoherent, "entire");
+            s.techniques = lightvolume_table(&s, scale, update == Update::EntireCoherent, "entire");
             let label = format!("scaling {} {count} lights", resolution_label(scale));
             let m = measure_all(meter, &s, &lights, &[update], &label)?.pop().context("no measurement")?;
             let ms = median(&m.ms);
@@ -562,7 +572,7 @@ fn error_rows(
     for &scale in &args.error_scales {
         meter.progress.start_step(&format!("{width}x{height} light volume {} frame", resolution_label(scale)));
         let mut s = lit.clone();
-        s.techniques = lightvolume_table(scale, true, "passes");
+        s.techniques = lightvolume_table(&s, scale, true, "passes");
         let gpu = GpuScene::upload_with(meter.ctx, &s, texels).context("uploading the scene")?;
         meter.ctx.memory.reset_peak();
         let mut renderer = LightVolumeRenderer::new(&gpu)?;

@@ -10,6 +10,7 @@
 
 use super::groups::PropagationGroup;
 use super::illumination::IlluminationVolume;
+use super::settings::LightVolumeSettings;
 use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
 use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::{GpuScene, RenderError};
@@ -94,7 +95,7 @@ impl Propagation {
         gpu: &GpuScene,
         illumination: &IlluminationVolume,
         capacity: Capacity,
-        substep_voxels: f32,
+        settings: &LightVolumeSettings,
     ) -> Result<Propagation, RenderError> {
         let ctx = gpu.ctx;
         let scene = gpu.scene;
@@ -132,7 +133,11 @@ impl Propagation {
             spirv: &[],
             bindings: &bindings,
             push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
-            specialization: &[(0, compensated), (1, substep_voxels.to_bits())],
+            specialization: &[
+                (0, compensated),
+                (1, settings.substep_data_voxels().to_bits()),
+                (2, settings.shared_medium as u32),
+            ],
             max_sets: 1,
         };
         // Slice parity 0 reads side a and writes b; parity 1 the opposite.

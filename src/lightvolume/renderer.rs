@@ -309,8 +309,7 @@ impl<'s> LightVolumeRenderer<'s> {
             self.cache = PassCache::default();
             self.slot_states.clear();
             self.propagation = None;
-            self.propagation =
-                Some(Propagation::new(self.gpu, &self.illumination, capacity, self.settings.substep_voxels)?);
+            self.propagation = Some(Propagation::new(self.gpu, &self.illumination, capacity, &self.settings)?);
             return self.prepare_passes(lights, passes);
         }
         let propagation = self.propagation.as_mut().expect("checked above");

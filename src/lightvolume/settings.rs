@@ -50,9 +50,14 @@ pub struct LightVolumeSettings {
     /// selective updates have accumulated exceeds this share of the weakest
     /// light's peak contribution.
     pub rebase_tolerance: f64,
-    /// Length of the medium integration's sub-steps between slices, in data
-    /// voxels: longer is faster and misses thin opaque shells.
-    pub substep_voxels: f32,
+    /// Length of the medium integration's sub-steps between slices, in
+    /// illumination voxels (so a coarser volume takes as many sub-steps per
+    /// slice as a fine one): longer is faster and misses thin opaque shells.
+    pub substep: f32,
+    /// The paper's propagation: the medium between slices sampled once per
+    /// voxel along the axis and shared by every light of the pass (scaled by
+    /// each light's path length), instead of along each light's direction.
+    pub shared_medium: bool,
     /// RACY: leaves out the barrier between the slices of a pass, so that
     /// synchronization validation can be shown to catch it (the volume is wrong).
     pub racy: bool,
@@ -70,16 +75,22 @@ impl Default for LightVolumeSettings {
             max_passes_per_frame: 0,
             pass_lights: 16,
             rebase_tolerance: 1e-6,
-            substep_voxels: 0.25,
+            substep: 0.25,
+            shared_medium: false,
             racy: false,
         }
     }
 }
 
 const KNOWN: &str = "scale (1, 2 or 4), coherent, compensated (true or false), cost_estimate (\"share\", \
-                     \"passes\", \"selective\" or \"entire\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0), substep_voxels (0.05..=4), racy (true or false)";
+                     \"passes\", \"selective\" or \"entire\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0), substep (0.05..=4 illumination voxels), shared_medium, racy (true or false)";
 
 impl LightVolumeSettings {
+    /// The sub-step in data voxels, as the shader takes it.
+    pub fn substep_data_voxels(&self) -> f32 {
+        self.substep * self.scale as f32
+    }
+
     /// Reads `[lightvolume]`; a missing table gives the defaults, unknown keys
     /// and out-of-range values are errors.
     pub fn from_scene(scene: &Scene) -> Result<Self, RenderError> {
@@ -93,8 +104,9 @@ impl LightVolumeSettings {
                 ("coherent", _, Some(b), _) => s.coherent = b,
                 ("compensated", _, Some(b), _) => s.compensated = b,
                 ("racy", _, Some(b), _) => s.racy = b,
-                ("substep_voxels", _, _, _) if float.is_some_and(|f| (0.05..=4.0).contains(&f)) => {
-                    s.substep_voxels = float.unwrap_or_default() as f32
+                ("shared_medium", _, Some(b), _) => s.shared_medium = b,
+                ("substep", _, _, _) if float.is_some_and(|f| (0.05..=4.0).contains(&f)) => {
+                    s.substep = float.unwrap_or_default() as f32
                 }
                 ("cost_estimate", _, _, Some("share")) => s.cost_estimate = CostEstimate::Share,
                 ("cost_estimate", _, _, Some("passes")) => s.cost_estimate = CostEstimate::Passes,
