@@ -170,7 +170,8 @@ fn bench_lights_writes_table1_scaling_memory_and_error_rows_validation_clean() {
     assert!(part("scaling_fit").iter().any(|r| r["propagation"] == "sequential" && r["ms_per_added_light"].is_f64()));
     assert!(part("memory").iter().all(|r| r["illumination_bytes"].as_u64().is_some_and(|b| b > 0)));
     let error = part("error");
-    assert_eq!(error.len(), 2, "DVR and the light volume at scale 4");
+    assert_eq!(error.len(), 3, "DVR and the light volume at scale 4, per-light and shared medium");
+    assert!(error.iter().any(|r| r["technique"] == "lightvolume-shared-medium"));
     assert!(error.iter().all(|r| r["rmse"].as_f64().is_some_and(f64::is_finite)));
     let markdown = std::fs::read_to_string(out.join("lights.md")).unwrap();
     assert!(markdown.contains("paper (GTX 670)") && markdown.contains("ms_per_added_light"));

@@ -364,7 +364,7 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let ctx = session::open(&args.gpu)?;
     let table1_steps = args.scales.len() * args.light_counts.len() * Update::ALL.len();
-    let steps = table1_steps + 2 * args.scaling_counts.len() + 2 + args.error_scales.len();
+    let steps = table1_steps + 2 * args.scaling_counts.len() + 2 + 2 * args.error_scales.len();
     let mut meter = Meter {
         ctx: &ctx,
         profiler: Profiler::new(&ctx, PROFILER_CAPACITY)?,
@@ -569,10 +569,19 @@ fn error_rows(
     row.set("dispatches", dvr.dispatches);
     report.error.push(row);
     let all_on: Vec<Option<Light>> = lit.lights.iter().copied().map(Some).collect();
-    for &scale in &args.error_scales {
-        meter.progress.start_step(&format!("{width}x{height} light volume {} frame", resolution_label(scale)));
+    // Both propagations of the medium: along each light (default), and shared
+    // by the lights of a pass (the paper's, cheaper per light).
+    let variants = args.error_scales.iter().flat_map(|&scale| [(scale, false), (scale, true)]);
+    for (scale, shared) in variants {
+        let medium = if shared { "shared" } else { "per-light" };
+        meter
+            .progress
+            .start_step(&format!("{width}x{height} light volume {} frame, {medium} medium", resolution_label(scale)));
         let mut s = lit.clone();
         s.techniques = lightvolume_table(&s, scale, true, "passes");
+        if let Some(lv) = s.techniques.get_mut("lightvolume").and_then(|v| v.as_table_mut()) {
+            lv.insert("shared_medium".into(), toml::Value::Boolean(shared));
+        }
         let gpu = GpuScene::upload_with(meter.ctx, &s, texels).context("uploading the scene")?;
         meter.ctx.memory.reset_peak();
         let mut renderer = LightVolumeRenderer::new(&gpu)?;
@@ -597,7 +606,8 @@ fn error_rows(
         let image = frame.image.context("light volume frame without an image")?;
         let stats = compare(&image, &reference)?;
         let mut row = BenchRow::new();
-        row.set("technique", "lightvolume").set("width", width).set("height", height).set("lights", count);
+        let technique = if shared { "lightvolume-shared-medium" } else { "lightvolume" };
+        row.set("technique", technique).set("width", width).set("height", height).set("lights", count);
         row.set("resolution", resolution_label(scale)).set("grid", grid_text(frame.grid));
         row.set("gpu_ms", median(&total)).set("rmse", stats.rmse).set("max_abs", stats.max_abs);
         row.set("psnr", stats.psnr).set("dispatches", frame.dispatches);
@@ -687,7 +697,7 @@ impl Report {
                 &series,
             )?;
         }
-        let error: Vec<Series> = ["lightvolume", "dvr"]
+        let error: Vec<Series> = ["lightvolume", "lightvolume-shared-medium", "dvr"]
             .iter()
             .map(|t| series_of(&self.error, t, &|r| text(r, "technique") == *t, "gpu_ms", "rmse"))
             .collect();
