@@ -380,3 +380,31 @@ fn the_slice_barrier_is_load_bearing_under_synchronization_validation() {
         "a pass without its slice barriers went unreported: {messages:?}"
     );
 }
+
+#[test]
+fn shortening_and_growing_the_light_list_subtracts_and_adds_the_lights_it_drops_and_gains() {
+    let ctx = validated_context();
+    let scene = scene("cost_estimate = \"selective\"\n");
+    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
+    let mut run = Run::new(&ctx);
+    let all = four_lights();
+    run.update(&mut r, &all);
+    // Lights 2 and 3 dropped off the end, light 1 moved: their old states are
+    // subtracted from the slots they were propagated from.
+    let mut short = all[..2].to_vec();
+    short[1] = Some(coloured(dir(-0.3, -1.0, 0.1), Vec3::ONE, 0.9));
+    let (out, _) = run.update(&mut r, &short);
+    assert_eq!(out.update.plan.kind, UpdateKind::Selective);
+    assert_eq!(out.update.plan.changed_lights, 3, "{}", out.update.plan.reason);
+    let fresh = entire(&ctx, &gpu, &short);
+    let peak = largest_value(&entire(&ctx, &gpu, &all));
+    assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
+    // And back to all four plus a fifth.
+    let mut long = all.clone();
+    long.push(Some(coloured(dir(0.0, -1.0, -0.4), Vec3::new(0.2, 1.0, 0.4), 1.1)));
+    run.update(&mut r, &long);
+    let fresh = entire(&ctx, &gpu, &long);
+    assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
+    assert_validation_clean(&ctx);
+}

@@ -64,6 +64,8 @@ pub struct LightVolumeRenderer<'s> {
     cache: PassCache,
     /// Mirror of the slot buffer (None: never written).
     slot_states: Vec<Option<GpuLight>>,
+    /// Most lights any update has had: slots below it belong to light ids.
+    light_slots: usize,
     /// What the volume holds.
     present: Vec<Contribution>,
     plan_state: PlanState,
@@ -85,6 +87,7 @@ impl<'s> LightVolumeRenderer<'s> {
             propagation: None,
             cache: PassCache::default(),
             slot_states: Vec::new(),
+            light_slots: 0,
             present: Vec::new(),
             plan_state: PlanState { invalid: true, ..Default::default() },
             geometry: PeakGeometry { box_half: bx.half_extent, voxel_length: bx.voxel_length },
@@ -238,8 +241,11 @@ impl<'s> LightVolumeRenderer<'s> {
         lights: &[Option<Light>],
         passes: &[PropagationGroup],
     ) -> (Vec<Vec<u32>>, Vec<(usize, GpuLight)>, usize) {
+        // Slots below `base` belong to light ids (also those of lights removed by
+        // shortening the list, whose old states a subtraction may still read).
+        let base = self.light_slots.max(lights.len());
         let mut states = self.slot_states.clone();
-        states.resize(states.len().max(lights.len()), None);
+        states.resize(states.len().max(base), None);
         let mut writes = Vec::new();
         for (i, light) in lights.iter().enumerate() {
             if let Some(l) = light {
@@ -250,7 +256,7 @@ impl<'s> LightVolumeRenderer<'s> {
                 }
             }
         }
-        let mut next_extra = lights.len();
+        let mut next_extra = base;
         let mut slots = Vec::new();
         for pass in passes {
             let mut pass_slots = Vec::new();
@@ -259,8 +265,8 @@ impl<'s> LightVolumeRenderer<'s> {
                 // light's own slot still holds its old state (it was switched off).
                 let slot = if m.factor > 0.0 || states.get(m.light) == Some(&Some(m.state)) {
                     m.light
-                } else if let Some(j) = states[lights.len()..next_extra].iter().position(|s| *s == Some(m.state)) {
-                    lights.len() + j
+                } else if let Some(j) = states[base..next_extra].iter().position(|s| *s == Some(m.state)) {
+                    base + j
                 } else {
                     if states.len() <= next_extra {
                         states.resize(next_extra + 1, None);
@@ -274,7 +280,7 @@ impl<'s> LightVolumeRenderer<'s> {
             }
             slots.push(pass_slots);
         }
-        (slots, writes, next_extra.max(lights.len()))
+        (slots, writes, next_extra)
     }
 
     /// Makes every pass of `passes` available as a recorded secondary: reused
@@ -289,6 +295,7 @@ impl<'s> LightVolumeRenderer<'s> {
             return Ok((Vec::new(), 0));
         }
         let (slots, writes, slots_needed) = self.assign_slots(lights, passes);
+        self.light_slots = self.light_slots.max(lights.len());
         let layers = passes.iter().map(|p| p.members.len()).max().unwrap_or(1) as u32;
         let entries_needed: usize = passes.iter().map(|p| p.members.len()).sum();
         let need = Capacity { layers, slots: slots_needed, entries: entries_needed };
