@@ -7,7 +7,6 @@
 //! so selective updates can add to what earlier frames left.
 
 use crate::render::RenderError;
-use crate::vk::barriers::{Access, Barrier};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Recorder, VkError};
 use ash::vk;
@@ -110,41 +109,26 @@ impl IlluminationVolume {
     /// After the ray cast: copies the volume into `readback` (x fastest, then y,
     /// z), leaving it in GENERAL for the next update.
     pub fn record_readback(&self, rec: &mut Recorder, readback: &[Buffer; 2]) {
-        let images: Vec<&Image> = if self.compensated { vec![&self.image, &self.low] } else { vec![&self.image] };
-        for (image, name) in
-            images.iter().zip(["illumination_write_to_readback_copy", "illumination_low_write_to_readback_copy"])
-        {
-            rec.barrier(&Barrier::image(
-                name,
-                image,
-                Access::COMPUTE_WRITE,
-                Access::TRANSFER_READ,
-                vk::ImageLayout::GENERAL,
-                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-            ));
+        rec.readback_image_for_reuse(
+            &self.image,
+            &readback[0],
+            [
+                "illumination_write_to_readback_copy",
+                "illumination_readback_copy_to_next_update",
+                "illumination_readback_copy_to_host_read",
+            ],
+        );
+        if self.compensated {
+            rec.readback_image_for_reuse(
+                &self.low,
+                &readback[1],
+                [
+                    "illumination_low_write_to_readback_copy",
+                    "illumination_low_readback_copy_to_next_update",
+                    "illumination_low_readback_copy_to_host_read",
+                ],
+            );
         }
-        for (image, buffer) in images.iter().zip(readback) {
-            rec.copy_image_to_buffer(image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, buffer);
-        }
-        // Back to GENERAL for the next update, which adds to what is there.
-        for (image, name) in images
-            .iter()
-            .zip(["illumination_readback_copy_to_next_update", "illumination_low_readback_copy_to_next_update"])
-        {
-            rec.barrier(&Barrier::image(
-                name,
-                image,
-                Access::TRANSFER_READ,
-                Access::COMPUTE_READ_WRITE,
-                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                vk::ImageLayout::GENERAL,
-            ));
-        }
-        rec.barrier(&Barrier::memory(
-            "illumination_readback_copy_to_host_read",
-            Access::TRANSFER_WRITE,
-            Access::HOST_READ,
-        ));
     }
 
     pub fn read(&self, readback: &[Buffer; 2]) -> Result<IlluminationReadback, RenderError> {

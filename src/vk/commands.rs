@@ -257,7 +257,8 @@ impl<'a> Recorder<'a> {
     }
 
     /// Copies an image that compute shaders wrote (GENERAL) into a host-visible
-    /// buffer: barrier `write_to_copy`, the copy, barrier `copy_to_host`.
+    /// buffer: barrier `write_to_copy`, the copy, barrier `copy_to_host`. The
+    /// image is left in TRANSFER_SRC_OPTIMAL (the frame is done with it).
     pub fn readback_image(
         &mut self,
         image: &Image,
@@ -265,16 +266,49 @@ impl<'a> Recorder<'a> {
         write_to_copy: &'static str,
         copy_to_host: &'static str,
     ) {
+        self.readback_image_then(image, readback, write_to_copy, None, copy_to_host);
+    }
+
+    /// Like `readback_image` for an image that stays in use: after the copy,
+    /// barrier `copy_to_compute` returns it to GENERAL for compute shaders.
+    pub fn readback_image_for_reuse(
+        &mut self,
+        image: &Image,
+        readback: &Buffer,
+        [write_to_copy, copy_to_compute, copy_to_host]: [&'static str; 3],
+    ) {
+        self.readback_image_then(image, readback, write_to_copy, Some(copy_to_compute), copy_to_host);
+    }
+
+    fn readback_image_then(
+        &mut self,
+        image: &Image,
+        readback: &Buffer,
+        write_to_copy: &'static str,
+        copy_to_compute: Option<&'static str>,
+        copy_to_host: &'static str,
+    ) {
         use super::barriers::Access;
+        let (general, source) = (vk::ImageLayout::GENERAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
         self.barrier(&Barrier::image(
             write_to_copy,
             image,
             Access::COMPUTE_WRITE,
             Access::TRANSFER_READ,
-            vk::ImageLayout::GENERAL,
-            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+            general,
+            source,
         ));
-        self.copy_image_to_buffer(image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, readback);
+        self.copy_image_to_buffer(image, source, readback);
+        if let Some(name) = copy_to_compute {
+            self.barrier(&Barrier::image(
+                name,
+                image,
+                Access::TRANSFER_READ,
+                Access::COMPUTE_READ_WRITE,
+                source,
+                general,
+            ));
+        }
         self.barrier(&Barrier::memory(copy_to_host, Access::TRANSFER_WRITE, Access::HOST_READ));
     }
 
