@@ -105,8 +105,8 @@ fn directional_light_straight_down_through_a_homogeneous_slab_gives_the_analytic
         let (mut scene, sigma) = homogeneous_scene(n, Vec3::NEG_Y, scale);
         set_shared_medium(&mut scene, shared);
         let (out, _) = frame(&ctx, &scene, 16, true);
-        assert_eq!(out.groups.len(), 1, "one group for a light straight down");
-        assert_eq!(out.groups[0].direction_name(), "-y");
+        assert_eq!(out.groups().len(), 1, "one group for a light straight down");
+        assert_eq!(out.groups()[0].direction_name(), "-y");
         assert_eq!(out.grid, UVec3::splat(n / scale));
         // Depth below the top face in data voxels.
         let (worst, _, _) = errors_against_analytic(&out, sigma, |uvw| (1.0 - uvw.y as f64) * n as f64);
@@ -136,9 +136,9 @@ fn oblique_directional_light_splits_into_two_groups_that_agree_with_the_analytic
         let (mut scene, sigma) = homogeneous_scene(n, direction, 1);
         set_shared_medium(&mut scene, shared);
         let (out, _) = frame(&ctx, &scene, 16, true);
-        let names: Vec<String> = out.groups.iter().map(|g| g.direction_name()).collect();
+        let names: Vec<String> = out.groups().iter().map(|g| g.direction_name()).collect();
         assert_eq!(names, ["+x", "-y"], "light travelling mostly down and toward +x");
-        let sum: f32 = out.groups.iter().map(|g| g.members[0].factor).sum();
+        let sum: f32 = out.groups().iter().map(|g| g.members[0].factor).sum();
         assert!((sum - 1.0).abs() < 1e-5);
         let w = -direction.normalize();
         // Distance (data voxels) to the box exit along w from uvw in the unit cube.
@@ -307,7 +307,7 @@ fn no_lights_renders_the_emission_term_and_bad_settings_are_errors() {
     let ctx = validated_context();
     let scene = slab_sphere_scene(vec![], 2);
     let (out, _) = frame(&ctx, &scene, 16, false);
-    assert!(out.groups.is_empty());
+    assert!(out.groups().is_empty());
     assert_eq!(out.dispatches, 1, "the ray cast alone");
     assert!(out.image.as_ref().unwrap().all_finite());
     for table in ["[lightvolume]\nscale = 3\n", "[lightvolume]\nscale = 2\nalbedo = 1\n", "lightvolume = 2\n"] {
@@ -390,7 +390,7 @@ fn coherent_and_sequential_propagation_give_the_same_volume() {
             toml::from_str(&format!("[lightvolume]\nscale = 2\ncoherent = {coherent}\nshared_medium = {shared}\n"))
                 .unwrap();
         let (out, _) = frame(&ctx, &scene, 16, true);
-        passes.push(out.groups.len());
+        passes.push(out.groups().len());
         volumes.push(out.illumination.unwrap().high);
     }
     assert!(passes[1] > passes[0], "sequential must take more passes: {passes:?}");

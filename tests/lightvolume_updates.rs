@@ -122,7 +122,7 @@ fn a_selective_state_change_and_a_toggle_give_the_volume_of_an_entire_update() {
     lights[2] = None;
     let (off, scopes) = run.update(&mut r, &lights);
     assert_eq!(off.update.plan.kind, UpdateKind::Selective, "{}", off.update.plan.reason);
-    let members: Vec<_> = off.groups.iter().flat_map(|g| &g.members).collect();
+    let members: Vec<_> = off.groups().iter().flat_map(|g| &g.members).collect();
     assert!(!members.is_empty() && members.iter().all(|m| m.light == 2 && m.factor < 0.0), "{members:?}");
     assert_eq!(off.update.plan.selective.propagations, members.len());
     assert!(scopes.iter().any(|s| s.ends_with("_0add_1sub")), "{scopes:?}");
@@ -134,7 +134,7 @@ fn a_selective_state_change_and_a_toggle_give_the_volume_of_an_entire_update() {
     // And on again: the sum returns to where it was.
     lights[2] = four_lights()[2];
     let (on, _) = run.update(&mut r, &lights);
-    assert!(on.groups.iter().flat_map(|g| &g.members).all(|m| m.light == 2 && m.factor > 0.0));
+    assert!(on.groups().iter().flat_map(|g| &g.members).all(|m| m.light == 2 && m.factor > 0.0));
     assert!(largest_difference(&r.read_illumination().unwrap(), &selective) <= SELECTIVE_TOLERANCE * peak);
     assert_validation_clean(&ctx);
 }
@@ -190,7 +190,7 @@ fn incremental_mode_runs_at_most_n_passes_a_frame_and_converges_to_the_entire_up
     let mut deferred = Vec::new();
     for _ in 0..8 {
         let out = r.render(&lights, 16, 16, &mut profiler, false).unwrap();
-        assert!(out.groups.len() <= 1, "{} passes in one frame", out.groups.len());
+        assert!(out.groups().len() <= 1, "{} passes in one frame", out.groups().len());
         deferred.push(out.update.plan.deferred);
         images.push(out.image.unwrap());
         if out.update.plan.kind == UpdateKind::Unchanged {

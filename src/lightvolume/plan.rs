@@ -108,6 +108,19 @@ impl PeakGeometry {
     }
 }
 
+/// The rounding bound of adding (or subtracting) contributions of the given
+/// peak values into a volume holding `present`: each rounds once per voxel
+/// against a running sum no larger than everything present plus itself.
+fn rounding(
+    present: &[Contribution],
+    peaks: impl Iterator<Item = f64>,
+    compensated: bool,
+    geometry: PeakGeometry,
+) -> f64 {
+    let present_peak: f64 = present.iter().map(|c| geometry.peak(c)).sum();
+    peaks.map(|p| DriftBound::per_addition(present_peak + p, compensated)).sum()
+}
+
 /// `present` minus `target` as a multiset (what must be subtracted), and
 /// `target` minus `present` (what must be added).
 fn difference(present: &[Contribution], target: &[Contribution]) -> (Vec<Contribution>, Vec<Contribution>) {
@@ -164,15 +177,9 @@ pub fn plan_update(
     let entire = UpdateCost { passes: entire_passes.len(), propagations: entire_items.len() };
     let share_selective = 2 * changed.len() <= lights;
 
-    // The rounding bound a selective update would leave: each added or
-    // subtracted contribution rounds once per voxel against a running sum no
-    // larger than everything present plus itself.
-    let present_peak: f64 = present.iter().map(|c| geometry.peak(c)).sum();
+    // The rounding bound a selective update would leave.
     let drift_after = state.drift.bound
-        + items
-            .iter()
-            .map(|(c, _)| DriftBound::per_addition(present_peak + geometry.peak(c), settings.compensated))
-            .sum::<f64>();
+        + rounding(present, items.iter().map(|(c, _)| geometry.peak(c)), settings.compensated, geometry);
     let weakest = target.iter().map(|c| geometry.peak(c)).filter(|p| *p > 0.0).fold(f64::INFINITY, f64::min);
     let tolerance = settings.rebase_tolerance * weakest;
 
@@ -258,16 +265,9 @@ pub fn drift_after(
         UpdateKind::Unchanged => state.drift,
         UpdateKind::Entire => DriftBound::default(),
         UpdateKind::Selective => {
-            let present_peak: f64 = present_before.iter().map(|c| geometry.peak(c)).sum();
-            let added: f64 = plan
-                .passes
-                .iter()
-                .flat_map(|p| &p.members)
-                .map(|m| {
-                    let own = peak(&m.state, m.factor, geometry.box_half, geometry.voxel_length);
-                    DriftBound::per_addition(present_peak + own, settings.compensated)
-                })
-                .sum();
+            let members = plan.passes.iter().flat_map(|p| &p.members);
+            let peaks = members.map(|m| peak(&m.state, m.factor, geometry.box_half, geometry.voxel_length));
+            let added = rounding(present_before, peaks, settings.compensated, geometry);
             DriftBound { bound: state.drift.bound + added }
         }
     }

@@ -40,11 +40,16 @@ pub struct LightVolumeFrame {
     pub barriers: u32,
     /// Illumination volume size.
     pub grid: UVec3,
-    /// The passes that ran, in order.
-    pub groups: Vec<PropagationGroup>,
     pub update: UpdateReport,
     /// The illumination volume after the frame, when asked for.
     pub illumination: Option<IlluminationReadback>,
+}
+
+impl LightVolumeFrame {
+    /// The passes that ran, in order.
+    pub fn groups(&self) -> &[PropagationGroup] {
+        &self.update.plan.passes
+    }
 }
 
 struct ViewPass {
@@ -190,21 +195,8 @@ impl<'s> LightVolumeRenderer<'s> {
         let drift = drift_after(&self.plan_state, &self.present, &plan, &self.settings, self.geometry);
         apply(&mut self.present, plan.kind == UpdateKind::Entire, &plan.passes);
         self.plan_state = PlanState { invalid: false, pending: plan.deferred > 0, drift };
-        let update = UpdateReport {
-            recorded,
-            reused: plan.passes.len() - recorded,
-            drift_bound: drift.bound,
-            plan: plan.clone(),
-        };
-        Ok(LightVolumeFrame {
-            image,
-            dispatches,
-            barriers,
-            grid: self.illumination.size,
-            groups: plan.passes,
-            update,
-            illumination: volume,
-        })
+        let update = UpdateReport { recorded, reused: plan.passes.len() - recorded, drift_bound: drift.bound, plan };
+        Ok(LightVolumeFrame { image, dispatches, barriers, grid: self.illumination.size, update, illumination: volume })
     }
 
     /// Reads the illumination volume back (its own submission).
