@@ -14,8 +14,11 @@
 //! quantity is each light's transmittance (its colour, falloff and cone are
 //! applied per voxel), so the paper's blend of the material colour into the
 //! propagated light (model (ii)-like) is left out. Between slices the medium is
-//! integrated in quarter-voxel sub-steps (exact for homogeneous media); a path
-//! ends where the light enters the volume, through any face, or at the light.
+//! integrated along each light's direction in sub-steps of a quarter
+//! illumination voxel (exact for homogeneous media), or, with `shared_medium`,
+//! once along the axis for all lights of a pass (the paper's, cheaper per
+//! light); a path ends where the light enters the volume, through any face, or
+//! at the light.
 //! Where it falls short of the model: light is known at illumination voxel
 //! centres only, so shadows are blurred by the grid and by bilinear resampling
 //! from slice to slice (which overestimates the convex exp(-depth), most for
