@@ -611,7 +611,9 @@ fn error_rows(
         row.set("resolution", resolution_label(scale)).set("grid", grid_text(frame.grid));
         row.set("gpu_ms", median(&total)).set("rmse", stats.rmse).set("max_abs", stats.max_abs);
         row.set("psnr", stats.psnr).set("dispatches", frame.dispatches);
-        row.set("update_ms", median(&update)).set("raycast_ms", median(&raycast)).set("passes", frame.update.plan.passes.len());
+        row.set("update_ms", median(&update))
+            .set("raycast_ms", median(&raycast))
+            .set("passes", frame.update.plan.passes.len());
         row.set("gpu_memory_bytes", bytes);
         report.error.push(row);
     }
