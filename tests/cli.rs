@@ -169,6 +169,9 @@ fn bench_lights_writes_table1_scaling_memory_and_error_rows_validation_clean() {
     assert_eq!(part("scaling").len(), 4, "two light counts, coherent and sequential");
     assert!(part("scaling_fit").iter().any(|r| r["propagation"] == "sequential" && r["ms_per_added_light"].is_f64()));
     assert!(part("memory").iter().all(|r| r["illumination_bytes"].as_u64().is_some_and(|b| b > 0)));
+    let incremental = part("incremental");
+    assert_eq!(incremental.len(), 2, "one and two passes a frame");
+    assert!(incremental[0]["frames"].as_u64() > incremental[1]["frames"].as_u64(), "{incremental:?}");
     let error = part("error");
     assert_eq!(error.len(), 3, "DVR and the light volume at scale 4, per-light and shared medium");
     assert!(error.iter().any(|r| r["technique"] == "lightvolume-shared-medium"));
@@ -184,6 +187,10 @@ fn bench_lights_rejects_bad_parameters_clearly() {
     assert_user_error(&sweeplab(&["bench", "lights", "--scales", "3", "--out", out]), "--scales");
     assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "0", "--out", out]), "--light-counts");
     assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "17", "--out", out]), "--light-counts");
+    assert_user_error(
+        &sweeplab(&["bench", "lights", "--incremental-passes", "0", "--out", out]),
+        "--incremental-passes",
+    );
     assert_user_error(&sweeplab(&["bench", "lights", "--scaling-counts", "0", "--out", out]), "--scaling-counts");
     assert_user_error(&sweeplab(&["bench", "lights", "--scaling-scale", "8", "--out", out]), "--scaling-scale");
     assert_user_error(&sweeplab(&["bench", "lights", "--error-scales", "1,5", "--out", out]), "--error-scales");

@@ -68,6 +68,10 @@ pub struct BenchLightsArgs {
     /// Scales of the error-against-time rows (one full frame each, against the ground truth).
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
     pub error_scales: Vec<u32>,
+    /// Incremental mode: passes per frame to converge with (at the scaling scale,
+    /// with the most Table 1 lights, from an empty volume).
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2])]
+    pub incremental_passes: Vec<u32>,
     /// Timed updates per measurement after an untimed warm-up; the median is reported.
     #[arg(long, default_value_t = 3)]
     pub repeat: u32,

@@ -331,6 +331,9 @@ fn check_args(args: &BenchLightsArgs) -> anyhow::Result<()> {
     scales_ok("scales", &args.scales)?;
     scales_ok("error-scales", &args.error_scales)?;
     scales_ok("scaling-scale", &[args.scaling_scale])?;
+    if let Some(n) = args.incremental_passes.iter().find(|n| !(1..=64).contains(*n)) {
+        bail!("--incremental-passes: {n} is outside 1..=64 passes per frame");
+    }
     if args.light_counts.is_empty() {
         bail!("--light-counts: give at least one light count (2..={MAX_TABLE1_LIGHTS})");
     }
@@ -364,7 +367,8 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let ctx = session::open(&args.gpu)?;
     let table1_steps = args.scales.len() * args.light_counts.len() * Update::ALL.len();
-    let steps = table1_steps + 2 * args.scaling_counts.len() + 2 + 2 * args.error_scales.len();
+    let steps =
+        table1_steps + 2 * args.scaling_counts.len() + args.incremental_passes.len() + 2 + 2 * args.error_scales.len();
     let mut meter = Meter {
         ctx: &ctx,
         profiler: Profiler::new(&ctx, PROFILER_CAPACITY)?,
@@ -374,6 +378,7 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     let mut report = Report::default();
     table1(args, &mut meter, &scene, &mut report)?;
     scaling(args, &mut meter, &scene, &mut report)?;
+    incremental(args, &mut meter, &scene, &mut report)?;
     error_rows(args, &mut meter, &scene, (width, height), &mut report)?;
     meter.progress.finish();
     report.write(args)?;
@@ -387,6 +392,7 @@ struct Report {
     scaling: BenchTable,
     scaling_fit: BenchTable,
     memory: BenchTable,
+    incremental: BenchTable,
     error: BenchTable,
 }
 
@@ -478,6 +484,58 @@ fn memory_row(scale: u32, count: u32, propagation: &str, m: &Measured) -> BenchR
     row.set("slice_buffer_bytes", m.propagation_bytes);
     row.set("total_bytes", m.illumination_bytes + m.propagation_bytes);
     row
+}
+
+/// Incremental mode from an empty volume: frames until the update is complete,
+/// and what each frame's update costs, beside one entire update.
+fn incremental(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mut Report) -> anyhow::Result<()> {
+    let scale = args.scaling_scale;
+    let count = args.light_counts.iter().copied().max().unwrap_or(2);
+    let lights: Vec<Option<Light>> = table1_lights(count as usize).into_iter().map(Some).collect();
+    let entire = {
+        let mut s = scene.clone();
+        s.techniques = lightvolume_table(&s, scale, true, "entire");
+        let gpu = GpuScene::upload(meter.ctx, &s).context("uploading the scene")?;
+        let mut renderer = LightVolumeRenderer::new(&gpu)?;
+        timed_update(meter.ctx, &mut renderer, &mut meter.profiler, &lights, true)?; // untimed warm-up
+        timed_update(meter.ctx, &mut renderer, &mut meter.profiler, &lights, true)?.0
+    };
+    for &n in &args.incremental_passes {
+        meter
+            .progress
+            .start_step(&format!("incremental {} {count} lights, {n} passes a frame", resolution_label(scale)));
+        let mut s = scene.clone();
+        s.techniques = lightvolume_table(&s, scale, true, "passes");
+        if let Some(lv) = s.techniques.get_mut("lightvolume").and_then(|v| v.as_table_mut()) {
+            lv.insert("max_passes_per_frame".into(), toml::Value::Integer(n.into()));
+        }
+        let gpu = GpuScene::upload(meter.ctx, &s).context("uploading the scene")?;
+        let mut renderer = LightVolumeRenderer::new(&gpu)?;
+        // Untimed: records every pass and compiles the shaders.
+        while timed_update(meter.ctx, &mut renderer, &mut meter.profiler, &lights, false)?.1.update.plan.kind
+            != UpdateKind::Unchanged
+        {}
+        renderer.invalidate();
+        let mut frames = Vec::new();
+        loop {
+            let (ms, frame) = timed_update(meter.ctx, &mut renderer, &mut meter.profiler, &lights, false)?;
+            if frame.update.plan.kind == UpdateKind::Unchanged {
+                break;
+            }
+            frames.push(ms);
+            if frames.len() > 10_000 {
+                bail!("incremental mode did not converge in 10,000 frames");
+            }
+        }
+        meter.progress.finish_step();
+        let mut row = BenchRow::new();
+        row.set("resolution", resolution_label(scale)).set("grid", grid_text(renderer.grid())).set("lights", count);
+        row.set("max_passes_per_frame", n).set("frames", frames.len());
+        row.set("max_frame_ms", frames.iter().copied().fold(0.0, f64::max));
+        row.set("total_ms", frames.iter().sum::<f64>()).set("entire_update_ms", entire);
+        report.incremental.push(row);
+    }
+    Ok(())
 }
 
 fn scaling(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mut Report) -> anyhow::Result<()> {
@@ -621,13 +679,18 @@ fn error_rows(
 }
 
 impl Report {
-    fn sections(&self) -> [(&'static str, &'static str, &BenchTable); 6] {
+    fn sections(&self) -> [(&'static str, &'static str, &BenchTable); 7] {
         [
             ("table1", "Table 1 shape: median GPU ms per update, ours beside the paper's Engine rows", &self.table1),
             ("update", "Every measured update", &self.updates),
             ("scaling", "Figure 10 shape: entire update over lights of one direction", &self.scaling),
             ("scaling_fit", "Figure 10 slopes (least squares), ms per added light", &self.scaling_fit),
             ("memory", "Memory: one illumination volume against one RGBA32F volume per light", &self.memory),
+            (
+                "incremental",
+                "Incremental mode: frames and GPU ms per frame until the volume is complete",
+                &self.incremental,
+            ),
             ("error", "Error against time: one full frame (entire update + ray cast), model (i)", &self.error),
         ]
     }
