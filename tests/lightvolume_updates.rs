@@ -408,3 +408,53 @@ fn shortening_and_growing_the_light_list_subtracts_and_adds_the_lights_it_drops_
     assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
     assert_validation_clean(&ctx);
 }
+
+/// Near-opaque medium (alpha 0.999 per voxel in the dense parts), lights at
+/// grazing angles to a face, one along the view direction, and a moved light
+/// crossing the diagonal where its share passes from one group to the other:
+/// everything stays finite and non-negative, and the selective update still
+/// gives the entire update's volume.
+#[test]
+fn near_opaque_media_grazing_lights_and_group_crossings_stay_finite_and_exact() {
+    let ctx = validated_context();
+    let mut scene = scene("");
+    scene.transfer = sweeplab::scene::TransferFunction {
+        points: vec![
+            sweeplab::scene::ControlPoint { value: 0.0, rgba: [1.0, 1.0, 1.0, 0.0] },
+            sweeplab::scene::ControlPoint { value: 0.3, rgba: [1.0, 0.8, 0.6, 0.999] },
+            sweeplab::scene::ControlPoint { value: 1.0, rgba: [1.0, 0.8, 0.6, 0.999] },
+        ],
+    };
+    let view = scene.camera.forward();
+    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
+    let mut run = Run::new(&ctx);
+    let mut lights = vec![
+        Some(coloured(dir(1.0, -1e-4, 0.0), Vec3::ONE, 1.0)),
+        Some(coloured(dir(1e-5, -1.0, 0.0), Vec3::ONE, 1.0)),
+        Some(coloured(LightKind::Directional { direction: view }, Vec3::ONE, 1.0)),
+        Some(coloured(dir(0.6, -0.4, 0.0), Vec3::new(1.0, 0.3, 0.1), 5.0)),
+    ];
+    run.update(&mut r, &lights);
+    // Light 3 swings across the x = y diagonal: its larger share moves from +x to -y.
+    let mut kinds = Vec::new();
+    for step in 1..=5 {
+        let t = step as f32 / 5.0;
+        lights[3] = Some(coloured(dir(0.6 - 0.2 * t, -0.4 - 0.2 * t, 0.05 * t), Vec3::new(1.0, 0.3, 0.1), 5.0));
+        let (out, _) = run.update(&mut r, &lights);
+        kinds.push(out.update.plan.kind);
+    }
+    assert!(kinds.iter().all(|k| *k == UpdateKind::Selective), "{kinds:?}");
+    let volume = r.read_illumination().unwrap();
+    let fresh = entire(&ctx, &gpu, &lights);
+    let peak = largest_value(&fresh);
+    assert!((0..volume.high.len()).all(|i| (0..3).all(|c| volume.value(i, c).is_finite())));
+    assert!(smallest_value(&volume) >= -SELECTIVE_TOLERANCE * peak, "negative light {}", smallest_value(&volume));
+    let diff = largest_difference(&volume, &fresh);
+    println!("near-opaque, grazing: peak {peak:.3}, difference {diff:.3e}");
+    assert!(peak > 0.5 && diff <= SELECTIVE_TOLERANCE * peak, "difference {diff:.3e} of peak {peak}");
+    // The opaque medium does shadow: the darkest voxel holds almost no light.
+    let darkest = (0..fresh.high.len()).map(|i| fresh.value(i, 0)).fold(f64::INFINITY, f64::min);
+    assert!(darkest < 1e-3 * peak, "darkest voxel {darkest:.3e}");
+    assert_validation_clean(&ctx);
+}
