@@ -458,3 +458,30 @@ fn near_opaque_media_grazing_lights_and_group_crossings_stay_finite_and_exact() 
     assert!(darkest < 1e-3 * peak, "darkest voxel {darkest:.3e}");
     assert_validation_clean(&ctx);
 }
+
+#[test]
+fn a_light_moved_back_and_forth_replays_its_recorded_selective_passes() {
+    let ctx = validated_context();
+    let scene = scene("");
+    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
+    let mut run = Run::new(&ctx);
+    let a = four_lights();
+    let mut b = a.clone();
+    b[0] = Some(coloured(dir(0.15, -1.0, 0.2), Vec3::new(1.0, 0.9, 0.8), 1.0));
+    run.update(&mut r, &a);
+    let mut counts = Vec::new();
+    for state in [&b, &a, &b, &a] {
+        let (out, _) = run.update(&mut r, state);
+        assert_eq!(out.update.plan.kind, UpdateKind::Selective);
+        counts.push((out.update.recorded, out.update.reused));
+    }
+    // The first move each way records its passes; from then on they are replayed.
+    let passes = counts[0].0;
+    assert!(passes > 0);
+    assert_eq!(counts, [(passes, 0), (passes, 0), (0, passes), (0, passes)]);
+    let fresh = entire(&ctx, &gpu, &a);
+    let peak = largest_value(&fresh);
+    assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
+    assert_validation_clean(&ctx);
+}

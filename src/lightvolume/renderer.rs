@@ -69,8 +69,6 @@ pub struct LightVolumeRenderer<'s> {
     cache: PassCache,
     /// Mirror of the slot buffer (None: never written).
     slot_states: Vec<Option<GpuLight>>,
-    /// Most lights any update has had: slots below it belong to light ids.
-    light_slots: usize,
     /// What the volume holds.
     present: Vec<Contribution>,
     plan_state: PlanState,
@@ -92,7 +90,6 @@ impl<'s> LightVolumeRenderer<'s> {
             propagation: None,
             cache: PassCache::default(),
             slot_states: Vec::new(),
-            light_slots: 0,
             present: Vec::new(),
             plan_state: PlanState { invalid: true, ..Default::default() },
             geometry: PeakGeometry { box_half: bx.half_extent, voxel_length: bx.voxel_length },
@@ -143,7 +140,7 @@ impl<'s> LightVolumeRenderer<'s> {
         self.updates += 1;
         let target = contributions(lights);
         let plan = plan_update(&self.present, &target, &self.settings, &self.plan_state, self.geometry);
-        let (pass_indices, recorded) = self.prepare_passes(lights, &plan.passes)?;
+        let (pass_indices, recorded) = self.prepare_passes(&plan.passes)?;
         if let Some((width, height)) = view {
             self.prepare_view(width, height)?;
         }
@@ -225,69 +222,54 @@ impl<'s> LightVolumeRenderer<'s> {
         Ok(())
     }
 
-    /// Slot of every member of `passes`, the light states to write and the slots
-    /// needed: light i's current state in slot i, old states (subtractions) in
-    /// any slot already holding them, else in extra slots after the lights.
-    fn assign_slots(
-        &self,
-        lights: &[Option<Light>],
-        passes: &[PropagationGroup],
-    ) -> (Vec<Vec<u32>>, Vec<(usize, GpuLight)>, usize) {
-        // Slots below `base` belong to light ids (also those of lights removed by
-        // shortening the list, whose old states a subtraction may still read).
-        let base = self.light_slots.max(lights.len());
+    /// Slot of every member of `passes`, and the light states to write. Slots
+    /// hold distinct light states, whoever they belong to: a state already in a
+    /// slot is read from there (so passes recorded against it stay valid, e.g.
+    /// both directions of a light moved back and forth); a new one takes an
+    /// empty slot, else one no kept pass reads, else any slot this update does
+    /// not need. The caller makes sure there are at least as many slots as
+    /// distinct states.
+    fn assign_slots(&self, passes: &[PropagationGroup], capacity: usize) -> (Vec<Vec<u32>>, Vec<(usize, GpuLight)>) {
         let mut states = self.slot_states.clone();
-        states.resize(states.len().max(base), None);
+        states.resize(capacity, None);
+        let needed: Vec<GpuLight> = passes.iter().flat_map(|p| p.members.iter().map(|m| m.state)).collect();
+        let is_needed = |s: &Option<GpuLight>| s.is_some_and(|s| needed.contains(&s));
+        let kept_reads =
+            |slot: usize| self.cache.passes.iter().any(|p| p.key.entries.iter().any(|e| e.0 as usize == slot));
         let mut writes = Vec::new();
-        for (i, light) in lights.iter().enumerate() {
-            if let Some(l) = light {
-                let s = crate::render::frame_params::gpu_light(l);
-                if states[i] != Some(s) {
-                    states[i] = Some(s);
-                    writes.push((i, s));
-                }
+        let mut slot_of = |state: GpuLight, states: &mut Vec<Option<GpuLight>>| -> usize {
+            if let Some(i) = states.iter().position(|s| *s == Some(state)) {
+                return i;
             }
-        }
-        let mut next_extra = base;
-        let mut slots = Vec::new();
-        for pass in passes {
-            let mut pass_slots = Vec::new();
-            for m in &pass.members {
-                // Additions read the current state; a subtraction too when the
-                // light's own slot still holds its old state (it was switched off).
-                let slot = if m.factor > 0.0 || states.get(m.light) == Some(&Some(m.state)) {
-                    m.light
-                } else if let Some(j) = states[base..next_extra].iter().position(|s| *s == Some(m.state)) {
-                    base + j
-                } else {
-                    if states.len() <= next_extra {
-                        states.resize(next_extra + 1, None);
-                    }
-                    states[next_extra] = Some(m.state);
-                    writes.push((next_extra, m.state));
-                    next_extra += 1;
-                    next_extra - 1
-                };
-                pass_slots.push(slot as u32);
-            }
-            slots.push(pass_slots);
-        }
-        (slots, writes, next_extra)
+            let victim = states
+                .iter()
+                .position(|s| s.is_none())
+                .or_else(|| (0..states.len()).find(|&i| !is_needed(&states[i]) && !kept_reads(i)))
+                .or_else(|| (0..states.len()).find(|&i| !is_needed(&states[i])))
+                .expect("at least as many slots as distinct states");
+            states[victim] = Some(state);
+            writes.push((victim, state));
+            victim
+        };
+        let slots =
+            passes.iter().map(|p| p.members.iter().map(|m| slot_of(m.state, &mut states) as u32).collect()).collect();
+        (slots, writes)
     }
 
     /// Makes every pass of `passes` available as a recorded secondary: reused
     /// where the cache has it, recorded otherwise. Returns their cache indices
     /// and how many were recorded.
-    fn prepare_passes(
-        &mut self,
-        lights: &[Option<Light>],
-        passes: &[PropagationGroup],
-    ) -> Result<(Vec<usize>, usize), RenderError> {
+    fn prepare_passes(&mut self, passes: &[PropagationGroup]) -> Result<(Vec<usize>, usize), RenderError> {
         if passes.is_empty() {
             return Ok((Vec::new(), 0));
         }
-        let (slots, writes, slots_needed) = self.assign_slots(lights, passes);
-        self.light_slots = self.light_slots.max(lights.len());
+        let mut distinct: Vec<GpuLight> = Vec::new();
+        for m in passes.iter().flat_map(|p| &p.members) {
+            if !distinct.contains(&m.state) {
+                distinct.push(m.state);
+            }
+        }
+        let slots_needed = distinct.len();
         let layers = passes.iter().map(|p| p.members.len()).max().unwrap_or(1) as u32;
         let entries_needed: usize = passes.iter().map(|p| p.members.len()).sum();
         let need = Capacity { layers, slots: slots_needed, entries: entries_needed };
@@ -309,8 +291,10 @@ impl<'s> LightVolumeRenderer<'s> {
             self.slot_states.clear();
             self.propagation = None;
             self.propagation = Some(Propagation::new(self.gpu, &self.illumination, capacity, &self.settings)?);
-            return self.prepare_passes(lights, passes);
+            return self.prepare_passes(passes);
         }
+        let capacity = self.propagation.as_ref().map_or(0, |p| p.capacity.slots);
+        let (slots, writes) = self.assign_slots(passes, capacity);
         let propagation = self.propagation.as_mut().expect("checked above");
         for (slot, state) in &writes {
             propagation.write_slots(*slot, std::slice::from_ref(state))?;
@@ -339,7 +323,7 @@ impl<'s> LightVolumeRenderer<'s> {
                 self.cache = PassCache::default();
                 self.slot_states.clear();
                 self.propagation = None;
-                return self.prepare_passes(lights, passes);
+                return self.prepare_passes(passes);
             };
             let entries: Vec<GroupEntry> = pass
                 .members
