@@ -485,3 +485,34 @@ fn a_light_moved_back_and_forth_replays_its_recorded_selective_passes() {
     assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
     assert_validation_clean(&ctx);
 }
+
+/// Forty lights of one direction fill two groups; at 16 lights a pass each
+/// group is split into three passes of the same axis, run consecutively, and
+/// the volume is the one of unsplit passes.
+#[test]
+fn groups_larger_than_a_pass_are_split_and_give_the_same_volume() {
+    let ctx = validated_context();
+    let lights: Vec<Option<Light>> = (0..40)
+        .map(|i| {
+            let a = i as f32 * 2.4;
+            Some(coloured(dir(0.35 + 0.04 * a.cos(), -1.0, 0.25 + 0.04 * a.sin()), Vec3::ONE, 0.05))
+        })
+        .collect();
+    let mut volumes = Vec::new();
+    for pass_lights in [16, 64] {
+        let scene = scene(&format!("pass_lights = {pass_lights}\n"));
+        let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+        let mut r = LightVolumeRenderer::new(&gpu).unwrap();
+        let (out, scopes) = Run::new(&ctx).update(&mut r, &lights);
+        let names: Vec<String> = out.groups().iter().map(|g| g.scope_name()).collect();
+        println!("pass_lights {pass_lights}: {names:?}");
+        assert!(out.groups().iter().all(|g| g.members.len() <= pass_lights));
+        let expected = if pass_lights == 16 { 6 } else { 2 };
+        assert_eq!(out.groups().len(), expected, "{names:?}");
+        assert_eq!(scopes.iter().filter(|s| s.starts_with("lightvolume_group_")).count(), expected);
+        volumes.push(r.read_illumination().unwrap());
+    }
+    let peak = largest_value(&volumes[1]);
+    assert!(largest_difference(&volumes[0], &volumes[1]) <= SELECTIVE_TOLERANCE * peak);
+    assert_validation_clean(&ctx);
+}
