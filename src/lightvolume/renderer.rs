@@ -198,6 +198,10 @@ impl<'s> LightVolumeRenderer<'s> {
 
     /// Reads the illumination volume back (its own submission).
     pub fn read_illumination(&self) -> Result<IlluminationReadback, RenderError> {
+        if self.updates == 0 {
+            // The volume has no contents (nor layout) before its first clear.
+            return Err(RenderError::Invalid("the illumination volume is read before its first update".into()));
+        }
         let ctx = self.gpu.ctx;
         let buffers = self.illumination.readback_buffers(ctx)?;
         submit_and_wait(ctx, "lightvolume readback", |rec| {
