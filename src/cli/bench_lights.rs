@@ -76,17 +76,26 @@ impl Update {
     }
 }
 
-/// The scene's techniques with `[lightvolume]` set to what a measurement needs;
-/// other light volume keys from the scene (`--set lightvolume.shared_medium=true`)
-/// are kept.
-fn lightvolume_table(scene: &Scene, scale: u32, coherent: bool, cost_estimate: &str) -> toml::Table {
-    let mut techniques = scene.techniques.clone();
-    let mut lv = techniques.get("lightvolume").and_then(|v| v.as_table()).cloned().unwrap_or_default();
+/// `scene` with `[lightvolume]` set to what a measurement needs (scale,
+/// coherent, cost estimate, then `extra` keys); other light volume keys from the
+/// scene (`--set lightvolume.substep=0.5`) are kept.
+fn lightvolume_scene(
+    scene: &Scene,
+    scale: u32,
+    coherent: bool,
+    cost_estimate: &str,
+    extra: &[(&str, toml::Value)],
+) -> Scene {
+    let mut s = scene.clone();
+    let mut lv = s.techniques.get("lightvolume").and_then(|v| v.as_table()).cloned().unwrap_or_default();
     lv.insert("scale".into(), toml::Value::Integer(scale.into()));
     lv.insert("coherent".into(), toml::Value::Boolean(coherent));
     lv.insert("cost_estimate".into(), toml::Value::String(cost_estimate.into()));
-    techniques.insert("lightvolume".into(), toml::Value::Table(lv));
-    techniques
+    for (key, value) in extra {
+        lv.insert((*key).into(), value.clone());
+    }
+    s.techniques.insert("lightvolume".into(), toml::Value::Table(lv));
+    s
 }
 
 fn directional(direction: Vec3, color: Vec3, intensity: f32) -> Light {
@@ -412,8 +421,7 @@ fn table1(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mut
                 (false, &[Update::EntireSequential][..]),
                 (true, &[Update::EntireCoherent, Update::StateChange, Update::Toggle][..]),
             ] {
-                let mut s = scene.clone();
-                s.techniques = lightvolume_table(&s, scale, coherent, if coherent { "selective" } else { "entire" });
+                let s = lightvolume_scene(scene, scale, coherent, if coherent { "selective" } else { "entire" }, &[]);
                 let results = measure_all(meter, &s, &lights, updates, &label)?;
                 measured.extend(updates.iter().copied().zip(results));
             }
@@ -493,8 +501,7 @@ fn incremental(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report:
     let count = args.light_counts.iter().copied().max().unwrap_or(2);
     let lights: Vec<Option<Light>> = table1_lights(count as usize).into_iter().map(Some).collect();
     let entire = {
-        let mut s = scene.clone();
-        s.techniques = lightvolume_table(&s, scale, true, "entire");
+        let s = lightvolume_scene(scene, scale, true, "entire", &[]);
         let gpu = GpuScene::upload(meter.ctx, &s).context("uploading the scene")?;
         let mut renderer = LightVolumeRenderer::new(&gpu)?;
         timed_update(meter.ctx, &mut renderer, &mut meter.profiler, &lights, true)?; // untimed warm-up
@@ -504,11 +511,7 @@ fn incremental(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report:
         meter
             .progress
             .start_step(&format!("incremental {} {count} lights, {n} passes a frame", resolution_label(scale)));
-        let mut s = scene.clone();
-        s.techniques = lightvolume_table(&s, scale, true, "passes");
-        if let Some(lv) = s.techniques.get_mut("lightvolume").and_then(|v| v.as_table_mut()) {
-            lv.insert("max_passes_per_frame".into(), toml::Value::Integer(n.into()));
-        }
+        let s = lightvolume_scene(scene, scale, true, "passes", &[("max_passes_per_frame", n.into())]);
         let gpu = GpuScene::upload(meter.ctx, &s).context("uploading the scene")?;
         let mut renderer = LightVolumeRenderer::new(&gpu)?;
         // Untimed: records every pass and compiles the shaders.
@@ -545,8 +548,7 @@ fn scaling(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mu
         let lights = scaling_lights(count);
         for (i, update) in [Update::EntireCoherent, Update::EntireSequential].into_iter().enumerate() {
             let propagation = if update == Update::EntireCoherent { "coherent" } else { "sequential" };
-            let mut s = scene.clone();
-            s.techniques = lightvolume_table(&s, scale, update == Update::EntireCoherent, "entire");
+            let s = lightvolume_scene(scene, scale, update == Update::EntireCoherent, "entire", &[]);
             let label = format!("scaling {} {count} lights", resolution_label(scale));
             let m = measure_all(meter, &s, &lights, &[update], &label)?.pop().context("no measurement")?;
             let ms = median(&m.ms);
@@ -635,11 +637,7 @@ fn error_rows(
         meter
             .progress
             .start_step(&format!("{width}x{height} light volume {} frame, {medium} medium", resolution_label(scale)));
-        let mut s = lit.clone();
-        s.techniques = lightvolume_table(&s, scale, true, "passes");
-        if let Some(lv) = s.techniques.get_mut("lightvolume").and_then(|v| v.as_table_mut()) {
-            lv.insert("shared_medium".into(), toml::Value::Boolean(shared));
-        }
+        let s = lightvolume_scene(&lit, scale, true, "passes", &[("shared_medium", shared.into())]);
         let gpu = GpuScene::upload_with(meter.ctx, &s, texels).context("uploading the scene")?;
         meter.ctx.memory.reset_peak();
         let mut renderer = LightVolumeRenderer::new(&gpu)?;
