@@ -324,8 +324,7 @@ fn no_lights_renders_the_emission_term_and_bad_settings_are_errors() {
 /// scene (48x48), relative RMSE measured on lavapipe: point light outside the
 /// volume 0.0487, spot light 0.0282, point light inside the volume 0.0559
 /// (its second group cannot carry the light travelling against it); unshaded
-/// DVR 0.137, 0.122, 0.197. At scale 2 the same lights measured 0.120, 0.056,
-/// 0.104.
+/// DVR 0.137, 0.122, 0.197.
 #[test]
 fn point_and_spot_lights_match_model_i_at_full_resolution() {
     let ctx = validated_context();
