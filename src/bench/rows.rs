@@ -259,6 +259,11 @@ impl BenchRow {
         self.get(key).and_then(BenchValue::as_f64)
     }
 
+    /// The value of `key` as text (empty when missing).
+    pub fn text(&self, key: &str) -> String {
+        self.get(key).map(|v| v.to_string()).unwrap_or_default()
+    }
+
     pub fn keys(&self) -> impl Iterator<Item = &str> {
         self.entries.iter().map(|(k, _)| k.as_str())
     }
@@ -324,6 +329,11 @@ impl BenchTable {
 
     pub fn push(&mut self, row: BenchRow) {
         self.rows.push(row);
+    }
+
+    /// (x, y) of the rows `keep` accepts that have both as numbers: a plot series.
+    pub fn points(&self, keep: impl Fn(&BenchRow) -> bool, x: &str, y: &str) -> Vec<(f64, f64)> {
+        self.rows.iter().filter(|r| keep(r)).filter_map(|r| Some((r.get_f64(x)?, r.get_f64(y)?))).collect()
     }
 
     /// Union of all rows' keys, in the order they were first seen.

@@ -169,15 +169,11 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             })
             .chain(std::iter::once(Series::new(
                 "half-angle (model i)",
-                table
-                    .rows
-                    .iter()
-                    .filter(|r| {
-                        r.get("technique").map(|t| t.to_string()) == Some("half-angle".into())
-                            && r.get_f64("width") == Some(size as f64)
-                    })
-                    .filter_map(|r| Some((r.get_f64("gpu_ms")?, r.get_f64("rmse")?)))
-                    .collect(),
+                table.points(
+                    |r| r.text("technique") == "half-angle" && r.get_f64("width") == Some(size as f64),
+                    "gpu_ms",
+                    "rmse",
+                ),
             )))
             .collect();
         let chart =

@@ -720,15 +720,9 @@ impl Report {
     }
 
     fn plots(&self, args: &BenchLightsArgs) -> anyhow::Result<()> {
-        let series_of = |table: &BenchTable, name: &str, keep: &dyn Fn(&BenchRow) -> bool, x: &str, y: &str| {
-            let points =
-                table.rows.iter().filter(|r| keep(r)).filter_map(|r| Some((r.get_f64(x)?, r.get_f64(y)?))).collect();
-            Series::new(name, points)
-        };
-        let text = |r: &BenchRow, key: &str| r.get(key).map(|v| v.to_string()).unwrap_or_default();
         let scaling: Vec<Series> = ["coherent", "sequential"]
             .iter()
-            .map(|p| series_of(&self.scaling, p, &|r| text(r, "propagation") == *p, "lights", "gpu_ms"))
+            .map(|p| Series::new(*p, self.scaling.points(|r| r.text("propagation") == *p, "lights", "gpu_ms")))
             .collect();
         plot_lines(
             args.out.join("lights_scaling.png"),
@@ -744,13 +738,8 @@ impl Report {
             let series: Vec<Series> = Update::ALL
                 .iter()
                 .map(|u| {
-                    series_of(
-                        &self.updates,
-                        u.name(),
-                        &|r| text(r, "update") == u.name() && r.get_f64("scale") == Some(scale as f64),
-                        "lights",
-                        "gpu_ms",
-                    )
+                    let keep = |r: &BenchRow| r.text("update") == u.name() && r.get_f64("scale") == Some(scale as f64);
+                    Series::new(u.name(), self.updates.points(keep, "lights", "gpu_ms"))
                 })
                 .collect();
             plot_lines(
@@ -762,7 +751,7 @@ impl Report {
         }
         let error: Vec<Series> = ["lightvolume", "lightvolume-shared-medium", "dvr"]
             .iter()
-            .map(|t| series_of(&self.error, t, &|r| text(r, "technique") == *t, "gpu_ms", "rmse"))
+            .map(|t| Series::new(*t, self.error.points(|r| r.text("technique") == *t, "gpu_ms", "rmse")))
             .collect();
         plot_error_vs_time(
             args.out.join("lights_error_vs_time.png"),

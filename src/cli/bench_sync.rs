@@ -188,13 +188,8 @@ fn write_reports(args: &BenchSyncArgs, strategies: &[SyncStrategy], table: &Benc
     let scatter: Vec<Series> = strategies
         .iter()
         .map(|s| {
-            let pts = table
-                .rows
-                .iter()
-                .filter(|r| r.get("strategy").map(|v| v.to_string()) == Some(s.name().to_string()))
-                .filter_map(|r| Some((r.get_f64("gpu_ms")?, r.get_f64("rmse")?.max(1e-9))))
-                .collect();
-            Series::new(label(s), pts)
+            let pts = table.points(|r| r.text("strategy") == s.name(), "gpu_ms", "rmse");
+            Series::new(label(s), pts.into_iter().map(|(t, e)| (t, e.max(1e-9))).collect())
         })
         .collect();
     plot_error_vs_time(
