@@ -61,6 +61,19 @@ impl<'a> Run<'a> {
     }
 }
 
+/// A validated context, `scene` uploaded with exact (f32) trilinear filtering
+/// and a light volume renderer on it: what most tests here start from. Any
+/// validation message fails the test.
+fn on_renderer<R>(scene: Scene, test: impl FnOnce(&Context, &GpuScene, &mut LightVolumeRenderer, &mut Run) -> R) -> R {
+    let ctx = validated_context();
+    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
+    let mut run = Run::new(&ctx);
+    let out = test(&ctx, &gpu, &mut r, &mut run);
+    assert_validation_clean(&ctx);
+    out
+}
+
 /// Largest |a - b| over the rgb of every voxel, with the two-float sums read exactly.
 fn largest_difference(a: &IlluminationReadback, b: &IlluminationReadback) -> f64 {
     (0..a.high.len()).flat_map(|i| (0..3).map(move |c| (a.value(i, c) - b.value(i, c)).abs())).fold(0.0, f64::max)
@@ -91,86 +104,81 @@ const SELECTIVE_TOLERANCE: f64 = 1e-12;
 
 #[test]
 fn a_selective_state_change_and_a_toggle_give_the_volume_of_an_entire_update() {
-    let ctx = validated_context();
-    let scene = scene("");
-    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
-    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
-    let mut run = Run::new(&ctx);
-    let mut lights = four_lights();
-    let (first, scopes) = run.update(&mut r, &lights);
-    assert_eq!(first.update.plan.kind, UpdateKind::Entire);
-    assert!(scopes.contains(&"lightvolume_entire_update".to_string()), "{scopes:?}");
+    on_renderer(scene(""), |ctx, gpu, r, run| {
+        let mut lights = four_lights();
+        let (first, scopes) = run.update(r, &lights);
+        assert_eq!(first.update.plan.kind, UpdateKind::Entire);
+        assert!(scopes.contains(&"lightvolume_entire_update".to_string()), "{scopes:?}");
 
-    // Move light 1 a little: one pass subtracts its old state and adds the new.
-    lights[1] = Some(coloured(dir(-0.25, -1.0, 0.15), Vec3::new(0.6, 0.7, 1.0), 0.7));
-    let (moved, scopes) = run.update(&mut r, &lights);
-    let plan = &moved.update.plan;
-    assert_eq!(plan.kind, UpdateKind::Selective, "{}", plan.reason);
-    assert_eq!(plan.changed_lights, 1);
-    assert!(scopes.contains(&"lightvolume_selective_update".to_string()), "decision not in the profile: {scopes:?}");
-    assert!(scopes.contains(&"lightvolume_group_-y_1add_1sub".to_string()), "{scopes:?}");
-    assert!(plan.selective.passes < plan.entire.passes, "{}", plan.reason);
-    let selective = r.read_illumination().unwrap();
-    let fresh = entire(&ctx, &gpu, &lights);
-    let peak = largest_value(&fresh);
-    let diff = largest_difference(&selective, &fresh);
-    println!("state change: largest difference {diff:.3e} of peak {peak:.3}");
-    assert!(peak > 0.1);
-    assert!(diff <= SELECTIVE_TOLERANCE * peak, "selective differs from entire by {diff:.3e} (peak {peak})");
+        // Move light 1 a little: one pass subtracts its old state and adds the new.
+        lights[1] = Some(coloured(dir(-0.25, -1.0, 0.15), Vec3::new(0.6, 0.7, 1.0), 0.7));
+        let (moved, scopes) = run.update(r, &lights);
+        let plan = &moved.update.plan;
+        assert_eq!(plan.kind, UpdateKind::Selective, "{}", plan.reason);
+        assert_eq!(plan.changed_lights, 1);
+        assert!(
+            scopes.contains(&"lightvolume_selective_update".to_string()),
+            "decision not in the profile: {scopes:?}"
+        );
+        assert!(scopes.contains(&"lightvolume_group_-y_1add_1sub".to_string()), "{scopes:?}");
+        assert!(plan.selective.passes < plan.entire.passes, "{}", plan.reason);
+        let selective = r.read_illumination().unwrap();
+        let fresh = entire(ctx, gpu, &lights);
+        let peak = largest_value(&fresh);
+        let diff = largest_difference(&selective, &fresh);
+        println!("state change: largest difference {diff:.3e} of peak {peak:.3}");
+        assert!(peak > 0.1);
+        assert!(diff <= SELECTIVE_TOLERANCE * peak, "selective differs from entire by {diff:.3e} (peak {peak})");
 
-    // Switch light 2 off: only its subtraction runs, one propagation per face.
-    lights[2] = None;
-    let (off, scopes) = run.update(&mut r, &lights);
-    assert_eq!(off.update.plan.kind, UpdateKind::Selective, "{}", off.update.plan.reason);
-    let members: Vec<_> = off.groups().iter().flat_map(|g| &g.members).collect();
-    assert!(!members.is_empty() && members.iter().all(|m| m.light == 2 && m.factor < 0.0), "{members:?}");
-    assert_eq!(off.update.plan.selective.propagations, members.len());
-    assert!(scopes.iter().any(|s| s.ends_with("_0add_1sub")), "{scopes:?}");
-    let toggled = r.read_illumination().unwrap();
-    let fresh = entire(&ctx, &gpu, &lights);
-    let diff = largest_difference(&toggled, &fresh);
-    println!("toggle: largest difference {diff:.3e}");
-    assert!(diff <= SELECTIVE_TOLERANCE * peak);
-    // And on again: the sum returns to where it was.
-    lights[2] = four_lights()[2];
-    let (on, _) = run.update(&mut r, &lights);
-    assert!(on.groups().iter().flat_map(|g| &g.members).all(|m| m.light == 2 && m.factor > 0.0));
-    assert!(largest_difference(&r.read_illumination().unwrap(), &selective) <= SELECTIVE_TOLERANCE * peak);
-    assert_validation_clean(&ctx);
+        // Switch light 2 off: only its subtraction runs, one propagation per face.
+        lights[2] = None;
+        let (off, scopes) = run.update(r, &lights);
+        assert_eq!(off.update.plan.kind, UpdateKind::Selective, "{}", off.update.plan.reason);
+        let members: Vec<_> = off.groups().iter().flat_map(|g| &g.members).collect();
+        assert!(!members.is_empty() && members.iter().all(|m| m.light == 2 && m.factor < 0.0), "{members:?}");
+        assert_eq!(off.update.plan.selective.propagations, members.len());
+        assert!(scopes.iter().any(|s| s.ends_with("_0add_1sub")), "{scopes:?}");
+        let toggled = r.read_illumination().unwrap();
+        let fresh = entire(ctx, gpu, &lights);
+        let diff = largest_difference(&toggled, &fresh);
+        println!("toggle: largest difference {diff:.3e}");
+        assert!(diff <= SELECTIVE_TOLERANCE * peak);
+        // And on again: the sum returns to where it was.
+        lights[2] = four_lights()[2];
+        let (on, _) = run.update(r, &lights);
+        assert!(on.groups().iter().flat_map(|g| &g.members).all(|m| m.light == 2 && m.factor > 0.0));
+        assert!(largest_difference(&r.read_illumination().unwrap(), &selective) <= SELECTIVE_TOLERANCE * peak);
+    });
 }
 
 #[test]
 fn recorded_passes_are_replayed_while_their_lights_are_unchanged() {
-    let ctx = validated_context();
-    let scene = scene("cost_estimate = \"entire\"\n");
-    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
-    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
-    let mut run = Run::new(&ctx);
-    // Two lights straight down (-y) and one along +x: two passes.
-    let mut lights = vec![
-        Some(coloured(dir(0.0, -1.0, 0.0), Vec3::ONE, 1.0)),
-        Some(coloured(dir(0.0, -1.0, 0.0), Vec3::ONE, 0.5)),
-        Some(coloured(dir(1.0, 0.0, 0.0), Vec3::ONE, 0.7)),
-    ];
-    let (first, _) = run.update(&mut r, &lights);
-    assert_eq!((first.update.recorded, first.update.reused), (2, 0));
-    let before = r.read_illumination().unwrap();
-    // Nothing changed: nothing propagates.
-    let (same, _) = run.update(&mut r, &lights);
-    assert_eq!(same.update.plan.kind, UpdateKind::Unchanged);
-    assert_eq!(same.dispatches, 0);
-    // A forced rebuild replays both recorded passes and gives the same volume bit for bit.
-    r.invalidate();
-    let (again, _) = run.update(&mut r, &lights);
-    assert_eq!((again.update.recorded, again.update.reused), (0, 2));
-    let after = r.read_illumination().unwrap();
-    assert_eq!(before.high, after.high);
-    // Changing the +x light re-records its pass only.
-    lights[2] = Some(coloured(dir(1.0, 0.0, 0.0), Vec3::ONE, 0.9));
-    let (changed, _) = run.update(&mut r, &lights);
-    assert_eq!(changed.update.plan.kind, UpdateKind::Entire);
-    assert_eq!((changed.update.recorded, changed.update.reused), (1, 1));
-    assert_validation_clean(&ctx);
+    on_renderer(scene("cost_estimate = \"entire\"\n"), |_, _, r, run| {
+        // Two lights straight down (-y) and one along +x: two passes.
+        let mut lights = vec![
+            Some(coloured(dir(0.0, -1.0, 0.0), Vec3::ONE, 1.0)),
+            Some(coloured(dir(0.0, -1.0, 0.0), Vec3::ONE, 0.5)),
+            Some(coloured(dir(1.0, 0.0, 0.0), Vec3::ONE, 0.7)),
+        ];
+        let (first, _) = run.update(r, &lights);
+        assert_eq!((first.update.recorded, first.update.reused), (2, 0));
+        let before = r.read_illumination().unwrap();
+        // Nothing changed: nothing propagates.
+        let (same, _) = run.update(r, &lights);
+        assert_eq!(same.update.plan.kind, UpdateKind::Unchanged);
+        assert_eq!(same.dispatches, 0);
+        // A forced rebuild replays both recorded passes and gives the same volume bit for bit.
+        r.invalidate();
+        let (again, _) = run.update(r, &lights);
+        assert_eq!((again.update.recorded, again.update.reused), (0, 2));
+        let after = r.read_illumination().unwrap();
+        assert_eq!(before.high, after.high);
+        // Changing the +x light re-records its pass only.
+        lights[2] = Some(coloured(dir(1.0, 0.0, 0.0), Vec3::ONE, 0.9));
+        let (changed, _) = run.update(r, &lights);
+        assert_eq!(changed.update.plan.kind, UpdateKind::Entire);
+        assert_eq!((changed.update.recorded, changed.update.reused), (1, 1));
+    });
 }
 
 #[test]
@@ -264,56 +272,53 @@ struct DriftOutcome {
 /// lights of POWERS, then the volume against a fresh entire update of the final
 /// lights (the dimmest alone).
 fn drift(settings: &str, updates: usize) -> DriftOutcome {
-    let ctx = validated_context();
     let scene = scene(settings);
-    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
-    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
-    let mut run = Run::new(&ctx);
-    let mut rng = Rng(0x5eed_1234_abcd_0001);
-    let mut lights: Vec<Option<Light>> = POWERS.iter().map(|&p| Some(random_light(&mut rng, p))).collect();
-    let (mut selective, mut entire_updates, mut rebases) = (0, 0, 0);
-    // The last updates switch every light but the dimmest off, so that most of
-    // the volume is left with little or no light: where subtraction would leave
-    // negative light.
-    let tail = POWERS.len() - 1;
-    for step in 0..updates {
-        let i = if step + tail >= updates {
-            POWERS.len() - (updates - step)
-        } else {
-            (rng.next() * POWERS.len() as f32) as usize
-        };
-        lights[i] = if step + tail >= updates || (lights[i].is_some() && rng.next() < 0.25) {
-            None
-        } else {
-            Some(random_light(&mut rng, POWERS[i]))
-        };
-        if step + tail == updates {
-            lights[0] = lights[0].or_else(|| Some(random_light(&mut rng, POWERS[0])));
-        }
-        let (out, _) = run.update(&mut r, &lights);
-        match out.update.plan.kind {
-            UpdateKind::Selective => selective += 1,
-            UpdateKind::Entire => entire_updates += 1,
-            UpdateKind::Unchanged => {}
-        }
-        rebases += out.update.plan.reason.starts_with("re-base") as usize;
-    }
-    let selective_volume = r.read_illumination().unwrap();
-    let fresh = entire(&ctx, &gpu, &lights);
     let box_ = scene.volume_box();
-    let weakest = sweeplab::lightvolume::contributions(&lights)
-        .iter()
-        .map(|c| sweeplab::lightvolume::plan::peak(&c.state, c.factor, box_.half_extent, box_.voxel_length))
-        .fold(f64::INFINITY, f64::min);
-    let diff = largest_difference(&selective_volume, &fresh);
-    assert_validation_clean(&ctx);
-    DriftOutcome {
-        relative_to_weakest: diff / weakest,
-        smallest: smallest_value(&selective_volume) / weakest,
-        selective,
-        entire: entire_updates,
-        rebases,
-    }
+    on_renderer(scene, |ctx, gpu, r, run| {
+        let mut rng = Rng(0x5eed_1234_abcd_0001);
+        let mut lights: Vec<Option<Light>> = POWERS.iter().map(|&p| Some(random_light(&mut rng, p))).collect();
+        let (mut selective, mut entire_updates, mut rebases) = (0, 0, 0);
+        // The last updates switch every light but the dimmest off, so that most of
+        // the volume is left with little or no light: where subtraction would leave
+        // negative light.
+        let tail = POWERS.len() - 1;
+        for step in 0..updates {
+            let i = if step + tail >= updates {
+                POWERS.len() - (updates - step)
+            } else {
+                (rng.next() * POWERS.len() as f32) as usize
+            };
+            lights[i] = if step + tail >= updates || (lights[i].is_some() && rng.next() < 0.25) {
+                None
+            } else {
+                Some(random_light(&mut rng, POWERS[i]))
+            };
+            if step + tail == updates {
+                lights[0] = lights[0].or_else(|| Some(random_light(&mut rng, POWERS[0])));
+            }
+            let (out, _) = run.update(r, &lights);
+            match out.update.plan.kind {
+                UpdateKind::Selective => selective += 1,
+                UpdateKind::Entire => entire_updates += 1,
+                UpdateKind::Unchanged => {}
+            }
+            rebases += out.update.plan.reason.starts_with("re-base") as usize;
+        }
+        let selective_volume = r.read_illumination().unwrap();
+        let fresh = entire(ctx, gpu, &lights);
+        let weakest = sweeplab::lightvolume::contributions(&lights)
+            .iter()
+            .map(|c| sweeplab::lightvolume::plan::peak(&c.state, c.factor, box_.half_extent, box_.voxel_length))
+            .fold(f64::INFINITY, f64::min);
+        let diff = largest_difference(&selective_volume, &fresh);
+        DriftOutcome {
+            relative_to_weakest: diff / weakest,
+            smallest: smallest_value(&selective_volume) / weakest,
+            selective,
+            entire: entire_updates,
+            rebases,
+        }
+    })
 }
 
 /// Stated bound of the drift test: after the random updates the volume differs
@@ -383,30 +388,26 @@ fn the_slice_barrier_is_load_bearing_under_synchronization_validation() {
 
 #[test]
 fn shortening_and_growing_the_light_list_subtracts_and_adds_the_lights_it_drops_and_gains() {
-    let ctx = validated_context();
-    let scene = scene("cost_estimate = \"selective\"\n");
-    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
-    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
-    let mut run = Run::new(&ctx);
-    let all = four_lights();
-    run.update(&mut r, &all);
-    // Lights 2 and 3 dropped off the end, light 1 moved: their old states are
-    // subtracted from the slots they were propagated from.
-    let mut short = all[..2].to_vec();
-    short[1] = Some(coloured(dir(-0.3, -1.0, 0.1), Vec3::ONE, 0.9));
-    let (out, _) = run.update(&mut r, &short);
-    assert_eq!(out.update.plan.kind, UpdateKind::Selective);
-    assert_eq!(out.update.plan.changed_lights, 3, "{}", out.update.plan.reason);
-    let fresh = entire(&ctx, &gpu, &short);
-    let peak = largest_value(&entire(&ctx, &gpu, &all));
-    assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
-    // And back to all four plus a fifth.
-    let mut long = all.clone();
-    long.push(Some(coloured(dir(0.0, -1.0, -0.4), Vec3::new(0.2, 1.0, 0.4), 1.1)));
-    run.update(&mut r, &long);
-    let fresh = entire(&ctx, &gpu, &long);
-    assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
-    assert_validation_clean(&ctx);
+    on_renderer(scene("cost_estimate = \"selective\"\n"), |ctx, gpu, r, run| {
+        let all = four_lights();
+        run.update(r, &all);
+        // Lights 2 and 3 dropped off the end, light 1 moved: their old states are
+        // subtracted from the slots they were propagated from.
+        let mut short = all[..2].to_vec();
+        short[1] = Some(coloured(dir(-0.3, -1.0, 0.1), Vec3::ONE, 0.9));
+        let (out, _) = run.update(r, &short);
+        assert_eq!(out.update.plan.kind, UpdateKind::Selective);
+        assert_eq!(out.update.plan.changed_lights, 3, "{}", out.update.plan.reason);
+        let fresh = entire(ctx, gpu, &short);
+        let peak = largest_value(&entire(ctx, gpu, &all));
+        assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
+        // And back to all four plus a fifth.
+        let mut long = all.clone();
+        long.push(Some(coloured(dir(0.0, -1.0, -0.4), Vec3::new(0.2, 1.0, 0.4), 1.1)));
+        run.update(r, &long);
+        let fresh = entire(ctx, gpu, &long);
+        assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
+    });
 }
 
 /// Near-opaque medium (alpha 0.999 per voxel in the dense parts), lights at
@@ -416,7 +417,6 @@ fn shortening_and_growing_the_light_list_subtracts_and_adds_the_lights_it_drops_
 /// gives the entire update's volume.
 #[test]
 fn near_opaque_media_grazing_lights_and_group_crossings_stay_finite_and_exact() {
-    let ctx = validated_context();
     let mut scene = scene("");
     scene.transfer = sweeplab::scene::TransferFunction {
         points: vec![
@@ -426,64 +426,58 @@ fn near_opaque_media_grazing_lights_and_group_crossings_stay_finite_and_exact() 
         ],
     };
     let view = scene.camera.forward();
-    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
-    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
-    let mut run = Run::new(&ctx);
-    let mut lights = vec![
-        Some(coloured(dir(1.0, -1e-4, 0.0), Vec3::ONE, 1.0)),
-        Some(coloured(dir(1e-5, -1.0, 0.0), Vec3::ONE, 1.0)),
-        Some(coloured(LightKind::Directional { direction: view }, Vec3::ONE, 1.0)),
-        Some(coloured(dir(0.6, -0.4, 0.0), Vec3::new(1.0, 0.3, 0.1), 5.0)),
-    ];
-    run.update(&mut r, &lights);
-    // Light 3 swings across the x = y diagonal: its larger share moves from +x to -y.
-    let mut kinds = Vec::new();
-    for step in 1..=5 {
-        let t = step as f32 / 5.0;
-        lights[3] = Some(coloured(dir(0.6 - 0.2 * t, -0.4 - 0.2 * t, 0.05 * t), Vec3::new(1.0, 0.3, 0.1), 5.0));
-        let (out, _) = run.update(&mut r, &lights);
-        kinds.push(out.update.plan.kind);
-    }
-    assert!(kinds.iter().all(|k| *k == UpdateKind::Selective), "{kinds:?}");
-    let volume = r.read_illumination().unwrap();
-    let fresh = entire(&ctx, &gpu, &lights);
-    let peak = largest_value(&fresh);
-    assert!((0..volume.high.len()).all(|i| (0..3).all(|c| volume.value(i, c).is_finite())));
-    assert!(smallest_value(&volume) >= -SELECTIVE_TOLERANCE * peak, "negative light {}", smallest_value(&volume));
-    let diff = largest_difference(&volume, &fresh);
-    println!("near-opaque, grazing: peak {peak:.3}, difference {diff:.3e}");
-    assert!(peak > 0.5 && diff <= SELECTIVE_TOLERANCE * peak, "difference {diff:.3e} of peak {peak}");
-    // The opaque medium does shadow: the darkest voxel holds almost no light.
-    let darkest = (0..fresh.high.len()).map(|i| fresh.value(i, 0)).fold(f64::INFINITY, f64::min);
-    assert!(darkest < 1e-3 * peak, "darkest voxel {darkest:.3e}");
-    assert_validation_clean(&ctx);
+    on_renderer(scene, |ctx, gpu, r, run| {
+        let mut lights = vec![
+            Some(coloured(dir(1.0, -1e-4, 0.0), Vec3::ONE, 1.0)),
+            Some(coloured(dir(1e-5, -1.0, 0.0), Vec3::ONE, 1.0)),
+            Some(coloured(LightKind::Directional { direction: view }, Vec3::ONE, 1.0)),
+            Some(coloured(dir(0.6, -0.4, 0.0), Vec3::new(1.0, 0.3, 0.1), 5.0)),
+        ];
+        run.update(r, &lights);
+        // Light 3 swings across the x = y diagonal: its larger share moves from +x to -y.
+        let mut kinds = Vec::new();
+        for step in 1..=5 {
+            let t = step as f32 / 5.0;
+            lights[3] = Some(coloured(dir(0.6 - 0.2 * t, -0.4 - 0.2 * t, 0.05 * t), Vec3::new(1.0, 0.3, 0.1), 5.0));
+            let (out, _) = run.update(r, &lights);
+            kinds.push(out.update.plan.kind);
+        }
+        assert!(kinds.iter().all(|k| *k == UpdateKind::Selective), "{kinds:?}");
+        let volume = r.read_illumination().unwrap();
+        let fresh = entire(ctx, gpu, &lights);
+        let peak = largest_value(&fresh);
+        assert!((0..volume.high.len()).all(|i| (0..3).all(|c| volume.value(i, c).is_finite())));
+        assert!(smallest_value(&volume) >= -SELECTIVE_TOLERANCE * peak, "negative light {}", smallest_value(&volume));
+        let diff = largest_difference(&volume, &fresh);
+        println!("near-opaque, grazing: peak {peak:.3}, difference {diff:.3e}");
+        assert!(peak > 0.5 && diff <= SELECTIVE_TOLERANCE * peak, "difference {diff:.3e} of peak {peak}");
+        // The opaque medium does shadow: the darkest voxel holds almost no light.
+        let darkest = (0..fresh.high.len()).map(|i| fresh.value(i, 0)).fold(f64::INFINITY, f64::min);
+        assert!(darkest < 1e-3 * peak, "darkest voxel {darkest:.3e}");
+    });
 }
 
 #[test]
 fn a_light_moved_back_and_forth_replays_its_recorded_selective_passes() {
-    let ctx = validated_context();
-    let scene = scene("");
-    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
-    let mut r = LightVolumeRenderer::new(&gpu).unwrap();
-    let mut run = Run::new(&ctx);
-    let a = four_lights();
-    let mut b = a.clone();
-    b[0] = Some(coloured(dir(0.15, -1.0, 0.2), Vec3::new(1.0, 0.9, 0.8), 1.0));
-    run.update(&mut r, &a);
-    let mut counts = Vec::new();
-    for state in [&b, &a, &b, &a] {
-        let (out, _) = run.update(&mut r, state);
-        assert_eq!(out.update.plan.kind, UpdateKind::Selective);
-        counts.push((out.update.recorded, out.update.reused));
-    }
-    // The first move each way records its passes; from then on they are replayed.
-    let passes = counts[0].0;
-    assert!(passes > 0);
-    assert_eq!(counts, [(passes, 0), (passes, 0), (0, passes), (0, passes)]);
-    let fresh = entire(&ctx, &gpu, &a);
-    let peak = largest_value(&fresh);
-    assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
-    assert_validation_clean(&ctx);
+    on_renderer(scene(""), |ctx, gpu, r, run| {
+        let a = four_lights();
+        let mut b = a.clone();
+        b[0] = Some(coloured(dir(0.15, -1.0, 0.2), Vec3::new(1.0, 0.9, 0.8), 1.0));
+        run.update(r, &a);
+        let mut counts = Vec::new();
+        for state in [&b, &a, &b, &a] {
+            let (out, _) = run.update(r, state);
+            assert_eq!(out.update.plan.kind, UpdateKind::Selective);
+            counts.push((out.update.recorded, out.update.reused));
+        }
+        // The first move each way records its passes; from then on they are replayed.
+        let passes = counts[0].0;
+        assert!(passes > 0);
+        assert_eq!(counts, [(passes, 0), (passes, 0), (0, passes), (0, passes)]);
+        let fresh = entire(ctx, gpu, &a);
+        let peak = largest_value(&fresh);
+        assert!(largest_difference(&r.read_illumination().unwrap(), &fresh) <= SELECTIVE_TOLERANCE * peak);
+    });
 }
 
 /// Forty lights of one direction fill two groups; at 16 lights a pass each
