@@ -7,6 +7,7 @@ mod common;
 
 use common::*;
 use glam::Vec3;
+use sweeplab::lightvolume::plan::PeakGeometry;
 use sweeplab::lightvolume::{IlluminationReadback, LightVolumeFrame, LightVolumeRenderer, UpdateKind};
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
@@ -274,6 +275,7 @@ struct DriftOutcome {
 fn drift(settings: &str, updates: usize) -> DriftOutcome {
     let scene = scene(settings);
     let box_ = scene.volume_box();
+    let geometry = PeakGeometry { box_half: box_.half_extent, voxel_length: box_.voxel_length };
     on_renderer(scene, |ctx, gpu, r, run| {
         let mut rng = Rng(0x5eed_1234_abcd_0001);
         let mut lights: Vec<Option<Light>> = POWERS.iter().map(|&p| Some(random_light(&mut rng, p))).collect();
@@ -308,7 +310,7 @@ fn drift(settings: &str, updates: usize) -> DriftOutcome {
         let fresh = entire(ctx, gpu, &lights);
         let weakest = sweeplab::lightvolume::contributions(&lights)
             .iter()
-            .map(|c| sweeplab::lightvolume::plan::peak(&c.state, c.factor, box_.half_extent, box_.voxel_length))
+            .map(|c| geometry.peak(&c.state, c.factor))
             .fold(f64::INFINITY, f64::min);
         let diff = largest_difference(&selective_volume, &fresh);
         DriftOutcome {

@@ -142,28 +142,17 @@ pub fn group_passes(items: &[(Contribution, f32)], coherent: bool, pass_lights: 
     passes
 }
 
-fn all_on(lights: &[Light]) -> Vec<Option<Light>> {
-    lights.iter().copied().map(Some).collect()
-}
-
-/// The non-empty groups of `lights`, in a fixed order (+x, -x, +y, -y, +z, -z).
-pub fn propagation_groups(lights: &[Light]) -> Vec<PropagationGroup> {
-    let items: Vec<_> = contributions(&all_on(lights)).into_iter().map(|c| (c, 1.0)).collect();
-    group_passes(&items, true, usize::MAX)
-}
-
-/// Sequential propagation, the paper's baseline: every (light, face) membership
-/// of [`propagation_groups`] as a group of its own, in the same order, so each
-/// light is propagated on its own and nothing is shared between lights.
-pub fn sequential_groups(lights: &[Light]) -> Vec<PropagationGroup> {
-    let items: Vec<_> = contributions(&all_on(lights)).into_iter().map(|c| (c, 1.0)).collect();
-    group_passes(&items, false, 1)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::Falloff;
+
+    /// The passes of an entire coherent update of `lights`, all on.
+    fn propagation_groups(lights: &[Light]) -> Vec<PropagationGroup> {
+        let on: Vec<Option<Light>> = lights.iter().copied().map(Some).collect();
+        let items: Vec<_> = contributions(&on).into_iter().map(|c| (c, 1.0)).collect();
+        group_passes(&items, true, usize::MAX)
+    }
 
     fn directional(direction: Vec3) -> Light {
         Light { kind: LightKind::Directional { direction }, color: Vec3::ONE, intensity: 1.0, falloff: Falloff::None }

@@ -38,7 +38,7 @@ pub mod raycast;
 pub mod renderer;
 pub mod settings;
 
-pub use groups::{contributions, propagation_groups, sequential_groups, Contribution, PropagationGroup};
+pub use groups::{contributions, group_passes, Contribution, PropagationGroup};
 pub use illumination::{IlluminationReadback, IlluminationVolume};
 pub use plan::{UpdateKind, UpdatePlan};
 pub use renderer::{LightVolumeFrame, LightVolumeRenderer, UpdateReport};

@@ -79,22 +79,6 @@ impl DriftBound {
     }
 }
 
-/// Largest light value one contribution can put into a voxel: its brightest
-/// channel times its factor, with inverse-square falloff at the closest
-/// distance the shader allows (one voxel, or the distance to the box).
-pub fn peak(state: &GpuLight, factor: f32, box_half: glam::Vec3, voxel_length: f32) -> f64 {
-    let r = state.radiance;
-    let brightest = r[0].max(r[1]).max(r[2]).max(0.0) as f64;
-    let mut shape = 1.0;
-    if state.pos_type[3] != 0.0 && state.params[0] > 0.5 {
-        let p = glam::Vec3::from_slice(&state.pos_type[..3]);
-        let outside = (p.abs() - box_half).max(glam::Vec3::ZERO).length();
-        let d = outside.max(voxel_length) as f64;
-        shape = 1.0 / (d * d);
-    }
-    brightest * shape * factor.abs() as f64
-}
-
 /// Box geometry the peaks are measured in.
 #[derive(Clone, Copy, Debug)]
 pub struct PeakGeometry {
@@ -103,8 +87,25 @@ pub struct PeakGeometry {
 }
 
 impl PeakGeometry {
-    pub fn peak(&self, c: &Contribution) -> f64 {
-        peak(&c.state, c.factor, self.box_half, self.voxel_length)
+    /// Largest light value a light in `state` with contribution `factor` can
+    /// put into a voxel: its brightest channel times the factor, with
+    /// inverse-square falloff at the closest distance the shader allows (one
+    /// voxel, or the distance to the box).
+    pub fn peak(&self, state: &GpuLight, factor: f32) -> f64 {
+        let r = state.radiance;
+        let brightest = r[0].max(r[1]).max(r[2]).max(0.0) as f64;
+        let mut shape = 1.0;
+        if state.pos_type[3] != 0.0 && state.params[0] > 0.5 {
+            let p = glam::Vec3::from_slice(&state.pos_type[..3]);
+            let outside = (p.abs() - self.box_half).max(glam::Vec3::ZERO).length();
+            let d = outside.max(self.voxel_length) as f64;
+            shape = 1.0 / (d * d);
+        }
+        brightest * shape * factor.abs() as f64
+    }
+
+    fn of(&self, c: &Contribution) -> f64 {
+        self.peak(&c.state, c.factor)
     }
 }
 
@@ -117,7 +118,7 @@ fn rounding(
     compensated: bool,
     geometry: PeakGeometry,
 ) -> f64 {
-    let present_peak: f64 = present.iter().map(|c| geometry.peak(c)).sum();
+    let present_peak: f64 = present.iter().map(|c| geometry.of(c)).sum();
     peaks.map(|p| DriftBound::per_addition(present_peak + p, compensated)).sum()
 }
 
@@ -179,8 +180,8 @@ pub fn plan_update(
 
     // The rounding bound a selective update would leave.
     let drift_after = state.drift.bound
-        + rounding(present, items.iter().map(|(c, _)| geometry.peak(c)), settings.compensated, geometry);
-    let weakest = target.iter().map(|c| geometry.peak(c)).filter(|p| *p > 0.0).fold(f64::INFINITY, f64::min);
+        + rounding(present, items.iter().map(|(c, _)| geometry.of(c)), settings.compensated, geometry);
+    let weakest = target.iter().map(|c| geometry.of(c)).filter(|p| *p > 0.0).fold(f64::INFINITY, f64::min);
     let tolerance = settings.rebase_tolerance * weakest;
 
     let (kind, reason) = if state.invalid {
@@ -266,7 +267,7 @@ pub fn drift_after(
         UpdateKind::Entire => DriftBound::default(),
         UpdateKind::Selective => {
             let members = plan.passes.iter().flat_map(|p| &p.members);
-            let peaks = members.map(|m| peak(&m.state, m.factor, geometry.box_half, geometry.voxel_length));
+            let peaks = members.map(|m| geometry.peak(&m.state, m.factor));
             let added = rounding(present_before, peaks, settings.compensated, geometry);
             DriftBound { bound: state.drift.bound + added }
         }
