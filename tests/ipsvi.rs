@@ -220,6 +220,19 @@ fn no_light_means_no_sweep_and_no_cache() {
     assert_validation_clean(&ctx);
 }
 
+/// What the lights add: the frame minus the same scene rendered without lights
+/// (emission and background alone), so a test of "lit" cannot pass on the
+/// background or the emission term.
+fn lit_part(lit: &LinearImage, unlit: &LinearImage) -> LinearImage {
+    let mut out = lit.clone();
+    for (p, q) in out.pixels.iter_mut().zip(&unlit.pixels) {
+        for c in 0..3 {
+            p[c] -= q[c];
+        }
+    }
+    out
+}
+
 #[test]
 fn extreme_cases_stay_finite_and_lit() {
     let ctx = validated_context();
@@ -243,17 +256,39 @@ fn extreme_cases_stay_finite_and_lit() {
     parallel.lights = vec![directional(view, 2.0)];
     cases.push(("light parallel to the view", parallel));
     for (what, scene) in &cases {
-        let gpu = GpuScene::upload(&ctx, scene).unwrap();
-        let mut profiler = Profiler::new(&ctx, 64).unwrap();
-        let out = render(&gpu, Technique::Ipsvi, 24, 24, &mut profiler).unwrap();
-        assert!(out.image.all_finite(), "{what}: non-finite pixels");
-        assert!(out.image.max_value() > 0.0, "{what}: black image");
-        if what.starts_with("intensity") {
-            let reference = render(&gpu, Technique::Reference, 24, 24, &mut profiler).unwrap().image;
-            let stats = compare(&out.image, &reference).unwrap();
-            let (rmse, _) = relative(&stats, &reference);
-            assert!(rmse <= RMSE_TOLERANCE, "{what}: relative rmse {rmse}");
+        let mut unlit_scene = scene.clone();
+        unlit_scene.lights.clear();
+        let mut parts = Vec::new();
+        for (technique, s) in [
+            (Technique::Ipsvi, scene),
+            (Technique::Ipsvi, &unlit_scene),
+            (Technique::Reference, scene),
+            (Technique::Reference, &unlit_scene),
+        ] {
+            let gpu = GpuScene::upload(&ctx, s).unwrap();
+            let mut profiler = Profiler::new(&ctx, 64).unwrap();
+            parts.push(render(&gpu, technique, 24, 24, &mut profiler).unwrap().image);
         }
+        assert!(parts[0].all_finite(), "{what}: non-finite pixels");
+        let (ipsvi, reference) = (lit_part(&parts[0], &parts[1]), lit_part(&parts[2], &parts[3]));
+        // Lit against the unlit run: the light adds at least a tenth of what it
+        // adds in the ground truth, wherever that is, whatever the background.
+        let peak = reference.max_value() as f64;
+        assert!(peak > 0.0, "{what}: the ground truth itself is unlit");
+        assert!(
+            ipsvi.max_value() as f64 > 0.1 * peak,
+            "{what}: light adds {} (ground truth {peak})",
+            ipsvi.max_value()
+        );
+        // And where it adds it: the lit part against the ground truth's lit part.
+        // The stated tolerance, relative to the lit part's peak (measured: 1.7% at
+        // 1e-6 and at 1e6, 0.6% grazing, 0.1% parallel). Near-opaque surfaces are
+        // one sample thick, so the one-texel terminator (see RMSE_TOLERANCE) covers
+        // more of the lit pixels: measured 3.0%, bound 4%.
+        let tolerance = if *what == "near-opaque" { 0.04 } else { RMSE_TOLERANCE };
+        let rmse = compare(&ipsvi, &reference).unwrap().rmse / peak;
+        println!("{what}: lit part relative rmse {rmse:.4} of lit peak {peak:.3e}");
+        assert!(rmse <= tolerance, "{what}: lit part relative rmse {rmse}");
     }
     assert_validation_clean(&ctx);
 }

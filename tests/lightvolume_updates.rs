@@ -346,10 +346,9 @@ fn random_updates_with_lights_from_1e_minus_3_to_1e3_do_not_drift() {
     assert_no_drift(&drift("", updates), updates);
 }
 
-/// The whole 10,000-update sequence of the issue (about a minute on lavapipe):
-/// `cargo test --release --test lightvolume_updates -- --ignored`.
+/// The whole 10,000-update sequence of the issue, in CI like every other test
+/// (measured 24 s on lavapipe with 2 cores).
 #[test]
-#[ignore]
 fn ten_thousand_random_updates_do_not_drift() {
     let updates = 10_000;
     assert_no_drift(&drift("", updates), updates);
