@@ -2,6 +2,8 @@
 //! data sets, synthetic round trips through every format, and broken files.
 
 // A test crate root resolves modules next to itself, so point into tests/loaders/.
+#[path = "loaders/fuzz.rs"]
+mod fuzz;
 #[path = "loaders/malformed.rs"]
 mod malformed;
 #[path = "loaders/round_trips.rs"]

@@ -308,6 +308,13 @@ fn out_of_range_values_are_errors_naming_the_key() {
         ("[render]\nbackground = [0, inf, 0]", "render.background"),
         ("[camera]\nfov_y = 180.0", "camera.fov_y"),
         ("[camera]\nfov_y = 0.0", "camera.fov_y"),
+        // Found by tests/scene_fuzz.rs: framing at this field of view put the eye at infinity.
+        ("[camera]\nfov_y = 1e-45", "camera.fov_y"),
+        // Found by tests/scene_fuzz.rs: eye and target rounded to one point (a NaN view).
+        ("[camera]\ntarget = [1e30, 1e30, 1e30]", "camera.target"),
+        ("[camera]\neye = [1e30, 0, 0]", "camera.eye"),
+        ("[camera]\ndistance = 1e30", "camera.distance"),
+        ("[camera]\ntarget = [1e5, 0, 0]\ndistance = 1e-6", "camera.distance"),
         ("[camera]\nelevation = 100.0", "camera.elevation"),
         ("[camera]\ndistance = 0.0", "camera.distance"),
         ("[camera]\nprojection = \"orthographic\"\northo_height = -1.0", "camera.ortho_height"),

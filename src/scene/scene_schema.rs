@@ -9,6 +9,7 @@ use serde::de::DeserializeOwned;
 use serde::Deserialize;
 use toml::{Table, Value};
 
+use super::camera::{Camera, Projection};
 use super::light::{Falloff, Light, LightKind};
 use super::loaders;
 use super::presets::{preset, PRESET_NAMES};
@@ -22,6 +23,13 @@ pub const MAX_IMAGE_SIZE: u32 = 16384;
 pub const MAX_SYNTHETIC_SIZE: u32 = 512;
 pub const MAX_TRANSFER_POINTS: usize = 256;
 pub const MAX_LIGHTS: usize = 64;
+/// Field of view of a perspective camera, degrees: narrower than this and the
+/// framing distance no longer fits an f32 next to the target.
+pub const FOV_Y_RANGE: std::ops::RangeInclusive<f32> = 0.01..=179.0;
+/// Largest camera coordinate or distance, world units (the volume's longest
+/// side is 1): beyond it the eye and target round together in f32 and the
+/// volume is far below a pixel.
+pub const MAX_CAMERA_COORDINATE: f32 = 1e6;
 
 /// Default light: directional, from upper-left-front (as seen by the default
 /// camera), travelling towards the volume centre.
@@ -246,6 +254,16 @@ impl Checker<'_> {
         }
     }
 
+    /// A camera position: finite and within [`MAX_CAMERA_COORDINATE`].
+    fn camera_point(&self, key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
+        let p = self.point(key, v)?;
+        if p.abs().max_element() > MAX_CAMERA_COORDINATE {
+            return Err(self
+                .err(key, format!("must lie within {MAX_CAMERA_COORDINATE:e} world units of the volume, got {v:?}")));
+        }
+        Ok(p)
+    }
+
     fn colour(&self, key: &str, v: [f32; 3]) -> Result<Vec3, SceneError> {
         if v.iter().all(|c| c.is_finite() && *c >= 0.0) {
             Ok(Vec3::from(v))
@@ -364,8 +382,9 @@ impl Checker<'_> {
             ProjectionName::Perspective => {
                 self.only_with(s.ortho_height.is_some(), "camera.ortho_height", "with projection = \"orthographic\"")?;
                 let fov = s.fov_y.unwrap_or(30.0);
-                if !(fov > 0.0 && fov < 180.0) {
-                    return Err(self.err("camera.fov_y", format!("must be in (0, 180) degrees, got {fov}")));
+                if !FOV_Y_RANGE.contains(&fov) {
+                    let (lo, hi) = (FOV_Y_RANGE.start(), FOV_Y_RANGE.end());
+                    return Err(self.err("camera.fov_y", format!("must be in [{lo}, {hi}] degrees, got {fov}")));
                 }
                 ProjectionSpec::Perspective { fov_y_deg: fov }
             }
@@ -375,13 +394,13 @@ impl Checker<'_> {
                 ProjectionSpec::Orthographic { height }
             }
         };
-        let target = self.point("camera.target", s.target.unwrap_or([0.0; 3]))?;
+        let target = self.camera_point("camera.target", s.target.unwrap_or([0.0; 3]))?;
         let placement = if let Some(eye) = s.eye {
             let orbit_only = "to an orbit camera, not with camera.eye";
             self.only_with(s.azimuth.is_some(), "camera.azimuth", orbit_only)?;
             self.only_with(s.elevation.is_some(), "camera.elevation", orbit_only)?;
             self.only_with(s.distance.is_some(), "camera.distance", orbit_only)?;
-            let eye = self.point("camera.eye", eye)?;
+            let eye = self.camera_point("camera.eye", eye)?;
             let up = self.direction("camera.up", s.up.unwrap_or([0.0, 1.0, 0.0]))?;
             let forward = (target - eye)
                 .try_normalize()
@@ -398,6 +417,23 @@ impl Checker<'_> {
                 return Err(self.err("camera.elevation", format!("must be in [-90, 90] degrees, got {elevation_deg}")));
             }
             let distance = s.distance.map(|d| self.positive("camera.distance", d)).transpose()?;
+            if let Some(d) = distance {
+                if d > MAX_CAMERA_COORDINATE {
+                    return Err(
+                        self.err("camera.distance", format!("must be at most {MAX_CAMERA_COORDINATE:e}, got {d}"))
+                    );
+                }
+                let probe = Projection::Perspective { fov_y_deg: 30.0 };
+                let eye = Camera::orbit(target, d, azimuth_deg, elevation_deg, probe).eye;
+                // The eye must sit where the orbit puts it, not where f32 rounds it
+                // next to a large target (0.1 % of the distance).
+                if ((eye - target).length() - d).abs() > 1e-3 * d {
+                    return Err(self.err(
+                        "camera.distance",
+                        format!("{d} is lost in f32 rounding next to camera.target {target}: increase it or move the target"),
+                    ));
+                }
+            }
             CameraPlacement::Orbit { target, azimuth_deg, elevation_deg, distance }
         };
         Ok(CameraSpec { placement, projection })

@@ -117,7 +117,7 @@ fn vti_block_cut_out_of_intact_framing_is_reported_as_truncated() {
 }
 
 /// One synthetic file of each format and storage variant, for truncation sweeps.
-fn variants(dir: &Path, v: &Synthetic) -> Vec<(PathBuf, Option<PathBuf>)> {
+pub fn variants(dir: &Path, v: &Synthetic) -> Vec<(PathBuf, Option<PathBuf>)> {
     let little = Endian::Little;
     let big = Endian::Big;
     let mut files = Vec::new();
