@@ -1,4 +1,4 @@
-//! Light volume illumination (selective light updates, Jönsson/Ropinski et al.
+//! Light volume illumination (selective light updates, Sundén and Ropinski
 //! 2015, sections 3-6). An RGBA32F illumination volume at 1, 1/2 or 1/4 of the
 //! data resolution holds the light arriving at each voxel; lights are
 //! propagated through it slice by slice in coherence-based groups (one per axis
