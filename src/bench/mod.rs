@@ -21,7 +21,7 @@ pub mod stats;
 pub use axis::AxisScale;
 pub use error::BenchError;
 pub use experiments::ExperimentError;
-pub use frames::{ipsvi_frames, technique_frames, ProfiledFrame};
+pub use frames::{ipsvi_frame, technique_frame, ProfiledFrame};
 pub use harness::{Harness, HarnessError, Measurement, Sample};
 pub use pareto::pareto_front;
 pub use plot::{palette_color, plot_error_vs_time, plot_lines, render_error_vs_time, render_lines, Chart, Series};

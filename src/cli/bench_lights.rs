@@ -15,8 +15,8 @@ use sweeplab::bench::experiments::lights::{
     UpdateMeasurement,
 };
 use sweeplab::bench::{
-    fit_line, median, plot_error_vs_time, plot_lines, technique_frames, AxisScale, BenchRow, BenchTable, Chart,
-    Harness, Progress, Series,
+    fit_line, median, plot_error_vs_time, plot_lines, technique_frame, AxisScale, BenchRow, BenchTable, Chart, Harness,
+    Progress, Series,
 };
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
@@ -310,13 +310,12 @@ fn error_rows(
     };
     meter.progress.finish_step();
     let dvr = {
-        meter.progress.start_step(&format!("{width}x{height} unshaded DVR"));
         let gpu = GpuScene::upload_with(meter.ctx, &lit, texels).context("uploading the scene")?;
         // One untimed frame first: llvmpipe compiles the shader on first use.
         let harness = meter.harness.with_warm_up(1);
-        let dvr = technique_frames(&harness, &gpu, Technique::Dvr, (width, height), &mut meter.profiler)?;
-        meter.progress.finish_step();
-        dvr
+        harness.measure_step(&mut meter.progress, &format!("{width}x{height} unshaded DVR"), || {
+            technique_frame(&gpu, Technique::Dvr, (width, height), &mut meter.profiler)
+        })?
     };
     let stats = compare(&dvr.last.image, &reference)?;
     let mut row = BenchRow::new();
