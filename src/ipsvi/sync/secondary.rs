@@ -57,8 +57,7 @@ pub fn record_sweeps(
     SecondaryCommands::record(ctx, "ipsvi sweep", sweeps.len(), |i, rec| {
         let (first, count) = sweeps[i];
         rec.bind(&lines[0], line_set);
-        for k in first..first + count {
-            let record = &block_records[k];
+        for (k, record) in block_records.iter().enumerate().skip(first).take(count) {
             let line = &lines[record.parity as usize];
             rec.bind_pipeline(line);
             rec.push(line, &(k as u32).to_ne_bytes());
