@@ -234,3 +234,17 @@ fn bench_lights_rejects_bad_parameters_clearly() {
     assert_user_error(&sweeplab(&["bench", "lights", "--repeat", "0", "--out", out]), "--repeat");
     assert_user_error(&sweeplab(&["bench", "lights", "--scales", "x", "--out", out]), "--scales");
 }
+
+/// Every bench measures at least one timed run: `--repeat 0` is an error
+/// before any GPU work (it used to be raised silently to 1), and no output is written.
+#[test]
+fn every_bench_refuses_zero_repeats() {
+    let dir = temp_dir("bench-repeat-zero");
+    for bench in ["ipsvi", "sync", "table1", "lights"] {
+        let out = dir.join(bench);
+        let o = sweeplab(&["bench", bench, "--repeat", "0", "--out", out.to_str().unwrap()]);
+        assert_user_error(&o, "--repeat");
+        assert!(stderr(&o).contains("use 1 or more"), "{bench}: {}", stderr(&o));
+        assert!(!out.exists(), "{bench} wrote {} before refusing", out.display());
+    }
+}

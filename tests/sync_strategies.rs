@@ -85,3 +85,37 @@ fn secondary_sweeps_are_replayed_across_frames() {
     }
     assert_validation_clean(&ctx);
 }
+
+/// Each strategy adds what it says between blocks: one barrier per block for
+/// the barriers, one wait per block for the events (the last wait before the
+/// read-back), the global barriers inside the replayed sweeps for secondary,
+/// and none for submits (a semaphore orders them) and racy.
+#[test]
+fn each_strategy_records_its_own_synchronization_per_block() {
+    use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
+    let mut scene = scene_with(slab_under_sphere(24), vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)], 24, 24);
+    scene.transfer = presets::preset("slab-sphere").unwrap();
+    let ctx = validated_context();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 256).unwrap();
+    let s = IpsviSettings { cache_size: 32, line_width: 2, ..IpsviSettings::default() };
+    let blocks: u32 = plans(&gpu, &s, 24, 24).iter().flat_map(|p| &p.sweeps).map(|sw| sw.blocks.len() as u32).sum();
+    assert!(blocks > 2, "a sweep of several blocks: {blocks}");
+    let mut renderer = IpsviRenderer::new(&gpu, &s, 24, 24).unwrap();
+    let mut barriers = |strategy| {
+        profiler.reset();
+        renderer.frame(&mut profiler, strategy).unwrap().barriers
+    };
+    let unsynchronized = barriers(SyncStrategy::Racy);
+    let _ = ctx.take_validation_messages(); // the racy frame's hazards
+    for (strategy, per_block) in [
+        (SyncStrategy::BarrierGlobal, 1),
+        (SyncStrategy::BarrierImage, 1),
+        (SyncStrategy::Events, 1),
+        (SyncStrategy::Secondary, 1),
+        (SyncStrategy::Submits, 0),
+    ] {
+        assert_eq!(barriers(strategy), unsynchronized + per_block * blocks, "{strategy}");
+    }
+    assert_validation_clean(&ctx);
+}

@@ -1,12 +1,17 @@
 //! Benchmark reports shared by every `sweeplab bench ...` sweep: one [`BenchRow`]
 //! per run, written as CSV, JSON and a Markdown table; the Pareto front of
 //! (GPU time, error); PNG charts drawn without system fonts; and a progress line
-//! on stderr while the sweep runs.
+//! on stderr while the sweep runs. The measuring loop (warm-up, timed repeats,
+//! median) is [`Harness`]; [`frames`] times technique and IPSVI frames with it,
+//! and [`experiments`] holds what the bench commands measure.
 
 pub mod axis;
 pub mod canvas;
 pub mod error;
+pub mod experiments;
 pub mod font;
+pub mod frames;
+pub mod harness;
 pub mod pareto;
 pub mod plot;
 pub mod progress;
@@ -15,6 +20,9 @@ pub mod stats;
 
 pub use axis::AxisScale;
 pub use error::BenchError;
+pub use experiments::ExperimentError;
+pub use frames::{ipsvi_frame, technique_frame, ProfiledFrame};
+pub use harness::{Harness, HarnessError, Measurement, Sample};
 pub use pareto::pareto_front;
 pub use plot::{palette_color, plot_error_vs_time, plot_lines, render_error_vs_time, render_lines, Chart, Series};
 pub use progress::Progress;

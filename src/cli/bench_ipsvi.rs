@@ -5,7 +5,10 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::bench::{median, plot_error_vs_time, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
+use sweeplab::bench::{
+    ipsvi_frame, plot_error_vs_time, technique_frame, AxisScale, BenchRow, BenchTable, Chart, ProfiledFrame, Progress,
+    Series,
+};
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{EarlyTermination, IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
@@ -55,6 +58,7 @@ fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSetti
 }
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
+    let harness = session::harness(0, args.repeat)?;
     let mut scene = scene_args::load(&args.scene)?;
     scene.reference.model = OpticalModel::EmissiveScattering;
     let base = IpsviSettings::from_scene(&scene)?;
@@ -63,7 +67,6 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
-    let repeat = args.repeat.max(1);
     let total = args.sizes.len() * (2 + configs.len() + 1 + args.half_angle_slices.len());
     let mut progress = Progress::new(total);
     let mut table = BenchTable::new();
@@ -78,19 +81,13 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         row.set("dispatches", reference.dispatches).set("gpu_memory_bytes", reference.profile.gpu_memory_bytes);
         table.push(row);
 
-        progress.start_step(&format!("{size}x{size} unshaded DVR"));
-        let mut times = Vec::new();
-        let mut dvr = None;
-        for _ in 0..repeat {
-            let out = render(&gpu, Technique::Dvr, size, size, &mut profiler)?;
-            times.push(out.profile.gpu_ms_total);
-            dvr = Some(out);
-        }
-        progress.finish_step();
-        let dvr = dvr.expect("at least one run");
+        let dvr = harness.measure_step(&mut progress, &format!("{size}x{size} unshaded DVR"), || {
+            technique_frame(&gpu, Technique::Dvr, (size, size), &mut profiler)
+        })?;
+        let (dvr_ms, dvr) = (dvr.median(), dvr.last);
         let stats = compare(&dvr.image, &reference_image)?;
         let mut row = BenchRow::new();
-        row.set("technique", "dvr").set("width", size).set("height", size).set("gpu_ms", median(&times));
+        row.set("technique", "dvr").set("width", size).set("height", size).set("gpu_ms", dvr_ms);
         row.set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
         row.set("dispatches", dvr.dispatches).set("gpu_memory_bytes", dvr.profile.gpu_memory_bytes);
         let dvr_ms = row.get_f64("gpu_ms").unwrap_or(f64::NAN);
@@ -98,29 +95,22 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         table.push(row);
 
         for s in &configs {
-            progress.start_step(&format!(
+            let label = format!(
                 "{size}x{size} lw={} cache={} pi={} ert={}",
                 s.line_width,
                 s.cache_size,
                 s.piecewise,
                 s.early_termination.name()
-            ));
+            );
             let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
-            let mut times = Vec::new();
-            let mut last = None;
             ctx.memory.reset_peak();
             let mut renderer = IpsviRenderer::new(&gpu, s, size, size)?;
-            for _ in 0..repeat {
-                profiler.reset();
-                let frame = renderer.frame(&mut profiler, SyncStrategy::BarrierGlobal)?;
-                let profile = profiler.resolve(ctx.memory.device_local_peak())?;
-                times.push(profile.gpu_ms_total);
-                last = Some((frame, profile));
-            }
-            progress.finish_step();
-            let (frame, profile) = last.expect("at least one run");
+            let measured = harness.measure_step(&mut progress, &label, || {
+                ipsvi_frame(&ctx, &mut renderer, &mut profiler, SyncStrategy::BarrierGlobal)
+            })?;
+            let gpu_ms = measured.median();
+            let ProfiledFrame { frame, profile } = measured.last;
             let stats = compare(&frame.image, &reference_image)?;
-            let gpu_ms = median(&times);
             let mut row = BenchRow::new();
             row.set("technique", "ipsvi").set("width", size).set("height", size);
             row.set("line_width", s.line_width).set("cache_size", s.cache_size);
@@ -201,6 +191,7 @@ fn half_angle_rows(
     progress: &mut Progress,
     table: &mut BenchTable,
 ) -> anyhow::Result<()> {
+    let harness = session::harness(0, args.repeat)?;
     let mut scene = scene.clone();
     scene.reference.model = OpticalModel::SingleScattering;
     progress.start_step(&format!("{size}x{size} ground truth (GPU, model i)"));
@@ -210,7 +201,6 @@ fn half_angle_rows(
     };
     progress.finish_step();
     for &step in &args.half_angle_slices {
-        progress.start_step(&format!("{size}x{size} half-angle slices {step} voxel"));
         if !(step.is_finite() && (0.01..=16.0).contains(&step)) {
             anyhow::bail!("--half-angle-slices: {step} is not a slice spacing in 0.01..=16 voxels");
         }
@@ -218,19 +208,14 @@ fn half_angle_rows(
         table_toml.insert("slice_step".into(), toml::Value::Float(step as f64));
         scene.techniques.insert("half_angle".into(), toml::Value::Table(table_toml));
         let gpu = GpuScene::upload_with(ctx, &scene, session::volume_texels(&args.gpu))?;
-        let mut times = Vec::new();
-        let mut last = None;
-        for _ in 0..args.repeat.max(1) {
-            let out = render(&gpu, Technique::HalfAngle, size, size, profiler)?;
-            times.push(out.profile.gpu_ms_total);
-            last = Some(out);
-        }
-        progress.finish_step();
-        let out = last.expect("at least one run");
+        let label = format!("{size}x{size} half-angle slices {step} voxel");
+        let measured = harness
+            .measure_step(progress, &label, || technique_frame(&gpu, Technique::HalfAngle, (size, size), profiler))?;
+        let (gpu_ms, out) = (measured.median(), measured.last);
         let stats = compare(&out.image, &reference)?;
         let mut row = BenchRow::new();
         row.set("technique", "half-angle").set("width", size).set("height", size).set("slice_step_voxels", step);
-        row.set("gpu_ms", median(&times)).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
+        row.set("gpu_ms", gpu_ms).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
         row.set("dispatches", out.dispatches).set("gpu_memory_bytes", out.profile.gpu_memory_bytes);
         row.set("reference_model", "single-scattering");
         table.push(row);

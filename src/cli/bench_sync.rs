@@ -5,44 +5,30 @@ use super::render_cmd::{write_json, PROFILER_CAPACITY};
 use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::bench::{plot_error_vs_time, plot_lines, AxisScale, BenchRow, BenchTable, Chart, Progress, Series};
+use sweeplab::bench::{
+    ipsvi_frame, median, plot_error_vs_time, plot_lines, AxisScale, BenchRow, BenchTable, Chart, Harness, Measurement,
+    ProfiledFrame, Progress, Series,
+};
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::GpuScene;
-use sweeplab::vk::{Context, ProfileReport, Profiler};
+use sweeplab::vk::{Context, Profiler};
 
-struct Frame {
-    gpu_ms: f64,
-    image: LinearImage,
-    dispatches: u32,
-    profile: ProfileReport,
-}
-
-/// Median GPU time of `repeat` frames; the last frame's image and profile.
+/// Median GPU time of the harness's frames on one renderer; the last frame's
+/// image and profile.
 fn frames(
     ctx: &Context,
     gpu: &GpuScene,
     s: &IpsviSettings,
     size: u32,
     profiler: &mut Profiler,
-    repeat: u32,
-) -> anyhow::Result<Frame> {
+    harness: &Harness,
+) -> anyhow::Result<Measurement<ProfiledFrame>> {
     // One renderer for all frames: the secondary strategy replays what it recorded.
     let mut renderer = IpsviRenderer::new(gpu, s, size, size)?;
-    let mut times = Vec::new();
-    let mut last = None;
-    for _ in 0..repeat.max(1) {
-        profiler.reset();
-        let frame = renderer.frame(profiler, s.sync)?;
-        let profile = profiler.resolve(ctx.memory.device_local_peak())?;
-        times.push(profile.gpu_ms_total);
-        last = Some((frame, profile));
-    }
-    times.sort_by(f64::total_cmp);
-    let (frame, profile) = last.expect("at least one frame");
-    Ok(Frame { gpu_ms: times[times.len() / 2], image: frame.image, dispatches: frame.dispatches, profile })
+    Ok(harness.measure(|| ipsvi_frame(ctx, &mut renderer, profiler, s.sync))?)
 }
 
 pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
@@ -51,6 +37,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|s| s.parse().map_err(|e: String| anyhow::anyhow!("--strategies: {e}")))
         .collect::<Result<_, _>>()?;
+    let harness = session::harness(0, args.repeat)?;
     let scene = scene_args::load(&args.scene)?;
     let base = IpsviSettings::from_scene(&scene)?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
@@ -64,7 +51,8 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
     for &size in &args.sizes {
         progress.start_step(&format!("{size}x{size} single-dispatch baseline"));
         let baseline_settings = IpsviSettings { single_dispatch_baseline: true, ..base.clone() };
-        let baseline = frames(&ctx, &gpu, &baseline_settings, size, &mut profiler, args.repeat)?;
+        let baseline = frames(&ctx, &gpu, &baseline_settings, size, &mut profiler, &harness)?;
+        let baseline_ms = baseline.median();
         progress.finish_step();
         let mut row = BenchRow::new();
         row.set("strategy", "single-dispatch")
@@ -72,7 +60,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
             .set("line_width", 0)
             .set("width", size)
             .set("height", size);
-        row.set("dispatches", baseline.dispatches).set("gpu_ms", baseline.gpu_ms);
+        row.set("dispatches", baseline.last.frame.dispatches).set("gpu_ms", baseline_ms);
         table.push(row);
         for &lw in &args.line_widths {
             let mut expected: Option<LinearImage> = None;
@@ -80,13 +68,16 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
                 progress.start_step(&format!("{size}x{size} lw={lw} {}", strategy.name()));
                 let s = IpsviSettings { line_width: lw, sync: strategy, ..base.clone() };
                 let lines: u32 = plans(&gpu, &s, size, size).iter().map(|p| p.lines()).sum();
-                let timed = frames(&ctx, &gpu, &s, size, &mut profiler, args.repeat)?;
+                let timed = frames(&ctx, &gpu, &s, size, &mut profiler, &harness)?;
+                let timed_ms = timed.median();
+                let timed = timed.last.frame;
                 // The same frame once more with a timestamp around every dispatch.
                 profiler.set_detail(true);
-                let detailed = frames(&ctx, &gpu, &s, size, &mut profiler, 1)?;
+                let detailed = frames(&ctx, &gpu, &s, size, &mut profiler, &Harness::once_after(0))?;
                 profiler.set_detail(false);
                 progress.finish_step();
-                let timeline = detailed.profile.timeline("ipsvi_line");
+                let (detailed_ms, detailed) = (detailed.median(), detailed.last.profile);
+                let timeline = detailed.timeline("ipsvi_line");
                 if strategy == SyncStrategy::BarrierGlobal {
                     expected = Some(timed.image.clone());
                 }
@@ -97,23 +88,18 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
                 let mut row = BenchRow::new();
                 row.set("strategy", strategy.name()).set("racy", strategy.is_racy()).set("line_width", lw);
                 row.set("width", size).set("height", size).set("lines", lines).set("dispatches", timed.dispatches);
-                row.set("gpu_ms", timed.gpu_ms);
-                row.set("per_line_overhead_us", (timed.gpu_ms - baseline.gpu_ms) * 1e3 / lines.max(1) as f64);
+                row.set("gpu_ms", timed_ms);
+                row.set("per_line_overhead_us", (timed_ms - baseline_ms) * 1e3 / lines.max(1) as f64);
                 row.set("rmse", rmse);
-                row.set("gpu_ms_with_line_timestamps", detailed.gpu_ms);
-                row.set("timestamp_perturbation_ms", detailed.gpu_ms - timed.gpu_ms);
+                row.set("gpu_ms_with_line_timestamps", detailed_ms);
+                row.set("timestamp_perturbation_ms", detailed_ms - timed_ms);
                 row.set("inside_dispatches_ms", timeline.inside_ms).set("gaps_ms", timeline.gap_ms);
-                let median = |v: &[f64]| {
-                    let mut v = v.to_vec();
-                    v.sort_by(f64::total_cmp);
-                    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
-                };
                 row.set("median_line_us", median(&timeline.durations_us))
                     .set("median_gap_us", median(&timeline.gaps_us));
                 table.push(row);
                 if size == largest && lw == 1 {
                     let name = strategy.name();
-                    write_json(&args.out.join(format!("trace_{name}.json")), &detailed.profile.chrome_trace())?;
+                    write_json(&args.out.join(format!("trace_{name}.json")), &detailed.chrome_trace())?;
                     write_json(&args.out.join(format!("lines_{name}.json")), &serde_json::to_value(&timeline)?)?;
                     write_histogram(args, strategy, &timeline)?;
                 }

@@ -5,7 +5,7 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::session;
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::bench::{BenchRow, BenchTable, Progress};
+use sweeplab::bench::{ipsvi_frame, BenchRow, BenchTable, Progress};
 use sweeplab::ipsvi::paper_table1::{PaperColumn, CT_ENGINE, CT_GIRAFFE, LINE_WIDTHS, US_BABY};
 use sweeplab::ipsvi::renderer::IpsviRenderer;
 use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
@@ -19,6 +19,8 @@ const PAIRS: [(&str, &PaperColumn); 3] =
     [("engine.vti", &CT_ENGINE), ("aneurism.vti", &US_BABY), ("LIDC2.mha", &CT_GIRAFFE)];
 
 pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
+    // One untimed frame first: llvmpipe compiles shader variants on first use.
+    let harness = session::harness(1, args.repeat)?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let ctx = session::open(&args.gpu)?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
@@ -35,19 +37,10 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
                 progress.start_step(&format!("{file} {size}x{size} lw={lw}"));
                 let s = IpsviSettings { line_width: lw, ..base.clone() };
                 let mut renderer = IpsviRenderer::new(&gpu, &s, size, size)?;
-                // Untimed warm-up: llvmpipe compiles shader variants on first use.
-                profiler.reset();
-                renderer.frame(&mut profiler, SyncStrategy::BarrierGlobal)?;
-                profiler.resolve(0)?;
-                let mut times = Vec::new();
-                for _ in 0..args.repeat.max(1) {
-                    profiler.reset();
-                    renderer.frame(&mut profiler, SyncStrategy::BarrierGlobal)?;
-                    times.push(profiler.resolve(0)?.gpu_ms_total);
-                }
-                times.sort_by(f64::total_cmp);
+                let measured =
+                    harness.measure(|| ipsvi_frame(&ctx, &mut renderer, &mut profiler, SyncStrategy::BarrierGlobal))?;
                 progress.finish_step();
-                fps.insert((size, lw), 1000.0 / times[times.len() / 2]);
+                fps.insert((size, lw), 1000.0 / measured.median());
             }
         }
         for &size in &args.sizes {

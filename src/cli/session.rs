@@ -3,6 +3,7 @@
 use super::args::GpuArgs;
 use anyhow::Context as _;
 use std::process::ExitCode;
+use sweeplab::bench::Harness;
 use sweeplab::render::VolumeTexels;
 use sweeplab::vk::{Context, ContextOptions};
 
@@ -41,4 +42,9 @@ pub fn volume_texels(gpu: &GpuArgs) -> VolumeTexels {
     } else {
         VolumeTexels::Native
     }
+}
+
+/// `--repeat` timed runs after `warm_up` untimed ones; 0 repeats is refused.
+pub fn harness(warm_up: u32, repeat: u32) -> anyhow::Result<Harness> {
+    Harness::new(warm_up, repeat).map_err(|e| anyhow::anyhow!("--repeat: {e}"))
 }

@@ -3,7 +3,8 @@
 //! ways it differs from the paper in docs/ipsvi.md.
 //!
 //! The host plans the sweep ([`sweep_plan`]); every line block is its own
-//! dispatch, followed by the barrier `cache_write_to_next_line_read`.
+//! dispatch, followed by the barrier `cache_write_to_next_line_read` (or, in
+//! the synchronization study, another [`SyncStrategy`]'s object from [`sync`]).
 
 pub mod cache_geometry;
 pub mod cache_region;
@@ -14,6 +15,7 @@ pub mod paper_table1;
 pub mod renderer;
 pub mod settings;
 pub mod sweep_plan;
+pub mod sync;
 pub mod sync_strategy;
 
 pub use renderer::{render, render_with};

@@ -1,6 +1,7 @@
 //! Records one IPSVI frame: clear the output to the background, then per light
 //! and per sweep zone: initialise the cache, and one dispatch per line block,
-//! each followed by its barrier.
+//! with the synchronization of the frame's strategy (`super::sync`) before and
+//! after each.
 
 use super::cache_geometry::CacheGeometry;
 use super::cache_region::{plane_region, TexelRect};
@@ -12,6 +13,10 @@ use super::gpu_params::{
 use super::image_space::ImageSpace;
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
+use super::sync::{
+    record_sweeps, GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, SplitBarriers, SubmissionPerBlock,
+    Unsynchronized,
+};
 use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::gpu_scene::bindings_after_scene;
@@ -21,10 +26,10 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait, SecondaryCommands};
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::events::EventPool;
 use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
+use std::cell::OnceCell;
 
 /// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
 const LOOP_BUDGET: u32 = 60_000;
@@ -156,7 +161,7 @@ pub struct IpsviRenderer<'a> {
     line_set: vk::DescriptorSet,
     readback: Buffer,
     /// The sweeps recorded once for `SyncStrategy::Secondary`, on first use.
-    secondaries: Option<SecondaryCommands>,
+    secondaries: OnceCell<SecondaryCommands>,
 }
 
 impl<'a> IpsviRenderer<'a> {
@@ -306,46 +311,42 @@ impl<'a> IpsviRenderer<'a> {
             lines,
             line_set,
             readback,
-            secondaries: None,
+            secondaries: OnceCell::new(),
         })
     }
 
-    /// One secondary command buffer per sweep (in frame order): its blocks and
-    /// the barrier after each, parameters read from the blocks buffer.
-    fn record_secondaries(&self) -> Result<SecondaryCommands, RenderError> {
-        let sweeps: Vec<(usize, usize)> = {
-            let mut first = 0;
-            let mut v = Vec::new();
-            for plan in &self.plans {
-                for sweep in &plan.sweeps {
-                    v.push((first, sweep.blocks.len()));
-                    first += sweep.blocks.len();
-                }
-            }
-            v
-        };
-        let dependency =
-            Barrier::memory("cache_write_to_next_line_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE);
-        Ok(SecondaryCommands::record(self.ctx, "ipsvi sweep", sweeps.len(), |i, rec| {
-            let (first, count) = sweeps[i];
-            rec.bind(&self.lines[0], self.line_set);
-            for k in first..first + count {
-                let record = &self.block_records[k];
-                let line = &self.lines[record.parity as usize];
-                rec.bind_pipeline(line);
-                rec.push(line, &(k as u32).to_ne_bytes());
-                rec.dispatch((record.pixel_count + record.region[2] * record.region[3]).div_ceil(LINE_GROUP), 1, 1);
-                rec.barrier(&dependency);
-            }
-            Ok(())
-        })?)
+    /// The sweeps as secondary command buffers, recorded on first use.
+    fn recorded_sweeps(&self) -> Result<&SecondaryCommands, RenderError> {
+        if let Some(recorded) = self.secondaries.get() {
+            return Ok(recorded);
+        }
+        let recorded =
+            record_sweeps(self.ctx, &self.plans, &self.block_records, &self.lines, self.line_set, line_groups)?;
+        Ok(self.secondaries.get_or_init(|| recorded))
+    }
+
+    /// The synchronization object of `sync` for one frame.
+    fn line_sync(&self, sync: SyncStrategy) -> Result<Box<dyn LineSync + '_>, RenderError> {
+        let cache = &self.cache;
+        Ok(match sync {
+            SyncStrategy::BarrierGlobal => Box::new(GlobalBarrier),
+            SyncStrategy::BarrierImage => Box::new(ImageBarriers::new(&[
+                &cache.light[0],
+                &cache.light[1],
+                &cache.front[0],
+                &cache.front[1],
+                &self.output.image,
+            ])),
+            SyncStrategy::Events => Box::new(SplitBarriers::new(self.ctx, self.block_records.len())?),
+            SyncStrategy::Secondary => Box::new(ReplayedSweeps::new(self.recorded_sweeps()?)),
+            SyncStrategy::Submits => Box::new(SubmissionPerBlock),
+            SyncStrategy::Racy => Box::new(Unsynchronized),
+        })
     }
 
     /// Records, submits and waits for one frame with the given synchronization.
     pub fn frame(&mut self, profiler: &mut Profiler, sync: SyncStrategy) -> Result<FrameResult, RenderError> {
-        if sync == SyncStrategy::Secondary && self.secondaries.is_none() {
-            self.secondaries = Some(self.record_secondaries()?);
-        }
+        let mut line_sync = self.line_sync(sync)?;
         let IpsviRenderer {
             ctx,
             background,
@@ -361,24 +362,9 @@ impl<'a> IpsviRenderer<'a> {
             lines,
             line_set,
             readback,
-            secondaries,
             ..
-        } = self;
+        } = &*self;
         let (ctx, init_set, line_set) = (*ctx, *init_set, *line_set);
-        let [a, b] = [&cache.light[0], &cache.light[1]];
-        let [fa, fb] = [&cache.front[0], &cache.front[1]];
-        let events = match sync {
-            SyncStrategy::Events => Some(EventPool::new(ctx, block_records.len())?),
-            _ => None,
-        };
-        let line_dependency =
-            Barrier::memory("cache_write_to_next_line_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE);
-        let line_image_dependency = Barrier::images(
-            "cache_write_to_next_line_read",
-            &[a, b, fa, fb, &output.image],
-            Access::COMPUTE_WRITE,
-            Access::COMPUTE_READ_WRITE,
-        );
         let bg = *background;
         let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
             rec.clear_for_compute(
@@ -395,14 +381,11 @@ impl<'a> IpsviRenderer<'a> {
             if let Some(e) = &exit_points {
                 e.record(rec, profiler)?;
             }
-            let mut next_block = 0u32;
-            let mut pending_event: Option<usize> = None;
+            let mut next_block = 0usize;
             let mut next_sweep = 0usize;
             for (li, plan) in plans.iter().enumerate() {
                 for sweep in &plan.sweeps {
-                    if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
-                        rec.wait_event(pool.events[k], &line_dependency);
-                    }
+                    line_sync.before_sweep(rec);
                     let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
                     rec.bind(init, init_set);
                     let n = settings.cache_size.div_ceil(8);
@@ -415,58 +398,41 @@ impl<'a> IpsviRenderer<'a> {
                         Access::COMPUTE_READ_WRITE,
                     ));
                     let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
-                    if let (SyncStrategy::Secondary, Some(recorded)) = (sync, &*secondaries) {
-                        rec.execute(recorded, next_sweep);
-                        next_sweep += 1;
-                        next_block += sweep.blocks.len() as u32;
-                        profiler.end(rec, sweep_scope)?;
-                        continue;
+                    if line_sync.replay_sweep(rec, next_sweep) {
+                        next_block += sweep.blocks.len();
+                    } else {
+                        // Bound once per sweep: blocks find their parameters by index.
+                        rec.bind(&lines[0], line_set);
+                        for _ in &sweep.blocks {
+                            let record = &block_records[next_block];
+                            line_sync.before_block(rec, next_block);
+                            let line = &lines[record.parity as usize];
+                            line_sync.bind_line(rec, line, line_set);
+                            let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
+                            rec.push(line, &(next_block as u32).to_ne_bytes());
+                            rec.dispatch(line_groups(record), 1, 1);
+                            profiler.end(rec, line_scope)?;
+                            line_sync.after_block(rec, next_block)?;
+                            next_block += 1;
+                        }
                     }
                     next_sweep += 1;
-                    // Bound once per sweep: blocks find their parameters by index.
-                    rec.bind(&lines[0], line_set);
-                    for _ in &sweep.blocks {
-                        let record = &block_records[next_block as usize];
-                        if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
-                            rec.wait_event(pool.events[k], &line_dependency);
-                        }
-                        let line = &lines[record.parity as usize];
-                        if sync == SyncStrategy::Submits {
-                            // A new command buffer starts with nothing bound.
-                            rec.bind(line, line_set);
-                        } else {
-                            rec.bind_pipeline(line);
-                        }
-                        let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
-                        let invocations = record.pixel_count + record.region[2] * record.region[3];
-                        rec.push(line, &next_block.to_ne_bytes());
-                        rec.dispatch(invocations.div_ceil(LINE_GROUP), 1, 1);
-                        profiler.end(rec, line_scope)?;
-                        match (sync, &events) {
-                            (SyncStrategy::BarrierGlobal, _) => rec.barrier(&line_dependency),
-                            (SyncStrategy::BarrierImage, _) => rec.barrier(&line_image_dependency),
-                            (SyncStrategy::Submits, _) => rec.split_submission()?,
-                            (SyncStrategy::Events, Some(pool)) => {
-                                rec.set_event(pool.events[next_block as usize], &line_dependency);
-                                pending_event = Some(next_block as usize);
-                            }
-                            // RACY: nothing between blocks.
-                            _ => {}
-                        }
-                        next_block += 1;
-                    }
                     profiler.end(rec, sweep_scope)?;
                 }
             }
-            if let (Some(k), Some(pool)) = (pending_event.take(), &events) {
-                rec.wait_event(pool.events[k], &line_dependency);
-            }
+            line_sync.end_frame(rec);
             profiler.end(rec, frame_scope)?;
             output.record_readback(rec, readback);
             Ok((rec.dispatch_count, rec.barrier_count))
         })?;
         Ok(FrameResult { image: output.read(readback)?, dispatches, barriers })
     }
+}
+
+/// Workgroups of a block's line dispatch: one invocation per pixel of the
+/// block, then one per texel of the cache region it updates.
+fn line_groups(record: &BlockParams) -> u32 {
+    (record.pixel_count + record.region[2] * record.region[3]).div_ceil(LINE_GROUP)
 }
 
 /// The parameters of every line block of the frame, in dispatch order.

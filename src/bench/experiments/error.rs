@@ -1,0 +1,13 @@
+use crate::render::RenderError;
+use crate::vk::VkError;
+
+/// Why an experiment could not be measured.
+#[derive(Debug, thiserror::Error)]
+pub enum ExperimentError {
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    #[error(transparent)]
+    Vk(#[from] VkError),
+    #[error("incremental mode did not converge in {0} frames")]
+    NotConverged(usize),
+}

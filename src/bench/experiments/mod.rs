@@ -1,0 +1,7 @@
+//! What the bench commands measure that is not argument wiring: scene
+//! variants, update sequences and the loops that time them.
+
+pub mod error;
+pub mod lights;
+
+pub use error::ExperimentError;

@@ -1,0 +1,53 @@
+//! How consecutive line blocks of a sweep are synchronized, one object per
+//! [`SyncStrategy`](super::SyncStrategy): what a strategy records before a
+//! sweep, before and after each block, and at the end of the frame, or the
+//! whole sweep at once where it replays a recording. The renderer records the
+//! sweep; each strategy names the barriers it adds for what they protect.
+
+mod barrier_global;
+mod barrier_image;
+mod events;
+mod racy;
+mod secondary;
+mod submits;
+
+pub use barrier_global::GlobalBarrier;
+pub use barrier_image::ImageBarriers;
+pub use events::SplitBarriers;
+pub use racy::Unsynchronized;
+pub use secondary::{record_sweeps, ReplayedSweeps};
+pub use submits::SubmissionPerBlock;
+
+use crate::vk::commands::Recorder;
+use crate::vk::pipeline::ComputePipeline;
+use crate::vk::VkError;
+use ash::vk;
+
+/// The synchronization between the line blocks of a frame. Blocks and sweeps
+/// are numbered in frame order (the order of the blocks buffer).
+pub trait LineSync {
+    /// Before sweep initialisation overwrites the cache: the previous sweep's
+    /// last block must be done with it.
+    fn before_sweep(&mut self, _rec: &mut Recorder) {}
+
+    /// Records all of `sweep`'s blocks and the synchronization between them at
+    /// once and returns true, or returns false: the renderer records each block.
+    fn replay_sweep(&mut self, _rec: &mut Recorder, _sweep: usize) -> bool {
+        false
+    }
+
+    /// Before `block`'s dispatch, with the line descriptor set bound for the sweep.
+    fn before_block(&mut self, _rec: &mut Recorder, _block: usize) {}
+
+    /// Binds the block's line pipeline (its parity's); the descriptor set
+    /// stays bound from the start of the sweep.
+    fn bind_line(&self, rec: &mut Recorder, line: &ComputePipeline, _set: vk::DescriptorSet) {
+        rec.bind_pipeline(line);
+    }
+
+    /// After `block`'s dispatch: what orders it before the next block.
+    fn after_block(&mut self, rec: &mut Recorder, block: usize) -> Result<(), VkError>;
+
+    /// After the last sweep, before the output is read back.
+    fn end_frame(&mut self, _rec: &mut Recorder) {}
+}
