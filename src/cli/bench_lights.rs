@@ -1,5 +1,5 @@
 //! `sweeplab bench lights`: the light volume against the selective light
-//! updates paper (Jönsson/Ropinski et al. 2015): Table 1 (entire updates with
+//! updates paper (Sundén and Ropinski 2015): Table 1 (entire updates with
 //! sequential and coherence-based propagation, selective updates of one
 //! light), Figure 10 (entire update time over 1-40 lights of one direction),
 //! the memory of one illumination volume against one per light, and the error

@@ -1,5 +1,5 @@
 //! The light volume experiments of `sweeplab bench lights` (the selective light
-//! updates paper, Jönsson/Ropinski et al. 2015): the lights of its Table 1 and
+//! updates paper, Sundén and Ropinski 2015): the lights of its Table 1 and
 //! Figure 10, a scene per measurement, the four updates of a Table 1 row and
 //! how each is timed, incremental mode until complete, and full frames for the
 //! error against the ground truth.
