@@ -74,7 +74,7 @@ fn main() {
                     match rebind {
                         1 => rec.bind_set(&p, set),
                         2 => rec.bind(&p, set),
-                        3 => rec.push(&p, &[0u8; 16]),
+                        3 => rec.push(&p, &[0u32; 4]),
                         4 => rec.bind_pipeline(if rec.dispatch_count % 2 == 0 { &p } else { &p2 }),
                         _ => {}
                     }

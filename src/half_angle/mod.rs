@@ -19,10 +19,10 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipelineDesc};
-use crate::vk::resources::GpuData;
+use crate::vk::pipeline::{parity_pair, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
+use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 /// `[half_angle]` table of the scene.
@@ -58,7 +58,7 @@ impl HalfAngleSettings {
 }
 
 #[repr(C)]
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Default, Pod, Zeroable)]
 struct LightBufferParams {
     origin: [f32; 4],
     axis: [f32; 4],
@@ -67,10 +67,8 @@ struct LightBufferParams {
     size: [u32; 4],
 }
 
-impl GpuData for LightBufferParams {}
-
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct SlicePush {
     half_vector: [f32; 4],
     spacing: [f32; 4],
@@ -208,7 +206,7 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
                 rect,
                 pixel_count,
             };
-            rec.push(pipeline, push_bytes(&push));
+            rec.push(pipeline, &push);
             rec.dispatch((pixel_count + n * n).div_ceil(64), 1, 1);
             profiler.end(rec, detail)?;
             // This slice's light and eye writes are what the next slice reads.

@@ -12,13 +12,14 @@ use crate::render::{GpuScene, RenderError};
 use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
+use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
 
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct DepthsPush {
     scale: u32,
     width: u32,
@@ -26,7 +27,7 @@ struct DepthsPush {
 }
 
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct SweepPush {
     anchor: [f32; 2],
     line: u32,
@@ -161,7 +162,7 @@ impl ExitPoints {
         let scope = profiler.begin(rec, "ipsvi_ert_prepass")?;
         rec.bind(&self.depths_pipeline, self.depths_set);
         let push = DepthsPush { scale: self.scale, width: self.width, height: self.height };
-        rec.push(&self.depths_pipeline, push_bytes(&push));
+        rec.push(&self.depths_pipeline, &push);
         rec.dispatch(self.width.div_ceil(8), self.height.div_ceil(8), 1);
         profiler.end(rec, scope)?;
         rec.barrier(&Barrier::memory(
@@ -193,7 +194,7 @@ impl ExitPoints {
                     columns: (sweep.axis == LineAxis::Columns) as u32,
                     zone: sweep.zone as u32,
                 };
-                rec.push(pipeline, push_bytes(&push));
+                rec.push(pipeline, &push);
                 rec.dispatch(block.span_len.div_ceil(64), 1, 1);
                 profiler.end(rec, line_scope)?;
                 rec.barrier(&Barrier::memory(

@@ -3,7 +3,7 @@
 use super::cache_geometry::CacheGeometry;
 use super::image_space::LightAnchor;
 use crate::scene::RayBasis;
-use crate::vk::resources::GpuData;
+use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 
 pub const FLAG_FIRST_LIGHT: u32 = 1;
@@ -12,7 +12,7 @@ pub const FLAG_EARLY_TERMINATION: u32 = 4;
 pub const FLAG_EXIT_POINTS: u32 = 8;
 
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct SweepParams {
     pub cache_origin: [f32; 4],
     pub cache_axis: [f32; 4],
@@ -23,12 +23,10 @@ pub struct SweepParams {
     pub scatter: [f32; 4],
 }
 
-impl GpuData for SweepParams {}
-
 /// One line block (glsl/ipsvi_line.comp `BlockParams`), read by its dispatch
 /// through the block index it gets as push constant.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct BlockParams {
     pub line_first: u32,
     pub line_width: u32,
@@ -46,8 +44,6 @@ pub struct BlockParams {
     pub light: u32,
     pub pad: [u32; 2],
 }
-
-impl GpuData for BlockParams {}
 
 pub struct SweepInputs<'a> {
     pub geometry: &'a CacheGeometry,

@@ -333,7 +333,7 @@ impl<'a> IpsviRenderer<'a> {
                 let record = &self.block_records[k];
                 let line = &self.lines[record.parity as usize];
                 rec.bind_pipeline(line);
-                rec.push(line, &(k as u32).to_ne_bytes());
+                rec.push(line, &(k as u32));
                 rec.dispatch((record.pixel_count + record.region[2] * record.region[3]).div_ceil(LINE_GROUP), 1, 1);
                 rec.barrier(&dependency);
             }
@@ -406,7 +406,7 @@ impl<'a> IpsviRenderer<'a> {
                     let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
                     rec.bind(init, init_set);
                     let n = settings.cache_size.div_ceil(8);
-                    rec.push(init, &(li as u32).to_ne_bytes());
+                    rec.push(init, &(li as u32));
                     rec.dispatch(n, n, 1);
                     profiler.end(rec, init_scope)?;
                     rec.barrier(&Barrier::memory(
@@ -439,7 +439,7 @@ impl<'a> IpsviRenderer<'a> {
                         }
                         let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                         let invocations = record.pixel_count + record.region[2] * record.region[3];
-                        rec.push(line, &next_block.to_ne_bytes());
+                        rec.push(line, &next_block);
                         rec.dispatch(invocations.div_ceil(LINE_GROUP), 1, 1);
                         profiler.end(rec, line_scope)?;
                         match (sync, &events) {

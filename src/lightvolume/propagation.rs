@@ -18,16 +18,17 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::SecondaryCommands;
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipeline, ComputePipelineDesc};
-use crate::vk::resources::{as_bytes, GpuData, ImageDesc};
+use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
+use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Recorder};
 use ash::vk;
+use bytemuck::{Pod, Zeroable};
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
 
 /// Mirrors `GroupEntry` in glsl/lightvolume_slice.comp.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GroupEntry {
     /// Slot of the light's state in the slot buffer.
     pub light: u32,
@@ -38,11 +39,9 @@ pub struct GroupEntry {
     pub pad: u32,
 }
 
-impl GpuData for GroupEntry {}
-
 /// Mirrors the `Pass` push constants.
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct SlicePush {
     axis: [i32; 4],
     grid: [i32; 4],
@@ -165,11 +164,11 @@ impl Propagation {
     /// Writes light states into the slot buffer from slot `first` on (between
     /// frames: the previous frame has completed).
     pub fn write_slots(&mut self, first: usize, states: &[GpuLight]) -> Result<(), RenderError> {
-        Ok(self.slots.write_bytes(first * std::mem::size_of::<GpuLight>(), as_bytes(states))?)
+        Ok(self.slots.write_bytes(first * std::mem::size_of::<GpuLight>(), bytemuck::cast_slice(states))?)
     }
 
     pub fn write_entries(&mut self, first: usize, entries: &[GroupEntry]) -> Result<(), RenderError> {
-        Ok(self.entries.write_bytes(first * std::mem::size_of::<GroupEntry>(), as_bytes(entries))?)
+        Ok(self.entries.write_bytes(first * std::mem::size_of::<GroupEntry>(), bytemuck::cast_slice(entries))?)
     }
 
     /// Before the first pass of a frame: the slice buffers' old contents are
@@ -208,7 +207,7 @@ impl Propagation {
                     axis: [group.axis as i32, group.travel, k as i32, group.members.len() as i32],
                     grid: [grid.x, grid.y, grid.z, first_entry as i32],
                 };
-                rec.push(pipeline, push_bytes(&push));
+                rec.push(pipeline, &push);
                 rec.dispatch(self.grid[u].div_ceil(GROUP_SIZE), self.grid[v].div_ceil(GROUP_SIZE), 1);
                 // This slice's buffer and illumination writes are what the next
                 // slice (or the next pass, or the ray cast) reads.

@@ -13,9 +13,10 @@ use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Profiler};
 use ash::vk;
+use bytemuck::{Pod, Zeroable};
 
 /// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
 pub const LOOP_BUDGET: u64 = 60_000;
@@ -24,7 +25,7 @@ pub const LOOP_BUDGET: u64 = 60_000;
 const BINDINGS_OWN: [BindingKind; 2] = [BindingKind::StorageImage, BindingKind::StorageImage];
 
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct ChunkPush {
     first_sample: u32,
     sample_count: u32,
@@ -158,7 +159,7 @@ pub fn render_with(
                 is_first: (chunk == 0) as u32,
                 is_last: (chunk + 1 == plan.chunks) as u32,
             };
-            rec.push(&pipeline, push_bytes(&push));
+            rec.push(&pipeline, &push);
             rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
             profiler.end(rec, detail)?;
             last_written = 1 - set_index;

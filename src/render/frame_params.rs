@@ -2,10 +2,10 @@
 //! (glsl/frame.glsl, glsl/lights.glsl): all vec4s, so std140 and std430 agree.
 
 use crate::scene::{Falloff, Light, LightKind, Scene};
-use crate::vk::resources::GpuData;
+use bytemuck::{Pod, Zeroable};
 
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct FrameParams {
     pub cam_origin: [f32; 4],
     pub cam_forward: [f32; 4],
@@ -19,18 +19,14 @@ pub struct FrameParams {
     pub image_size: [u32; 4],
 }
 
-impl GpuData for FrameParams {}
-
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLight {
     pub pos_type: [f32; 4],
     pub spot_dir: [f32; 4],
     pub radiance: [f32; 4],
     pub params: [f32; 4],
 }
-
-impl GpuData for GpuLight {}
 
 /// Which step sizes a pass marches with.
 #[derive(Clone, Copy, Debug)]

@@ -7,7 +7,7 @@ use crate::scene::{Scene, TransferLut, VoxelData};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::resources::{as_bytes, ImageDesc, Sampler};
+use crate::vk::resources::{ImageDesc, Sampler};
 use crate::vk::{Buffer, Context, Image, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -145,8 +145,8 @@ fn volume_texels(ctx: &Context, data: &VoxelData, texels: VolumeTexels) -> Resul
         | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
         | vk::FormatFeatureFlags::TRANSFER_DST;
     let native = match data {
-        VoxelData::U8(v) => Some((vk::Format::R8_UNORM, as_bytes(v).to_vec())),
-        VoxelData::U16(v) => Some((vk::Format::R16_UNORM, as_bytes(v).to_vec())),
+        VoxelData::U8(v) => Some((vk::Format::R8_UNORM, bytemuck::cast_slice(v).to_vec())),
+        VoxelData::U16(v) => Some((vk::Format::R16_UNORM, bytemuck::cast_slice(v).to_vec())),
         VoxelData::F32(_) => None,
     };
     if let Some((format, bytes)) = native.filter(|_| texels == VolumeTexels::Native) {
@@ -162,5 +162,5 @@ fn volume_texels(ctx: &Context, data: &VoxelData, texels: VolumeTexels) -> Resul
         });
     }
     let floats: Vec<f32> = (0..data.len()).map(|i| data.normalized(i)).collect();
-    Ok((vk::Format::R32_SFLOAT, as_bytes(&floats).to_vec()))
+    Ok((vk::Format::R32_SFLOAT, bytemuck::cast_slice(&floats).to_vec()))
 }

@@ -134,10 +134,3 @@ pub fn parity_pair(
         ComputePipeline::new(ctx, &ComputePipelineDesc { spirv: read_b, ..*desc })?,
     ])
 }
-
-/// Push-constant bytes of a `#[repr(C)]` plain-data struct.
-pub fn push_bytes<T: Copy>(value: &T) -> &[u8] {
-    // SAFETY: callers pass #[repr(C)] structs of u32/f32/i32 fields (std430-like
-    // layout, no padding bytes), so all bytes are initialised.
-    unsafe { std::slice::from_raw_parts(value as *const T as *const u8, std::mem::size_of::<T>()) }
-}
