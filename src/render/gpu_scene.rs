@@ -6,21 +6,10 @@ use super::frame_params::{gpu_lights, GpuLight};
 use crate::scene::{Scene, TransferLut, VoxelData};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
-use crate::vk::descriptors::{BindingKind, Resource};
 use crate::vk::resources::{ImageDesc, Sampler};
 use crate::vk::{Buffer, Context, Image, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
-
-/// Bindings 0-3 of every ray caster: frame parameters, volume, transfer LUT and
-/// lights (glsl/frame.glsl, volume.glsl, lights.glsl).
-pub const SCENE_BINDINGS: [BindingKind; 4] =
-    [BindingKind::UniformBuffer, BindingKind::SampledImage, BindingKind::StorageBuffer, BindingKind::StorageBuffer];
-
-/// [`SCENE_BINDINGS`] followed by a technique's own bindings (4, 5, ...).
-pub fn bindings_after_scene(own: &[BindingKind]) -> Vec<BindingKind> {
-    [&SCENE_BINDINGS[..], own].concat()
-}
 
 pub struct GpuScene<'a> {
     pub ctx: &'a Context,
@@ -110,18 +99,6 @@ impl<'a> GpuScene<'a> {
             lut_size: lut_table.texels.len(),
             lights,
         })
-    }
-}
-
-impl GpuScene<'_> {
-    /// What goes into [`SCENE_BINDINGS`], with this frame's parameters.
-    pub fn scene_resources<'r>(&'r self, frame: &'r Buffer) -> [Resource<'r>; 4] {
-        [
-            Resource::UniformBuffer(frame),
-            Resource::SampledImage(&self.volume, &self.sampler),
-            Resource::StorageBuffer(&self.lut),
-            Resource::StorageBuffer(&self.lights),
-        ]
     }
 }
 

@@ -178,6 +178,14 @@ impl<'a> Recorder<'a> {
     /// Push constants: the shader's push block mirrored by a `Pod` struct.
     pub fn push<T: Pod>(&self, pipeline: &ComputePipeline, value: &T) {
         let bytes = bytemuck::bytes_of(value);
+        // A programming error, not an input: the push struct of another shader.
+        assert_eq!(
+            bytes.len() as u32,
+            pipeline.push_constant_bytes,
+            "push constants of {} bytes for shader {}",
+            bytes.len(),
+            pipeline.shader
+        );
         // SAFETY: the layout declares a compute push-constant range covering `bytes`
         // (checked when the pipeline was created).
         unsafe {
