@@ -192,7 +192,7 @@ impl Module {
             OP_TYPE_STRUCT => Type::Struct(w[1..].to_vec()),
             OP_TYPE_POINTER => Type::Pointer { pointee: w[2] },
             // Matrices, samplers, opaque types: sized or bound nowhere here.
-            OP_TYPE_BOOL..=OP_TYPE_POINTER => Type::Other,
+            _ if (OP_TYPE_BOOL..=OP_TYPE_POINTER).contains(&op) => Type::Other,
             _ => return,
         };
         self.types.insert(w[0], ty);
