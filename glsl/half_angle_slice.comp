@@ -15,15 +15,19 @@ layout(local_size_x = 64) in;
 #include "lights.glsl"
 #include "light_space.glsl"
 
-// size.y: index of the light.
 layout(std430, set = 0, binding = 4) readonly buffer LightBuffers { LightSpace light_buffer; };
 
+// Each binding has one name in both builds (the Rust side binds by name).
 #if PARITY == 0
-layout(set = 0, binding = 5, r32f) readonly uniform image2D light_in;
-layout(set = 0, binding = 8, r32f) writeonly uniform image2D light_out;
+layout(set = 0, binding = 5, r32f) readonly uniform image2D light_a_read;
+layout(set = 0, binding = 8, r32f) writeonly uniform image2D light_b_write;
+#define light_in light_a_read
+#define light_out light_b_write
 #else
-layout(set = 0, binding = 6, r32f) readonly uniform image2D light_in;
-layout(set = 0, binding = 7, r32f) writeonly uniform image2D light_out;
+layout(set = 0, binding = 6, r32f) readonly uniform image2D light_b_read;
+layout(set = 0, binding = 7, r32f) writeonly uniform image2D light_a_write;
+#define light_in light_b_read
+#define light_out light_a_write
 #endif
 // Eye buffer: front to back rgb = colour, a = transmittance; back to front rgb
 // = colour composited over what lies behind.
@@ -37,7 +41,7 @@ layout(push_constant) uniform Slice {
 } slice;
 
 float light_bilinear(vec2 c) {
-    ivec2 n = ivec2(light_buffer.size.x);
+    ivec2 n = ivec2(light_buffer.size);
     vec2 t = c - 0.5;
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
@@ -48,7 +52,7 @@ float light_bilinear(vec2 c) {
     return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
 }
 
-bool inside_box(vec3 p) { return all(lessThanEqual(abs(p), frame.box_half.xyz)); }
+bool inside_box(vec3 p) { return all(lessThanEqual(abs(p), frame.box_half)); }
 
 void shade(uint index) {
     uvec2 px = slice.rect.xy + uvec2(index % slice.rect.z, index / slice.rect.z);
@@ -60,16 +64,16 @@ void shade(uint index) {
     vec3 p = r.origin + r.dir * t;
     if (t <= 0.0 || !inside_box(p)) return;
     vec4 m = medium(p);
-    float alpha = 1.0 - exp(-m.a * (slice.spacing.x / abs(dh)) / frame.box_half.w);
+    float alpha = 1.0 - exp(-m.a * (slice.spacing.x / abs(dh)) / frame.voxel_length);
     if (alpha <= 0.0) return;
-    Light l = lights[light_buffer.size.y];
+    Light l = lights[light_buffer.light];
     vec4 w = toward_light(l, p);
     // The light buffer holds what passed the slices before this one; the sample
     // sits in the middle of its slice, so half the slice's own extinction along
     // the light applies too (the midpoint rule of the reference's shadow rays).
     float dl = abs(dot(-w.xyz, h));
-    float lit = light_bilinear(light_space_coord(light_buffer, p).xy) * exp(-m.a * 0.5 * (slice.spacing.x / max(dl, 1e-6)) / frame.box_half.w);
-    vec3 S = m.rgb * (frame.background.w + l.radiance.rgb * light_shape(l, w) * lit);
+    float lit = light_bilinear(light_space_coord(light_buffer, p).xy) * exp(-m.a * 0.5 * (slice.spacing.x / max(dl, 1e-6)) / frame.voxel_length);
+    vec3 S = m.rgb * (frame.emission + l.radiance.rgb * light_shape(l, w) * lit);
     ivec2 ip = ivec2(px);
     vec4 acc = imageLoad(eye, ip);
     if (slice.spacing.y > 0.5) {
@@ -82,7 +86,7 @@ void shade(uint index) {
 }
 
 void attenuate(uint index) {
-    uint n = light_buffer.size.x;
+    uint n = light_buffer.size;
     uvec2 k = uvec2(index % n, index / n);
     float T = imageLoad(light_in, ivec2(k)).r;
     Ray r = light_space_ray(light_buffer, k);
@@ -91,7 +95,7 @@ void attenuate(uint index) {
     if (abs(dh) > 1e-6) {
         float t = (slice.half_vector.w - dot(r.origin, h)) / dh;
         vec3 q = r.origin + r.dir * t;
-        if (t > 0.0 && inside_box(q)) T *= exp(-medium(q).a * (slice.spacing.x / abs(dh)) / frame.box_half.w);
+        if (t > 0.0 && inside_box(q)) T *= exp(-medium(q).a * (slice.spacing.x / abs(dh)) / frame.voxel_length);
     }
     imageStore(light_out, ivec2(k), vec4(T));
 }
@@ -100,7 +104,7 @@ void main() {
     uint id = gl_GlobalInvocationID.x;
     if (id < slice.pixel_count) {
         shade(id);
-    } else if (id - slice.pixel_count < light_buffer.size.x * light_buffer.size.x) {
+    } else if (id - slice.pixel_count < light_buffer.size * light_buffer.size) {
         attenuate(id - slice.pixel_count);
     }
 }

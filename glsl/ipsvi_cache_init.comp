@@ -18,7 +18,7 @@ layout(push_constant) uniform Push { uint light; } push;
 void main() {
     sweep = sweeps[push.light];
     uvec2 k = gl_GlobalInvocationID.xy;
-    if (k.x >= sweep.cache_size.x || k.y >= sweep.cache_size.x) return;
+    if (k.x >= sweep.cache_size || k.y >= sweep.cache_size) return;
     vec4 start = vec4(0.0, 0.0, 0.0, 1.0);
     uvec4 code = uvec4(FRONT_ENTRY);
     imageStore(cache_a, ivec2(k), start);

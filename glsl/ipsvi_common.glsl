@@ -13,9 +13,17 @@ struct SweepParams {
     vec4 cache_axis;    // xyz: light travel direction (directional) or frustum axis; w: texel size
     vec4 cache_u;       // xyz: first plane axis; w: a0 (start of the cache along u)
     vec4 cache_v;       // xyz: second plane axis; w: b0
-    vec4 anchor;        // xy: light anchor in pixels; z: zone blend width (px); w: light scale (cache stores E / scale)
-    uvec4 cache_size;   // x: N (cache is N x N); y: light index; z: flags; w: max piecewise steps
-    vec4 scatter;       // x: albedo (multiple-scattering share); y: tan(cone half-angle); z: pre-pass scale
+    vec2 anchor;        // light anchor in pixels
+    float blend_px;     // width of the blend between zones (pixels)
+    float light_scale;  // the cache stores E / light_scale
+    uint cache_size;    // N: the cache is N x N
+    uint light_index;   // into lights[]
+    uint flags;         // FLAG_*
+    uint max_piecewise_steps;
+    float albedo;       // multiple-scattering share
+    float cone_tan;     // tan(cone half-angle)
+    float ert_scale;    // full-resolution pixels per pre-pass pixel
+    float pad;
 };
 
 // One record per light, found by index: on lavapipe a descriptor-set bind costs
@@ -39,7 +47,7 @@ const uint FRONT_EXIT = 0xFFFFu;
 
 // The cache as a light space (glsl/light_space.glsl).
 LightSpace cache_space() {
-    return LightSpace(sweep.cache_origin, sweep.cache_axis, sweep.cache_u, sweep.cache_v, uvec4(sweep.cache_size.x, 0u, 0u, 0u));
+    return LightSpace(sweep.cache_origin, sweep.cache_axis, sweep.cache_u, sweep.cache_v, sweep.cache_size, 0u, 0u, 0u);
 }
 
 // The light ray of cache texel `t`: origin and unit direction of light travel.
@@ -83,7 +91,7 @@ vec2 ray_in_box(Ray r) {
 // midpoint samples: (emission arriving at x / light scale: rgb, optical depth).
 vec4 light_segment(vec3 x, vec3 dir, float len, uint max_steps, bool gather_emission) {
     vec4 path = integrate_light_path(x, dir, len, float(max_steps), gather_emission);
-    return vec4(path.rgb * (frame.background.w / sweep.anchor.w), path.a);
+    return vec4(path.rgb * (frame.emission / sweep.light_scale), path.a);
 }
 
 #endif

@@ -14,12 +14,17 @@ layout(set = 0, binding = 0, rg32f) readonly uniform image2D depths;
 // writes its own to the other; `lmax` keeps every line's result. Compiled twice
 // by build.rs (PARITY 0 reads a and writes b, 1 the opposite), each variant
 // referencing only its own sides, so validation sees what each line touches.
+// Each binding has one name in both builds (the Rust side binds by name).
 #if PARITY == 0
-layout(set = 0, binding = 1, r32f) readonly uniform image2D lmax_in;
-layout(set = 0, binding = 4, r32f) writeonly uniform image2D lmax_out;
+layout(set = 0, binding = 1, r32f) readonly uniform image2D lmax_a_read;
+layout(set = 0, binding = 4, r32f) writeonly uniform image2D lmax_b_write;
+#define lmax_in lmax_a_read
+#define lmax_out lmax_b_write
 #else
-layout(set = 0, binding = 2, r32f) readonly uniform image2D lmax_in;
-layout(set = 0, binding = 3, r32f) writeonly uniform image2D lmax_out;
+layout(set = 0, binding = 2, r32f) readonly uniform image2D lmax_b_read;
+layout(set = 0, binding = 3, r32f) writeonly uniform image2D lmax_a_write;
+#define lmax_in lmax_b_read
+#define lmax_out lmax_a_write
 #endif
 layout(set = 0, binding = 5, r32f) writeonly uniform image2D lmax;
 

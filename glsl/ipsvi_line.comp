@@ -12,6 +12,7 @@ layout(constant_id = 0) const bool EMISSIVE = true;  // model (ii): light carrie
 layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-cone scattering
 
 #include "ipsvi_common.glsl"
+#include "view_ray.glsl"
 
 // The ping-pong pair, all four images in one descriptor set bound once per
 // sweep (on lavapipe a set bind costs as much as twenty dispatches; a pipeline
@@ -22,16 +23,26 @@ layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-c
 #ifndef PARITY
 #error "compiled with PARITY=0 or PARITY=1 by build.rs"
 #endif
+// Each binding has one name in both builds (the Rust side binds by name); the
+// code reads cache_in/front_in and writes cache_out/front_out.
 #if PARITY == 0
-layout(set = 0, binding = 6, rgba16f) readonly uniform image2D cache_in;
-layout(set = 0, binding = 7, r16ui) readonly uniform uimage2D front_in;
-layout(set = 0, binding = 12, rgba16f) writeonly uniform image2D cache_out;
-layout(set = 0, binding = 13, r16ui) writeonly uniform uimage2D front_out;
+layout(set = 0, binding = 6, rgba16f) readonly uniform image2D cache_a_read;
+layout(set = 0, binding = 7, r16ui) readonly uniform uimage2D front_a_read;
+layout(set = 0, binding = 12, rgba16f) writeonly uniform image2D cache_b_write;
+layout(set = 0, binding = 13, r16ui) writeonly uniform uimage2D front_b_write;
+#define cache_in cache_a_read
+#define front_in front_a_read
+#define cache_out cache_b_write
+#define front_out front_b_write
 #else
-layout(set = 0, binding = 8, rgba16f) readonly uniform image2D cache_in;
-layout(set = 0, binding = 9, r16ui) readonly uniform uimage2D front_in;
-layout(set = 0, binding = 10, rgba16f) writeonly uniform image2D cache_out;
-layout(set = 0, binding = 11, r16ui) writeonly uniform uimage2D front_out;
+layout(set = 0, binding = 8, rgba16f) readonly uniform image2D cache_b_read;
+layout(set = 0, binding = 9, r16ui) readonly uniform uimage2D front_b_read;
+layout(set = 0, binding = 10, rgba16f) writeonly uniform image2D cache_a_write;
+layout(set = 0, binding = 11, r16ui) writeonly uniform uimage2D front_a_write;
+#define cache_in cache_b_read
+#define front_in front_b_read
+#define cache_out cache_a_write
+#define front_out front_a_write
 #endif
 layout(set = 0, binding = 14, rgba32f) uniform image2D out_image;
 
@@ -71,12 +82,10 @@ void cache_store(ivec2 k, vec4 v, uint code) {
     imageStore(front_out, k, uvec4(code));
 }
 
-const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;
-
 float zone_weight(vec2 c) {
     if (block.zone == 0u) return 1.0;
-    vec2 d = c - sweep.anchor.xy;
-    float b = max(sweep.anchor.z, 1e-3);
+    vec2 d = c - sweep.anchor;
+    float b = max(sweep.blend_px, 1e-3);
     vec4 m = vec4(d.x - abs(d.y), -d.x - abs(d.y), d.y - abs(d.x), -d.y - abs(d.x));
     vec4 w = clamp(0.5 + m / (2.0 * b), 0.0, 1.0);
     return w[block.zone - 1u] / max(w.x + w.y + w.z + w.w, 1e-6);
@@ -85,7 +94,7 @@ float zone_weight(vec2 c) {
 // Cache value (E / scale: rgb, transmittance: a) interpolated at continuous
 // coordinates c, and the front parameter of the nearest texel's ray.
 vec4 cache_bilinear(vec2 c) {
-    ivec2 n = ivec2(sweep.cache_size.x);
+    ivec2 n = ivec2(sweep.cache_size);
     vec2 t = c - 0.5;
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
@@ -102,14 +111,14 @@ vec4 cache_bilinear(vec2 c) {
 vec4 light_at(vec3 p) {
     vec3 c = cache_coord(p);
     vec4 cached = cache_bilinear(c.xy);
-    if ((sweep.cache_size.z & FLAG_PIECEWISE) == 0u) return vec4(cached.rgb, cached.a);
-    uvec2 k = uvec2(clamp(ivec2(floor(c.xy)), ivec2(0), ivec2(sweep.cache_size.x) - 1));
+    if ((sweep.flags & FLAG_PIECEWISE) == 0u) return vec4(cached.rgb, cached.a);
+    uvec2 k = uvec2(clamp(ivec2(floor(c.xy)), ivec2(0), ivec2(sweep.cache_size) - 1));
     Ray r = cache_ray(k);
     vec2 io = ray_in_box(r);
     if (io.x > io.y) return cached;
     float front = front_param(r, front_load(ivec2(k)), io);
     // Piecewise integration: march from p toward the light back to the cache front.
-    vec4 seg = light_segment(p, to_light(p), c.z - front, sweep.cache_size.w, EMISSIVE);
+    vec4 seg = light_segment(p, to_light(p), c.z - front, sweep.max_piecewise_steps, EMISSIVE);
     float tr = exp(-seg.a);
     return vec4(cached.rgb * tr + seg.rgb, cached.a * tr);
 }
@@ -121,44 +130,37 @@ void shade_pixel(uint index) {
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     float w = zone_weight(vec2(px) + 0.5);
     if (w <= 0.0) return;
-    bool first_light = (sweep.cache_size.z & FLAG_FIRST_LIGHT) != 0u;
-    Light light = lights[sweep.cache_size.y];
-    Ray r = camera_ray(px);
-    vec2 t = intersect_box(r.origin, r.dir);
+    bool first_light = (sweep.flags & FLAG_FIRST_LIGHT) != 0u;
+    Light light = lights[sweep.light_index];
+    ViewMarch v = view_march(camera_ray(px), frame.view_step);
     vec3 C = vec3(0.0);
     float T = 1.0;
-    if (t.x < t.y) {
-        float vl = frame.box_half.w;
-        float L = t.y - t.x;
-        float N = max(1.0, ceil(L / (frame.march.x * vl)));
-        float h = L / N;
-        float hv = h / vl;
-        int n = int(N);
-        bool exit_points = (sweep.cache_size.z & FLAG_EXIT_POINTS) != 0u;
-        bool ert = exit_points || (sweep.cache_size.z & FLAG_EARLY_TERMINATION) != 0u;
-        float keep_going = exit_points ? imageLoad(lmax, ivec2(vec2(px) / sweep.scatter.z)).r : 0.0;
-        for (int i = 0; i < n; ++i) {
-            vec3 p = r.origin + r.dir * (t.x + (float(i) + 0.5) * h);
+    if (v.samples > 0) {
+        bool exit_points = (sweep.flags & FLAG_EXIT_POINTS) != 0u;
+        bool ert = exit_points || (sweep.flags & FLAG_EARLY_TERMINATION) != 0u;
+        float keep_going = exit_points ? imageLoad(lmax, ivec2(vec2(px) / sweep.ert_scale)).r : 0.0;
+        for (int i = 0; i < v.samples; ++i) {
+            vec3 p = sample_point(v, i);
             vec4 m = medium(p);
-            float alpha = 1.0 - exp(-m.a * hv);
+            float alpha = 1.0 - exp(-m.a * v.hv);
             if (alpha > 0.0) {
                 vec4 l = light_at(p);
                 vec3 direct = light.radiance.rgb * light_shape(light, toward_light(light, p)) * l.a;
-                vec3 S = m.rgb * (direct + l.rgb * sweep.anchor.w + (first_light ? vec3(frame.background.w) : vec3(0.0)));
+                vec3 S = m.rgb * (direct + l.rgb * sweep.light_scale + (first_light ? vec3(frame.emission) : vec3(0.0)));
                 C += T * alpha * S;
                 T *= 1.0 - alpha;
             }
-            if (ert && T < EARLY_TERMINATION_TRANSMITTANCE && t.x + (float(i) + 1.0) * h >= keep_going) break;
+            if (ert && view_ray_opaque(T) && v.t_enter + (float(i) + 1.0) * v.h >= keep_going) break;
         }
     }
     // Cleared to the background: the first light replaces it by what shows through.
-    if (first_light) C += (T - 1.0) * frame.background.rgb;
+    if (first_light) C += (T - 1.0) * frame.background;
     ivec2 ip = ivec2(px);
     imageStore(out_image, ip, imageLoad(out_image, ip) + vec4(w * C, 0.0));
 }
 
 vec4 cone_average(uvec2 k, float radius) {
-    ivec2 n = ivec2(sweep.cache_size.x);
+    ivec2 n = ivec2(sweep.cache_size);
     vec4 sum = cache_load(ivec2(k));
     ivec2 r = ivec2(max(1.0, round(radius)));
     sum += cache_load(clamp(ivec2(k) + ivec2(r.x, 0), ivec2(0), n - 1));
@@ -187,8 +189,8 @@ void advance_texel(uint index) {
             if (SCATTER) {
                 // Forward-cone scattering: the albedo share of the light arrives
                 // from a cone around the ray, i.e. from neighbouring texels.
-                float radius = sweep.scatter.y * (new_front - old_front) / max(sweep.cache_axis.w, 1e-9);
-                cached = mix(cached, cone_average(k, radius), sweep.scatter.x);
+                float radius = sweep.cone_tan * (new_front - old_front) / max(sweep.cache_axis.w, 1e-9);
+                cached = mix(cached, cone_average(k, radius), sweep.albedo);
             }
             cached = vec4(cached.rgb * tr + seg.rgb, cached.a * tr);
             code = new_front >= io.y ? FRONT_EXIT : block.plane;

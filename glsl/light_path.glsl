@@ -5,13 +5,13 @@
 #include "volume.glsl"
 
 // Midpoint rule over `len` world units from x along `dir`, in steps of
-// frame.march.y voxels, at most `max_steps` of them (longer steps beyond that).
+// frame.shadow_step voxels, at most `max_steps` of them (longer steps beyond that).
 // Returns (sum of T_before * alpha * rgb over the samples, optical depth): the
 // medium's emission arriving at x is rgb * emission scale.
 vec4 integrate_light_path(vec3 x, vec3 dir, float len, float max_steps, bool gather_emission) {
     if (len <= 0.0) return vec4(0.0);
-    float vl = frame.box_half.w;
-    float M = clamp(ceil(len / (frame.march.y * vl)), 1.0, max_steps);
+    float vl = frame.voxel_length;
+    float M = clamp(ceil(len / (frame.shadow_step * vl)), 1.0, max_steps);
     float g = len / M;
     float gv = g / vl;
     int m = int(M);

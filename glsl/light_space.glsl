@@ -12,7 +12,10 @@ struct LightSpace {
     vec4 axis;    // xyz: light travel direction (orthographic) or frustum axis; w: texel size
     vec4 u;       // xyz: first plane axis; w: a0 (start along u)
     vec4 v;       // xyz: second plane axis; w: b0
-    uvec4 size;   // x: N (the buffer is N x N)
+    uint size;    // N: the buffer is N x N
+    uint light;   // index of the light (half-angle slicing's light buffer)
+    uint pad0;
+    uint pad1;
 };
 
 const float PROJ_ORTHOGRAPHIC = 0.0;
@@ -44,7 +47,7 @@ Ray light_space_ray(LightSpace ls, uvec2 t) {
         r.dir = normalize(ls.axis.xyz + ls.u.xyz * ab.x + ls.v.xyz * ab.y);
     } else {
         r.origin = ls.origin.xyz;
-        r.dir = oct_decode((vec2(t) + 0.5) / float(ls.size.x) * 2.0 - 1.0);
+        r.dir = oct_decode((vec2(t) + 0.5) / float(ls.size) * 2.0 - 1.0);
     }
     return r;
 }
@@ -63,7 +66,7 @@ vec3 light_space_coord(LightSpace ls, vec3 p) {
         return vec3((dot(q, ls.u.xyz) / z - ls.u.w) / s, (dot(q, ls.v.xyz) / z - ls.v.w) / s, len);
     }
     vec2 e = len > 0.0 ? oct_encode(q / len) : vec2(0.0);
-    return vec3((e * 0.5 + 0.5) * float(ls.size.x), len);
+    return vec3((e * 0.5 + 0.5) * float(ls.size), len);
 }
 
 #endif

@@ -27,7 +27,7 @@ vec4 toward_light(Light l, vec3 p) {
 float light_shape(Light l, vec4 w_dist) {
     float f = 1.0;
     if (l.pos_type.w != LIGHT_DIRECTIONAL && l.params.x > 0.5) {
-        float d = max(w_dist.w, frame.box_half.w);
+        float d = max(w_dist.w, frame.voxel_length);
         f = 1.0 / (d * d);
     }
     if (l.pos_type.w == LIGHT_SPOT) {

@@ -8,11 +8,11 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "volume.glsl"
+#include "view_ray.glsl"
 
 layout(set = 0, binding = 3, rgba32f) readonly uniform image3D illumination;
 layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
 
-const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;
 const float LOG_FLOOR = 1e-3;
 
 // Trilinear, clamp to edge, texel centres at (i + 0.5) / n like the sampler,
@@ -47,28 +47,19 @@ vec3 illumination_at(vec3 p) {
 void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
-    Ray r = camera_ray(px);
-    vec2 t = intersect_box(r.origin, r.dir);
+    ViewMarch v = view_march(camera_ray(px), frame.view_step);
     vec3 C = vec3(0.0);
     float T = 1.0;
-    if (t.x < t.y) {
-        float vl = frame.box_half.w;
-        float L = t.y - t.x;
-        float N = max(1.0, ceil(L / (frame.march.x * vl)));
-        float h = L / N;
-        float hv = h / vl;
-        int n = int(N);
-        for (int i = 0; i < n; ++i) {
-            vec3 p = r.origin + r.dir * (t.x + (float(i) + 0.5) * h);
-            vec4 m = medium(p);
-            float alpha = 1.0 - exp(-m.a * hv);
-            if (alpha > 0.0) {
-                C += T * alpha * m.rgb * (frame.background.w + illumination_at(p));
-                T *= 1.0 - alpha;
-            }
-            if (T < EARLY_TERMINATION_TRANSMITTANCE) break;
+    for (int i = 0; i < v.samples; ++i) {
+        vec3 p = sample_point(v, i);
+        vec4 m = medium(p);
+        float alpha = 1.0 - exp(-m.a * v.hv);
+        if (alpha > 0.0) {
+            C += T * alpha * m.rgb * (frame.emission + illumination_at(p));
+            T *= 1.0 - alpha;
         }
+        if (view_ray_opaque(T)) break;
     }
-    C += T * frame.background.rgb;
+    C += T * frame.background;
     imageStore(out_image, ivec2(px), vec4(C, T));
 }

@@ -34,20 +34,29 @@ layout(std430, set = 0, binding = 4) readonly buffer GroupEntries { GroupEntry e
 
 // Slice buffers: x, y = texel of the slice, z = slot of the light in its group;
 // rgb = light arriving at the voxel centre, a = its transmittance.
+// Each binding has one name in both builds (the Rust side binds by name).
 #if PARITY == 0
-layout(set = 0, binding = 5, rgba32f) readonly uniform image3D slice_in;
-layout(set = 0, binding = 8, rgba32f) writeonly uniform image3D slice_out;
+layout(set = 0, binding = 5, rgba32f) readonly uniform image3D slice_a_read;
+layout(set = 0, binding = 8, rgba32f) writeonly uniform image3D slice_b_write;
+#define slice_in slice_a_read
+#define slice_out slice_b_write
 #else
-layout(set = 0, binding = 6, rgba32f) readonly uniform image3D slice_in;
-layout(set = 0, binding = 7, rgba32f) writeonly uniform image3D slice_out;
+layout(set = 0, binding = 6, rgba32f) readonly uniform image3D slice_b_read;
+layout(set = 0, binding = 7, rgba32f) writeonly uniform image3D slice_a_write;
+#define slice_in slice_b_read
+#define slice_out slice_a_write
 #endif
 layout(set = 0, binding = 9, rgba32f) uniform image3D illumination;
 // Low words of the compensated sums (a one-voxel placeholder when not compensated).
 layout(set = 0, binding = 10, rgba32f) uniform image3D illumination_low;
 
 layout(push_constant) uniform Pass {
-    ivec4 axis;   // x propagation axis, y direction the light travels (+1/-1), z slice index k, w light count
-    ivec4 grid;   // xyz illumination volume size, w first entry of the group
+    int axis;         // propagation axis
+    int travel;       // direction the light travels along it (+1/-1)
+    int slice;        // slice index k
+    int entry_count;  // lights of the group
+    ivec3 grid;       // illumination volume size
+    int first_entry;  // the group's first entry in entries[]
 } pass;
 
 // Sub-steps of the medium integration between two slices, in data voxels: fine
@@ -65,15 +74,18 @@ layout(constant_id = 1) const float SUBSTEP_VOXELS = 0.25;
 // oblique light through thin structures, and as costly per light as a pass).
 layout(constant_id = 2) const bool SHARED_MEDIUM = false;
 const int MAX_SUBSTEPS = 64;
+// Lights whose travel direction is this close to perpendicular to the axis (a
+// cosine, not a transmittance) do not propagate along it: 1/c would blow up.
+const float MIN_AXIS_COSINE = 1e-4;
 
 vec3 voxel_centre(ivec3 g) {
-    return ((vec3(g) + 0.5) / vec3(pass.grid.xyz) * 2.0 - 1.0) * frame.box_half.xyz;
+    return ((vec3(g) + 0.5) / vec3(pass.grid) * 2.0 - 1.0) * frame.box_half;
 }
 
 // Optical depth (sigma per voxel times voxels) of `len` world units from p along dir.
 float optical_depth(vec3 p, vec3 dir, float len) {
     if (len <= 0.0) return 0.0;
-    float vl = frame.box_half.w;
+    float vl = frame.voxel_length;
     int n = int(clamp(ceil(len / (SUBSTEP_VOXELS * vl)), 1.0, float(MAX_SUBSTEPS)));
     float g = len / float(n);
     float tau = 0.0;
@@ -124,16 +136,16 @@ void compensated_add(inout vec3 hi, inout vec3 lo, vec3 x) {
 }
 
 void main() {
-    int a = pass.axis.x;
+    int a = pass.axis;
     int u = (a + 1) % 3;
     int v = (a + 2) % 3;
     ivec2 size = ivec2(pass.grid[u], pass.grid[v]);
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (t.x >= size.x || t.y >= size.y) return;
-    int k = pass.axis.z;
-    float travel = float(pass.axis.y);
+    int k = pass.slice;
+    float travel = float(pass.travel);
     ivec3 g;
-    g[a] = pass.axis.y > 0 ? k : pass.grid[a] - 1 - k;
+    g[a] = pass.travel > 0 ? k : pass.grid[a] - 1 - k;
     g[u] = t.x;
     g[v] = t.y;
     vec3 p = voxel_centre(g);
@@ -146,8 +158,8 @@ void main() {
     float axis_depth = SHARED_MEDIUM ? optical_depth(p, back_along_axis, segment) : 0.0;
     vec4 hi = imageLoad(illumination, g);
     vec3 lo = COMPENSATED ? imageLoad(illumination_low, g).rgb : vec3(0.0);
-    for (int e = 0; e < pass.axis.w; ++e) {
-        GroupEntry entry = entries[pass.grid.w + e];
+    for (int e = 0; e < pass.entry_count; ++e) {
+        GroupEntry entry = entries[pass.first_entry + e];
         Light l = lights[entry.light];
         vec4 w = toward_light(l, p);
         // Cosine between the light's travel direction and the propagation axis.
@@ -155,7 +167,7 @@ void main() {
         vec4 result = vec4(0.0);
         // Light travelling against this group's direction (possible for the
         // second group of a point light) cannot arrive from the previous slice.
-        if (c > 1e-4) {
+        if (c > MIN_AXIS_COSINE) {
             float along = segment / c;
             // Where the light enters the volume (through any face) or leaves the
             // light itself before the previous slice, nothing attenuates it

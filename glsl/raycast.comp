@@ -10,13 +10,12 @@ layout(constant_id = 0) const uint SHADING = 0;
 
 #include "volume.glsl"
 #include "lights.glsl"
+#include "view_ray.glsl"
 
 layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
 
-const float EARLY_TERMINATION_TRANSMITTANCE = 1e-4;
-
 vec3 gradient(vec3 uvw) {
-    vec3 e = 1.0 / frame.dims.xyz;
+    vec3 e = 1.0 / frame.dims;
     return vec3(
         textureLod(volume_tex, uvw + vec3(e.x, 0, 0), 0.0).r - textureLod(volume_tex, uvw - vec3(e.x, 0, 0), 0.0).r,
         textureLod(volume_tex, uvw + vec3(0, e.y, 0), 0.0).r - textureLod(volume_tex, uvw - vec3(0, e.y, 0), 0.0).r,
@@ -24,9 +23,9 @@ vec3 gradient(vec3 uvw) {
 }
 
 vec3 blinn_phong(vec3 p, vec3 rgb, vec3 d) {
-    float ambient = frame.phong.x, diffuse = frame.phong.y, specular = frame.phong.z, shininess = frame.phong.w;
+    float ambient = frame.ambient, diffuse = frame.diffuse, specular = frame.specular, shininess = frame.shininess;
     vec3 g = gradient(to_uvw(p));
-    int count = int(frame.march.w);
+    int count = int(frame.light_count);
     if (length(g) < 1e-6 || count == 0) return rgb * (ambient + diffuse);
     vec3 n = -normalize(g);
     if (dot(n, -d) < 0.0) n = -n;
@@ -45,29 +44,20 @@ vec3 blinn_phong(vec3 p, vec3 rgb, vec3 d) {
 void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
-    Ray r = camera_ray(px);
-    vec2 t = intersect_box(r.origin, r.dir);
+    ViewMarch v = view_march(camera_ray(px), frame.view_step);
     vec3 C = vec3(0.0);
     float T = 1.0;
-    if (t.x < t.y) {
-        float vl = frame.box_half.w;
-        float L = t.y - t.x;
-        float N = max(1.0, ceil(L / (frame.march.x * vl)));
-        float h = L / N;
-        float hv = h / vl;
-        int n = int(N);
-        for (int i = 0; i < n; ++i) {
-            vec3 p = r.origin + r.dir * (t.x + (float(i) + 0.5) * h);
-            vec4 m = medium(p);
-            float alpha = 1.0 - exp(-m.a * hv);
-            if (alpha > 0.0) {
-                vec3 S = SHADING == 1 ? blinn_phong(p, m.rgb, r.dir) : SHADING == 2 ? m.rgb * frame.background.w : m.rgb;
-                C += T * alpha * S;
-                T *= 1.0 - alpha;
-            }
-            if (T < EARLY_TERMINATION_TRANSMITTANCE) break;
+    for (int i = 0; i < v.samples; ++i) {
+        vec3 p = sample_point(v, i);
+        vec4 m = medium(p);
+        float alpha = 1.0 - exp(-m.a * v.hv);
+        if (alpha > 0.0) {
+            vec3 S = SHADING == 1 ? blinn_phong(p, m.rgb, v.ray.dir) : SHADING == 2 ? m.rgb * frame.emission : m.rgb;
+            C += T * alpha * S;
+            T *= 1.0 - alpha;
         }
+        if (view_ray_opaque(T)) break;
     }
-    C += T * frame.background.rgb;
+    C += T * frame.background;
     imageStore(out_image, ivec2(px), vec4(C, T));
 }

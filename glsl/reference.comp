@@ -11,6 +11,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint MODEL = 0; // 0: single scattering, 1: emissive scattering
 
 #include "shadow.glsl"
+#include "view_ray.glsl"
 
 layout(set = 0, binding = 4, rgba32f) readonly uniform image2D accum_in;
 layout(set = 0, binding = 5, rgba32f) writeonly uniform image2D accum_out;
@@ -26,33 +27,26 @@ void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(accum_in, ivec2(px));
-    Ray r = camera_ray(px);
-    vec2 t = intersect_box(r.origin, r.dir);
-    if (t.x < t.y) {
-        float vl = frame.box_half.w;
-        float L = t.y - t.x;
-        float N = max(1.0, ceil(L / (frame.march.x * vl)));
-        float h = L / N;
-        float hv = h / vl;
-        uint end = min(chunk.first_sample + chunk.sample_count, uint(N));
-        int count = int(frame.march.w);
-        for (uint i = chunk.first_sample; i < end; ++i) {
-            if (acc.a < frame.march.z) break;
-            vec3 p = r.origin + r.dir * (t.x + (float(i) + 0.5) * h);
-            vec4 m = medium(p);
-            float alpha = 1.0 - exp(-m.a * hv);
-            if (alpha > 0.0) {
-                vec3 light = vec3(frame.background.w);
-                for (int l = 0; l < count; ++l) {
-                    vec4 w = toward_light(lights[l], p);
-                    vec4 sh = shadow_ray(lights[l], p, w, MODEL == 1);
-                    light += lights[l].radiance.rgb * light_shape(lights[l], w) * sh.a + sh.rgb;
-                }
-                acc.rgb += acc.a * alpha * m.rgb * light;
-                acc.a *= 1.0 - alpha;
+    ViewMarch v = view_march(camera_ray(px), frame.view_step);
+    // The ground truth stops at its own threshold, `reference.min_transmittance`.
+    uint end = min(chunk.first_sample + chunk.sample_count, uint(v.samples));
+    int count = int(frame.light_count);
+    for (uint i = chunk.first_sample; i < end; ++i) {
+        if (acc.a < frame.min_transmittance) break;
+        vec3 p = sample_point(v, int(i));
+        vec4 m = medium(p);
+        float alpha = 1.0 - exp(-m.a * v.hv);
+        if (alpha > 0.0) {
+            vec3 light = vec3(frame.emission);
+            for (int l = 0; l < count; ++l) {
+                vec4 w = toward_light(lights[l], p);
+                vec4 sh = shadow_ray(lights[l], p, w, MODEL == 1);
+                light += lights[l].radiance.rgb * light_shape(lights[l], w) * sh.a + sh.rgb;
             }
+            acc.rgb += acc.a * alpha * m.rgb * light;
+            acc.a *= 1.0 - alpha;
         }
     }
-    if (chunk.is_last != 0) acc.rgb += acc.a * frame.background.rgb;
+    if (chunk.is_last != 0) acc.rgb += acc.a * frame.background;
     imageStore(accum_out, ivec2(px), acc);
 }

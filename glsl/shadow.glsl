@@ -12,7 +12,7 @@ vec4 shadow_ray(Light l, vec3 p, vec4 w_dist, bool gather_emission) {
     if (l.pos_type.w != LIGHT_DIRECTIONAL) D = min(D, w_dist.w);
     if (D <= 0.0) return vec4(0.0, 0.0, 0.0, 1.0);
     vec4 path = integrate_light_path(p, w_dist.xyz, D, 3.0e38, gather_emission);
-    return vec4(path.rgb * frame.background.w, exp(-path.a));
+    return vec4(path.rgb * frame.emission, exp(-path.a));
 }
 
 #endif

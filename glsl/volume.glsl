@@ -11,7 +11,7 @@ layout(std430, set = 0, binding = 2) readonly buffer TransferLut { vec4 lut[]; }
 float sample_scalar(vec3 p) { return textureLod(volume_tex, to_uvw(p), 0.0).r; }
 
 vec4 transfer(float s) {
-    float n = frame.dims.w;
+    float n = frame.lut_size;
     float t = clamp(s * n - 0.5, 0.0, n - 1.0);
     int i0 = int(floor(t));
     int i1 = min(i0 + 1, int(n) - 1);

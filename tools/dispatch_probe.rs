@@ -5,9 +5,11 @@ use std::time::Instant;
 use sweeplab::render::frame_params::{frame_params, MarchSteps};
 use sweeplab::render::{GpuScene, OutputImage};
 use sweeplab::scene::default_scene::default_scene;
+use sweeplab::shaders::raycast;
 use sweeplab::vk::barriers::{Access, Barrier};
 use sweeplab::vk::commands::submit_and_wait;
-use sweeplab::vk::descriptors::{BindingKind, Resource};
+use sweeplab::vk::descriptors::Resource;
+use sweeplab::vk::interface::ShaderInterface;
 use sweeplab::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use sweeplab::vk::{Buffer, Context, ContextOptions, Profiler};
 
@@ -19,45 +21,27 @@ fn main() {
     let params = frame_params(&scene, 1, 1, gpu.lut_size, MarchSteps::render(&scene));
     let frame = Buffer::with_data(&ctx, "frame", &[params], ash::vk::BufferUsageFlags::UNIFORM_BUFFER).unwrap();
     let out = OutputImage::new(&ctx, "out", 1, 1).unwrap();
-    let bindings = [
-        BindingKind::UniformBuffer,
-        BindingKind::SampledImage,
-        BindingKind::StorageBuffer,
-        BindingKind::StorageBuffer,
-        BindingKind::StorageImage,
-    ];
+    // The DVR shader with a 16-byte push-constant range it does not read: the
+    // cost of a push-constant update alone.
+    let shader = ShaderInterface { push_constant_bytes: 16, ..raycast::INTERFACE };
     let mut p = ComputePipeline::new(
         &ctx,
-        &ComputePipelineDesc {
-            name: "probe",
-            spirv: sweeplab::shaders::RAYCAST,
-            bindings: &bindings,
-            push_constant_bytes: 16,
-            specialization: &[(0, 0)],
-            max_sets: 1,
-        },
+        &ComputePipelineDesc { name: "probe", shader: &shader, specialization: &[(0, 0)], max_sets: 1 },
     )
     .unwrap();
     let set = p
         .create_set(&[
-            Resource::UniformBuffer(&frame),
-            Resource::SampledImage(&gpu.volume, &gpu.sampler),
-            Resource::StorageBuffer(&gpu.lut),
-            Resource::StorageBuffer(&gpu.lights),
-            Resource::StorageImage(&out.image),
+            (raycast::FRAME, Resource::UniformBuffer(&frame)),
+            (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+            (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+            (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+            (raycast::OUT_IMAGE, Resource::StorageImage(&out.image)),
         ])
         .unwrap();
     let mut profiler = Profiler::new(&ctx, 16).unwrap();
     let p2 = ComputePipeline::new(
         &ctx,
-        &ComputePipelineDesc {
-            name: "probe2",
-            spirv: sweeplab::shaders::RAYCAST,
-            bindings: &bindings,
-            push_constant_bytes: 16,
-            specialization: &[(0, 1)],
-            max_sets: 1,
-        },
+        &ComputePipelineDesc { name: "probe2", shader: &shader, specialization: &[(0, 1)], max_sets: 1 },
     )
     .unwrap();
     for (barrier, rebind) in [(true, 0), (true, 1), (true, 2), (true, 3), (true, 4), (false, 0)] {
@@ -74,7 +58,7 @@ fn main() {
                     match rebind {
                         1 => rec.bind_set(&p, set),
                         2 => rec.bind(&p, set),
-                        3 => rec.push(&p, &[0u8; 16]),
+                        3 => rec.push(&p, &[0u32; 4]),
                         4 => rec.bind_pipeline(if rec.dispatch_count % 2 == 0 { &p } else { &p2 }),
                         _ => {}
                     }

@@ -2,12 +2,11 @@
 //! dispatch each (glsl/raycast.comp, variant chosen by specialization constant).
 
 use crate::render::frame_params::{frame_params, MarchSteps};
-use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
-use crate::shaders;
+use crate::shaders::raycast;
 use crate::vk::commands::submit_and_wait;
-use crate::vk::descriptors::{BindingKind, Resource};
+use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Profiler};
 use ash::vk;
@@ -30,9 +29,6 @@ impl Shading {
     }
 }
 
-/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
-const BINDINGS_OWN: [BindingKind; 1] = [BindingKind::StorageImage];
-
 pub fn render(
     gpu: &GpuScene,
     shading: Shading,
@@ -47,17 +43,15 @@ pub fn render(
     let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
     let mut pipeline = ComputePipeline::new(
         ctx,
-        &ComputePipelineDesc {
-            name,
-            spirv: shaders::RAYCAST,
-            bindings: &bindings_after_scene(&BINDINGS_OWN),
-            push_constant_bytes: 0,
-            specialization: &[(0, shading as u32)],
-            max_sets: 1,
-        },
+        &ComputePipelineDesc { name, shader: &raycast::INTERFACE, specialization: &[(0, shading as u32)], max_sets: 1 },
     )?;
-    let set =
-        pipeline.create_set(&[&gpu.scene_resources(&frame)[..], &[Resource::StorageImage(&output.image)]].concat())?;
+    let set = pipeline.create_set(&[
+        (raycast::FRAME, Resource::UniformBuffer(&frame)),
+        (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+        (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+        (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+        (raycast::OUT_IMAGE, Resource::StorageImage(&output.image)),
+    ])?;
     let readback = output.readback_buffer(ctx)?;
     let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
         output.prepare_for_compute_write(rec);

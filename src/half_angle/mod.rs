@@ -11,18 +11,17 @@
 use crate::ipsvi::cache_geometry::{CacheGeometry, CacheProjection};
 use crate::ipsvi::image_space::ImageSpace;
 use crate::render::frame_params::{frame_params, MarchSteps};
-use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::scene::{LightKind, Scene};
-use crate::shaders;
+use crate::shaders::half_angle_slice as shader;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
-use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipelineDesc};
-use crate::vk::resources::GpuData;
+use crate::vk::descriptors::Resource;
+use crate::vk::pipeline::{parity_pair, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
+use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 /// `[half_angle]` table of the scene.
@@ -58,19 +57,26 @@ impl HalfAngleSettings {
 }
 
 #[repr(C)]
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Default, Pod, Zeroable)]
 struct LightBufferParams {
     origin: [f32; 4],
     axis: [f32; 4],
     u: [f32; 4],
     v: [f32; 4],
-    size: [u32; 4],
+    size: u32,
+    light: u32,
+    pad0: u32,
+    pad1: u32,
 }
 
-impl GpuData for LightBufferParams {}
+crate::assert_gpu_layout!(
+    LightBufferParams,
+    shader::layout::LIGHT_SPACE,
+    [origin, axis, u, v, size, light, pad0, pad1]
+);
 
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct SlicePush {
     half_vector: [f32; 4],
     spacing: [f32; 4],
@@ -78,15 +84,7 @@ struct SlicePush {
     pixel_count: u32,
 }
 
-/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
-const BINDINGS_OWN: [BindingKind; 6] = [
-    BindingKind::StorageBuffer,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-];
+crate::assert_gpu_layout!(SlicePush, shader::layout::SLICE, [half_vector, spacing, rect, pixel_count]);
 
 /// The slicing of the volume: half-angle vector, order and slice planes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -157,38 +155,32 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
         axis: g.axis.extend(g.texel).to_array(),
         u: g.u.extend(g.a0).to_array(),
         v: g.v.extend(g.b0).to_array(),
-        size: [g.size, 0, 0, 0],
+        size: g.size,
+        light: 0,
+        pad0: 0,
+        pad1: 0,
     };
     let light_buffer_params =
         Buffer::with_data(ctx, "half-angle light buffer", &[light_params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let n = settings.light_buffer_size;
     let light = [r32f(gpu, "half-angle light a", n)?, r32f(gpu, "half-angle light b", n)?];
     let eye = OutputImage::new(ctx, "half-angle eye buffer", width, height)?;
-    let bindings = bindings_after_scene(&BINDINGS_OWN);
-    let desc = ComputePipelineDesc {
-        name: "half_angle_slice",
-        spirv: &[],
-        bindings: &bindings,
-        push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
-        specialization: &[],
-        max_sets: 1,
-    };
+    let desc =
+        ComputePipelineDesc { name: "half_angle_slice", shader: &shader::INTERFACE, specialization: &[], max_sets: 1 };
     // Slice parity 0 reads light side a and writes b; parity 1 the opposite.
-    let mut pipelines = parity_pair(ctx, &desc, shaders::HALF_ANGLE_SLICE_READ_A, shaders::HALF_ANGLE_SLICE_READ_B)?;
-    let set = pipelines[0].create_set(
-        &[
-            &gpu.scene_resources(&frame)[..],
-            &[
-                Resource::StorageBuffer(&light_buffer_params),
-                Resource::StorageImage(&light[0]),
-                Resource::StorageImage(&light[1]),
-                Resource::StorageImage(&light[0]),
-                Resource::StorageImage(&light[1]),
-                Resource::StorageImage(&eye.image),
-            ],
-        ]
-        .concat(),
-    )?;
+    let mut pipelines = parity_pair(ctx, &desc)?;
+    let set = pipelines[0].create_set(&[
+        (shader::FRAME, Resource::UniformBuffer(&frame)),
+        (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+        (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+        (shader::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+        (shader::LIGHT_BUFFERS, Resource::StorageBuffer(&light_buffer_params)),
+        (shader::LIGHT_A_READ, Resource::StorageImage(&light[0])),
+        (shader::LIGHT_B_READ, Resource::StorageImage(&light[1])),
+        (shader::LIGHT_A_WRITE, Resource::StorageImage(&light[0])),
+        (shader::LIGHT_B_WRITE, Resource::StorageImage(&light[1])),
+        (shader::EYE, Resource::StorageImage(&eye.image)),
+    ])?;
     let readback = eye.readback_buffer(ctx)?;
     let bg = scene.render.background;
     let start = if sl.front_to_back { [0.0, 0.0, 0.0, 1.0] } else { [bg.x, bg.y, bg.z, 1.0] };
@@ -208,7 +200,7 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
                 rect,
                 pixel_count,
             };
-            rec.push(pipeline, push_bytes(&push));
+            rec.push(pipeline, &push);
             rec.dispatch((pixel_count + n * n).div_ceil(64), 1, 1);
             profiler.end(rec, detail)?;
             // This slice's light and eye writes are what the next slice reads.

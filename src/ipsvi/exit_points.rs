@@ -9,24 +9,27 @@ use super::image_space::{LightAnchor, PixelRect};
 use super::settings::IpsviSettings;
 use super::sweep_plan::{plan, LineAxis, SweepPlan};
 use crate::render::{GpuScene, RenderError};
-use crate::shaders;
+use crate::shaders::{ipsvi_ert_depths, ipsvi_ert_sweep};
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::descriptors::Resource;
+use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
+use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
 
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct DepthsPush {
     scale: u32,
     width: u32,
     height: u32,
 }
 
+crate::assert_gpu_layout!(DepthsPush, ipsvi_ert_depths::layout::PUSH, [scale, width, height]);
+
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct SweepPush {
     anchor: [f32; 2],
     line: u32,
@@ -36,6 +39,12 @@ struct SweepPush {
     columns: u32,
     zone: u32,
 }
+
+crate::assert_gpu_layout!(
+    SweepPush,
+    ipsvi_ert_sweep::layout::PUSH,
+    [anchor, line, previous, span_start, span_len, columns, zone]
+);
 
 fn image(gpu: &GpuScene, name: &str, format: vk::Format, width: u32, height: u32) -> Result<Image, VkError> {
     Image::storage_2d(gpu.ctx, name, format, width, height, vk::ImageUsageFlags::empty())
@@ -96,42 +105,31 @@ impl ExitPoints {
             gpu.ctx,
             &ComputePipelineDesc {
                 name: "ipsvi_ert_prepass",
-                spirv: shaders::IPSVI_ERT_DEPTHS,
-                bindings: &[
-                    BindingKind::UniformBuffer,
-                    BindingKind::SampledImage,
-                    BindingKind::StorageBuffer,
-                    BindingKind::StorageImage,
-                ],
-                push_constant_bytes: std::mem::size_of::<DepthsPush>() as u32,
+                shader: &ipsvi_ert_depths::INTERFACE,
                 specialization: &[],
                 max_sets: 1,
             },
         )?;
         let depths_set = depths_pipeline.create_set(&[
-            Resource::UniformBuffer(frame),
-            Resource::SampledImage(&gpu.volume, &gpu.sampler),
-            Resource::StorageBuffer(&gpu.lut),
-            Resource::StorageImage(&depths),
+            (ipsvi_ert_depths::FRAME, Resource::UniformBuffer(frame)),
+            (ipsvi_ert_depths::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+            (ipsvi_ert_depths::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+            (ipsvi_ert_depths::DEPTHS, Resource::StorageImage(&depths)),
         ])?;
         let sweep_desc = ComputePipelineDesc {
             name: "ipsvi_exit_sweep",
-            spirv: &[],
-            bindings: &[BindingKind::StorageImage; 6],
-            push_constant_bytes: std::mem::size_of::<SweepPush>() as u32,
+            shader: &ipsvi_ert_sweep::INTERFACE,
             specialization: &[],
             max_sets: 1,
         };
-        let mut sweep_pipelines =
-            parity_pair(gpu.ctx, &sweep_desc, shaders::IPSVI_ERT_SWEEP_READ_A, shaders::IPSVI_ERT_SWEEP_READ_B)?;
-        // Slots: a_in, b_in, a_out, b_out, then the result.
+        let mut sweep_pipelines = parity_pair(gpu.ctx, &sweep_desc)?;
         let sweep_set = sweep_pipelines[0].create_set(&[
-            Resource::StorageImage(&depths),
-            Resource::StorageImage(&pair[0]),
-            Resource::StorageImage(&pair[1]),
-            Resource::StorageImage(&pair[0]),
-            Resource::StorageImage(&pair[1]),
-            Resource::StorageImage(&lmax),
+            (ipsvi_ert_sweep::DEPTHS, Resource::StorageImage(&depths)),
+            (ipsvi_ert_sweep::LMAX_A_READ, Resource::StorageImage(&pair[0])),
+            (ipsvi_ert_sweep::LMAX_B_READ, Resource::StorageImage(&pair[1])),
+            (ipsvi_ert_sweep::LMAX_A_WRITE, Resource::StorageImage(&pair[0])),
+            (ipsvi_ert_sweep::LMAX_B_WRITE, Resource::StorageImage(&pair[1])),
+            (ipsvi_ert_sweep::LMAX, Resource::StorageImage(&lmax)),
         ])?;
         Ok(ExitPoints {
             scale,
@@ -161,7 +159,7 @@ impl ExitPoints {
         let scope = profiler.begin(rec, "ipsvi_ert_prepass")?;
         rec.bind(&self.depths_pipeline, self.depths_set);
         let push = DepthsPush { scale: self.scale, width: self.width, height: self.height };
-        rec.push(&self.depths_pipeline, push_bytes(&push));
+        rec.push(&self.depths_pipeline, &push);
         rec.dispatch(self.width.div_ceil(8), self.height.div_ceil(8), 1);
         profiler.end(rec, scope)?;
         rec.barrier(&Barrier::memory(
@@ -193,7 +191,7 @@ impl ExitPoints {
                     columns: (sweep.axis == LineAxis::Columns) as u32,
                     zone: sweep.zone as u32,
                 };
-                rec.push(pipeline, push_bytes(&push));
+                rec.push(pipeline, &push);
                 rec.dispatch(block.span_len.div_ceil(64), 1, 1);
                 profiler.end(rec, line_scope)?;
                 rec.barrier(&Barrier::memory(

@@ -3,7 +3,7 @@
 use super::cache_geometry::CacheGeometry;
 use super::image_space::LightAnchor;
 use crate::scene::RayBasis;
-use crate::vk::resources::GpuData;
+use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 
 pub const FLAG_FIRST_LIGHT: u32 = 1;
@@ -12,23 +12,59 @@ pub const FLAG_EARLY_TERMINATION: u32 = 4;
 pub const FLAG_EXIT_POINTS: u32 = 8;
 
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct SweepParams {
     pub cache_origin: [f32; 4],
     pub cache_axis: [f32; 4],
     pub cache_u: [f32; 4],
     pub cache_v: [f32; 4],
-    pub anchor: [f32; 4],
-    pub cache_size: [u32; 4],
-    pub scatter: [f32; 4],
+    /// Light anchor in pixels.
+    pub anchor: [f32; 2],
+    /// Width of the blend between zones, pixels.
+    pub blend_px: f32,
+    /// The cache stores E / light_scale.
+    pub light_scale: f32,
+    /// N: the cache is N x N.
+    pub cache_size: u32,
+    pub light_index: u32,
+    /// FLAG_*.
+    pub flags: u32,
+    pub max_piecewise_steps: u32,
+    /// Multiple-scattering share.
+    pub albedo: f32,
+    /// tan(cone half-angle).
+    pub cone_tan: f32,
+    /// Full-resolution pixels per pre-pass pixel.
+    pub ert_scale: f32,
+    pub pad: f32,
 }
 
-impl GpuData for SweepParams {}
+crate::assert_gpu_layout!(
+    SweepParams,
+    crate::shaders::ipsvi_line::layout::SWEEP_PARAMS,
+    [
+        cache_origin,
+        cache_axis,
+        cache_u,
+        cache_v,
+        anchor,
+        blend_px,
+        light_scale,
+        cache_size,
+        light_index,
+        flags,
+        max_piecewise_steps,
+        albedo,
+        cone_tan,
+        ert_scale,
+        pad,
+    ]
+);
 
 /// One line block (glsl/ipsvi_line.comp `BlockParams`), read by its dispatch
 /// through the block index it gets as push constant.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct BlockParams {
     pub line_first: u32,
     pub line_width: u32,
@@ -44,10 +80,29 @@ pub struct BlockParams {
     pub parity: u32,
     /// Index of the light (and of its record in the sweeps buffer).
     pub light: u32,
-    pub pad: [u32; 2],
+    pub pad0: u32,
+    pub pad1: u32,
 }
 
-impl GpuData for BlockParams {}
+crate::assert_gpu_layout!(
+    BlockParams,
+    crate::shaders::ipsvi_line::layout::BLOCK_PARAMS,
+    [
+        line_first,
+        line_width,
+        span_start,
+        span_len,
+        columns,
+        zone,
+        plane,
+        pixel_count,
+        region,
+        parity,
+        light,
+        pad0,
+        pad1
+    ]
+);
 
 pub struct SweepInputs<'a> {
     pub geometry: &'a CacheGeometry,
@@ -73,9 +128,17 @@ pub fn sweep_params(s: &SweepInputs) -> SweepParams {
         cache_axis: g.axis.extend(g.texel).to_array(),
         cache_u: g.u.extend(g.a0).to_array(),
         cache_v: g.v.extend(g.b0).to_array(),
-        anchor: [anchor.x, anchor.y, s.blend_px, s.light_scale],
-        cache_size: [g.size, s.light_index, s.flags, s.max_piecewise_steps],
-        scatter: [s.albedo, s.cone_angle_deg.to_radians().tan(), s.ert_scale as f32, 0.0],
+        anchor: anchor.to_array(),
+        blend_px: s.blend_px,
+        light_scale: s.light_scale,
+        cache_size: g.size,
+        light_index: s.light_index,
+        flags: s.flags,
+        max_piecewise_steps: s.max_piecewise_steps,
+        albedo: s.albedo,
+        cone_tan: s.cone_angle_deg.to_radians().tan(),
+        ert_scale: s.ert_scale as f32,
+        pad: 0.0,
     }
 }
 

@@ -19,13 +19,12 @@ use super::sync::{
 };
 use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
-use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
-use crate::shaders;
+use crate::shaders::{ipsvi_cache_init, ipsvi_line};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait, SecondaryCommands};
-use crate::vk::descriptors::{BindingKind, Resource};
+use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
@@ -36,33 +35,6 @@ const LOOP_BUDGET: u32 = 60_000;
 
 /// local_size_x of glsl/ipsvi_line.comp (16 measured no faster on lavapipe).
 const LINE_GROUP: u32 = 64;
-
-/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
-const LINE_BINDINGS_OWN: [BindingKind; 13] = [
-    BindingKind::StorageBuffer,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageImage,
-];
-
-/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
-const INIT_BINDINGS_OWN: [BindingKind; 6] = [
-    BindingKind::StorageBuffer,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-];
 
 /// The ping-pong pair: illumination (E / scale, transmittance) and the position
 /// image (which sweep plane each light ray's front sits on).
@@ -240,56 +212,49 @@ impl<'a> IpsviRenderer<'a> {
             ctx,
             &ComputePipelineDesc {
                 name: "ipsvi_cache_init",
-                spirv: shaders::IPSVI_CACHE_INIT,
-                bindings: &bindings_after_scene(&INIT_BINDINGS_OWN),
-                push_constant_bytes: 4,
+                shader: &ipsvi_cache_init::INTERFACE,
                 specialization: &[],
                 max_sets: 1,
             },
         )?;
         let specialization = [(0, emissive as u32), (1, scatter as u32)];
-        let line_bindings = bindings_after_scene(&LINE_BINDINGS_OWN);
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
-            spirv: &[],
-            bindings: &line_bindings,
-            push_constant_bytes: 4,
+            shader: &ipsvi_line::INTERFACE,
             specialization: &specialization,
             max_sets: 1,
         };
         // Block parity 0 reads cache side a and writes b; parity 1 the opposite. Both
         // pipelines share one descriptor set (identical layouts), bound once per sweep.
-        let mut lines = parity_pair(ctx, &line_desc, shaders::IPSVI_LINE_READ_A, shaders::IPSVI_LINE_READ_B)?;
-        let common =
-            [&gpu.scene_resources(&frame)[..], &[Resource::StorageBuffer(&sweeps), Resource::StorageBuffer(&planes)]]
-                .concat();
+        let mut lines = parity_pair(ctx, &line_desc)?;
         let [a, b] = [&cache.light[0], &cache.light[1]];
         let [fa, fb] = [&cache.front[0], &cache.front[1]];
-        let init_set = init.create_set(
-            &[
-                &common[..],
-                &[
-                    Resource::StorageImage(a),
-                    Resource::StorageImage(fa),
-                    Resource::StorageImage(b),
-                    Resource::StorageImage(fb),
-                ],
-            ]
-            .concat(),
-        )?;
-        // Slots: a_in, front a_in, b_in, front b_in, a_out, front a_out, b_out, front b_out.
-        let line_set = lines[0].create_set(
-            &[
-                &common[..],
-                &[a, fa, b, fb, a, fa, b, fb].map(Resource::StorageImage)[..],
-                &[
-                    Resource::StorageImage(&output.image),
-                    Resource::StorageBuffer(&blocks),
-                    Resource::StorageImage(lmax),
-                ],
-            ]
-            .concat(),
-        )?;
+        let init_set = init.create_set(&[
+            (ipsvi_cache_init::SWEEPS, Resource::StorageBuffer(&sweeps)),
+            (ipsvi_cache_init::CACHE_A, Resource::StorageImage(a)),
+            (ipsvi_cache_init::FRONT_A, Resource::StorageImage(fa)),
+            (ipsvi_cache_init::CACHE_B, Resource::StorageImage(b)),
+            (ipsvi_cache_init::FRONT_B, Resource::StorageImage(fb)),
+        ])?;
+        let line_set = lines[0].create_set(&[
+            (ipsvi_line::FRAME, Resource::UniformBuffer(&frame)),
+            (ipsvi_line::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+            (ipsvi_line::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+            (ipsvi_line::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+            (ipsvi_line::SWEEPS, Resource::StorageBuffer(&sweeps)),
+            (ipsvi_line::PLANES, Resource::StorageBuffer(&planes)),
+            (ipsvi_line::CACHE_A_READ, Resource::StorageImage(a)),
+            (ipsvi_line::FRONT_A_READ, Resource::StorageImage(fa)),
+            (ipsvi_line::CACHE_B_READ, Resource::StorageImage(b)),
+            (ipsvi_line::FRONT_B_READ, Resource::StorageImage(fb)),
+            (ipsvi_line::CACHE_A_WRITE, Resource::StorageImage(a)),
+            (ipsvi_line::FRONT_A_WRITE, Resource::StorageImage(fa)),
+            (ipsvi_line::CACHE_B_WRITE, Resource::StorageImage(b)),
+            (ipsvi_line::FRONT_B_WRITE, Resource::StorageImage(fb)),
+            (ipsvi_line::OUT_IMAGE, Resource::StorageImage(&output.image)),
+            (ipsvi_line::BLOCKS, Resource::StorageBuffer(&blocks)),
+            (ipsvi_line::LMAX, Resource::StorageImage(lmax)),
+        ])?;
 
         let readback = output.readback_buffer(ctx)?;
         Ok(IpsviRenderer {
@@ -389,7 +354,7 @@ impl<'a> IpsviRenderer<'a> {
                     let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
                     rec.bind(init, init_set);
                     let n = settings.cache_size.div_ceil(8);
-                    rec.push(init, &(li as u32).to_ne_bytes());
+                    rec.push(init, &(li as u32));
                     rec.dispatch(n, n, 1);
                     profiler.end(rec, init_scope)?;
                     rec.barrier(&Barrier::memory(
@@ -409,7 +374,7 @@ impl<'a> IpsviRenderer<'a> {
                             let line = &lines[record.parity as usize];
                             line_sync.bind_line(rec, line, line_set);
                             let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
-                            rec.push(line, &(next_block as u32).to_ne_bytes());
+                            rec.push(line, &(next_block as u32));
                             rec.dispatch(line_groups(record), 1, 1);
                             profiler.end(rec, line_scope)?;
                             line_sync.after_block(rec, next_block)?;
@@ -465,7 +430,8 @@ fn block_params(
                     region: [update.x0, update.y0, update.w, update.h],
                     parity: (bi % 2) as u32,
                     light: li as u32,
-                    pad: [0; 2],
+                    pad0: 0,
+                    pad1: 0,
                 });
             }
         }

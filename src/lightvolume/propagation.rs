@@ -12,22 +12,22 @@ use super::groups::PropagationGroup;
 use super::illumination::IlluminationVolume;
 use super::settings::LightVolumeSettings;
 use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
-use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::{GpuScene, RenderError};
-use crate::shaders;
+use crate::shaders::lightvolume_slice as shader;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::SecondaryCommands;
-use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{parity_pair, push_bytes, ComputePipeline, ComputePipelineDesc};
-use crate::vk::resources::{as_bytes, GpuData, ImageDesc};
+use crate::vk::descriptors::Resource;
+use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
+use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Recorder};
 use ash::vk;
+use bytemuck::{Pod, Zeroable};
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
 
 /// Mirrors `GroupEntry` in glsl/lightvolume_slice.comp.
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GroupEntry {
     /// Slot of the light's state in the slot buffer.
     pub light: u32,
@@ -38,27 +38,21 @@ pub struct GroupEntry {
     pub pad: u32,
 }
 
-impl GpuData for GroupEntry {}
+crate::assert_gpu_layout!(GroupEntry, shader::layout::GROUP_ENTRY, [light, factor, slot, pad]);
 
 /// Mirrors the `Pass` push constants.
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct SlicePush {
-    axis: [i32; 4],
-    grid: [i32; 4],
+    axis: i32,
+    travel: i32,
+    slice: i32,
+    entry_count: i32,
+    grid: [i32; 3],
+    first_entry: i32,
 }
 
-/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS; binding 3, the
-/// scene's lights, is replaced by the slot buffer).
-const OWN_BINDINGS: [BindingKind; 7] = [
-    BindingKind::StorageBuffer,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-];
+crate::assert_gpu_layout!(SlicePush, shader::layout::PASS, [axis, travel, slice, entry_count, grid, first_entry]);
 
 const GROUP_SIZE: u32 = 8;
 
@@ -124,15 +118,10 @@ impl Propagation {
             )
         };
         let slices = [slice_image("lightvolume slice a")?, slice_image("lightvolume slice b")?];
-        let bindings = bindings_after_scene(&OWN_BINDINGS);
-        let mut scene_resources = gpu.scene_resources(&frame);
-        scene_resources[3] = Resource::StorageBuffer(&slots);
         let compensated = illumination.compensated as u32;
         let desc = ComputePipelineDesc {
             name: "lightvolume_slice",
-            spirv: &[],
-            bindings: &bindings,
-            push_constant_bytes: std::mem::size_of::<SlicePush>() as u32,
+            shader: &shader::INTERFACE,
             specialization: &[
                 (0, compensated),
                 (1, settings.substep_data_voxels().to_bits()),
@@ -141,35 +130,32 @@ impl Propagation {
             max_sets: 1,
         };
         // Slice parity 0 reads side a and writes b; parity 1 the opposite.
-        let mut pipelines =
-            parity_pair(ctx, &desc, shaders::LIGHTVOLUME_SLICE_READ_A, shaders::LIGHTVOLUME_SLICE_READ_B)?;
-        // Slots: a_in, b_in, a_out, b_out, then the illumination volume's two words.
-        let set = pipelines[0].create_set(
-            &[
-                &scene_resources[..],
-                &[
-                    Resource::StorageBuffer(&entries),
-                    Resource::StorageImage(&slices[0]),
-                    Resource::StorageImage(&slices[1]),
-                    Resource::StorageImage(&slices[0]),
-                    Resource::StorageImage(&slices[1]),
-                    Resource::StorageImage(&illumination.image),
-                    Resource::StorageImage(&illumination.low),
-                ],
-            ]
-            .concat(),
-        )?;
+        let mut pipelines = parity_pair(ctx, &desc)?;
+        let set = pipelines[0].create_set(&[
+            (shader::FRAME, Resource::UniformBuffer(&frame)),
+            (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+            (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+            // The lights a pass propagates: current states and, for subtractions, old ones.
+            (shader::LIGHTS, Resource::StorageBuffer(&slots)),
+            (shader::GROUP_ENTRIES, Resource::StorageBuffer(&entries)),
+            (shader::SLICE_A_READ, Resource::StorageImage(&slices[0])),
+            (shader::SLICE_B_READ, Resource::StorageImage(&slices[1])),
+            (shader::SLICE_A_WRITE, Resource::StorageImage(&slices[0])),
+            (shader::SLICE_B_WRITE, Resource::StorageImage(&slices[1])),
+            (shader::ILLUMINATION, Resource::StorageImage(&illumination.image)),
+            (shader::ILLUMINATION_LOW, Resource::StorageImage(&illumination.low)),
+        ])?;
         Ok(Propagation { capacity, grid, pipelines, set, slices, slots, entries, _frame: frame })
     }
 
     /// Writes light states into the slot buffer from slot `first` on (between
     /// frames: the previous frame has completed).
     pub fn write_slots(&mut self, first: usize, states: &[GpuLight]) -> Result<(), RenderError> {
-        Ok(self.slots.write_bytes(first * std::mem::size_of::<GpuLight>(), as_bytes(states))?)
+        Ok(self.slots.write_bytes(first * std::mem::size_of::<GpuLight>(), bytemuck::cast_slice(states))?)
     }
 
     pub fn write_entries(&mut self, first: usize, entries: &[GroupEntry]) -> Result<(), RenderError> {
-        Ok(self.entries.write_bytes(first * std::mem::size_of::<GroupEntry>(), as_bytes(entries))?)
+        Ok(self.entries.write_bytes(first * std::mem::size_of::<GroupEntry>(), bytemuck::cast_slice(entries))?)
     }
 
     /// Before the first pass of a frame: the slice buffers' old contents are
@@ -205,10 +191,14 @@ impl Propagation {
                 let pipeline = &self.pipelines[(k % 2) as usize];
                 rec.bind_pipeline(pipeline);
                 let push = SlicePush {
-                    axis: [group.axis as i32, group.travel, k as i32, group.members.len() as i32],
-                    grid: [grid.x, grid.y, grid.z, first_entry as i32],
+                    axis: group.axis as i32,
+                    travel: group.travel,
+                    slice: k as i32,
+                    entry_count: group.members.len() as i32,
+                    grid: grid.to_array(),
+                    first_entry: first_entry as i32,
                 };
-                rec.push(pipeline, push_bytes(&push));
+                rec.push(pipeline, &push);
                 rec.dispatch(self.grid[u].div_ceil(GROUP_SIZE), self.grid[v].div_ceil(GROUP_SIZE), 1);
                 // This slice's buffer and illumination writes are what the next
                 // slice (or the next pass, or the ray cast) reads.

@@ -4,19 +4,11 @@
 
 use super::illumination::IlluminationVolume;
 use crate::render::{GpuScene, OutputImage, RenderError};
-use crate::shaders;
-use crate::vk::descriptors::{BindingKind, Resource};
+use crate::shaders::lightvolume_raycast as shader;
+use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Recorder};
 use ash::vk;
-
-const BINDINGS: [BindingKind; 5] = [
-    BindingKind::UniformBuffer,
-    BindingKind::SampledImage,
-    BindingKind::StorageBuffer,
-    BindingKind::StorageImage,
-    BindingKind::StorageImage,
-];
 
 pub struct RayCast {
     pipeline: ComputePipeline,
@@ -34,19 +26,17 @@ impl RayCast {
             gpu.ctx,
             &ComputePipelineDesc {
                 name: "lightvolume_raycast",
-                spirv: shaders::LIGHTVOLUME_RAYCAST,
-                bindings: &BINDINGS,
-                push_constant_bytes: 0,
+                shader: &shader::INTERFACE,
                 specialization: &[],
                 max_sets: 1,
             },
         )?;
         let set = pipeline.create_set(&[
-            Resource::UniformBuffer(frame),
-            Resource::SampledImage(&gpu.volume, &gpu.sampler),
-            Resource::StorageBuffer(&gpu.lut),
-            Resource::StorageImage(&illumination.image),
-            Resource::StorageImage(&output.image),
+            (shader::FRAME, Resource::UniformBuffer(frame)),
+            (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+            (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+            (shader::ILLUMINATION, Resource::StorageImage(&illumination.image)),
+            (shader::OUT_IMAGE, Resource::StorageImage(&output.image)),
         ])?;
         Ok(RayCast { pipeline, set })
     }

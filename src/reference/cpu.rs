@@ -12,8 +12,8 @@ use crate::linear_image::LinearImage;
 use crate::scene::{OpticalModel, RayBasis, Scene};
 
 /// DVR and Phong stop a view ray once its transmittance falls below this (the
-/// GPU baselines use the same constant).
-pub const EARLY_TERMINATION_TRANSMITTANCE: f64 = 1e-4;
+/// shaders get the same constant from build.rs).
+pub use super::early_termination::EARLY_TERMINATION_TRANSMITTANCE;
 
 /// What one sample sends toward the eye.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

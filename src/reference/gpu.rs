@@ -5,32 +5,31 @@
 //! travel between dispatches through a ping-pong pair of images.
 
 use crate::render::frame_params::{frame_params, MarchSteps};
-use crate::render::gpu_scene::bindings_after_scene;
 use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::scene::OpticalModel;
-use crate::shaders;
+use crate::shaders::reference as shader;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
-use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::pipeline::{push_bytes, ComputePipeline, ComputePipelineDesc};
+use crate::vk::descriptors::Resource;
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Profiler};
 use ash::vk;
+use bytemuck::{Pod, Zeroable};
 
 /// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
 pub const LOOP_BUDGET: u64 = 60_000;
 
-/// After the scene bindings (render::gpu_scene::SCENE_BINDINGS).
-const BINDINGS_OWN: [BindingKind; 2] = [BindingKind::StorageImage, BindingKind::StorageImage];
-
 #[repr(C)]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Pod, Zeroable)]
 struct ChunkPush {
     first_sample: u32,
     sample_count: u32,
     is_first: u32,
     is_last: u32,
 }
+
+crate::assert_gpu_layout!(ChunkPush, shader::layout::CHUNK, [first_sample, sample_count, is_first, is_last]);
 
 /// How the view rays are split into dispatches.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -112,24 +111,21 @@ pub fn render_with(
         ctx,
         &ComputePipelineDesc {
             name: "reference",
-            spirv: shaders::REFERENCE,
-            bindings: &bindings_after_scene(&BINDINGS_OWN),
-            push_constant_bytes: 16,
+            shader: &shader::INTERFACE,
             specialization: &[(0, model)],
             max_sets: 2,
         },
     )?;
     let mut sets = Vec::new();
     for (src, dst) in [(0, 1), (1, 0)] {
-        sets.push(
-            pipeline.create_set(
-                &[
-                    &gpu.scene_resources(&frame)[..],
-                    &[Resource::StorageImage(&accum[src].image), Resource::StorageImage(&accum[dst].image)],
-                ]
-                .concat(),
-            )?,
-        );
+        sets.push(pipeline.create_set(&[
+            (shader::FRAME, Resource::UniformBuffer(&frame)),
+            (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+            (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+            (shader::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+            (shader::ACCUM_IN, Resource::StorageImage(&accum[src].image)),
+            (shader::ACCUM_OUT, Resource::StorageImage(&accum[dst].image)),
+        ])?);
     }
     let plan = plan_for(gpu);
     let readback = accum[0].readback_buffer(ctx)?;
@@ -158,7 +154,7 @@ pub fn render_with(
                 is_first: (chunk == 0) as u32,
                 is_last: (chunk + 1 == plan.chunks) as u32,
             };
-            rec.push(&pipeline, push_bytes(&push));
+            rec.push(&pipeline, &push);
             rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
             profiler.end(rec, detail)?;
             last_written = 1 - set_index;

@@ -7,6 +7,7 @@
 //! render many pixels of one prepared scene, and [`gpu::render`].
 
 pub mod cpu;
+pub mod early_termination;
 pub mod gpu;
 pub mod lights;
 pub mod medium;

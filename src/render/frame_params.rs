@@ -1,28 +1,74 @@
 //! Host mirrors of the shader-side `Frame` uniform block and `Light` records
-//! (glsl/frame.glsl, glsl/lights.glsl): all vec4s, so std140 and std430 agree.
+//! (glsl/frame.glsl, glsl/lights.glsl); `assert_gpu_layout!` checks them against
+//! the offsets reflected from the SPIR-V.
 
+use crate::reference::early_termination::EARLY_TERMINATION_TRANSMITTANCE;
 use crate::scene::{Falloff, Light, LightKind, Scene};
-use crate::vk::resources::GpuData;
+use bytemuck::{Pod, Zeroable};
 
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct FrameParams {
-    pub cam_origin: [f32; 4],
+    pub cam_origin: [f32; 3],
+    /// 1: parallel rays from the image plane.
+    pub orthographic: u32,
+    /// w unused.
     pub cam_forward: [f32; 4],
     pub cam_right: [f32; 4],
     pub cam_up: [f32; 4],
-    pub box_half: [f32; 4],
-    pub dims: [f32; 4],
-    pub background: [f32; 4],
-    pub march: [f32; 4],
-    pub phong: [f32; 4],
+    pub box_half: [f32; 3],
+    /// World units per voxel.
+    pub voxel_length: f32,
+    pub dims: [f32; 3],
+    /// Texels of the transfer LUT.
+    pub lut_size: f32,
+    pub background: [f32; 3],
+    /// Emission scale of the medium.
+    pub emission: f32,
+    /// Voxels.
+    pub view_step: f32,
+    /// Voxels.
+    pub shadow_step: f32,
+    /// Where the ground truth's view rays stop.
+    pub min_transmittance: f32,
+    pub light_count: u32,
+    pub ambient: f32,
+    pub diffuse: f32,
+    pub specular: f32,
+    pub shininess: f32,
+    /// Width, height (zw unused).
     pub image_size: [u32; 4],
 }
 
-impl GpuData for FrameParams {}
+crate::assert_gpu_layout!(
+    FrameParams,
+    crate::shaders::raycast::layout::FRAME,
+    [
+        cam_origin,
+        orthographic,
+        cam_forward,
+        cam_right,
+        cam_up,
+        box_half,
+        voxel_length,
+        dims,
+        lut_size,
+        background,
+        emission,
+        view_step,
+        shadow_step,
+        min_transmittance,
+        light_count,
+        ambient,
+        diffuse,
+        specular,
+        shininess,
+        image_size,
+    ]
+);
 
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLight {
     pub pos_type: [f32; 4],
     pub spot_dir: [f32; 4],
@@ -30,7 +76,12 @@ pub struct GpuLight {
     pub params: [f32; 4],
 }
 
-impl GpuData for GpuLight {}
+crate::assert_gpu_layout!(GpuLight, crate::shaders::raycast::layout::LIGHT, [pos_type, spot_dir, radiance, params]);
+crate::assert_gpu_layout!(
+    GpuLight,
+    crate::shaders::lightvolume_slice::layout::LIGHT,
+    [pos_type, spot_dir, radiance, params]
+);
 
 /// Which step sizes a pass marches with.
 #[derive(Clone, Copy, Debug)]
@@ -45,7 +96,7 @@ impl MarchSteps {
         MarchSteps {
             view_step_voxels: scene.render.step_voxels,
             shadow_step_voxels: scene.reference.shadow_step_voxels,
-            min_transmittance: 1e-4,
+            min_transmittance: EARLY_TERMINATION_TRANSMITTANCE as f32,
         }
     }
 
@@ -64,15 +115,25 @@ pub fn frame_params(scene: &Scene, width: u32, height: u32, lut_size: usize, ste
     let d = scene.volume.dims.as_vec3();
     let bg = scene.render.background;
     FrameParams {
-        cam_origin: [b.origin.x, b.origin.y, b.origin.z, if b.orthographic { 1.0 } else { 0.0 }],
+        cam_origin: b.origin.to_array(),
+        orthographic: b.orthographic as u32,
         cam_forward: b.forward.extend(0.0).to_array(),
         cam_right: b.right.extend(0.0).to_array(),
         cam_up: b.up.extend(0.0).to_array(),
-        box_half: bx.half_extent.extend(bx.voxel_length).to_array(),
-        dims: [d.x, d.y, d.z, lut_size as f32],
-        background: [bg.x, bg.y, bg.z, scene.render.emission],
-        march: [steps.view_step_voxels, steps.shadow_step_voxels, steps.min_transmittance, scene.lights.len() as f32],
-        phong: [scene.phong.ambient, scene.phong.diffuse, scene.phong.specular, scene.phong.shininess],
+        box_half: bx.half_extent.to_array(),
+        voxel_length: bx.voxel_length,
+        dims: d.to_array(),
+        lut_size: lut_size as f32,
+        background: bg.to_array(),
+        emission: scene.render.emission,
+        view_step: steps.view_step_voxels,
+        shadow_step: steps.shadow_step_voxels,
+        min_transmittance: steps.min_transmittance,
+        light_count: scene.lights.len() as u32,
+        ambient: scene.phong.ambient,
+        diffuse: scene.phong.diffuse,
+        specular: scene.phong.specular,
+        shininess: scene.phong.shininess,
         image_size: [width, height, 0, 0],
     }
 }

@@ -6,21 +6,10 @@ use super::frame_params::{gpu_lights, GpuLight};
 use crate::scene::{Scene, TransferLut, VoxelData};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
-use crate::vk::descriptors::{BindingKind, Resource};
-use crate::vk::resources::{as_bytes, ImageDesc, Sampler};
+use crate::vk::resources::{ImageDesc, Sampler};
 use crate::vk::{Buffer, Context, Image, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
-
-/// Bindings 0-3 of every ray caster: frame parameters, volume, transfer LUT and
-/// lights (glsl/frame.glsl, volume.glsl, lights.glsl).
-pub const SCENE_BINDINGS: [BindingKind; 4] =
-    [BindingKind::UniformBuffer, BindingKind::SampledImage, BindingKind::StorageBuffer, BindingKind::StorageBuffer];
-
-/// [`SCENE_BINDINGS`] followed by a technique's own bindings (4, 5, ...).
-pub fn bindings_after_scene(own: &[BindingKind]) -> Vec<BindingKind> {
-    [&SCENE_BINDINGS[..], own].concat()
-}
 
 pub struct GpuScene<'a> {
     pub ctx: &'a Context,
@@ -113,18 +102,6 @@ impl<'a> GpuScene<'a> {
     }
 }
 
-impl GpuScene<'_> {
-    /// What goes into [`SCENE_BINDINGS`], with this frame's parameters.
-    pub fn scene_resources<'r>(&'r self, frame: &'r Buffer) -> [Resource<'r>; 4] {
-        [
-            Resource::UniformBuffer(frame),
-            Resource::SampledImage(&self.volume, &self.sampler),
-            Resource::StorageBuffer(&self.lut),
-            Resource::StorageBuffer(&self.lights),
-        ]
-    }
-}
-
 /// How the volume is stored on the GPU.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum VolumeTexels {
@@ -145,8 +122,8 @@ fn volume_texels(ctx: &Context, data: &VoxelData, texels: VolumeTexels) -> Resul
         | vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR
         | vk::FormatFeatureFlags::TRANSFER_DST;
     let native = match data {
-        VoxelData::U8(v) => Some((vk::Format::R8_UNORM, as_bytes(v).to_vec())),
-        VoxelData::U16(v) => Some((vk::Format::R16_UNORM, as_bytes(v).to_vec())),
+        VoxelData::U8(v) => Some((vk::Format::R8_UNORM, bytemuck::cast_slice(v).to_vec())),
+        VoxelData::U16(v) => Some((vk::Format::R16_UNORM, bytemuck::cast_slice(v).to_vec())),
         VoxelData::F32(_) => None,
     };
     if let Some((format, bytes)) = native.filter(|_| texels == VolumeTexels::Native) {
@@ -162,5 +139,5 @@ fn volume_texels(ctx: &Context, data: &VoxelData, texels: VolumeTexels) -> Resul
         });
     }
     let floats: Vec<f32> = (0..data.len()).map(|i| data.normalized(i)).collect();
-    Ok((vk::Format::R32_SFLOAT, as_bytes(&floats).to_vec()))
+    Ok((vk::Format::R32_SFLOAT, bytemuck::cast_slice(&floats).to_vec()))
 }

@@ -7,6 +7,7 @@ use super::error::{VkError, VkResultExt};
 use super::pipeline::ComputePipeline;
 use super::resources::{color_layers, Buffer, Image};
 use ash::vk;
+use bytemuck::Pod;
 use std::ffi::CString;
 
 pub struct Recorder<'a> {
@@ -174,8 +175,17 @@ impl<'a> Recorder<'a> {
         };
     }
 
-    /// Push constants as raw bytes (the caller's `#[repr(C)]` struct, see `push_bytes`).
-    pub fn push(&self, pipeline: &ComputePipeline, bytes: &[u8]) {
+    /// Push constants: the shader's push block mirrored by a `Pod` struct.
+    pub fn push<T: Pod>(&self, pipeline: &ComputePipeline, value: &T) {
+        let bytes = bytemuck::bytes_of(value);
+        // A programming error, not an input: the push struct of another shader.
+        assert_eq!(
+            bytes.len() as u32,
+            pipeline.push_constant_bytes,
+            "push constants of {} bytes for shader {}",
+            bytes.len(),
+            pipeline.shader
+        );
         // SAFETY: the layout declares a compute push-constant range covering `bytes`
         // (checked when the pipeline was created).
         unsafe {

@@ -1,7 +1,10 @@
-//! Descriptor pools and sets for the one set each compute pipeline uses.
+//! Descriptor pools and sets for the one set each compute pipeline uses. Sets
+//! are written by binding name (`crate::shaders::<stem>::<BINDING>`), checked
+//! against the shader's reflected interface.
 
 use super::context::Context;
 use super::error::{VkError, VkResultExt};
+use super::interface::Binding;
 use super::resources::{Buffer, Image, Sampler};
 use ash::vk;
 
@@ -35,16 +38,58 @@ pub enum Resource<'a> {
     UniformBuffer(&'a Buffer),
 }
 
+impl Resource<'_> {
+    pub fn kind(&self) -> BindingKind {
+        match self {
+            Resource::StorageImage(_) => BindingKind::StorageImage,
+            Resource::SampledImage(..) => BindingKind::SampledImage,
+            Resource::StorageBuffer(_) => BindingKind::StorageBuffer,
+            Resource::UniformBuffer(_) => BindingKind::UniformBuffer,
+        }
+    }
+}
+
+/// Checks a set's resources, named by binding, against the shader's bindings:
+/// each binding of `layout` gets exactly one resource of its kind, and nothing
+/// else is given. The error names the binding.
+pub fn check_set(shader: &'static str, layout: &[Binding], given: &[(Binding, BindingKind)]) -> Result<(), VkError> {
+    let error = |binding: &Binding, problem: String| VkError::Binding { shader, binding: binding.name, problem };
+    for (i, (binding, kind)) in given.iter().enumerate() {
+        let Some(declared) = layout.iter().find(|l| l.index == binding.index) else {
+            return Err(error(binding, format!("(index {}) is not declared by this shader", binding.index)));
+        };
+        if declared.name != binding.name {
+            return Err(error(
+                binding,
+                format!(
+                    "(index {}) is not declared by this shader: its binding {} is {}",
+                    binding.index, declared.index, declared.name
+                ),
+            ));
+        }
+        if declared.kind != *kind {
+            return Err(error(binding, format!("is a {:?} binding, given a {kind:?}", declared.kind)));
+        }
+        if given[..i].iter().any(|(b, _)| b.index == binding.index) {
+            return Err(error(binding, "is given two resources".into()));
+        }
+    }
+    match layout.iter().find(|l| !given.iter().any(|(b, _)| b.index == l.index)) {
+        Some(missing) => Err(error(missing, format!("(index {}) has no resource", missing.index))),
+        None => Ok(()),
+    }
+}
+
 pub struct DescriptorAllocator {
     pool: vk::DescriptorPool,
     device: ash::Device,
 }
 
 impl DescriptorAllocator {
-    pub fn new(ctx: &Context, bindings: &[BindingKind], max_sets: u32) -> Result<Self, VkError> {
+    pub fn new(ctx: &Context, bindings: &[Binding], max_sets: u32) -> Result<Self, VkError> {
         let mut sizes: Vec<vk::DescriptorPoolSize> = Vec::new();
-        for kind in bindings {
-            let ty = kind.vk_type();
+        for binding in bindings {
+            let ty = binding.kind.vk_type();
             match sizes.iter_mut().find(|s| s.ty == ty) {
                 Some(s) => s.descriptor_count += max_sets,
                 None => sizes.push(vk::DescriptorPoolSize { ty, descriptor_count: max_sets }),
@@ -59,73 +104,59 @@ impl DescriptorAllocator {
         Ok(DescriptorAllocator { pool, device: ctx.device.clone() })
     }
 
+    /// Allocates a set of `layout` and writes `resources` into the bindings they
+    /// name, after [`check_set`] against `bindings`.
     pub fn create_set(
         &mut self,
+        shader: &'static str,
         layout: vk::DescriptorSetLayout,
-        kinds: &[BindingKind],
-        resources: &[Resource],
+        bindings: &[Binding],
+        resources: &[(Binding, Resource)],
     ) -> Result<vk::DescriptorSet, VkError> {
-        if kinds.len() != resources.len() {
-            return Err(VkError::Call {
-                call: "create_set: resource count does not match the layout",
-                result: vk::Result::ERROR_UNKNOWN,
-            });
-        }
+        let kinds: Vec<(Binding, BindingKind)> = resources.iter().map(|(b, r)| (*b, r.kind())).collect();
+        check_set(shader, bindings, &kinds)?;
         let layouts = [layout];
         let alloc = vk::DescriptorSetAllocateInfo::default().descriptor_pool(self.pool).set_layouts(&layouts);
         // SAFETY: the pool was sized for max_sets sets of this layout.
         let set = unsafe { self.device.allocate_descriptor_sets(&alloc) }.call("vkAllocateDescriptorSets")?[0];
-        let mut image_infos = Vec::with_capacity(resources.len());
-        let mut buffer_infos = Vec::with_capacity(resources.len());
-        for (kind, res) in kinds.iter().zip(resources) {
-            let ok = matches!(
-                (kind, res),
-                (BindingKind::StorageImage, Resource::StorageImage(_))
-                    | (BindingKind::SampledImage, Resource::SampledImage(..))
-                    | (BindingKind::StorageBuffer, Resource::StorageBuffer(_))
-                    | (BindingKind::UniformBuffer, Resource::UniformBuffer(_))
-            );
-            if !ok {
-                return Err(VkError::Call {
-                    call: "create_set: resource kind does not match the layout",
-                    result: vk::Result::ERROR_UNKNOWN,
-                });
-            }
-            match res {
-                Resource::StorageImage(img) => image_infos.push([vk::DescriptorImageInfo::default()
-                    .image_view(img.view)
-                    .image_layout(vk::ImageLayout::GENERAL)]),
-                Resource::SampledImage(img, s) => image_infos.push([vk::DescriptorImageInfo::default()
+        let image_infos: Vec<[vk::DescriptorImageInfo; 1]> = resources
+            .iter()
+            .map(|(_, res)| match res {
+                Resource::StorageImage(img) => {
+                    [vk::DescriptorImageInfo::default().image_view(img.view).image_layout(vk::ImageLayout::GENERAL)]
+                }
+                Resource::SampledImage(img, s) => [vk::DescriptorImageInfo::default()
                     .image_view(img.view)
                     .sampler(s.raw)
-                    .image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)]),
+                    .image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)],
+                _ => [vk::DescriptorImageInfo::default()],
+            })
+            .collect();
+        let buffer_infos: Vec<[vk::DescriptorBufferInfo; 1]> = resources
+            .iter()
+            .map(|(_, res)| match res {
                 Resource::StorageBuffer(b) | Resource::UniformBuffer(b) => {
-                    buffer_infos.push([vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)])
+                    [vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)]
                 }
-            }
-        }
-        let (mut ii, mut bi) = (0, 0);
-        let writes: Vec<vk::WriteDescriptorSet> = kinds
+                _ => [vk::DescriptorBufferInfo::default()],
+            })
+            .collect();
+        let writes: Vec<vk::WriteDescriptorSet> = resources
             .iter()
             .enumerate()
-            .map(|(i, kind)| {
+            .map(|(i, (binding, res))| {
                 let w = vk::WriteDescriptorSet::default()
                     .dst_set(set)
-                    .dst_binding(i as u32)
-                    .descriptor_type(kind.vk_type());
-                match kind {
-                    BindingKind::StorageImage | BindingKind::SampledImage => {
-                        ii += 1;
-                        w.image_info(&image_infos[ii - 1])
-                    }
-                    _ => {
-                        bi += 1;
-                        w.buffer_info(&buffer_infos[bi - 1])
-                    }
+                    .dst_binding(binding.index)
+                    .descriptor_type(binding.kind.vk_type());
+                match res {
+                    Resource::StorageImage(_) | Resource::SampledImage(..) => w.image_info(&image_infos[i]),
+                    Resource::StorageBuffer(_) | Resource::UniformBuffer(_) => w.buffer_info(&buffer_infos[i]),
                 }
             })
             .collect();
-        // SAFETY: every write points into image_infos/buffer_infos, alive for the call.
+        // SAFETY: every write points into image_infos/buffer_infos, alive for the call,
+        // and check_set matched each binding's descriptor type.
         unsafe { self.device.update_descriptor_sets(&writes, &[]) };
         Ok(set)
     }
@@ -135,5 +166,63 @@ impl Drop for DescriptorAllocator {
     fn drop(&mut self) {
         // SAFETY: sets from this pool are no longer used by pending GPU work.
         unsafe { self.device.destroy_descriptor_pool(self.pool, None) };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const FRAME: Binding = Binding { name: "frame", index: 0, kind: BindingKind::UniformBuffer };
+    const OUT_IMAGE: Binding = Binding { name: "out_image", index: 4, kind: BindingKind::StorageImage };
+    const LAYOUT: [Binding; 2] = [FRAME, OUT_IMAGE];
+
+    fn problem(given: &[(Binding, BindingKind)]) -> String {
+        check_set("raycast", &LAYOUT, given).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn a_complete_set_of_the_right_kinds_passes() {
+        check_set("raycast", &LAYOUT, &[(OUT_IMAGE, BindingKind::StorageImage), (FRAME, BindingKind::UniformBuffer)])
+            .unwrap();
+    }
+
+    #[test]
+    fn a_missing_binding_is_named() {
+        let e = problem(&[(FRAME, BindingKind::UniformBuffer)]);
+        assert_eq!(e, "shader raycast: binding out_image (index 4) has no resource");
+    }
+
+    #[test]
+    fn a_resource_of_the_wrong_kind_is_named() {
+        let e = problem(&[(FRAME, BindingKind::StorageBuffer), (OUT_IMAGE, BindingKind::StorageImage)]);
+        assert_eq!(e, "shader raycast: binding frame is a UniformBuffer binding, given a StorageBuffer");
+    }
+
+    #[test]
+    fn a_binding_of_another_shader_is_named() {
+        let depths = Binding { name: "depths", index: 3, kind: BindingKind::StorageImage };
+        let e = problem(&[
+            (FRAME, BindingKind::UniformBuffer),
+            (OUT_IMAGE, BindingKind::StorageImage),
+            (depths, BindingKind::StorageImage),
+        ]);
+        assert_eq!(e, "shader raycast: binding depths (index 3) is not declared by this shader");
+        let renamed = Binding { name: "illumination", index: 4, kind: BindingKind::StorageImage };
+        let e = problem(&[(FRAME, BindingKind::UniformBuffer), (renamed, BindingKind::StorageImage)]);
+        assert_eq!(
+            e,
+            "shader raycast: binding illumination (index 4) is not declared by this shader: its binding 4 is out_image"
+        );
+    }
+
+    #[test]
+    fn a_binding_given_twice_is_named() {
+        let e = problem(&[
+            (FRAME, BindingKind::UniformBuffer),
+            (OUT_IMAGE, BindingKind::StorageImage),
+            (OUT_IMAGE, BindingKind::StorageImage),
+        ]);
+        assert_eq!(e, "shader raycast: binding out_image is given two resources");
     }
 }

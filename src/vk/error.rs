@@ -22,6 +22,10 @@ pub enum VkError {
     Allocation { name: String, message: String },
     #[error("no {kind} format among {candidates} supports {usage} on this device")]
     NoFormat { kind: &'static str, candidates: String, usage: &'static str },
+    #[error("shader {shader}: binding {binding} {problem}")]
+    Binding { shader: &'static str, binding: &'static str, problem: String },
+    #[error("shader {shader}: {problem}")]
+    Shader { shader: &'static str, problem: String },
     #[error("profiler misuse: {0}")]
     Profiler(String),
 }

@@ -9,6 +9,7 @@ pub mod descriptors;
 pub mod device_info;
 pub mod error;
 pub mod events;
+pub mod interface;
 pub mod memory;
 pub mod pipeline;
 pub mod profiler;

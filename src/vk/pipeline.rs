@@ -2,8 +2,9 @@
 //! variants) and push constants, and their one descriptor-set layout.
 
 use super::context::Context;
-use super::descriptors::{BindingKind, DescriptorAllocator};
+use super::descriptors::{DescriptorAllocator, Resource};
 use super::error::{VkError, VkResultExt};
+use super::interface::{Binding, ShaderInterface};
 use ash::vk;
 use std::io::Cursor;
 use std::sync::Arc;
@@ -11,10 +12,9 @@ use std::sync::Arc;
 pub struct ComputePipelineDesc<'a> {
     /// Debug name, also the pass name by convention.
     pub name: &'a str,
-    pub spirv: &'a [u8],
-    /// Bindings of descriptor set 0, in binding order.
-    pub bindings: &'a [BindingKind],
-    pub push_constant_bytes: u32,
+    /// The shader (`crate::shaders::<stem>::INTERFACE`): its SPIR-V, bindings
+    /// and push-constant size, all reflected by build.rs.
+    pub shader: &'a ShaderInterface,
     /// (constant_id, 32-bit value): booleans as 0/1, floats via `f32::to_bits`.
     pub specialization: &'a [(u32, u32)],
     /// How many descriptor sets this pipeline will need.
@@ -25,7 +25,8 @@ pub struct ComputePipeline {
     pub raw: vk::Pipeline,
     pub layout: vk::PipelineLayout,
     pub set_layout: vk::DescriptorSetLayout,
-    pub bindings: Vec<BindingKind>,
+    pub shader: &'static str,
+    pub bindings: &'static [Binding],
     pub push_constant_bytes: u32,
     pub descriptors: DescriptorAllocator,
     device: ash::Device,
@@ -33,22 +34,36 @@ pub struct ComputePipeline {
 }
 
 impl ComputePipeline {
+    /// The pipeline of a shader compiled once.
     pub fn new(ctx: &Context, desc: &ComputePipelineDesc) -> Result<ComputePipeline, VkError> {
+        match desc.shader.builds {
+            [spirv] => ComputePipeline::create(ctx, desc, spirv),
+            builds => Err(VkError::Shader {
+                shader: desc.shader.name,
+                problem: format!(
+                    "has {} builds, a ping-pong pair: create its pipelines with parity_pair",
+                    builds.len()
+                ),
+            }),
+        }
+    }
+
+    fn create(ctx: &Context, desc: &ComputePipelineDesc, spirv: &[u8]) -> Result<ComputePipeline, VkError> {
         let device = &ctx.device;
-        let words = ash::util::read_spv(&mut Cursor::new(desc.spirv))
+        let shader = desc.shader;
+        let words = ash::util::read_spv(&mut Cursor::new(spirv))
             .map_err(|_| VkError::Call { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
         let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
         // SAFETY: words is valid SPIR-V compiled by build.rs.
         let module = unsafe { device.create_shader_module(&module_info, None) }.call("vkCreateShaderModule")?;
 
-        let layout_bindings: Vec<vk::DescriptorSetLayoutBinding> = desc
+        let layout_bindings: Vec<vk::DescriptorSetLayoutBinding> = shader
             .bindings
             .iter()
-            .enumerate()
-            .map(|(i, k)| {
+            .map(|b| {
                 vk::DescriptorSetLayoutBinding::default()
-                    .binding(i as u32)
-                    .descriptor_type(k.vk_type())
+                    .binding(b.index)
+                    .descriptor_type(b.kind.vk_type())
                     .descriptor_count(1)
                     .stage_flags(vk::ShaderStageFlags::COMPUTE)
             })
@@ -60,10 +75,10 @@ impl ComputePipeline {
         let ranges = [vk::PushConstantRange::default()
             .stage_flags(vk::ShaderStageFlags::COMPUTE)
             .offset(0)
-            .size(desc.push_constant_bytes.max(4))];
+            .size(shader.push_constant_bytes.max(4))];
         let set_layouts = [set_layout];
         let mut layout_info = vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts);
-        if desc.push_constant_bytes > 0 {
+        if shader.push_constant_bytes > 0 {
             layout_info = layout_info.push_constant_ranges(&ranges);
         }
         // SAFETY: valid device and create info.
@@ -89,22 +104,24 @@ impl ComputePipeline {
         unsafe { device.destroy_shader_module(module, None) };
         let raw = created.map_err(|(_, r)| VkError::Call { call: "vkCreateComputePipelines", result: r })?[0];
         ctx.set_name(raw, desc.name);
-        let descriptors = DescriptorAllocator::new(ctx, desc.bindings, desc.max_sets.max(1))?;
+        let descriptors = DescriptorAllocator::new(ctx, shader.bindings, desc.max_sets.max(1))?;
         Ok(ComputePipeline {
             raw,
             layout,
             set_layout,
-            bindings: desc.bindings.to_vec(),
-            push_constant_bytes: desc.push_constant_bytes,
+            shader: shader.name,
+            bindings: shader.bindings,
+            push_constant_bytes: shader.push_constant_bytes,
             descriptors,
             device: device.clone(),
             _keep_alive: ctx.memory.clone(),
         })
     }
 
-    /// Allocates a descriptor set of this pipeline's layout and writes `resources`.
-    pub fn create_set(&mut self, resources: &[super::descriptors::Resource]) -> Result<vk::DescriptorSet, VkError> {
-        self.descriptors.create_set(self.set_layout, &self.bindings, resources)
+    /// Allocates a descriptor set of this pipeline's layout and writes each
+    /// resource into the binding it names; every binding of the shader needs one.
+    pub fn create_set(&mut self, resources: &[(Binding, Resource)]) -> Result<vk::DescriptorSet, VkError> {
+        self.descriptors.create_set(self.shader, self.set_layout, self.bindings, resources)
     }
 }
 
@@ -121,23 +138,17 @@ impl Drop for ComputePipeline {
 
 /// The two builds of a ping-pong shader (build.rs `BINDING_VARIANTS`): index 0
 /// reads side a of its pair and writes b, index 1 the opposite. Their layouts are
-/// identical, so one descriptor set (allocated from index 0) serves both and a
-/// block switches sides by binding the other pipeline. `desc.spirv` is unused.
-pub fn parity_pair(
-    ctx: &Context,
-    desc: &ComputePipelineDesc,
-    read_a: &[u8],
-    read_b: &[u8],
-) -> Result<[ComputePipeline; 2], VkError> {
-    Ok([
-        ComputePipeline::new(ctx, &ComputePipelineDesc { spirv: read_a, ..*desc })?,
-        ComputePipeline::new(ctx, &ComputePipelineDesc { spirv: read_b, ..*desc })?,
-    ])
-}
-
-/// Push-constant bytes of a `#[repr(C)]` plain-data struct.
-pub fn push_bytes<T: Copy>(value: &T) -> &[u8] {
-    // SAFETY: callers pass #[repr(C)] structs of u32/f32/i32 fields (std430-like
-    // layout, no padding bytes), so all bytes are initialised.
-    unsafe { std::slice::from_raw_parts(value as *const T as *const u8, std::mem::size_of::<T>()) }
+/// identical (the union of both builds' bindings), so one descriptor set
+/// (allocated from index 0) serves both and a block switches sides by binding
+/// the other pipeline.
+pub fn parity_pair(ctx: &Context, desc: &ComputePipelineDesc) -> Result<[ComputePipeline; 2], VkError> {
+    match desc.shader.builds {
+        [read_a, read_b] => {
+            Ok([ComputePipeline::create(ctx, desc, read_a)?, ComputePipeline::create(ctx, desc, read_b)?])
+        }
+        builds => Err(VkError::Shader {
+            shader: desc.shader.name,
+            problem: format!("has {} build(s), not the two of a ping-pong pair", builds.len()),
+        }),
+    }
 }

@@ -4,25 +4,10 @@ use super::context::Context;
 use super::error::{VkError, VkResultExt};
 use super::memory::GpuMemory;
 use ash::vk;
+use bytemuck::Pod;
 use gpu_allocator::vulkan::Allocation;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
-
-/// Plain data that may be copied byte for byte into GPU memory.
-pub trait GpuData: Copy + 'static {}
-impl GpuData for u8 {}
-impl GpuData for u16 {}
-impl GpuData for u32 {}
-impl GpuData for i32 {}
-impl GpuData for f32 {}
-impl<const N: usize> GpuData for [f32; N] {}
-impl<const N: usize> GpuData for [u32; N] {}
-
-pub fn as_bytes<T: GpuData>(data: &[T]) -> &[u8] {
-    // SAFETY: GpuData types are padding-free plain numbers (or arrays of them), so
-    // every byte of the slice is initialised.
-    unsafe { std::slice::from_raw_parts(data.as_ptr() as *const u8, std::mem::size_of_val(data)) }
-}
 
 pub struct Buffer {
     pub raw: vk::Buffer,
@@ -87,13 +72,13 @@ impl Buffer {
     }
 
     /// A host-visible buffer holding `data`.
-    pub fn with_data<T: GpuData>(
+    pub fn with_data<T: Pod>(
         ctx: &Context,
         name: &str,
         data: &[T],
         usage: vk::BufferUsageFlags,
     ) -> Result<Buffer, VkError> {
-        let bytes = as_bytes(data);
+        let bytes: &[u8] = bytemuck::cast_slice(data);
         let mut b = Buffer::new(ctx, name, bytes.len() as u64, usage, MemoryLocation::CpuToGpu)?;
         b.write_bytes(0, bytes)?;
         Ok(b)
@@ -115,12 +100,12 @@ impl Buffer {
         Ok(())
     }
 
-    pub fn write<T: GpuData>(&mut self, data: &[T]) -> Result<(), VkError> {
-        self.write_bytes(0, as_bytes(data))
+    pub fn write<T: Pod>(&mut self, data: &[T]) -> Result<(), VkError> {
+        self.write_bytes(0, bytemuck::cast_slice(data))
     }
 
     /// Reads `count` values of `T` from a host-visible buffer.
-    pub fn read<T: GpuData + Default>(&self, count: usize) -> Result<Vec<T>, VkError> {
+    pub fn read<T: Pod>(&self, count: usize) -> Result<Vec<T>, VkError> {
         let slice = self.allocation.as_ref().and_then(|a| a.mapped_slice()).ok_or_else(|| VkError::Allocation {
             name: "buffer read".into(),
             message: "buffer is not host visible".into(),
@@ -132,10 +117,8 @@ impl Buffer {
                 message: format!("read of {bytes} bytes past {} bytes", slice.len()),
             });
         }
-        let mut out = vec![T::default(); count];
-        // SAFETY: out has room for `bytes` bytes; GpuData types accept any bit pattern
-        // of their size (plain numbers).
-        unsafe { std::ptr::copy_nonoverlapping(slice.as_ptr(), out.as_mut_ptr() as *mut u8, bytes) };
+        let mut out = vec![T::zeroed(); count];
+        bytemuck::cast_slice_mut::<T, u8>(&mut out).copy_from_slice(&slice[..bytes]);
         Ok(out)
     }
 }

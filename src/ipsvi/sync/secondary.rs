@@ -60,7 +60,7 @@ pub fn record_sweeps(
         for (k, record) in block_records.iter().enumerate().skip(first).take(count) {
             let line = &lines[record.parity as usize];
             rec.bind_pipeline(line);
-            rec.push(line, &(k as u32).to_ne_bytes());
+            rec.push(line, &(k as u32));
             rec.dispatch(workgroups(record), 1, 1);
             rec.barrier(&Barrier::memory(
                 "cache_write_to_next_line_read",

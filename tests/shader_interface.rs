@@ -1,0 +1,90 @@
+//! Pipelines and descriptor sets are made from the interface build.rs reflects
+//! from each shader's SPIR-V: a set that leaves a binding out, fills it with the
+//! wrong kind of resource or names a binding the shader does not declare is an
+//! error that names the binding, and a ping-pong shader is not made into a
+//! single pipeline.
+
+mod common;
+
+use ash::vk;
+use common::*;
+use glam::Vec3;
+use sweeplab::render::{GpuScene, OutputImage};
+use sweeplab::shaders::{ipsvi_ert_depths, ipsvi_line, raycast};
+use sweeplab::vk::descriptors::Resource;
+use sweeplab::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
+use sweeplab::vk::{Buffer, VkError};
+
+#[test]
+fn sets_are_checked_by_binding_name() {
+    let ctx = validated_context();
+    let scene = scene_with(sphere_volume(8, 3.0), vec![directional(Vec3::NEG_Y, 1.0)], 4, 4);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let frame = Buffer::with_data(&ctx, "frame", &[0u32; 64], vk::BufferUsageFlags::UNIFORM_BUFFER).unwrap();
+    let output = OutputImage::new(&ctx, "out", 4, 4).unwrap();
+    let desc = ComputePipelineDesc { name: "dvr", shader: &raycast::INTERFACE, specialization: &[], max_sets: 4 };
+    let mut pipeline = ComputePipeline::new(&ctx, &desc).unwrap();
+    let scene_part = [
+        (raycast::FRAME, Resource::UniformBuffer(&frame)),
+        (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+        (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+        (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+    ];
+
+    let missing = pipeline.create_set(&scene_part).unwrap_err();
+    assert!(matches!(missing, VkError::Binding { binding: "out_image", .. }), "{missing}");
+    assert_eq!(missing.to_string(), "shader raycast: binding out_image (index 4) has no resource");
+
+    let wrong_kind = pipeline
+        .create_set(&[&scene_part[..], &[(raycast::OUT_IMAGE, Resource::StorageBuffer(&gpu.lut))]].concat())
+        .unwrap_err();
+    assert_eq!(
+        wrong_kind.to_string(),
+        "shader raycast: binding out_image is a StorageImage binding, given a StorageBuffer"
+    );
+
+    // The pre-pass's `depths` sits at index 3, where the ray caster has its lights.
+    let foreign = pipeline
+        .create_set(
+            &[
+                &scene_part[..3],
+                &[
+                    (ipsvi_ert_depths::DEPTHS, Resource::StorageImage(&output.image)),
+                    (raycast::OUT_IMAGE, Resource::StorageImage(&output.image)),
+                ],
+            ]
+            .concat(),
+        )
+        .unwrap_err();
+    assert_eq!(
+        foreign.to_string(),
+        "shader raycast: binding depths (index 3) is not declared by this shader: its binding 3 is Lights"
+    );
+
+    pipeline
+        .create_set(&[&scene_part[..], &[(raycast::OUT_IMAGE, Resource::StorageImage(&output.image))]].concat())
+        .unwrap();
+    drop(pipeline);
+    drop(gpu);
+    assert_validation_clean(&ctx);
+}
+
+#[test]
+fn the_number_of_builds_picks_the_constructor() {
+    let ctx = validated_context();
+    let pair =
+        ComputePipelineDesc { name: "ipsvi_line", shader: &ipsvi_line::INTERFACE, specialization: &[], max_sets: 1 };
+    let single = ComputePipeline::new(&ctx, &pair).err().expect("a ping-pong shader is two pipelines");
+    assert_eq!(
+        single.to_string(),
+        "shader ipsvi_line: has 2 builds, a ping-pong pair: create its pipelines with parity_pair"
+    );
+    let once = ComputePipelineDesc { name: "dvr", shader: &raycast::INTERFACE, specialization: &[], max_sets: 1 };
+    let pair_of_one = parity_pair(&ctx, &once).err().expect("a shader compiled once has no pair");
+    assert_eq!(pair_of_one.to_string(), "shader raycast: has 1 build(s), not the two of a ping-pong pair");
+    let [read_a, read_b] = parity_pair(&ctx, &pair).unwrap();
+    assert_eq!(read_a.bindings, read_b.bindings);
+    assert_eq!(read_a.push_constant_bytes, 4);
+    drop((read_a, read_b));
+    assert_validation_clean(&ctx);
+}
