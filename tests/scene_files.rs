@@ -104,7 +104,7 @@ fn examples_read_what_they_say() {
     assert_eq!(spheres.lights.len(), 2);
     assert_eq!(spheres.lights[0].kind, LightKind::Point { position: Vec3::new(-1.2, 0.2, 0.3) });
     assert_eq!(spheres.lights[1].color, Vec3::new(0.2, 0.4, 1.0));
-    assert_eq!(spheres.techniques["lightvolume"]["resolution_scale"].as_float(), Some(0.5));
+    assert_eq!(spheres.techniques["lightvolume"]["scale"].as_integer(), Some(2));
 
     let cornell = example("cornell-box.toml", &[]);
     let LightKind::Spot { direction, inner_cone_deg, outer_cone_deg, .. } = cornell.lights[0].kind else {
