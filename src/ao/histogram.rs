@@ -120,23 +120,42 @@ pub struct LocalHistograms<'v> {
     /// Intensity bin of every voxel.
     voxel_bins: Vec<u16>,
     stencil: SphereStencil,
-    /// Stencil offsets as linear index differences (voxels far enough from the border).
+    /// `voxel_bins` with a margin of the stencil's extent on every side that
+    /// holds the extra bin `bins` ("outside"), so no neighbour needs a bounds
+    /// check: what lands in the extra bin is dropped.
+    padded_bins: Vec<u16>,
+    padded_dims: UVec3,
+    /// Stencil offsets as index differences in `padded_bins`.
     linear_offsets: Vec<isize>,
     normalization: f64,
 }
 
 impl<'v> LocalHistograms<'v> {
-    /// `bits` <= 16 (2^bits bins).
+    /// `bits` <= 15 (2^bits bins and the extra "outside" bin fit in u16).
     pub fn new(volume: &'v Volume, radius: u32, bits: u32) -> LocalHistograms<'v> {
-        let bins = 1usize << bits.min(16);
-        let voxel_bins =
+        let bins = 1usize << bits.min(15);
+        let voxel_bins: Vec<u16> =
             (0..volume.voxel_count()).map(|i| intensity_bin(volume.data.normalized(i), bins) as u16).collect();
         let stencil = SphereStencil::new(radius, volume.spacing);
-        let (nx, ny) = (volume.dims.x as isize, volume.dims.y as isize);
-        let linear_offsets =
-            stencil.offsets.iter().map(|o| (o.z as isize * ny + o.y as isize) * nx + o.x as isize).collect();
+        let e = stencil.extent;
+        let padded_dims = volume.dims + 2 * e;
+        let (px, py) = (padded_dims.x as usize, padded_dims.y as usize);
+        let mut padded_bins = vec![bins as u16; px * py * padded_dims.z as usize];
+        let (nx, ny) = (volume.dims.x as usize, volume.dims.y as usize);
+        for z in 0..volume.dims.z as usize {
+            for y in 0..ny {
+                let from = (z * ny + y) * nx;
+                let to = ((z + e.z as usize) * py + y + e.y as usize) * px + e.x as usize;
+                padded_bins[to..to + nx].copy_from_slice(&voxel_bins[from..from + nx]);
+            }
+        }
+        let linear_offsets = stencil
+            .offsets
+            .iter()
+            .map(|o| (o.z as isize * py as isize + o.y as isize) * px as isize + o.x as isize)
+            .collect();
         let normalization = 1.0 / stencil.voxel_count().max(1) as f64;
-        LocalHistograms { volume, bins, voxel_bins, stencil, linear_offsets, normalization }
+        LocalHistograms { volume, bins, voxel_bins, padded_bins, padded_dims, stencil, linear_offsets, normalization }
     }
 
     pub fn bins(&self) -> usize {
@@ -157,7 +176,7 @@ impl<'v> LocalHistograms<'v> {
     }
 
     pub fn scratch(&self) -> Scratch {
-        Scratch { forward: vec![0.0; self.bins], backward: vec![0.0; self.bins] }
+        Scratch { forward: vec![0.0; self.bins + 1], backward: vec![0.0; self.bins + 1] }
     }
 
     /// Position of the voxel with linear index `index`.
@@ -175,58 +194,41 @@ impl<'v> LocalHistograms<'v> {
         let (fw, bw) = (&mut scratch.forward, &mut scratch.backward);
         fw.fill(0.0);
         bw.fill(0.0);
-        let dims = self.volume.dims;
-        let e = self.stencil.extent;
-        let interior = (p.cmpge(e) & (p + e).cmplt(dims)).all();
         let s = &self.stencil;
-        let bins = &self.voxel_bins;
-        if g == Vec3::ZERO {
-            // Every offset lies on the (undefined) plane: half to each side,
-            // summed once into `fw` and halved below.
-            for i in 0..s.offsets.len() {
-                if let Some(n) = self.neighbour(index, p, i, interior) {
-                    fw[bins[n] as usize] += s.weights[i];
-                }
+        let bins = &self.padded_bins;
+        let q = p + s.extent;
+        let (px, py) = (self.padded_dims.x as usize, self.padded_dims.y as usize);
+        let centre = (q.z as usize * py + q.y as usize) * px + q.x as usize;
+        // Neighbours come in runs of equal intensity (stencil rows are rows of
+        // voxels): sum a run in registers and add it to its bin when the bin
+        // changes, instead of one dependent memory update per neighbour.
+        let (mut run_bin, mut run_forward, mut run_backward) = (0usize, 0f64, 0f64);
+        for i in 0..s.offsets.len() {
+            let k = bins[(centre as isize + self.linear_offsets[i]) as usize] as usize;
+            if k != run_bin {
+                fw[run_bin] += run_forward;
+                bw[run_bin] += run_backward;
+                (run_bin, run_forward, run_backward) = (k, 0.0, 0.0);
             }
-            for k in 0..self.bins {
-                fw[k] *= 0.5;
-                bw[k] = fw[k];
-            }
-        } else {
-            for i in 0..s.offsets.len() {
-                let Some(n) = self.neighbour(index, p, i, interior) else { continue };
-                let o = s.directions[i];
-                let side = g.x * o.x + g.y * o.y + g.z * o.z;
-                let (k, w) = (bins[n] as usize, s.weights[i]);
-                if side < 0.0 {
-                    fw[k] += w;
-                } else if side > 0.0 {
-                    bw[k] += w;
-                } else {
-                    fw[k] += 0.5 * w;
-                    bw[k] += 0.5 * w;
-                }
+            let o = s.directions[i];
+            let side = g.x * o.x + g.y * o.y + g.z * o.z;
+            let w = s.weights[i];
+            if side < 0.0 {
+                run_forward += w;
+            } else if side > 0.0 {
+                run_backward += w;
+            } else {
+                // On the plane, and everywhere when the gradient is zero.
+                run_forward += 0.5 * w;
+                run_backward += 0.5 * w;
             }
         }
+        fw[run_bin] += run_forward;
+        bw[run_bin] += run_backward;
         for k in 0..self.bins {
             forward[k] = (fw[k] * self.normalization) as f32;
             backward[k] = (bw[k] * self.normalization) as f32;
         }
-    }
-
-    /// Linear index of stencil neighbour `i` of voxel `index` at `p`, or None
-    /// outside the volume.
-    #[inline]
-    fn neighbour(&self, index: usize, p: UVec3, i: usize, interior: bool) -> Option<usize> {
-        if interior {
-            return Some((index as isize + self.linear_offsets[i]) as usize);
-        }
-        let q = p.as_ivec3() + self.stencil.offsets[i];
-        let d = self.volume.dims.as_ivec3();
-        if q.cmplt(IVec3::ZERO).any() || q.cmpge(d).any() {
-            return None;
-        }
-        Some((q.z as usize * d.y as usize + q.y as usize) * d.x as usize + q.x as usize)
     }
 
     /// Histograms of the voxels `voxels` (linear indices).

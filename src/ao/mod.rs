@@ -18,6 +18,7 @@ pub mod packing;
 pub mod parallel;
 pub mod progress;
 pub mod quantize;
+pub mod search;
 pub mod settings;
 pub mod training_set;
 
@@ -32,7 +33,8 @@ use histogram::LocalHistograms;
 use packing::PackingScheme;
 use parallel::for_each_chunk;
 use progress::StepClock;
-use quantize::{pack_cluster_ids, train_lbg, Codebook, LbgParams};
+use quantize::{pack_cluster_ids, train_lbg, LbgParams};
+use search::CodebookSearch;
 use training_set::select_training_voxels;
 
 use crate::scene::Volume;
@@ -176,12 +178,13 @@ pub fn preprocess(
     // Every voxel: histograms, packed, nearest codeword; the unpacked
     // histograms summed per cluster for the final codebook.
     let clock = StepClock::start("ao assignment");
+    let search = CodebookSearch::new(&codebook, metric);
     let mut cluster_ids = vec![0u32; volume.voxel_count()];
     let mut distortion_sum = 0f64;
     let states = histograms.stream_with(
         SLAB_BYTES,
         || ClusterSums { sums: vec![0.0; clusters * bins], sizes: vec![0; clusters] },
-        |sums, slab| assign_slab(slab, &packing, &codebook, metric, sums),
+        |sums, slab| assign_slab(slab, &packing, &search, dim, sums),
         |_, (first, ids, distortion), done, total| {
             cluster_ids[first..first + ids.len()].copy_from_slice(&ids);
             distortion_sum += distortion;
@@ -235,11 +238,10 @@ struct ClusterSums {
 fn assign_slab(
     slab: &histogram::HistogramSlab,
     packing: &PackingScheme,
-    codebook: &Codebook,
-    metric: Metric,
+    search: &CodebookSearch,
+    dim: usize,
     sums: &mut ClusterSums,
 ) -> (usize, Vec<u32>, f64) {
-    let dim = codebook.dim;
     let bins = slab.bins;
     let mut packed = vec![0f32; dim];
     let mut previous = vec![f32::NAN; dim];
@@ -252,7 +254,7 @@ fn assign_slab(
         for (side, histogram) in [forward, backward].into_iter().enumerate() {
             packing.pack(histogram, &mut packed);
             if packed != previous {
-                (previous_id, previous_d) = codebook.nearest(metric, &packed, previous_id);
+                (previous_id, previous_d) = search.nearest(&packed, previous_id);
                 std::mem::swap(&mut packed, &mut previous);
             }
             pair[side] = previous_id as u32;
