@@ -377,3 +377,47 @@ fn the_cornell_scene_reads_its_ao_table_and_preprocesses_in_seconds() {
     // "A few seconds" on two shared cores; the bound leaves room for a busy machine.
     assert!(seconds < 60.0, "{seconds} s");
 }
+
+/// Timing of engine.vti (256 x 256 x 128), run by hand:
+/// `SWEEPLAB_DATA=../shared/data AO_RADIUS=8 AO_CLUSTERS=2048 cargo test --release
+/// --test ao_preprocess engine -- --ignored --nocapture`
+#[test]
+#[ignore = "a measurement of minutes, not a check"]
+fn engine_preprocessing_timing() {
+    let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
+    let volume = sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)");
+    let var = |name: &str, default: u32| std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default);
+    let s = AoSettings {
+        radius: var("AO_RADIUS", 8),
+        clusters: var("AO_CLUSTERS", 2048),
+        cache: false,
+        ..AoSettings::default()
+    };
+    let started = Instant::now();
+    let mut last_step = String::new();
+    let r = preprocess(&volume, &s, &mut |p| {
+        if p.step != last_step || p.fraction >= 1.0 {
+            eprintln!("{}", p.line());
+            last_step = p.step.to_string();
+        }
+    })
+    .expect("preprocess");
+    let t = &r.stats.timings;
+    eprintln!(
+        "engine {:?} r = {} n_c = {} packed {}: total {:.1} s: packing {:.3}, TS histograms {:.2}, training {:.2} ({} Lloyd iterations, {} vectors), assignment {:.2}; stencil {} voxels; distortion TS {:.3e}, all {:.3e}",
+        volume.dims,
+        s.radius,
+        s.clusters,
+        s.packed_dim,
+        started.elapsed().as_secs_f64(),
+        t.packing,
+        t.training_histograms,
+        t.training,
+        r.stats.lloyd_iterations,
+        r.stats.training_vectors,
+        t.assignment,
+        SphereStencil::new(s.radius, volume.spacing).voxel_count(),
+        r.stats.training_distortion,
+        r.stats.assignment_distortion,
+    );
+}

@@ -244,26 +244,29 @@ fn assign_slab(
 ) -> (usize, Vec<u32>, f64) {
     let bins = slab.bins;
     let mut packed = vec![0f32; dim];
-    let mut previous = vec![f32::NAN; dim];
-    let (mut previous_id, mut previous_d) = (0usize, 0f32);
+    // Per hemisphere: the previous voxel's packed histogram, codeword and
+    // distance (forward and backward histograms of one voxel differ a lot, so
+    // each side follows its own neighbour).
+    let mut previous = [vec![f32::NAN; dim], vec![f32::NAN; dim]];
+    let mut previous_id = [0usize; 2];
+    let mut previous_d = [0f32; 2];
     let mut distortion = 0f64;
     let mut ids = Vec::with_capacity(slab.voxels.len());
     for i in 0..slab.voxels.len() {
         let (forward, backward) = slab.voxel(i);
-        let mut pair = [0u32; 2];
         for (side, histogram) in [forward, backward].into_iter().enumerate() {
             packing.pack(histogram, &mut packed);
-            if packed != previous {
-                (previous_id, previous_d) = search.nearest(&packed, previous_id);
-                std::mem::swap(&mut packed, &mut previous);
+            if packed != previous[side] {
+                (previous_id[side], previous_d[side]) = search.nearest(&packed, previous_id[side]);
+                std::mem::swap(&mut packed, &mut previous[side]);
             }
-            pair[side] = previous_id as u32;
-            distortion += previous_d as f64;
-            sums.sizes[previous_id] += 1;
-            let sum = &mut sums.sums[previous_id * bins..(previous_id + 1) * bins];
+            let id = previous_id[side];
+            distortion += previous_d[side] as f64;
+            sums.sizes[id] += 1;
+            let sum = &mut sums.sums[id * bins..(id + 1) * bins];
             sum.iter_mut().zip(histogram).for_each(|(s, &h)| *s += h as f64);
         }
-        ids.push(pack_cluster_ids(pair[0], pair[1]));
+        ids.push(pack_cluster_ids(previous_id[0] as u32, previous_id[1] as u32));
     }
     (slab.voxels.start, ids, distortion)
 }

@@ -8,7 +8,8 @@
 //! codeword keeps all others sorted by distance to it; the search walks the
 //! start's list and stops at the first one beyond that bound. A small relative
 //! slack on the bound absorbs float rounding, so the result is exactly
-//! [`Codebook::nearest`]'s (ties to the lowest index).
+//! [`Codebook::nearest`]'s (ties to the lowest index). The same inequality
+//! skips the codewords nearer to c_h than d(x, c_h) - best.
 
 use super::parallel::for_each_chunk;
 use super::quantize::{distance, distance_within, Codebook};
@@ -72,12 +73,14 @@ impl<'c> CodebookSearch<'c> {
         let to_hint = true_distance(metric, best_raw);
         let row = h * n..(h + 1) * n;
         for (&j, &apart) in self.order[row.clone()].iter().zip(&self.distances[row]) {
-            let bound = (true_distance(metric, best_raw) + to_hint) * (1.0 + SLACK) + f32::MIN_POSITIVE;
-            if apart > bound {
+            let best_true = true_distance(metric, best_raw);
+            // d(x, c_j) >= |d(c_h, c_j) - d(x, c_h)|: only the shell
+            // to_hint - best < apart < to_hint + best can hold a better codeword.
+            if apart > (best_true + to_hint) * (1.0 + SLACK) + f32::MIN_POSITIVE {
                 break;
             }
             let j = j as usize;
-            if j == best {
+            if j == best || apart < (to_hint - best_true) * (1.0 - SLACK) - f32::MIN_POSITIVE {
                 continue;
             }
             let d = distance_within(metric, x, codebook.word(j), best_raw);
