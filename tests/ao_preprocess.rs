@@ -75,6 +75,16 @@ fn histograms_of_two_materials_match_hand_computed_weights() {
     let inside = (PLANE + 2.0 * LAYER1 + LAYER2) / N_R;
     assert!(close(f[100], inside / 2.0) && close(b[100], inside / 2.0), "{} {}", f[100], b[100]);
 
+    // Fully inside the volume, each hemisphere sums to the stencil's half mass
+    // (whatever the gradient): (7 + 2 * 13/3 + 2/4) / 2 / 32.
+    let half = (PLANE + 2.0 * LAYER1 + 2.0 * LAYER2) / 2.0 / N_R;
+    assert!((h.stencil().full_hemisphere_mass() - half).abs() < 1e-12);
+    for p in [[4, 4, 4], [4, 4, 3], [4, 4, 5], [3, 4, 6]] {
+        let (f, b) = histograms_of(&h, index(&v, p));
+        let (sf, sb): (f32, f32) = (f.iter().sum(), b.iter().sum());
+        assert!(close(sf, half) && close(sb, half), "{p:?}: {sf} {sb} vs {half}");
+    }
+
     // Four bins (b = 2): 100 -> bin 1, 200 -> bin 3.
     let h2 = LocalHistograms::new(&v, 2, 2);
     let (f, b) = histograms_of(&h2, index(&v, [4, 4, 4]));
@@ -263,15 +273,15 @@ fn the_cache_hits_and_is_invalidated_by_content_and_parameters() {
     assert_eq!(stored_reason(cached(&changed, &s).1), CacheMiss::Absent);
 
     // Every parameter is in the key.
-    let variants: Vec<Box<dyn Fn(&mut AoSettings)>> = vec![
-        Box::new(|s| s.radius = 2),
-        Box::new(|s| s.bits = 6),
-        Box::new(|s| s.packed_dim = 8),
-        Box::new(|s| s.clusters = 4),
-        Box::new(|s| s.metric = Metric::Lmax),
-        Box::new(|s| s.training = TrainingSet::Random { count: 4096, seed: 4 }),
-        Box::new(|s| s.training = TrainingSet::Gradient { eps: 0.05, count: 4096, seed: 3 }),
-        Box::new(|s| s.lbg_iterations = 3),
+    let variants: [fn(&mut AoSettings); 8] = [
+        |s| s.radius = 2,
+        |s| s.bits = 6,
+        |s| s.packed_dim = 8,
+        |s| s.clusters = 4,
+        |s| s.metric = Metric::Lmax,
+        |s| s.training = TrainingSet::Random { count: 4096, seed: 4 },
+        |s| s.training = TrainingSet::Gradient { eps: 0.05, count: 4096, seed: 3 },
+        |s| s.lbg_iterations = 3,
     ];
     for change in variants {
         let mut other = s.clone();

@@ -79,6 +79,16 @@ impl SphereStencil {
     pub fn voxel_count(&self) -> usize {
         self.offsets.len()
     }
+
+    /// What one normalized hemisphere histogram sums to when its whole
+    /// hemisphere lies inside the volume: half the summed weights over N_r
+    /// (the stencil is symmetric under o -> -o, and the plane is shared half
+    /// and half, so both sides always get exactly half). Equations 4-5 divide by
+    /// 2/3 pi r^3, which with 1/d^2 weights does not give a fully occluded
+    /// hemisphere O_env = 1; dividing by this does.
+    pub fn full_hemisphere_mass(&self) -> f64 {
+        self.weights.iter().sum::<f64>() / (2.0 * self.voxel_count().max(1) as f64)
+    }
 }
 
 /// Intensity bin of a normalized value: `min(floor(s * bins), bins - 1)`.
