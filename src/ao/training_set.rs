@@ -11,6 +11,9 @@ use crate::scene::Volume;
 /// Linear indices of the training voxels, ascending.
 pub fn select_training_voxels(volume: &Volume, rule: &TrainingSet) -> Result<Vec<usize>, AoError> {
     let n = volume.voxel_count();
+    if n == 0 {
+        return Err(AoError::EmptyTrainingSet(format!("volume {} has no voxels", volume.name)));
+    }
     match *rule {
         TrainingSet::Random { count, seed } => Ok(sample(n, count as usize, seed)),
         TrainingSet::Gradient { eps, count, seed } => {
@@ -100,5 +103,10 @@ mod tests {
         assert!(capped.iter().all(|i| steep.contains(i)));
         let e = select_training_voxels(&v, &TrainingSet::Gradient { eps: 10.0, count: 10, seed: 1 }).unwrap_err();
         assert!(e.to_string().contains("ao.training.eps = 10"), "{e}");
+        let mut empty = v.clone();
+        empty.dims = glam::UVec3::ZERO;
+        empty.data = crate::scene::VoxelData::U8(vec![]);
+        let e = select_training_voxels(&empty, &TrainingSet::Random { count: 10, seed: 1 }).unwrap_err();
+        assert!(e.to_string().contains("no voxels"), "{e}");
     }
 }
