@@ -3,8 +3,9 @@
 //! Layers, bottom up: [`vk`] (thin layer over ash), [`scene`] (volumes, loaders,
 //! transfer functions, camera, lights, scene files), [`render`] (what all GPU
 //! techniques share), one module per technique ([`dvr`] baselines, [`reference`]
-//! ground truth), and [`metrics`].
+//! ground truth, [`ao`] preprocessing), and [`metrics`].
 
+pub mod ao;
 pub mod bench;
 pub mod dvr;
 pub mod half_angle;

@@ -1,0 +1,298 @@
+//! Local histograms (section 3.1, equations 1-3): for every voxel x, two
+//! histograms of the intensities around it, one per hemisphere.
+//!
+//! Our reading of the paper, which this brute-force reference implements (the
+//! GPU space sweep must give the same numbers):
+//! - S_r(x) holds the voxels whose centres lie within distance r * d_min of x's
+//!   centre, where d_min is the smallest distance between two voxels (the
+//!   smallest spacing); with anisotropic spacing the sphere is round in world
+//!   space and holds fewer voxels along the coarse axes.
+//! - The centre voxel is left out (equation 2's x-bar != x), so every distance
+//!   is at least 1 in units of d_min and no weight exceeds 1.
+//! - Weight f_dist(d) = 1 / d^2, d = |x - x-bar| / d_min.
+//! - Intensity bin k of x-bar: the normalized intensity s in [0, 1] scaled to
+//!   2^b bins, k = min(floor(s * 2^b), 2^b - 1), equation 3's g(f, k). For 8-bit
+//!   data and b = 8 that is the raw byte.
+//! - Voxels of the sphere outside the volume contribute nothing (nothing is
+//!   there), and every histogram is divided by the same N_r, the number of
+//!   lattice voxels in S_r without the centre ("normalized by the number of
+//!   voxels lying in the sphere"), so a voxel near the border simply sees less
+//!   surroundings, as it would next to empty space.
+//! - Hemispheres: the plane through x perpendicular to the gradient g
+//!   ([`central_gradient`]) splits S_r. The forward hemisphere H_f is the one the
+//!   shading normal n = -g points into (dot(x-bar - x, g) < 0): for an object
+//!   brighter than its surroundings that is the outside, where what occludes the
+//!   surface lies (the paper's "occlusion, which is given by the forward facing
+//!   hemisphere", figure 7). H_b is the other side (dot > 0). A voxel exactly on
+//!   the plane (dot = 0) gives half its weight to each; so where the gradient is
+//!   zero (homogeneous regions) both histograms are equal, each half of the
+//!   whole sphere's, and forward + backward is always the full-sphere histogram.
+//!   The dot product is taken in f32 as g.x*o.x + g.y*o.y + g.z*o.z, o the offset
+//!   in units of d_min.
+
+use std::ops::Range;
+
+use glam::{IVec3, UVec3, Vec3};
+
+use super::gradient::central_gradient;
+use crate::scene::Volume;
+
+/// The voxels of S_r around a centre, as offsets with their weights.
+#[derive(Clone, Debug)]
+pub struct SphereStencil {
+    /// Lattice offsets, centre excluded.
+    pub offsets: Vec<IVec3>,
+    /// The same offsets in world units divided by d_min (for the hemisphere test).
+    pub directions: Vec<Vec3>,
+    /// 1 / d^2, d in units of d_min.
+    pub weights: Vec<f64>,
+    /// Largest |offset| along each axis.
+    pub extent: UVec3,
+}
+
+impl SphereStencil {
+    pub fn new(radius: u32, spacing: Vec3) -> SphereStencil {
+        let d_min = spacing.min_element() as f64;
+        let scale = [spacing.x as f64 / d_min, spacing.y as f64 / d_min, spacing.z as f64 / d_min];
+        let r = radius as f64;
+        let extent = UVec3::from(scale.map(|s| (r / s + 1e-9).floor() as u32));
+        let mut stencil = SphereStencil { offsets: vec![], directions: vec![], weights: vec![], extent };
+        let e = extent.as_ivec3();
+        for z in -e.z..=e.z {
+            for y in -e.y..=e.y {
+                for x in -e.x..=e.x {
+                    let w = [x as f64 * scale[0], y as f64 * scale[1], z as f64 * scale[2]];
+                    let d2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+                    if d2 == 0.0 || d2 > r * r + 1e-9 {
+                        continue;
+                    }
+                    stencil.offsets.push(IVec3::new(x, y, z));
+                    stencil.directions.push(Vec3::new(w[0] as f32, w[1] as f32, w[2] as f32));
+                    stencil.weights.push(1.0 / d2);
+                }
+            }
+        }
+        stencil
+    }
+
+    /// N_r: the voxels of the sphere without its centre, the normalization.
+    pub fn voxel_count(&self) -> usize {
+        self.offsets.len()
+    }
+
+    /// What one normalized hemisphere histogram sums to when its whole
+    /// hemisphere lies inside the volume: half the summed weights over N_r
+    /// (the stencil is symmetric under o -> -o, and the plane is shared half
+    /// and half, so both sides always get exactly half). Equations 4-5 divide by
+    /// 2/3 pi r^3, which with 1/d^2 weights does not give a fully occluded
+    /// hemisphere O_env = 1; dividing by this does.
+    pub fn full_hemisphere_mass(&self) -> f64 {
+        self.weights.iter().sum::<f64>() / (2.0 * self.voxel_count().max(1) as f64)
+    }
+}
+
+/// Intensity bin of a normalized value: `min(floor(s * bins), bins - 1)`.
+#[inline]
+pub fn intensity_bin(s: f32, bins: usize) -> usize {
+    ((s.clamp(0.0, 1.0) as f64 * bins as f64) as usize).min(bins - 1)
+}
+
+/// Forward and backward histograms of a run of voxels, `bins` values each, voxel
+/// after voxel (x fastest, then y, then z).
+#[derive(Clone, Debug, PartialEq)]
+pub struct HistogramSlab {
+    /// Linear indices of the voxels.
+    pub voxels: Range<usize>,
+    pub bins: usize,
+    pub forward: Vec<f32>,
+    pub backward: Vec<f32>,
+}
+
+impl HistogramSlab {
+    /// Forward and backward histogram of the `i`-th voxel of the slab.
+    pub fn voxel(&self, i: usize) -> (&[f32], &[f32]) {
+        let r = i * self.bins..(i + 1) * self.bins;
+        (&self.forward[r.clone()], &self.backward[r])
+    }
+}
+
+/// Per-thread accumulators for one voxel (f64, so the reference is exact to
+/// far below what an f32 GPU sum can show).
+pub struct Scratch {
+    forward: Vec<f64>,
+    backward: Vec<f64>,
+}
+
+/// Brute-force local histograms of one volume.
+pub struct LocalHistograms<'v> {
+    volume: &'v Volume,
+    bins: usize,
+    /// Intensity bin of every voxel.
+    voxel_bins: Vec<u16>,
+    stencil: SphereStencil,
+    /// `voxel_bins` with a margin of the stencil's extent on every side that
+    /// holds the extra bin `bins` ("outside"), so no neighbour needs a bounds
+    /// check: what lands in the extra bin is dropped.
+    padded_bins: Vec<u16>,
+    padded_dims: UVec3,
+    /// Stencil offsets as index differences in `padded_bins`.
+    linear_offsets: Vec<isize>,
+    normalization: f64,
+}
+
+impl<'v> LocalHistograms<'v> {
+    /// `bits` <= 15 (2^bits bins and the extra "outside" bin fit in u16).
+    pub fn new(volume: &'v Volume, radius: u32, bits: u32) -> LocalHistograms<'v> {
+        let bins = 1usize << bits.min(15);
+        let voxel_bins: Vec<u16> =
+            (0..volume.voxel_count()).map(|i| intensity_bin(volume.data.normalized(i), bins) as u16).collect();
+        let stencil = SphereStencil::new(radius, volume.spacing);
+        let e = stencil.extent;
+        let padded_dims = volume.dims + 2 * e;
+        let (px, py) = (padded_dims.x as usize, padded_dims.y as usize);
+        let mut padded_bins = vec![bins as u16; px * py * padded_dims.z as usize];
+        let (nx, ny) = (volume.dims.x as usize, volume.dims.y as usize);
+        for z in 0..volume.dims.z as usize {
+            for y in 0..ny {
+                let from = (z * ny + y) * nx;
+                let to = ((z + e.z as usize) * py + y + e.y as usize) * px + e.x as usize;
+                padded_bins[to..to + nx].copy_from_slice(&voxel_bins[from..from + nx]);
+            }
+        }
+        let linear_offsets = stencil
+            .offsets
+            .iter()
+            .map(|o| (o.z as isize * py as isize + o.y as isize) * px as isize + o.x as isize)
+            .collect();
+        let normalization = 1.0 / stencil.voxel_count().max(1) as f64;
+        LocalHistograms { volume, bins, voxel_bins, padded_bins, padded_dims, stencil, linear_offsets, normalization }
+    }
+
+    pub fn bins(&self) -> usize {
+        self.bins
+    }
+
+    pub fn stencil(&self) -> &SphereStencil {
+        &self.stencil
+    }
+
+    pub fn volume(&self) -> &'v Volume {
+        self.volume
+    }
+
+    /// Intensity bin of every voxel.
+    pub fn voxel_bins(&self) -> &[u16] {
+        &self.voxel_bins
+    }
+
+    pub fn scratch(&self) -> Scratch {
+        Scratch { forward: vec![0.0; self.bins + 1], backward: vec![0.0; self.bins + 1] }
+    }
+
+    /// Position of the voxel with linear index `index`.
+    pub fn position(&self, index: usize) -> UVec3 {
+        let d = self.volume.dims;
+        let (nx, ny) = (d.x as usize, d.y as usize);
+        UVec3::new((index % nx) as u32, ((index / nx) % ny) as u32, (index / (nx * ny)) as u32)
+    }
+
+    /// The two normalized histograms of voxel `index` into `forward` and
+    /// `backward` (`bins` values each).
+    pub fn voxel_into(&self, index: usize, scratch: &mut Scratch, forward: &mut [f32], backward: &mut [f32]) {
+        let p = self.position(index);
+        let g = central_gradient(self.volume, p);
+        let (fw, bw) = (&mut scratch.forward, &mut scratch.backward);
+        fw.fill(0.0);
+        bw.fill(0.0);
+        let s = &self.stencil;
+        let bins = &self.padded_bins;
+        let q = p + s.extent;
+        let (px, py) = (self.padded_dims.x as usize, self.padded_dims.y as usize);
+        let centre = (q.z as usize * py + q.y as usize) * px + q.x as usize;
+        // Neighbours come in runs of equal intensity (stencil rows are rows of
+        // voxels): sum a run in registers and add it to its bin when the bin
+        // changes, instead of one dependent memory update per neighbour.
+        let (mut run_bin, mut run_forward, mut run_backward) = (0usize, 0f64, 0f64);
+        for i in 0..s.offsets.len() {
+            let k = bins[(centre as isize + self.linear_offsets[i]) as usize] as usize;
+            if k != run_bin {
+                fw[run_bin] += run_forward;
+                bw[run_bin] += run_backward;
+                (run_bin, run_forward, run_backward) = (k, 0.0, 0.0);
+            }
+            let o = s.directions[i];
+            let side = g.x * o.x + g.y * o.y + g.z * o.z;
+            let w = s.weights[i];
+            if side < 0.0 {
+                run_forward += w;
+            } else if side > 0.0 {
+                run_backward += w;
+            } else {
+                // On the plane, and everywhere when the gradient is zero.
+                run_forward += 0.5 * w;
+                run_backward += 0.5 * w;
+            }
+        }
+        fw[run_bin] += run_forward;
+        bw[run_bin] += run_backward;
+        for k in 0..self.bins {
+            forward[k] = (fw[k] * self.normalization) as f32;
+            backward[k] = (bw[k] * self.normalization) as f32;
+        }
+    }
+
+    /// Histograms of the voxels `voxels` (linear indices).
+    pub fn slab(&self, voxels: Range<usize>, scratch: &mut Scratch) -> HistogramSlab {
+        let n = voxels.len() * self.bins;
+        let mut slab =
+            HistogramSlab { voxels: voxels.clone(), bins: self.bins, forward: vec![0.0; n], backward: vec![0.0; n] };
+        for (i, index) in voxels.enumerate() {
+            let r = i * self.bins..(i + 1) * self.bins;
+            self.voxel_into(index, scratch, &mut slab.forward[r.clone()], &mut slab.backward[r]);
+        }
+        slab
+    }
+
+    /// Splits the volume into runs of whole x-rows holding at most
+    /// `max_slab_bytes` of unpacked histograms (at least one row), so that a
+    /// stream never holds more than a few of them.
+    pub fn slab_ranges(&self, max_slab_bytes: usize) -> Vec<Range<usize>> {
+        let row = self.volume.dims.x as usize;
+        let bytes_per_voxel = 2 * self.bins * std::mem::size_of::<f32>();
+        let rows = (max_slab_bytes / (bytes_per_voxel * row)).max(1);
+        let total = self.volume.voxel_count();
+        (0..total).step_by(rows * row).map(|start| start..(start + rows * row).min(total)).collect()
+    }
+
+    /// Streams the histograms of every voxel, slab by slab, over all cores:
+    /// `work(slab)` runs on a worker thread and its result goes to
+    /// `consume(slab_index, result, done, total)` on the calling thread (in
+    /// completion order). Only the slabs in flight exist.
+    pub fn stream<R: Send>(
+        &self,
+        max_slab_bytes: usize,
+        work: impl Fn(&HistogramSlab) -> R + Sync,
+        consume: impl FnMut(usize, R, usize, usize),
+    ) {
+        self.stream_with(max_slab_bytes, || (), |_, slab| work(slab), consume);
+    }
+
+    /// As [`Self::stream`], with a state per worker thread (`init()`), which
+    /// `work` may update and which is returned at the end.
+    pub fn stream_with<S: Send, R: Send>(
+        &self,
+        max_slab_bytes: usize,
+        init: impl Fn() -> S + Sync,
+        work: impl Fn(&mut S, &HistogramSlab) -> R + Sync,
+        mut consume: impl FnMut(usize, R, usize, usize),
+    ) -> Vec<S> {
+        let ranges = self.slab_ranges(max_slab_bytes);
+        let states = super::parallel::for_each_chunk(
+            ranges.len(),
+            || (init(), self.scratch()),
+            |(state, scratch), i| work(state, &self.slab(ranges[i].clone(), scratch)),
+            |i, r, done| consume(i, r, done, ranges.len()),
+        );
+        states.into_iter().map(|(state, _)| state).collect()
+    }
+}

@@ -1,0 +1,306 @@
+//! Ambient occlusion and colour bleeding from clustered local histograms
+//! (Ropinski et al., EG 2008): the preprocessing, on the CPU. See `docs/ao.md`.
+//!
+//! [`preprocess`] streams: local histograms ([`histogram`]) -> packing scheme
+//! from the global histogram ([`packing`]) -> training set ([`training_set`])
+//! -> LBG training on packed histograms ([`quantize`]) -> nearest-codeword
+//! assignment of every voxel's two hemispheres, while the unpacked histograms
+//! of each cluster are summed into the final codebook. No step holds the
+//! histograms of all voxels: the training set's are held packed, everything
+//! else lives one slab at a time. [`preprocess_cached`] puts the disk cache
+//! ([`cache`]) in front.
+
+pub mod cache;
+pub mod error;
+pub mod gradient;
+pub mod histogram;
+pub mod packing;
+pub mod parallel;
+pub mod progress;
+pub mod quantize;
+pub mod search;
+pub mod settings;
+pub mod training_set;
+
+pub use cache::{AoCache, CacheKey, CacheMiss};
+pub use error::AoError;
+pub use progress::Progress;
+pub use settings::{AoSettings, Metric, TrainingSet};
+
+use glam::UVec3;
+
+use histogram::LocalHistograms;
+use packing::PackingScheme;
+use parallel::for_each_chunk;
+use progress::StepClock;
+use quantize::{pack_cluster_ids, train_lbg, LbgParams};
+use search::CodebookSearch;
+use training_set::select_training_voxels;
+
+use crate::scene::Volume;
+
+/// Unpacked histograms a slab of the assignment stream holds at most (per
+/// worker), bytes.
+const SLAB_BYTES: usize = 8 << 20;
+/// Training voxels per parallel chunk.
+const TRAINING_CHUNK: usize = 256;
+
+/// Wall-clock seconds of each step.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StepTimings {
+    /// Global histogram and packing scheme.
+    pub packing: f64,
+    /// Local histograms of the training voxels, packed.
+    pub training_histograms: f64,
+    /// LBG.
+    pub training: f64,
+    /// Local histograms of every voxel, packed and assigned.
+    pub assignment: f64,
+}
+
+impl StepTimings {
+    pub fn total(&self) -> f64 {
+        self.packing + self.training_histograms + self.training + self.assignment
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreprocessStats {
+    /// Vectors in TS (two per training voxel).
+    pub training_vectors: u64,
+    /// Lloyd iterations over all codebook sizes.
+    pub lloyd_iterations: u32,
+    /// Mean distance of TS to the trained packed codebook, in the metric.
+    pub training_distortion: f64,
+    /// Mean distance of every voxel's two packed histograms to their codewords.
+    pub assignment_distortion: f64,
+    /// Of the run that computed the result (a cache hit keeps them).
+    pub timings: StepTimings,
+}
+
+/// What rendering needs from the preprocessing, and what the cache stores.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AoPreprocessed {
+    pub dims: UVec3,
+    /// 2^b histogram bins.
+    pub bins: u32,
+    pub packed_dim: u32,
+    /// n_c.
+    pub clusters: u32,
+    /// `clusters x bins`: each cluster's mean unpacked (normalized) histogram,
+    /// zero for a cluster no voxel uses.
+    pub codebook: Vec<f32>,
+    /// `clusters x packed_dim`: the trained codebook the assignment searched.
+    pub packed_codebook: Vec<f32>,
+    /// `bins x packed_dim` packing scheme ([`PackingScheme::matrix`]).
+    pub packing_matrix: Vec<f32>,
+    /// Hemisphere histograms assigned to each cluster.
+    pub cluster_sizes: Vec<u64>,
+    /// Per voxel (x fastest): [`quantize::pack_cluster_ids`] of the forward and
+    /// backward hemisphere's clusters.
+    pub cluster_ids: Vec<u32>,
+    pub stats: PreprocessStats,
+}
+
+impl AoPreprocessed {
+    /// Codebook histogram of cluster `c`.
+    pub fn cluster_histogram(&self, c: usize) -> &[f32] {
+        &self.codebook[c * self.bins as usize..(c + 1) * self.bins as usize]
+    }
+}
+
+/// Runs the whole preprocessing of `volume`; `progress` hears from every long
+/// step (on the calling thread).
+pub fn preprocess(
+    volume: &Volume,
+    settings: &AoSettings,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<AoPreprocessed, AoError> {
+    settings.validate()?;
+    let metric = settings.metric;
+    let histograms = LocalHistograms::new(volume, settings.radius, settings.bits);
+    let bins = histograms.bins();
+    let mut timings = StepTimings::default();
+
+    // Packing scheme from the normalized global histogram H.
+    let clock = StepClock::start("ao packing");
+    let mut global = vec![0f64; bins];
+    for &k in histograms.voxel_bins() {
+        global[k as usize] += 1.0;
+    }
+    let voxels = volume.voxel_count().max(1) as f64;
+    global.iter_mut().for_each(|h| *h /= voxels);
+    let packing = PackingScheme::from_histogram(&global, settings.packed_dim as usize);
+    let dim = packing.packed_dim;
+    progress(&clock.report(1.0));
+    timings.packing = clock.elapsed().as_secs_f64();
+
+    // Training set: packed forward and backward histograms of the chosen voxels.
+    let clock = StepClock::start("ao training-set histograms");
+    let chosen = select_training_voxels(volume, &settings.training)?;
+    let mut vectors = vec![0f32; chosen.len() * 2 * dim];
+    let chunks = chosen.len().div_ceil(TRAINING_CHUNK);
+    for_each_chunk(
+        chunks,
+        || (histograms.scratch(), vec![0f32; bins], vec![0f32; bins]),
+        |(scratch, forward, backward), c| {
+            let part = &chosen[c * TRAINING_CHUNK..((c + 1) * TRAINING_CHUNK).min(chosen.len())];
+            let mut packed = vec![0f32; part.len() * 2 * dim];
+            for (i, &voxel) in part.iter().enumerate() {
+                histograms.voxel_into(voxel, scratch, forward, backward);
+                packing.pack(forward, &mut packed[2 * i * dim..(2 * i + 1) * dim]);
+                packing.pack(backward, &mut packed[(2 * i + 1) * dim..(2 * i + 2) * dim]);
+            }
+            packed
+        },
+        |c, packed, done| {
+            let start = c * TRAINING_CHUNK * 2 * dim;
+            vectors[start..start + packed.len()].copy_from_slice(&packed);
+            progress(&clock.report(done as f64 / chunks as f64));
+        },
+    );
+    timings.training_histograms = clock.elapsed().as_secs_f64();
+
+    // LBG on the packed training set.
+    let clock = StepClock::start("ao training");
+    let params = LbgParams {
+        metric,
+        clusters: settings.clusters as usize,
+        max_iterations: settings.lbg_iterations,
+        threshold: settings.lbg_threshold,
+    };
+    let training = train_lbg(&vectors, dim, params, &mut |f| progress(&clock.report(f)));
+    drop(vectors);
+    timings.training = clock.elapsed().as_secs_f64();
+    let codebook = training.codebook;
+    let clusters = codebook.len();
+
+    // Every voxel: histograms, packed, nearest codeword; the unpacked
+    // histograms summed per cluster for the final codebook.
+    let clock = StepClock::start("ao assignment");
+    let search = CodebookSearch::new(&codebook, metric);
+    let mut cluster_ids = vec![0u32; volume.voxel_count()];
+    let mut distortion_sum = 0f64;
+    let states = histograms.stream_with(
+        SLAB_BYTES,
+        || ClusterSums { sums: vec![0.0; clusters * bins], sizes: vec![0; clusters] },
+        |sums, slab| assign_slab(slab, &packing, &search, dim, sums),
+        |_, (first, ids, distortion), done, total| {
+            cluster_ids[first..first + ids.len()].copy_from_slice(&ids);
+            distortion_sum += distortion;
+            progress(&clock.report(done as f64 / total as f64));
+        },
+    );
+    let mut sums = vec![0f64; clusters * bins];
+    let mut cluster_sizes = vec![0u64; clusters];
+    for state in states {
+        sums.iter_mut().zip(&state.sums).for_each(|(a, b)| *a += b);
+        cluster_sizes.iter_mut().zip(&state.sizes).for_each(|(a, b)| *a += b);
+    }
+    let codebook_unpacked = (0..clusters * bins)
+        .map(|i| match cluster_sizes[i / bins] {
+            0 => 0.0,
+            n => (sums[i] / n as f64) as f32,
+        })
+        .collect();
+    timings.assignment = clock.elapsed().as_secs_f64();
+
+    Ok(AoPreprocessed {
+        dims: volume.dims,
+        bins: bins as u32,
+        packed_dim: dim as u32,
+        clusters: clusters as u32,
+        codebook: codebook_unpacked,
+        packed_codebook: codebook.words,
+        packing_matrix: packing.matrix(),
+        cluster_sizes,
+        cluster_ids,
+        stats: PreprocessStats {
+            training_vectors: training.assignment.len() as u64,
+            lloyd_iterations: training.iterations,
+            training_distortion: training.distortion,
+            assignment_distortion: distortion_sum / (2.0 * voxels),
+            timings,
+        },
+    })
+}
+
+/// Per-worker sums of the unpacked histograms assigned to each cluster.
+struct ClusterSums {
+    sums: Vec<f64>,
+    sizes: Vec<u64>,
+}
+
+/// Packs and assigns a slab's histograms; returns (first voxel, packed ids,
+/// summed distance). Each search starts at the previous histogram's codeword
+/// (neighbouring voxels have similar surroundings), and a packed histogram
+/// equal to the previous one takes its codeword without a search.
+fn assign_slab(
+    slab: &histogram::HistogramSlab,
+    packing: &PackingScheme,
+    search: &CodebookSearch,
+    dim: usize,
+    sums: &mut ClusterSums,
+) -> (usize, Vec<u32>, f64) {
+    let bins = slab.bins;
+    let mut packed = vec![0f32; dim];
+    // Per hemisphere: the previous voxel's packed histogram, codeword and
+    // distance (forward and backward histograms of one voxel differ a lot, so
+    // each side follows its own neighbour).
+    let mut previous = [vec![f32::NAN; dim], vec![f32::NAN; dim]];
+    let mut previous_id = [0usize; 2];
+    let mut previous_d = [0f32; 2];
+    let mut distortion = 0f64;
+    let mut ids = Vec::with_capacity(slab.voxels.len());
+    for i in 0..slab.voxels.len() {
+        let (forward, backward) = slab.voxel(i);
+        for (side, histogram) in [forward, backward].into_iter().enumerate() {
+            packing.pack(histogram, &mut packed);
+            if packed != previous[side] {
+                (previous_id[side], previous_d[side]) = search.nearest(&packed, previous_id[side]);
+                std::mem::swap(&mut packed, &mut previous[side]);
+            }
+            let id = previous_id[side];
+            distortion += previous_d[side] as f64;
+            sums.sizes[id] += 1;
+            let sum = &mut sums.sums[id * bins..(id + 1) * bins];
+            sum.iter_mut().zip(histogram).for_each(|(s, &h)| *s += h as f64);
+        }
+        ids.push(pack_cluster_ids(previous_id[0] as u32, previous_id[1] as u32));
+    }
+    (slab.voxels.start, ids, distortion)
+}
+
+/// How [`preprocess_cached`] got its result.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum CacheOutcome {
+    /// Loaded from this file.
+    Hit(std::path::PathBuf),
+    /// Computed and stored in this file, after this miss.
+    Stored(std::path::PathBuf, CacheMiss),
+    /// Computed; `ao.cache = false`.
+    Disabled,
+}
+
+/// [`preprocess`] behind the disk cache of `ao.cache_dir`: a sound file for the
+/// same volume content and parameters is loaded; a missing, corrupt or stale
+/// one is rebuilt and replaced.
+pub fn preprocess_cached(
+    volume: &Volume,
+    settings: &AoSettings,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<(AoPreprocessed, CacheOutcome), AoError> {
+    settings.validate()?;
+    if !settings.cache {
+        return Ok((preprocess(volume, settings, progress)?, CacheOutcome::Disabled));
+    }
+    let cache = AoCache::for_settings(settings);
+    let key = CacheKey::new(volume, settings);
+    let miss = match cache.load(&key)? {
+        Ok(result) => return Ok((result, CacheOutcome::Hit(cache.path(&key)))),
+        Err(miss) => miss,
+    };
+    let result = preprocess(volume, settings, progress)?;
+    let path = cache.store(&key, &result)?;
+    Ok((result, CacheOutcome::Stored(path, miss)))
+}

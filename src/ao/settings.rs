@@ -1,0 +1,317 @@
+//! AO preprocessing parameters from the scene file's `[ao]` table.
+//!
+//! ```toml
+//! [ao]
+//! radius = 8          # sphere radius r, in units of d_min (voxels)
+//! bits = 8            # 2^b intensity bins per local histogram
+//! packed_dim = 64     # dimension of the packed histograms the VQ trains on
+//! clusters = 2048     # codebook size n_c
+//! metric = "l2"       # "l2", "l1" or "lmax"
+//! training = { rule = "random", count = 16384, seed = 1 }
+//! # training = { rule = "gradient", eps = 0.05, count = 16384, seed = 1 }
+//! ```
+//!
+//! `clusters` accepts 2..=2048: the paper works with 256..=2048; smaller
+//! codebooks are allowed for tests and for the error-against-n_c curve (the
+//! paper's figure 6 goes down to 256, our bench goes lower).
+
+use serde::Deserialize;
+
+use super::error::AoError;
+use crate::scene::Scene;
+
+/// Distance between histograms during vector quantization (paper figure 6).
+#[derive(Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[serde(rename_all = "lowercase")]
+pub enum Metric {
+    L2,
+    L1,
+    Lmax,
+}
+
+impl Metric {
+    pub const ALL: [Metric; 3] = [Metric::L2, Metric::L1, Metric::Lmax];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Metric::L2 => "l2",
+            Metric::L1 => "l1",
+            Metric::Lmax => "lmax",
+        }
+    }
+}
+
+/// Which voxels make up the training set TS (section 3.2). Each voxel
+/// contributes two vectors, its forward and its backward histogram.
+#[derive(Deserialize, Clone, Copy, Debug, PartialEq)]
+#[serde(tag = "rule", rename_all = "lowercase", deny_unknown_fields)]
+pub enum TrainingSet {
+    /// `count` voxels drawn uniformly without replacement (all voxels when the
+    /// volume has fewer).
+    Random {
+        #[serde(default = "default_training_count")]
+        count: u32,
+        #[serde(default = "default_training_seed")]
+        seed: u64,
+    },
+    /// The voxels with |grad f| > `eps` (normalized intensity per d_min), the
+    /// paper's choice for colour bleeding on surfaces; a seeded uniform
+    /// subsample of `count` of them when there are more.
+    Gradient {
+        eps: f32,
+        #[serde(default = "default_training_count")]
+        count: u32,
+        #[serde(default = "default_training_seed")]
+        seed: u64,
+    },
+}
+
+fn default_training_count() -> u32 {
+    16_384
+}
+
+fn default_training_seed() -> u64 {
+    1
+}
+
+impl TrainingSet {
+    pub fn count(&self) -> u32 {
+        match *self {
+            TrainingSet::Random { count, .. } | TrainingSet::Gradient { count, .. } => count,
+        }
+    }
+}
+
+#[derive(Deserialize, Clone, Debug, PartialEq)]
+#[serde(deny_unknown_fields, default)]
+pub struct AoSettings {
+    /// Sphere radius r in units of d_min (the smallest voxel spacing).
+    pub radius: u32,
+    /// Intensity bits b: local histograms have 2^b bins.
+    pub bits: u32,
+    /// Dimension of the packed histograms (section 3.2's histogram packing).
+    pub packed_dim: u32,
+    /// Codebook size n_c.
+    pub clusters: u32,
+    pub metric: Metric,
+    pub training: TrainingSet,
+    /// Most Lloyd iterations per codebook size during LBG.
+    pub lbg_iterations: u32,
+    /// Lloyd iterations stop once the relative distortion change is below this.
+    pub lbg_threshold: f64,
+    /// Load and store the result in the disk cache.
+    pub cache: bool,
+    /// Cache directory; default [`super::cache::default_cache_dir`].
+    pub cache_dir: Option<String>,
+}
+
+impl Default for AoSettings {
+    fn default() -> Self {
+        // The paper's real-world setting (2048 codewords, packed dimension 64)
+        // at a radius that suits the 64^3 test scenes.
+        AoSettings {
+            radius: 8,
+            bits: 8,
+            packed_dim: 64,
+            clusters: 2048,
+            metric: Metric::L2,
+            training: TrainingSet::Random { count: default_training_count(), seed: default_training_seed() },
+            lbg_iterations: 20,
+            lbg_threshold: 1e-3,
+            cache: true,
+            cache_dir: None,
+        }
+    }
+}
+
+/// Top-level keys, for the did-you-mean of a misspelt one.
+const KEYS: [&str; 10] = [
+    "radius",
+    "bits",
+    "packed_dim",
+    "clusters",
+    "metric",
+    "training",
+    "lbg_iterations",
+    "lbg_threshold",
+    "cache",
+    "cache_dir",
+];
+const TRAINING_KEYS: [&str; 4] = ["rule", "count", "seed", "eps"];
+
+pub const MAX_RADIUS: u32 = 64;
+pub const MAX_BITS: u32 = 12;
+pub const MAX_CLUSTERS: u32 = 2048;
+
+impl AoSettings {
+    /// Reads `[ao]` (defaults when the table is missing) and validates it.
+    pub fn from_scene(scene: &Scene) -> Result<Self, AoError> {
+        match scene.techniques.get("ao") {
+            None => Ok(AoSettings::default()),
+            Some(value) => Self::from_toml(value),
+        }
+    }
+
+    /// Parses and validates an `[ao]` table; a misspelt key is an error that
+    /// suggests the nearest known one.
+    pub fn from_toml(value: &toml::Value) -> Result<Self, AoError> {
+        let table = value.as_table().ok_or_else(|| AoError::Invalid("[ao] must be a table".into()))?;
+        check_keys("ao", table, &KEYS)?;
+        if let Some(training) = table.get("training").and_then(|t| t.as_table()) {
+            check_keys("ao.training", training, &TRAINING_KEYS)?;
+        }
+        let settings: AoSettings = value
+            .clone()
+            .try_into()
+            .map_err(|e: toml::de::Error| AoError::Invalid(format!("[ao]: {}", e.message())))?;
+        settings.validate()?;
+        Ok(settings)
+    }
+
+    /// Every value in its range; the error names `ao.key = value` and the range.
+    pub fn validate(&self) -> Result<(), AoError> {
+        fn out(key: &str, value: impl std::fmt::Display, allowed: &str) -> AoError {
+            AoError::Invalid(format!("ao.{key} = {value}: allowed {allowed}"))
+        }
+        if !(1..=MAX_RADIUS).contains(&self.radius) {
+            return Err(out("radius", self.radius, &format!("1..={MAX_RADIUS} (voxels)")));
+        }
+        if !(1..=MAX_BITS).contains(&self.bits) {
+            return Err(out("bits", self.bits, &format!("1..={MAX_BITS} (2^bits intensity bins)")));
+        }
+        let bins = 1u32 << self.bits;
+        if !(2..=bins).contains(&self.packed_dim) {
+            return Err(out(
+                "packed_dim",
+                self.packed_dim,
+                &format!("2..={bins} (at most 2^bits with bits = {})", self.bits),
+            ));
+        }
+        if !(2..=MAX_CLUSTERS).contains(&self.clusters) {
+            return Err(out("clusters", self.clusters, &format!("2..={MAX_CLUSTERS} (the paper uses 256..=2048)")));
+        }
+        let count = self.training.count();
+        if count < 1 {
+            return Err(out("training.count", count, "at least 1 voxel"));
+        }
+        if let TrainingSet::Gradient { eps, .. } = self.training {
+            if !(eps.is_finite() && eps >= 0.0) {
+                return Err(out("training.eps", eps, ">= 0 (normalized intensity per voxel)"));
+            }
+        }
+        if !(1..=1000).contains(&self.lbg_iterations) {
+            return Err(out("lbg_iterations", self.lbg_iterations, "1..=1000"));
+        }
+        if !(self.lbg_threshold.is_finite() && self.lbg_threshold >= 0.0 && self.lbg_threshold < 1.0) {
+            return Err(out("lbg_threshold", self.lbg_threshold, "0 <= threshold < 1 (relative distortion change)"));
+        }
+        if self.cache_dir.as_deref() == Some("") {
+            return Err(out("cache_dir", "\"\"", "a directory path (leave it out for the default)"));
+        }
+        Ok(())
+    }
+
+    /// Number of histogram bins, 2^bits.
+    pub fn bins(&self) -> usize {
+        1 << self.bits
+    }
+}
+
+fn check_keys(prefix: &str, table: &toml::Table, known: &[&str]) -> Result<(), AoError> {
+    for key in table.keys() {
+        if known.contains(&key.as_str()) {
+            continue;
+        }
+        let hint = match known.iter().min_by_key(|k| edit_distance(k, key)) {
+            Some(near) if edit_distance(near, key) <= 3 => format!("did you mean {prefix}.{near}? "),
+            _ => String::new(),
+        };
+        return Err(AoError::Invalid(format!(
+            "{prefix}.{key} is not a setting: {hint}the known keys are {}",
+            known.join(", ")
+        )));
+    }
+    Ok(())
+}
+
+/// Levenshtein distance between two keys.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substitution = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitution.min(row[j] + 1).min(row[j + 1] + 1);
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<AoSettings, AoError> {
+        let value: toml::Value = toml::from_str(text).unwrap();
+        AoSettings::from_toml(&value)
+    }
+
+    #[test]
+    fn an_empty_table_gives_the_defaults_and_they_are_valid() {
+        assert_eq!(parse("").unwrap(), AoSettings::default());
+        AoSettings::default().validate().unwrap();
+    }
+
+    #[test]
+    fn every_key_is_read() {
+        let s = parse(
+            "radius = 4\nbits = 6\npacked_dim = 16\nclusters = 64\nmetric = \"lmax\"\nlbg_iterations = 7\n\
+             lbg_threshold = 0.01\ncache = false\ncache_dir = \"/tmp/x\"\n\
+             training = { rule = \"gradient\", eps = 0.1, count = 100, seed = 9 }",
+        )
+        .unwrap();
+        assert_eq!((s.radius, s.bits, s.packed_dim, s.clusters), (4, 6, 16, 64));
+        assert_eq!(s.metric, Metric::Lmax);
+        assert_eq!(s.training, TrainingSet::Gradient { eps: 0.1, count: 100, seed: 9 });
+        assert_eq!((s.lbg_iterations, s.lbg_threshold, s.cache), (7, 0.01, false));
+        assert_eq!(s.cache_dir.as_deref(), Some("/tmp/x"));
+        let r = parse("training = { rule = \"random\", count = 5 }").unwrap();
+        assert_eq!(r.training, TrainingSet::Random { count: 5, seed: 1 });
+    }
+
+    #[test]
+    fn a_misspelt_key_suggests_the_right_one() {
+        let e = parse("radus = 4").unwrap_err().to_string();
+        assert!(e.contains("ao.radus") && e.contains("did you mean ao.radius?"), "{e}");
+        let e = parse("training = { rule = \"random\", cuont = 4 }").unwrap_err().to_string();
+        assert!(e.contains("did you mean ao.training.count?"), "{e}");
+    }
+
+    #[test]
+    fn out_of_range_values_name_key_value_and_range() {
+        for (text, needle) in [
+            ("radius = 0", "ao.radius = 0: allowed 1..=64"),
+            ("bits = 13", "ao.bits = 13: allowed 1..=12"),
+            ("bits = 4\npacked_dim = 32", "ao.packed_dim = 32: allowed 2..=16"),
+            ("clusters = 4096", "ao.clusters = 4096: allowed 2..=2048"),
+            ("lbg_threshold = 1.5", "ao.lbg_threshold = 1.5"),
+            ("training = { rule = \"gradient\", eps = -1.0 }", "ao.training.eps = -1"),
+            ("training = { rule = \"random\", count = 0 }", "ao.training.count = 0"),
+        ] {
+            let e = parse(text).unwrap_err().to_string();
+            assert!(e.contains(needle), "{text}: {e}");
+        }
+    }
+
+    #[test]
+    fn unknown_metric_and_rule_are_errors() {
+        let e = parse("metric = \"l3\"").unwrap_err().to_string();
+        assert!(e.contains("l2") && e.contains("lmax"), "{e}");
+        let e = parse("training = { rule = \"edges\" }").unwrap_err().to_string();
+        assert!(e.contains("random") && e.contains("gradient"), "{e}");
+        assert!(parse("training = { rule = \"gradient\" }").unwrap_err().to_string().contains("eps"));
+    }
+}

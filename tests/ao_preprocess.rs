@@ -1,0 +1,433 @@
+//! AO preprocessing on the CPU (docs/ao.md): local histograms against hand
+//! computations, the streamed preprocessing against a recomputation, VQ
+//! behaviour on real histograms, the disk cache, and the Cornell box timing.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use glam::{UVec3, Vec3};
+use sweeplab::ao::cache::{AoCache, CacheKey, CacheMiss};
+use sweeplab::ao::histogram::{LocalHistograms, SphereStencil};
+use sweeplab::ao::packing::PackingScheme;
+use sweeplab::ao::quantize::{distance, unpack_cluster_ids};
+use sweeplab::ao::{preprocess, preprocess_cached, AoPreprocessed, AoSettings, CacheOutcome, Metric, TrainingSet};
+use sweeplab::scene::scene_file::load_scene;
+use sweeplab::scene::synthetic::cornell_box;
+use sweeplab::scene::{Volume, VoxelData};
+
+/// 9^3 U8 volume: material A (100) for z <= 4, material B (200) for z >= 5.
+fn two_materials() -> Volume {
+    let n = 9u32;
+    let data = (0..n * n * n).map(|i| if i / (n * n) <= 4 { 100 } else { 200 }).collect();
+    Volume {
+        name: "two-materials".into(),
+        dims: UVec3::splat(n),
+        spacing: Vec3::ONE,
+        data: VoxelData::U8(data),
+        value_range: (100.0, 200.0),
+    }
+}
+
+fn index(v: &Volume, p: [u32; 3]) -> usize {
+    ((p[2] * v.dims.y + p[1]) * v.dims.x + p[0]) as usize
+}
+
+fn histograms_of(h: &LocalHistograms, voxel: usize) -> (Vec<f32>, Vec<f32>) {
+    let (mut f, mut b) = (vec![0.0; h.bins()], vec![0.0; h.bins()]);
+    h.voxel_into(voxel, &mut h.scratch(), &mut f, &mut b);
+    (f, b)
+}
+
+fn close(a: f32, b: f64) -> bool {
+    (a as f64 - b).abs() < 1e-6
+}
+
+/// Radius 2 around a voxel, by hand (offsets (x, y, z), d^2 = x^2 + y^2 + z^2):
+/// - plane z = 0: 4 at d^2 = 1, 4 at 2, 4 at 4: weights 4 + 4/2 + 4/4 = 7, 12 voxels;
+/// - layer z = +-1: 1 at d^2 = 1, 4 at 2, 4 at 3: 1 + 2 + 4/3 = 13/3, 9 voxels each;
+/// - layer z = +-2: 1 at d^2 = 4: 1/4, 1 voxel each.
+///
+/// N_r = 12 + 18 + 2 = 32 (33 lattice points with the centre).
+const PLANE: f64 = 7.0;
+const LAYER1: f64 = 13.0 / 3.0;
+const LAYER2: f64 = 0.25;
+const N_R: f64 = 32.0;
+
+#[test]
+fn histograms_of_two_materials_match_hand_computed_weights() {
+    let v = two_materials();
+    let h = LocalHistograms::new(&v, 2, 8);
+    assert_eq!(h.stencil().voxel_count(), 32);
+    // On the interface: gradient +z (towards B). Forward (against the gradient)
+    // holds the A layers below; backward the B layers above; the plane z = 4 is
+    // A and is shared half and half.
+    let (f, b) = histograms_of(&h, index(&v, [4, 4, 4]));
+    assert!(close(f[100], (LAYER1 + LAYER2 + PLANE / 2.0) / N_R), "{}", f[100]);
+    assert!(close(f[200], 0.0));
+    assert!(close(b[100], PLANE / 2.0 / N_R), "{}", b[100]);
+    assert!(close(b[200], (LAYER1 + LAYER2) / N_R), "{}", b[200]);
+    let other: f32 = (0..256).filter(|&k| k != 100 && k != 200).map(|k| f[k] + b[k]).sum();
+    assert_eq!(other, 0.0);
+
+    // Inside A near the lower border, zero gradient: both hemispheres hold half
+    // of what is in the volume (the layer z = -1 is outside and adds nothing).
+    let (f, b) = histograms_of(&h, index(&v, [4, 4, 1]));
+    let inside = (PLANE + 2.0 * LAYER1 + LAYER2) / N_R;
+    assert!(close(f[100], inside / 2.0) && close(b[100], inside / 2.0), "{} {}", f[100], b[100]);
+
+    // Fully inside the volume, each hemisphere sums to the stencil's half mass
+    // (whatever the gradient): (7 + 2 * 13/3 + 2/4) / 2 / 32.
+    let half = (PLANE + 2.0 * LAYER1 + 2.0 * LAYER2) / 2.0 / N_R;
+    assert!((h.stencil().full_hemisphere_mass() - half).abs() < 1e-12);
+    for p in [[4, 4, 4], [4, 4, 3], [4, 4, 5], [3, 4, 6]] {
+        let (f, b) = histograms_of(&h, index(&v, p));
+        let (sf, sb): (f32, f32) = (f.iter().sum(), b.iter().sum());
+        assert!(close(sf, half) && close(sb, half), "{p:?}: {sf} {sb} vs {half}");
+    }
+
+    // Four bins (b = 2): 100 -> bin 1, 200 -> bin 3.
+    let h2 = LocalHistograms::new(&v, 2, 2);
+    let (f, b) = histograms_of(&h2, index(&v, [4, 4, 4]));
+    assert!(close(f[1], (LAYER1 + LAYER2 + PLANE / 2.0) / N_R) && close(b[3], (LAYER1 + LAYER2) / N_R));
+    assert_eq!((f[0], f[2], f[3], b[0], b[2]), (0.0, 0.0, 0.0, 0.0, 0.0));
+}
+
+#[test]
+fn the_sphere_follows_anisotropic_spacing_in_units_of_d_min() {
+    assert_eq!(SphereStencil::new(2, Vec3::ONE).voxel_count(), 32);
+    // Spacing 2 along z: d_min = 1; offsets z = +-1 are 2 d_min away, so only
+    // (0, 0, +-1) with weight 1/4 remain beside the plane z = 0.
+    let s = SphereStencil::new(2, Vec3::new(1.0, 1.0, 2.0));
+    assert_eq!(s.voxel_count(), 14);
+    assert_eq!(s.extent, UVec3::new(2, 2, 1));
+    let off_plane: Vec<f64> = (0..14).filter(|&i| s.offsets[i].z != 0).map(|i| s.weights[i]).collect();
+    assert_eq!(off_plane, vec![0.25, 0.25]);
+}
+
+#[test]
+fn streamed_slabs_cover_every_voxel_once_and_equal_single_voxels() {
+    let v = cornell_box(12);
+    let h = LocalHistograms::new(&v, 3, 8);
+    let mut seen = vec![0u32; v.voxel_count()];
+    let mut mismatches = 0;
+    // A tiny slab size: one x-row per slab.
+    h.stream(
+        1,
+        |slab| slab.clone(),
+        |_, slab, _, _| {
+            for (i, voxel) in slab.voxels.clone().enumerate() {
+                seen[voxel] += 1;
+                let (f, b) = histograms_of(&h, voxel);
+                let (sf, sb) = slab.voxel(i);
+                mismatches += usize::from(sf != f.as_slice() || sb != b.as_slice());
+                // Forward + backward is the full sphere, at most 1 (all of it inside).
+                let total: f32 = sf.iter().chain(sb).sum();
+                assert!(total > 0.0 && total <= 1.0 + 1e-5);
+            }
+        },
+    );
+    assert!(seen.iter().all(|&s| s == 1));
+    assert_eq!(mismatches, 0);
+}
+
+/// Small settings for a volume of a few thousand voxels.
+fn small(clusters: u32, metric: Metric) -> AoSettings {
+    AoSettings {
+        radius: 3,
+        bits: 8,
+        packed_dim: 16,
+        clusters,
+        metric,
+        training: TrainingSet::Random { count: 4096, seed: 3 },
+        lbg_iterations: 20,
+        lbg_threshold: 1e-4,
+        cache: false,
+        cache_dir: None,
+    }
+}
+
+fn run(volume: &Volume, settings: &AoSettings) -> AoPreprocessed {
+    preprocess(volume, settings, &mut |_| {}).expect("preprocess")
+}
+
+#[test]
+fn ids_are_the_nearest_packed_codewords_and_the_codebook_averages_members() {
+    let v = cornell_box(16);
+    let s = small(16, Metric::L2);
+    let r = run(&v, &s);
+    assert_eq!(r.cluster_ids.len(), v.voxel_count());
+    assert_eq!((r.clusters, r.bins, r.packed_dim), (16, 256, 16));
+    let h = LocalHistograms::new(&v, s.radius, s.bits);
+    let dim = r.packed_dim as usize;
+    let bins = r.bins as usize;
+    let packed_word = |c: usize| &r.packed_codebook[c * dim..(c + 1) * dim];
+    let mut sums = vec![0f64; 16 * bins];
+    let mut sizes = vec![0u64; 16];
+    for voxel in 0..v.voxel_count() {
+        let (f, b) = histograms_of(&h, voxel);
+        let (fid, bid) = unpack_cluster_ids(r.cluster_ids[voxel]);
+        for (hist, id) in [(&f, fid as usize), (&b, bid as usize)] {
+            let packed: Vec<f32> =
+                (0..dim).map(|j| (0..bins).map(|k| hist[k] * r.packing_matrix[k * dim + j]).sum()).collect();
+            let d_id = distance(Metric::L2, &packed, packed_word(id));
+            for c in 0..16 {
+                // The matrix product sums in another order than the packing:
+                // allow float noise, nothing more.
+                assert!(d_id <= distance(Metric::L2, &packed, packed_word(c)) + 1e-6, "voxel {voxel}: {id} vs {c}");
+            }
+            sizes[id] += 1;
+            for k in 0..bins {
+                sums[id * bins + k] += hist[k] as f64;
+            }
+        }
+    }
+    assert_eq!(sizes, r.cluster_sizes);
+    for c in 0..16 {
+        for k in 0..bins {
+            let mean = if sizes[c] == 0 { 0.0 } else { sums[c * bins + k] / sizes[c] as f64 };
+            assert!((r.codebook[c * bins + k] as f64 - mean).abs() < 1e-6, "cluster {c} bin {k}");
+        }
+    }
+    // Several clusters in use, and the packing matrix is the one of the volume's histogram.
+    assert!(sizes.iter().filter(|&&n| n > 0).count() >= 8, "{sizes:?}");
+    let mut global = vec![0f64; 256];
+    for &k in h.voxel_bins() {
+        global[k as usize] += 1.0 / v.voxel_count() as f64;
+    }
+    assert_eq!(r.packing_matrix, PackingScheme::from_histogram(&global, 16).matrix());
+}
+
+#[test]
+fn distortion_falls_with_the_codebook_size_for_every_metric_and_metrics_differ() {
+    let v = cornell_box(16);
+    let mut codebooks = vec![];
+    for metric in Metric::ALL {
+        let results: Vec<AoPreprocessed> = [4, 16, 64].iter().map(|&n| run(&v, &small(n, metric))).collect();
+        let training: Vec<f64> = results.iter().map(|r| r.stats.training_distortion).collect();
+        let all: Vec<f64> = results.iter().map(|r| r.stats.assignment_distortion).collect();
+        assert!(training.windows(2).all(|w| w[1] < w[0]), "{metric:?} training: {training:?}");
+        assert!(all.windows(2).all(|w| w[1] < w[0]), "{metric:?} all voxels: {all:?}");
+        codebooks.push(results[1].packed_codebook.clone());
+    }
+    assert_ne!(codebooks[0], codebooks[1], "L2 and L1 trained the same codebook");
+    assert_ne!(codebooks[0], codebooks[2], "L2 and Lmax trained the same codebook");
+    assert_ne!(codebooks[1], codebooks[2], "L1 and Lmax trained the same codebook");
+}
+
+#[test]
+fn the_gradient_training_set_trains_on_surfaces() {
+    let v = cornell_box(16);
+    let mut s = small(8, Metric::L1);
+    s.training = TrainingSet::Gradient { eps: 0.05, count: 1000, seed: 2 };
+    let r = run(&v, &s);
+    assert_eq!(r.stats.training_vectors, 2000);
+    s.training = TrainingSet::Gradient { eps: 5.0, count: 1000, seed: 2 };
+    let e = preprocess(&v, &s, &mut |_| {}).unwrap_err().to_string();
+    assert!(e.contains("ao.training.eps"), "{e}");
+}
+
+fn temp_cache(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("sweeplab-ao-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn cached(volume: &Volume, s: &AoSettings) -> (AoPreprocessed, CacheOutcome) {
+    preprocess_cached(volume, s, &mut |_| {}).expect("preprocess_cached")
+}
+
+/// Equal results, apart from the wall-clock timings of the run that made them.
+fn same_result(a: &AoPreprocessed, b: &AoPreprocessed) -> bool {
+    let mut b = b.clone();
+    b.stats.timings = a.stats.timings.clone();
+    *a == b
+}
+
+fn stored_reason(outcome: CacheOutcome) -> CacheMiss {
+    match outcome {
+        CacheOutcome::Stored(_, miss) => miss,
+        other => panic!("expected a rebuild, got {other:?}"),
+    }
+}
+
+#[test]
+fn the_cache_hits_and_is_invalidated_by_content_and_parameters() {
+    let dir = temp_cache("hit");
+    let mut s = small(8, Metric::L2);
+    s.cache = true;
+    s.cache_dir = Some(dir.display().to_string());
+    let v = cornell_box(12);
+
+    let (first, outcome) = cached(&v, &s);
+    assert_eq!(stored_reason(outcome), CacheMiss::Absent);
+    let (second, outcome) = cached(&v, &s);
+    assert!(matches!(outcome, CacheOutcome::Hit(_)), "{outcome:?}");
+    assert!(first == second, "a hit returns exactly what was stored, timings included");
+
+    // Content: one voxel changed.
+    let mut changed = v.clone();
+    if let VoxelData::U8(d) = &mut changed.data {
+        d[700] ^= 1;
+    }
+    assert_ne!(CacheKey::new(&v, &s), CacheKey::new(&changed, &s));
+    assert_eq!(stored_reason(cached(&changed, &s).1), CacheMiss::Absent);
+
+    // Every parameter is in the key.
+    let variants: [fn(&mut AoSettings); 8] = [
+        |s| s.radius = 2,
+        |s| s.bits = 6,
+        |s| s.packed_dim = 8,
+        |s| s.clusters = 4,
+        |s| s.metric = Metric::Lmax,
+        |s| s.training = TrainingSet::Random { count: 4096, seed: 4 },
+        |s| s.training = TrainingSet::Gradient { eps: 0.05, count: 4096, seed: 3 },
+        |s| s.lbg_iterations = 3,
+    ];
+    for change in variants {
+        let mut other = s.clone();
+        change(&mut other);
+        assert_ne!(CacheKey::new(&v, &s), CacheKey::new(&v, &other), "{other:?}");
+    }
+    let mut other = s.clone();
+    other.radius = 2;
+    let (r2, outcome) = cached(&v, &other);
+    assert_eq!(stored_reason(outcome), CacheMiss::Absent);
+    assert!(r2.cluster_ids != first.cluster_ids);
+    // The first result is still there.
+    assert!(matches!(cached(&v, &s).1, CacheOutcome::Hit(_)));
+    // Directory and on/off are not part of the key.
+    let mut elsewhere = s.clone();
+    elsewhere.cache_dir = Some("/elsewhere".into());
+    assert_eq!(CacheKey::new(&v, &s), CacheKey::new(&v, &elsewhere));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_corrupt_or_stale_cache_file_is_rebuilt_never_trusted() {
+    let dir = temp_cache("corrupt");
+    let mut s = small(8, Metric::L1);
+    s.cache = true;
+    s.cache_dir = Some(dir.display().to_string());
+    let v = cornell_box(12);
+    let (good, _) = cached(&v, &s);
+    let cache = AoCache::new(&dir);
+    let key = CacheKey::new(&v, &s);
+    let path = cache.path(&key);
+    let bytes = std::fs::read(&path).unwrap();
+
+    let damage: Vec<(&str, Vec<u8>)> = vec![
+        ("truncated", bytes[..bytes.len() / 2].to_vec()),
+        ("truncated by one byte", bytes[..bytes.len() - 1].to_vec()),
+        ("empty", vec![]),
+        ("bit flipped in the payload", {
+            let mut b = bytes.clone();
+            let i = b.len() / 2;
+            b[i] ^= 0x10;
+            b
+        }),
+        ("bit flipped in the magic", {
+            let mut b = bytes.clone();
+            b[0] ^= 1;
+            b
+        }),
+        ("bit flipped in the checksum", {
+            let mut b = bytes.clone();
+            let i = b.len() - 1;
+            b[i] ^= 0x80;
+            b
+        }),
+    ];
+    for (what, damaged) in damage {
+        std::fs::write(&path, &damaged).unwrap();
+        let (rebuilt, outcome) = cached(&v, &s);
+        assert!(matches!(stored_reason(outcome), CacheMiss::Corrupt(_)), "{what}");
+        assert!(same_result(&rebuilt, &good), "{what}: the rebuilt result differs");
+        let reloaded = cache.load(&key).unwrap().unwrap_or_else(|miss| panic!("{what}: rewritten file {miss:?}"));
+        assert!(same_result(&reloaded, &good), "{what}: the rewritten file");
+        assert!(matches!(cached(&v, &s).1, CacheOutcome::Hit(_)), "{what}");
+    }
+
+    // A sound file written for other parameters, under this key's name: stale.
+    let mut other = s.clone();
+    other.clusters = 4;
+    let other_key = CacheKey::new(&v, &other);
+    let (other_result, _) = cached(&v, &other);
+    std::fs::copy(cache.path(&other_key), &path).unwrap();
+    let (rebuilt, outcome) = cached(&v, &s);
+    assert!(matches!(stored_reason(outcome), CacheMiss::Stale(_)));
+    assert!(same_result(&rebuilt, &good));
+    assert!(!same_result(&rebuilt, &other_result));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_cornell_scene_reads_its_ao_table_and_preprocesses_in_seconds() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/cornell-box.toml");
+    let scene = load_scene(&path, &[]).expect("cornell-box.toml");
+    let mut s = AoSettings::from_scene(&scene).expect("[ao]");
+    assert_eq!(s.radius, 8);
+    s.cache = false;
+    s.clusters = 256;
+    let started = Instant::now();
+    let mut steps: Vec<String> = vec![];
+    let r = preprocess(&scene.volume, &s, &mut |p| {
+        if steps.last().map(String::as_str) != Some(p.step) {
+            steps.push(p.step.to_string());
+        }
+    })
+    .expect("preprocess");
+    let seconds = started.elapsed().as_secs_f64();
+    let t = &r.stats.timings;
+    eprintln!(
+        "cornell-box 64^3 r = 8, n_c = 256: {seconds:.2} s (packing {:.3}, TS histograms {:.2}, training {:.2}, assignment {:.2}), {} Lloyd iterations",
+        t.packing, t.training_histograms, t.training, t.assignment, r.stats.lloyd_iterations
+    );
+    assert_eq!(steps, ["ao packing", "ao training-set histograms", "ao training", "ao assignment"]);
+    assert_eq!(r.dims, UVec3::splat(64));
+    // "A few seconds" on two shared cores; the bound leaves room for a busy machine.
+    assert!(seconds < 60.0, "{seconds} s");
+}
+
+/// Timing of engine.vti (256 x 256 x 128), run by hand:
+/// `SWEEPLAB_DATA=../shared/data AO_RADIUS=8 AO_CLUSTERS=2048 cargo test --release
+/// --test ao_preprocess engine -- --ignored --nocapture`
+#[test]
+#[ignore = "a measurement of minutes, not a check"]
+fn engine_preprocessing_timing() {
+    let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
+    let volume = sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)");
+    let var = |name: &str, default: u32| std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default);
+    let s = AoSettings {
+        radius: var("AO_RADIUS", 8),
+        clusters: var("AO_CLUSTERS", 2048),
+        cache: false,
+        ..AoSettings::default()
+    };
+    let started = Instant::now();
+    let mut last_step = String::new();
+    let r = preprocess(&volume, &s, &mut |p| {
+        if p.step != last_step || p.fraction >= 1.0 {
+            eprintln!("{}", p.line());
+            last_step = p.step.to_string();
+        }
+    })
+    .expect("preprocess");
+    let t = &r.stats.timings;
+    eprintln!(
+        "engine {:?} r = {} n_c = {} packed {}: total {:.1} s: packing {:.3}, TS histograms {:.2}, training {:.2} ({} Lloyd iterations, {} vectors), assignment {:.2}; stencil {} voxels; distortion TS {:.3e}, all {:.3e}",
+        volume.dims,
+        s.radius,
+        s.clusters,
+        s.packed_dim,
+        started.elapsed().as_secs_f64(),
+        t.packing,
+        t.training_histograms,
+        t.training,
+        r.stats.lloyd_iterations,
+        r.stats.training_vectors,
+        t.assignment,
+        SphereStencil::new(s.radius, volume.spacing).voxel_count(),
+        r.stats.training_distortion,
+        r.stats.assignment_distortion,
+    );
+}
