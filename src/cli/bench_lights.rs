@@ -14,7 +14,7 @@ use std::process::ExitCode;
 use sweeplab::bench::{
     fit_line, median, plot_error_vs_time, plot_lines, AxisScale, BenchRow, BenchTable, Chart, Progress, Series,
 };
-use sweeplab::lightvolume::{LightVolumeFrame, LightVolumeRenderer, UpdateKind};
+use sweeplab::lightvolume::{CostEstimate, LightVolumeFrame, LightVolumeRenderer, LightVolumeSettings, UpdateKind};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique};
@@ -76,25 +76,20 @@ impl Update {
     }
 }
 
-/// `scene` with `[lightvolume]` set to what a measurement needs (scale,
-/// coherent, cost estimate, then `extra` keys); other light volume keys from the
+/// `scene` with its light volume settings set to what a measurement needs
+/// (scale, coherent, cost estimate, then `extra`); other settings from the
 /// scene (`--set lightvolume.substep=0.5`) are kept.
 fn lightvolume_scene(
     scene: &Scene,
     scale: u32,
     coherent: bool,
-    cost_estimate: &str,
-    extra: &[(&str, toml::Value)],
+    cost_estimate: CostEstimate,
+    extra: impl FnOnce(&mut LightVolumeSettings),
 ) -> Scene {
     let mut s = scene.clone();
-    let mut lv = s.techniques.get("lightvolume").and_then(|v| v.as_table()).cloned().unwrap_or_default();
-    lv.insert("scale".into(), toml::Value::Integer(scale.into()));
-    lv.insert("coherent".into(), toml::Value::Boolean(coherent));
-    lv.insert("cost_estimate".into(), toml::Value::String(cost_estimate.into()));
-    for (key, value) in extra {
-        lv.insert((*key).into(), value.clone());
-    }
-    s.techniques.insert("lightvolume".into(), toml::Value::Table(lv));
+    let lv = &mut s.settings.lightvolume;
+    (lv.scale, lv.coherent, lv.cost_estimate) = (scale, coherent, cost_estimate);
+    extra(lv);
     s
 }
 
@@ -421,7 +416,13 @@ fn table1(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mut
                 (false, &[Update::EntireSequential][..]),
                 (true, &[Update::EntireCoherent, Update::StateChange, Update::Toggle][..]),
             ] {
-                let s = lightvolume_scene(scene, scale, coherent, if coherent { "selective" } else { "entire" }, &[]);
+                let s = lightvolume_scene(
+                    scene,
+                    scale,
+                    coherent,
+                    if coherent { CostEstimate::Selective } else { CostEstimate::Entire },
+                    |_| {},
+                );
                 let results = measure_all(meter, &s, &lights, updates, &label)?;
                 measured.extend(updates.iter().copied().zip(results));
             }
@@ -501,7 +502,7 @@ fn incremental(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report:
     let count = args.light_counts.iter().copied().max().unwrap_or(2);
     let lights: Vec<Option<Light>> = table1_lights(count as usize).into_iter().map(Some).collect();
     let entire = {
-        let s = lightvolume_scene(scene, scale, true, "entire", &[]);
+        let s = lightvolume_scene(scene, scale, true, CostEstimate::Entire, |_| {});
         let gpu = GpuScene::upload(meter.ctx, &s).context("uploading the scene")?;
         let mut renderer = LightVolumeRenderer::new(&gpu)?;
         timed_update(meter.ctx, &mut renderer, &mut meter.profiler, &lights, true)?; // untimed warm-up
@@ -511,7 +512,7 @@ fn incremental(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report:
         meter
             .progress
             .start_step(&format!("incremental {} {count} lights, {n} passes a frame", resolution_label(scale)));
-        let s = lightvolume_scene(scene, scale, true, "passes", &[("max_passes_per_frame", n.into())]);
+        let s = lightvolume_scene(scene, scale, true, CostEstimate::Passes, |lv| lv.max_passes_per_frame = n);
         let gpu = GpuScene::upload(meter.ctx, &s).context("uploading the scene")?;
         let mut renderer = LightVolumeRenderer::new(&gpu)?;
         // Untimed: records every pass and compiles the shaders.
@@ -548,7 +549,7 @@ fn scaling(args: &BenchLightsArgs, meter: &mut Meter, scene: &Scene, report: &mu
         let lights = scaling_lights(count);
         for (i, update) in [Update::EntireCoherent, Update::EntireSequential].into_iter().enumerate() {
             let propagation = if update == Update::EntireCoherent { "coherent" } else { "sequential" };
-            let s = lightvolume_scene(scene, scale, update == Update::EntireCoherent, "entire", &[]);
+            let s = lightvolume_scene(scene, scale, update == Update::EntireCoherent, CostEstimate::Entire, |_| {});
             let label = format!("scaling {} {count} lights", resolution_label(scale));
             let m = measure_all(meter, &s, &lights, &[update], &label)?.pop().context("no measurement")?;
             let ms = median(&m.ms);
@@ -637,7 +638,7 @@ fn error_rows(
         meter
             .progress
             .start_step(&format!("{width}x{height} light volume {} frame, {medium} medium", resolution_label(scale)));
-        let s = lightvolume_scene(&lit, scale, true, "passes", &[("shared_medium", shared.into())]);
+        let s = lightvolume_scene(&lit, scale, true, CostEstimate::Passes, |lv| lv.shared_medium = shared);
         let gpu = GpuScene::upload_with(meter.ctx, &s, texels).context("uploading the scene")?;
         meter.ctx.memory.reset_peak();
         let mut renderer = LightVolumeRenderer::new(&gpu)?;

@@ -5,17 +5,18 @@
 //! The host plans the sweep ([`sweep_plan`]); every line block is its own
 //! dispatch, followed by the barrier `cache_write_to_next_line_read`.
 
-pub mod cache_geometry;
 pub mod cache_region;
 pub mod exit_points;
 pub mod gpu_params;
-pub mod image_space;
+pub mod light_anchor;
 pub mod paper_table1;
 pub mod renderer;
 pub mod settings;
 pub mod sweep_plan;
 pub mod sync_strategy;
+pub mod technique;
 
 pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};
 pub use sync_strategy::SyncStrategy;
+pub use technique::Ipsvi;
