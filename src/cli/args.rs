@@ -217,7 +217,7 @@ pub struct CompareArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    /// Technique to compare against the ground truth (the model it approximates).
+    // Compared with the ground truth of the model it approximates (RenderTechnique::reference_model).
     #[arg(long, help = technique_names(), long_help = Technique::help())]
     pub technique: String,
     /// Ground truth on the gpu (brute-force shadow rays) or the cpu (f64).
