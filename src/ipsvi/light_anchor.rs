@@ -22,6 +22,7 @@ pub enum LightAnchor {
 /// Beyond this many image widths away, an anchor point is treated as a direction.
 const FAR_AWAY_IMAGES: f32 = 64.0;
 
+// The sweep's part of the image space, kept here since only IPSVI uses it.
 impl ImageSpace {
     /// Image direction (pixels) of a small world displacement, orthographic only.
     fn image_direction(&self, v: Vec3) -> Vec2 {

@@ -106,3 +106,36 @@ pub fn render(
     let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
     Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::scene_file::scene_from_toml_str;
+    use crate::scene::OpticalModel;
+
+    #[test]
+    fn every_technique_is_found_by_its_own_name_only() {
+        for t in Technique::ALL {
+            assert_eq!(t.name().parse::<Technique>(), Ok(t));
+            assert_eq!(Technique::ALL.iter().filter(|u| u.name() == t.name()).count(), 1, "{t} twice");
+            assert!(Technique::help().contains(&format!("{t}: {}", t.summary())));
+        }
+        let e = "half_angle".parse::<Technique>().unwrap_err();
+        assert!(e.contains("did you mean half-angle?") && e.contains("lightvolume"), "{e}");
+    }
+
+    #[test]
+    fn each_technique_names_the_model_it_approximates() {
+        let text = "[volume]\nsynthetic = \"noise\"\nsize = 4\n";
+        let mut scene = scene_from_toml_str(text, std::path::Path::new(""), "test", &[]).unwrap();
+        for model in [OpticalModel::SingleScattering, OpticalModel::EmissiveScattering] {
+            scene.reference.model = model;
+            for t in [Technique::Dvr, Technique::Phong, Technique::Reference] {
+                assert_eq!(t.reference_model(&scene), model, "{t} follows the scene");
+            }
+            assert_eq!(Technique::Ipsvi.reference_model(&scene), OpticalModel::EmissiveScattering);
+            assert_eq!(Technique::HalfAngle.reference_model(&scene), OpticalModel::SingleScattering);
+            assert_eq!(Technique::LightVolume.reference_model(&scene), OpticalModel::SingleScattering);
+        }
+    }
+}
