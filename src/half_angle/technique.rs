@@ -29,13 +29,13 @@ impl RenderTechnique for HalfAngle {
         if scene.lights.is_empty() {
             return raycast::resources(Shading::EmissionOnly, width, height);
         }
-        let n = scene.settings.half_angle.light_buffer_size as u64;
+        let n = scene.settings.half_angle.light_buffer_size;
         vec![
             ResourceNeed::of::<FrameParams>("frame params", 1),
             ResourceNeed::of::<LightBufferParams>("half-angle light buffer", 1),
             // R32F transmittance, ping-pong.
-            ResourceNeed::new("half-angle light a", n * n * 4),
-            ResourceNeed::new("half-angle light b", n * n * 4),
+            ResourceNeed::image("half-angle light a", [n, n, 1], 4),
+            ResourceNeed::image("half-angle light b", [n, n, 1], 4),
             ResourceNeed::output_image("half-angle eye buffer", width, height),
         ]
     }

@@ -35,27 +35,28 @@ impl RenderTechnique for Ipsvi {
         let s = &scene.settings.ipsvi;
         let plans = scene_plans(scene, s, width, height);
         let blocks: usize = plans.iter().flat_map(|p| &p.sweeps).map(|sweep| sweep.blocks.len()).sum();
-        let texels = s.cache_size as u64 * s.cache_size as u64;
+        let cache = [s.cache_size, s.cache_size, 1];
         let mut needs = vec![
             ResourceNeed::output_image("ipsvi output", width, height),
             // Illumination: RGBA16F; front: R16_UINT.
-            ResourceNeed::new("ipsvi cache a", texels * 8),
-            ResourceNeed::new("ipsvi cache b", texels * 8),
-            ResourceNeed::new("ipsvi front a", texels * 2),
-            ResourceNeed::new("ipsvi front b", texels * 2),
+            ResourceNeed::image("ipsvi cache a", cache, 8),
+            ResourceNeed::image("ipsvi cache b", cache, 8),
+            ResourceNeed::image("ipsvi front a", cache, 2),
+            ResourceNeed::image("ipsvi front b", cache, 2),
             ResourceNeed::of::<FrameParams>("frame params", 1),
             ResourceNeed::of::<[f32; 4]>("ipsvi line planes", (width + height) as usize),
             ResourceNeed::of::<SweepParams>("ipsvi sweeps", scene.lights.len()),
             ResourceNeed::of::<BlockParams>("ipsvi blocks", blocks),
         ];
         if s.early_termination == EarlyTermination::ExitPoints {
-            let low = (width.div_ceil(s.ert_scale) * height.div_ceil(s.ert_scale)) as u64;
-            needs.push(ResourceNeed::new("ipsvi ert depths", low * 8));
+            // The pre-pass resolution: RG32F depths, R32F l_max.
+            let low = [width.div_ceil(s.ert_scale), height.div_ceil(s.ert_scale), 1];
+            needs.push(ResourceNeed::image("ipsvi ert depths", low, 8));
             for name in ["ipsvi lmax a", "ipsvi lmax b", "ipsvi lmax"] {
-                needs.push(ResourceNeed::new(name, low * 4));
+                needs.push(ResourceNeed::image(name, low, 4));
             }
         } else {
-            needs.push(ResourceNeed::new("ipsvi lmax placeholder", 4));
+            needs.push(ResourceNeed::image("ipsvi lmax placeholder", [1, 1, 1], 4));
         }
         needs
     }

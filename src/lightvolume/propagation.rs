@@ -13,7 +13,7 @@ use super::illumination::IlluminationVolume;
 use super::settings::LightVolumeSettings;
 use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
 use crate::render::gpu_scene::bindings_after_scene;
-use crate::render::{GpuScene, RenderError};
+use crate::render::{GpuScene, RenderError, ResourceNeed};
 use crate::shaders;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::SecondaryCommands;
@@ -104,15 +104,15 @@ impl Capacity {
         }
     }
 
-    /// Bytes of the slice images (a and b) and the slot and entry buffers.
-    pub fn bytes(&self, grid: UVec3) -> [(&'static str, u64); 4] {
-        let side = grid.max_element() as u64;
-        let slice = side * side * self.layers as u64 * 16;
+    /// The slice images (a and b, RGBA32F) and the slot and entry buffers
+    /// [`Propagation::new`] creates for this capacity.
+    pub fn resources(&self, grid: UVec3) -> [ResourceNeed; 4] {
+        let side = grid.max_element();
         [
-            ("lightvolume slice a", slice),
-            ("lightvolume slice b", slice),
-            ("lightvolume light slots", (self.slots * std::mem::size_of::<GpuLight>()) as u64),
-            ("lightvolume pass entries", (self.entries * std::mem::size_of::<GroupEntry>()) as u64),
+            ResourceNeed::image("lightvolume slice a", [side, side, self.layers], 16),
+            ResourceNeed::image("lightvolume slice b", [side, side, self.layers], 16),
+            ResourceNeed::of::<GpuLight>("lightvolume light slots", self.slots),
+            ResourceNeed::of::<GroupEntry>("lightvolume pass entries", self.entries),
         ]
     }
 

@@ -10,6 +10,7 @@ use crate::render::frame_params::FrameParams;
 use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene};
 use crate::vk::Profiler;
+use glam::UVec3;
 
 /// Light volume illumination with selective light updates.
 pub struct LightVolume;
@@ -32,11 +33,14 @@ impl RenderTechnique for LightVolume {
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         let s = &scene.settings.lightvolume;
         let grid = IlluminationVolume::size_for(scene.volume.dims, s.scale);
-        let voxels = grid.x as u64 * grid.y as u64 * grid.z as u64;
         let mut needs = vec![
             // RGBA32F; the low words of the compensated sum, or a 1-voxel placeholder.
-            ResourceNeed::new("lightvolume illumination", voxels * 16),
-            ResourceNeed::new("lightvolume illumination low", if s.compensated { voxels * 16 } else { 16 }),
+            ResourceNeed::image("lightvolume illumination", grid.to_array(), 16),
+            ResourceNeed::image(
+                "lightvolume illumination low",
+                if s.compensated { grid } else { UVec3::ONE }.to_array(),
+                16,
+            ),
         ];
         // The passes of the first frame, as the renderer plans them.
         let lights: Vec<_> = scene.lights.iter().copied().map(Some).collect();
@@ -47,7 +51,7 @@ impl RenderTechnique for LightVolume {
         if !plan.passes.is_empty() {
             let capacity = Capacity::needed(&plan.passes).grown(None, s.pass_lights);
             needs.push(ResourceNeed::of::<FrameParams>("lightvolume frame params", 1));
-            needs.extend(capacity.bytes(grid).map(|(name, bytes)| ResourceNeed::new(name, bytes)));
+            needs.extend(capacity.resources(grid));
         }
         needs.push(ResourceNeed::of::<FrameParams>("lightvolume view params", 1));
         needs.push(ResourceNeed::output_image("lightvolume output", width, height));

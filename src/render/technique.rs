@@ -43,22 +43,30 @@ pub trait RenderTechnique: Sync {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ResourceNeed {
     pub name: String,
+    /// Bytes of its contents (a driver may pad an image's rows and layers).
     pub bytes: u64,
+    /// For an image: texels along x, y, z and bytes per texel.
+    pub image: Option<([u32; 3], u32)>,
 }
 
 impl ResourceNeed {
-    pub fn new(name: &str, bytes: u64) -> ResourceNeed {
-        ResourceNeed { name: name.to_string(), bytes }
+    pub fn buffer(name: &str, bytes: u64) -> ResourceNeed {
+        ResourceNeed { name: name.to_string(), bytes, image: None }
     }
 
     /// `count` values of `T` (a parameter buffer).
     pub fn of<T>(name: &str, count: usize) -> ResourceNeed {
-        ResourceNeed::new(name, (count * std::mem::size_of::<T>()) as u64)
+        ResourceNeed::buffer(name, (count * std::mem::size_of::<T>()) as u64)
+    }
+
+    pub fn image(name: &str, extent: [u32; 3], texel_bytes: u32) -> ResourceNeed {
+        let bytes = extent.iter().map(|&e| e as u64).product::<u64>() * texel_bytes as u64;
+        ResourceNeed { name: name.to_string(), bytes, image: Some((extent, texel_bytes)) }
     }
 
     /// An RGBA32F image of `width` x `height` (render::OutputImage).
     pub fn output_image(name: &str, width: u32, height: u32) -> ResourceNeed {
-        ResourceNeed::new(name, width as u64 * height as u64 * 16)
+        ResourceNeed::image(name, [width, height, 1], 16)
     }
 }
 
