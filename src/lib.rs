@@ -2,8 +2,12 @@
 //!
 //! Layers, bottom up: [`vk`] (thin layer over ash), [`scene`] (volumes, loaders,
 //! transfer functions, camera, lights, scene files), [`render`] (what all GPU
-//! techniques share), one module per technique ([`dvr`] baselines, [`reference`]
-//! ground truth, [`ao`] preprocessing), and [`metrics`].
+//! techniques share, and the [`render::RenderTechnique`] trait), one module per
+//! technique ([`dvr`] baselines, [`reference`] ground truth, [`ipsvi`],
+//! [`half_angle`], [`lightvolume`], [`ao`] preprocessing so far),
+//! [`render::registry`] listing them, and [`metrics`]. Each technique's settings
+//! type sits in its module; the scene holds the parsed settings of all of them
+//! ([`scene::TechniqueSettings`]).
 
 pub mod ao;
 pub mod bench;

@@ -23,7 +23,7 @@ fn slab_scene(direction: Vec3) -> Scene {
     scene.reference.step_voxels = 0.125;
     scene.reference.shadow_step_voxels = 0.125;
     scene.render.emission = 0.2;
-    scene.techniques = toml::from_str("[half_angle]\nslice_step = 0.125\nlight_buffer_size = 256\n").unwrap();
+    scene.settings.half_angle = HalfAngleSettings { slice_step: Some(0.125), light_buffer_size: 256 };
     scene
 }
 
@@ -44,7 +44,7 @@ fn half_angle_matches_the_reference_with_the_light_behind_and_in_front_of_the_vi
         ("light facing the viewer", Vec3::new(-0.3, -1.0, 0.8)),
     ] {
         let scene = slab_scene(direction);
-        let sl = slicing(&scene, &HalfAngleSettings::from_scene(&scene).unwrap()).unwrap();
+        let sl = slicing(&scene, &scene.settings.half_angle).unwrap();
         let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
         let mut profiler = Profiler::new(&ctx, 16).unwrap();
         let out = render(&gpu, Technique::HalfAngle, SIZE, SIZE, &mut profiler).unwrap();

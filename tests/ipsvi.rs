@@ -25,7 +25,7 @@ fn slab_scene(lights: Vec<Light>) -> Scene {
     scene.reference.min_transmittance = 1e-4;
     scene.render.emission = 0.2;
     // What `render` (no explicit settings) uses: the settings of the tolerance.
-    scene.techniques = toml::from_str("[ipsvi]\ncache_size = 256\nlight_step = 0.125\n").unwrap();
+    scene.settings.ipsvi = IpsviSettings { cache_size: 256, light_step_voxels: 0.125, ..IpsviSettings::default() };
     scene
 }
 

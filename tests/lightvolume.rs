@@ -6,10 +6,12 @@ mod common;
 
 use common::*;
 use glam::{UVec3, Vec3};
-use sweeplab::lightvolume::{render_frame, LightVolumeFrame};
+use std::path::Path;
+use sweeplab::lightvolume::{render_frame, LightVolumeFrame, LightVolumeSettings};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
+use sweeplab::scene::scene_file::parse_scene_str;
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{
     presets, ControlPoint, Falloff, Light, LightKind, OpticalModel, Scene, TransferFunction, TransferLut, Volume,
@@ -22,12 +24,11 @@ const SIZE: u32 = 48;
 /// `lightvolume.shared_medium`: the medium sampled along the axis and shared by
 /// the lights of a pass (exact for a homogeneous medium, like per light).
 fn set_shared_medium(scene: &mut Scene, shared: bool) {
-    let table = scene.techniques.entry("lightvolume").or_insert(toml::Value::Table(toml::Table::new()));
-    table.as_table_mut().unwrap().insert("shared_medium".into(), toml::Value::Boolean(shared));
+    scene.settings.lightvolume.shared_medium = shared;
 }
 
 fn with_scale(mut scene: Scene, scale: u32) -> Scene {
-    scene.techniques = toml::from_str(&format!("[lightvolume]\nscale = {scale}\n")).unwrap();
+    scene.settings.lightvolume = LightVolumeSettings { scale, ..LightVolumeSettings::default() };
     scene
 }
 
@@ -341,12 +342,16 @@ fn no_lights_renders_the_emission_term_and_bad_settings_are_errors() {
     assert!(out.groups().is_empty());
     assert_eq!(out.dispatches, 1, "the ray cast alone");
     assert!(out.image.as_ref().unwrap().all_finite());
+    // Set in code: refused when rendered.
+    let mut bad = slab_sphere_scene(vec![directional(Vec3::NEG_Y, 1.0)], 2);
+    bad.settings.lightvolume.scale = 3;
+    let gpu = GpuScene::upload(&ctx, &bad).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    assert!(render(&gpu, Technique::LightVolume, 8, 8, &mut profiler).is_err(), "scale = 3");
+    // Written in a scene file: refused when the file is read.
     for table in ["[lightvolume]\nscale = 3\n", "[lightvolume]\nscale = 2\nalbedo = 1\n", "lightvolume = 2\n"] {
-        let mut bad = slab_sphere_scene(vec![directional(Vec3::NEG_Y, 1.0)], 2);
-        bad.techniques = toml::from_str(table).unwrap();
-        let gpu = GpuScene::upload(&ctx, &bad).unwrap();
-        let mut profiler = Profiler::new(&ctx, 64).unwrap();
-        assert!(render(&gpu, Technique::LightVolume, 8, 8, &mut profiler).is_err(), "{table}");
+        let text = format!("[volume]\nsynthetic = \"slab-under-sphere\"\nsize = 8\n{table}");
+        assert!(parse_scene_str(&text, Path::new(""), "bad.toml", &[]).is_err(), "{table}");
     }
     assert_validation_clean(&ctx);
 }
@@ -416,9 +421,8 @@ fn coherent_and_sequential_propagation_give_the_same_volume() {
     let mut passes = Vec::new();
     for (coherent, shared) in [(true, false), (false, false), (true, true), (false, true)] {
         let mut scene = scene_with(slab_under_sphere(16), lights.clone(), 16, 16);
-        scene.techniques =
-            toml::from_str(&format!("[lightvolume]\nscale = 2\ncoherent = {coherent}\nshared_medium = {shared}\n"))
-                .unwrap();
+        scene.settings.lightvolume =
+            LightVolumeSettings { scale: 2, coherent, shared_medium: shared, ..LightVolumeSettings::default() };
         let (out, _) = frame(&ctx, &scene, 16, true);
         passes.push(out.groups().len());
         volumes.push(out.illumination.unwrap().high);

@@ -8,18 +8,24 @@ mod common;
 use common::*;
 use glam::Vec3;
 use sweeplab::lightvolume::plan::PeakGeometry;
-use sweeplab::lightvolume::{IlluminationReadback, LightVolumeFrame, LightVolumeRenderer, UpdateKind};
+use sweeplab::lightvolume::{
+    CostEstimate, IlluminationReadback, LightVolumeFrame, LightVolumeRenderer, LightVolumeSettings, UpdateKind,
+};
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, Falloff, Light, LightKind, Scene};
 use sweeplab::vk::{Context, Profiler};
 
-fn scene(settings: &str) -> Scene {
+/// The slab under the sphere at light volume scale 2, then `settings`.
+fn scene(settings: impl FnOnce(&mut LightVolumeSettings)) -> Scene {
     let mut scene = scene_with(slab_under_sphere(16), vec![], 16, 16);
     scene.transfer = presets::preset("slab-sphere").unwrap();
-    scene.techniques = toml::from_str(&format!("[lightvolume]\nscale = 2\n{settings}")).unwrap();
+    scene.settings.lightvolume.scale = 2;
+    settings(&mut scene.settings.lightvolume);
     scene
 }
+
+fn defaults(_: &mut LightVolumeSettings) {}
 
 fn coloured(kind: LightKind, color: Vec3, intensity: f32) -> Light {
     Light { kind, color, intensity, falloff: Falloff::None }
@@ -105,7 +111,7 @@ const SELECTIVE_TOLERANCE: f64 = 1e-12;
 
 #[test]
 fn a_selective_state_change_and_a_toggle_give_the_volume_of_an_entire_update() {
-    on_renderer(scene(""), |ctx, gpu, r, run| {
+    on_renderer(scene(defaults), |ctx, gpu, r, run| {
         let mut lights = four_lights();
         let (first, scopes) = run.update(r, &lights);
         assert_eq!(first.update.plan.kind, UpdateKind::Entire);
@@ -154,7 +160,7 @@ fn a_selective_state_change_and_a_toggle_give_the_volume_of_an_entire_update() {
 
 #[test]
 fn recorded_passes_are_replayed_while_their_lights_are_unchanged() {
-    on_renderer(scene("cost_estimate = \"entire\"\n"), |_, _, r, run| {
+    on_renderer(scene(|lv| lv.cost_estimate = CostEstimate::Entire), |_, _, r, run| {
         // Two lights straight down (-y) and one along +x: two passes.
         let mut lights = vec![
             Some(coloured(dir(0.0, -1.0, 0.0), Vec3::ONE, 1.0)),
@@ -187,11 +193,11 @@ fn incremental_mode_runs_at_most_n_passes_a_frame_and_converges_to_the_entire_up
     let ctx = validated_context();
     let lights = four_lights();
     let full = {
-        let scene = scene("");
+        let scene = scene(defaults);
         let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
         entire(&ctx, &gpu, &lights)
     };
-    let scene = scene("max_passes_per_frame = 1\n");
+    let scene = scene(|lv| lv.max_passes_per_frame = 1);
     let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
     let mut r = LightVolumeRenderer::new(&gpu).unwrap();
     let mut profiler = Profiler::new(&ctx, 256).unwrap();
@@ -272,7 +278,7 @@ struct DriftOutcome {
 /// `updates` random changes (one light each: moved, switched off or on) to the
 /// lights of POWERS, then the volume against a fresh entire update of the final
 /// lights (the dimmest alone).
-fn drift(settings: &str, updates: usize) -> DriftOutcome {
+fn drift(settings: impl FnOnce(&mut LightVolumeSettings), updates: usize) -> DriftOutcome {
     let scene = scene(settings);
     let box_ = scene.volume_box();
     let geometry = PeakGeometry { box_half: box_.half_extent, voxel_length: box_.voxel_length };
@@ -343,7 +349,7 @@ fn assert_no_drift(outcome: &DriftOutcome, updates: usize) {
 #[test]
 fn random_updates_with_lights_from_1e_minus_3_to_1e3_do_not_drift() {
     let updates = 1000;
-    assert_no_drift(&drift("", updates), updates);
+    assert_no_drift(&drift(defaults, updates), updates);
 }
 
 /// The whole 10,000-update sequence of the issue, in CI like every other test
@@ -351,7 +357,7 @@ fn random_updates_with_lights_from_1e_minus_3_to_1e3_do_not_drift() {
 #[test]
 fn ten_thousand_random_updates_do_not_drift() {
     let updates = 10_000;
-    assert_no_drift(&drift("", updates), updates);
+    assert_no_drift(&drift(defaults, updates), updates);
 }
 
 #[test]
@@ -359,14 +365,14 @@ fn plain_f32_sums_drift_past_the_bound_unless_re_based() {
     let updates = 300;
     // Without compensation and never re-based, subtracting the 1e3 light leaves
     // rounding far above the dimmest light: compensation is what holds the bound.
-    let plain = drift("compensated = false\nrebase_tolerance = 1e30\n", updates);
+    let plain = drift(|lv| (lv.compensated, lv.rebase_tolerance) = (false, 1e30), updates);
     println!(
         "plain f32, never re-based: difference {:.3e}, smallest value {:.3e} of the weakest peak",
         plain.relative_to_weakest, plain.smallest
     );
     assert!(plain.relative_to_weakest > DRIFT_TOLERANCE, "plain sums did not drift: the test cannot tell");
     // With the re-base policy, plain sums stay within the bound by re-basing.
-    let rebased = drift("compensated = false\n", updates);
+    let rebased = drift(|lv| lv.compensated = false, updates);
     println!("plain f32, re-based: {} entire updates, difference {:.3e}", rebased.entire, rebased.relative_to_weakest);
     assert!(rebased.relative_to_weakest <= DRIFT_TOLERANCE);
     assert!(rebased.entire > updates / 2, "plain sums must re-base often");
@@ -375,7 +381,7 @@ fn plain_f32_sums_drift_past_the_bound_unless_re_based() {
 #[test]
 fn the_slice_barrier_is_load_bearing_under_synchronization_validation() {
     let ctx = validated_context();
-    let scene = scene("racy = true\n");
+    let scene = scene(|lv| lv.racy = true);
     let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
     let mut r = LightVolumeRenderer::new(&gpu).unwrap();
     let mut run = Run::new(&ctx);
@@ -389,7 +395,7 @@ fn the_slice_barrier_is_load_bearing_under_synchronization_validation() {
 
 #[test]
 fn shortening_and_growing_the_light_list_subtracts_and_adds_the_lights_it_drops_and_gains() {
-    on_renderer(scene("cost_estimate = \"selective\"\n"), |ctx, gpu, r, run| {
+    on_renderer(scene(|lv| lv.cost_estimate = CostEstimate::Selective), |ctx, gpu, r, run| {
         let all = four_lights();
         run.update(r, &all);
         // Lights 2 and 3 dropped off the end, light 1 moved: their old states are
@@ -418,7 +424,7 @@ fn shortening_and_growing_the_light_list_subtracts_and_adds_the_lights_it_drops_
 /// gives the entire update's volume.
 #[test]
 fn near_opaque_media_grazing_lights_and_group_crossings_stay_finite_and_exact() {
-    let mut scene = scene("");
+    let mut scene = scene(defaults);
     scene.transfer = sweeplab::scene::TransferFunction {
         points: vec![
             sweeplab::scene::ControlPoint { value: 0.0, rgba: [1.0, 1.0, 1.0, 0.0] },
@@ -460,7 +466,7 @@ fn near_opaque_media_grazing_lights_and_group_crossings_stay_finite_and_exact() 
 
 #[test]
 fn a_light_moved_back_and_forth_replays_its_recorded_selective_passes() {
-    on_renderer(scene(""), |ctx, gpu, r, run| {
+    on_renderer(scene(defaults), |ctx, gpu, r, run| {
         let a = four_lights();
         let mut b = a.clone();
         b[0] = Some(coloured(dir(0.15, -1.0, 0.2), Vec3::new(1.0, 0.9, 0.8), 1.0));
@@ -494,8 +500,8 @@ fn groups_larger_than_a_pass_are_split_and_give_the_same_volume() {
         })
         .collect();
     let mut volumes = Vec::new();
-    for pass_lights in [16, 64] {
-        let scene = scene(&format!("pass_lights = {pass_lights}\n"));
+    for pass_lights in [16usize, 64] {
+        let scene = scene(|lv| lv.pass_lights = pass_lights as u32);
         let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
         let mut r = LightVolumeRenderer::new(&gpu).unwrap();
         let (out, scopes) = Run::new(&ctx).update(&mut r, &lights);

@@ -72,7 +72,7 @@ fn tiny_scene(volume: Volume, transfer: TransferFunction, lights: Vec<Light>) ->
             min_transmittance: 0.0,
         },
         phong: PhongSettings { ambient: 0.2, diffuse: 0.6, specular: 0.3, shininess: 16.0 },
-        techniques: toml::Table::new(),
+        settings: TechniqueSettings::default(),
     }
 }
 

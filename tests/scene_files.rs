@@ -4,12 +4,17 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
+use sweeplab::ao::AoSettings;
+use sweeplab::half_angle::HalfAngleSettings;
+use sweeplab::ipsvi::{EarlyTermination, IpsviSettings, SyncStrategy};
+use sweeplab::lightvolume::{CostEstimate, LightVolumeSettings};
 use sweeplab::scene::default_scene::volume_file_scene_spec;
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::scene_file::{parse_scene_file, parse_scene_str, scene_from_toml_str, SceneError};
 use sweeplab::scene::scene_spec::{CameraPlacement, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource};
+use sweeplab::scene::settings_table::known_keys;
 use sweeplab::scene::synthetic::{three_spheres, SyntheticKind};
-use sweeplab::scene::{Falloff, LightKind, OpticalModel};
+use sweeplab::scene::{Falloff, LightKind, OpticalModel, TechniqueSettings};
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes")
@@ -104,7 +109,7 @@ fn examples_read_what_they_say() {
     assert_eq!(spheres.lights.len(), 2);
     assert_eq!(spheres.lights[0].kind, LightKind::Point { position: Vec3::new(-1.2, 0.2, 0.3) });
     assert_eq!(spheres.lights[1].color, Vec3::new(0.2, 0.4, 1.0));
-    assert_eq!(spheres.techniques["lightvolume"]["scale"].as_integer(), Some(2));
+    assert_eq!(spheres.settings.lightvolume, LightVolumeSettings { scale: 2, ..LightVolumeSettings::default() });
 
     let cornell = example("cornell-box.toml", &[]);
     let LightKind::Spot { direction, inner_cone_deg, outer_cone_deg, .. } = cornell.lights[0].kind else {
@@ -153,7 +158,7 @@ fn an_almost_empty_file_gets_the_documented_defaults() {
     assert_eq!(spec.lights.len(), 1);
     assert_eq!(spec.lights[0].kind, LightKind::Directional { direction: Vec3::new(1.0, -1.0, -1.0).normalize() });
     assert_eq!((spec.lights[0].color, spec.lights[0].intensity), (Vec3::ONE, 1.0));
-    assert!(spec.techniques.is_empty());
+    assert_eq!(spec.settings, TechniqueSettings::default());
     // The noise volume's own preset.
     assert_eq!(spec.transfer, TransferSpec::Given(sweeplab::scene::presets::preset("grayscale-ramp").unwrap()));
 }
@@ -181,8 +186,8 @@ fn set_changes_the_named_fields() {
     assert_eq!((before.render.width, after.render.width), (256, 128));
     assert_eq!(after.render.height, 256, "other keys keep their values");
     assert_eq!((before.lights[0].intensity, after.lights[0].intensity), (1.0, 5.0));
-    assert!(before.techniques.is_empty());
-    assert_eq!(after.techniques["ipsvi"]["line_width"].as_integer(), Some(4));
+    assert_eq!(before.settings, TechniqueSettings::default());
+    assert_eq!(after.settings.ipsvi.line_width, 4);
     assert_eq!(after.camera.projection, ProjectionSpec::Orthographic { height: None });
     assert_eq!(after.reference.model, OpticalModel::EmissiveScattering);
     assert_eq!(after.volume, VolumeSource::Synthetic { kind: SyntheticKind::SheppLogan, size: 16, seed: 1 });
@@ -425,5 +430,163 @@ fn volume_file_scene_frames_the_box_and_makes_the_background_clear() {
         let x = d.dot(basis.right) / basis.right.length_squared() / along;
         let y = d.dot(basis.up) / basis.up.length_squared() / along;
         assert!(x.abs() < 1.0 && y.abs() < 1.0, "corner {corner} at ndc ({x}, {y})");
+    }
+}
+
+// The techniques' tables: typed settings read with the scene.
+
+fn settings_of(tables: &str, overrides: &[&str]) -> TechniqueSettings {
+    let overrides: Vec<String> = overrides.iter().map(|s| s.to_string()).collect();
+    parse_scene_str(&format!("{MINIMAL}{tables}"), Path::new(""), "test.toml", &overrides)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .settings
+}
+
+#[test]
+fn technique_defaults_are_the_documented_ones() {
+    let ipsvi = IpsviSettings::default();
+    assert_eq!((ipsvi.line_width, ipsvi.cache_size, ipsvi.piecewise), (1, 256, true));
+    assert_eq!((ipsvi.early_termination, ipsvi.albedo, ipsvi.cone_angle_deg), (EarlyTermination::Plain, 0.0, 15.0));
+    assert_eq!((ipsvi.zone_blend_px, ipsvi.light_step_voxels, ipsvi.ert_scale), (2.0, 0.5, 4));
+    assert_eq!((ipsvi.sync, ipsvi.single_dispatch_baseline), (SyncStrategy::BarrierGlobal, false));
+    let lv = LightVolumeSettings::default();
+    assert_eq!((lv.scale, lv.coherent, lv.compensated, lv.cost_estimate), (2, true, true, CostEstimate::Passes));
+    assert_eq!((lv.max_passes_per_frame, lv.pass_lights, lv.rebase_tolerance), (0, 16, 1e-6));
+    assert_eq!((lv.substep, lv.shared_medium, lv.racy), (0.25, false, false));
+    assert_eq!(HalfAngleSettings::default(), HalfAngleSettings { slice_step: None, light_buffer_size: 256 });
+    // The slice step follows render.step unless given.
+    let scene = scene_from_toml_str(&format!("{MINIMAL}[render]\nstep = 0.75\n"), Path::new(""), "t", &[]).unwrap();
+    assert_eq!(scene.settings.half_angle.slice_step_voxels(&scene), 0.75);
+}
+
+#[test]
+fn all_keys_example_names_every_technique_key_at_its_default() {
+    let text = std::fs::read_to_string(scenes_dir().join("all-keys.toml")).unwrap();
+    let keys = [
+        known_keys::<IpsviSettings>(),
+        known_keys::<LightVolumeSettings>(),
+        known_keys::<HalfAngleSettings>(),
+        known_keys::<AoSettings>(),
+    ];
+    for key in keys.concat() {
+        assert!(text.contains(&format!("{key} = ")), "all-keys.toml does not show `{key}`");
+    }
+    assert_eq!(example("all-keys.toml", &[]).settings, TechniqueSettings::default());
+}
+
+#[test]
+fn technique_tables_are_read_into_typed_settings() {
+    let s = settings_of(
+        "[ipsvi]\nline_width = 4\ncache_size = 128\npiecewise = false\nearly_termination = \"exit-points\"\n\
+         albedo = 0.5\ncone_angle = 30\nzone_blend = 4.5\nlight_step = 0.125\nert_scale = 2\nsync = \"events\"\n\
+         [lightvolume]\nscale = 4\ncoherent = false\ncompensated = false\ncost_estimate = \"selective\"\n\
+         max_passes_per_frame = 3\npass_lights = 8\nrebase_tolerance = 1e-3\nsubstep = 0.5\nshared_medium = true\n\
+         racy = true\n[half_angle]\nslice_step = 0.25\nlight_buffer_size = 64\n[ao]\nradius = 4\nclusters = 64\n",
+        &[],
+    );
+    let ipsvi = IpsviSettings {
+        line_width: 4,
+        cache_size: 128,
+        piecewise: false,
+        early_termination: EarlyTermination::ExitPoints,
+        albedo: 0.5,
+        cone_angle_deg: 30.0,
+        zone_blend_px: 4.5,
+        light_step_voxels: 0.125,
+        ert_scale: 2,
+        sync: SyncStrategy::Events,
+        single_dispatch_baseline: false,
+    };
+    let lightvolume = LightVolumeSettings {
+        scale: 4,
+        coherent: false,
+        compensated: false,
+        cost_estimate: CostEstimate::Selective,
+        max_passes_per_frame: 3,
+        pass_lights: 8,
+        rebase_tolerance: 1e-3,
+        substep: 0.5,
+        shared_medium: true,
+        racy: true,
+    };
+    let half_angle = HalfAngleSettings { slice_step: Some(0.25), light_buffer_size: 64 };
+    let ao = AoSettings { radius: 4, clusters: 64, ..AoSettings::default() };
+    assert_eq!(s, TechniqueSettings { ipsvi, lightvolume, half_angle, ao });
+    // early_termination also takes true (plain) and false (off).
+    for (value, expected) in
+        [("true", EarlyTermination::Plain), ("false", EarlyTermination::Off), ("\"off\"", EarlyTermination::Off)]
+    {
+        let s = settings_of(&format!("[ipsvi]\nearly_termination = {value}\n"), &[]);
+        assert_eq!(s.ipsvi.early_termination, expected, "{value}");
+    }
+    // --set edits the same table before it is read.
+    let s = settings_of("[ipsvi]\nline_width = 2\n", &["ipsvi.line_width=8", "half_angle.slice_step=0.5"]);
+    assert_eq!((s.ipsvi.line_width, s.half_angle.slice_step), (8, Some(0.5)));
+}
+
+#[test]
+fn unknown_technique_keys_are_errors_suggesting_the_nearest() {
+    let e = error_of(&format!("{MINIMAL}[ipsvi]\ncone_angel = 20\n"), &[]);
+    assert_mentions(&e, &["test.toml", "ipsvi.cone_angel", "did you mean `cone_angle`?", "line_width, cache_size"]);
+    // From the command line: the same parser, the same message.
+    let e = error_of(MINIMAL, &["ipsvi.cone_angel=20"]);
+    assert_mentions(&e, &["test.toml", "ipsvi.cone_angel", "did you mean `cone_angle`?"]);
+    let e = error_of(&format!("{MINIMAL}[half_angle]\nslice_stp = 1\n"), &[]);
+    assert_mentions(&e, &["half_angle.slice_stp", "did you mean `slice_step`?", "light_buffer_size"]);
+    // Nothing near: the known keys only.
+    let e = error_of(&format!("{MINIMAL}[lightvolume]\nalbedo = 1\n"), &[]);
+    assert_mentions(&e, &["lightvolume.albedo", "the known keys are scale, coherent"]);
+    assert!(!e.contains("did you mean"), "{e}");
+    // A code-only field is not a key.
+    let e = error_of(&format!("{MINIMAL}[ipsvi]\nsingle_dispatch_baseline = true\n"), &[]);
+    assert_mentions(&e, &["unknown key ipsvi.single_dispatch_baseline"]);
+}
+
+#[test]
+fn unknown_tables_are_errors_naming_them() {
+    let e = error_of(&format!("{MINIMAL}[occlusion]\nradius = 8\n"), &[]);
+    assert_mentions(&e, &["test.toml", "`occlusion`", "not a known table", "[ipsvi] [lightvolume] [half_angle] [ao]"]);
+    let e = error_of(&format!("{MINIMAL}[ipsvvi]\nline_width = 2\n"), &[]);
+    assert_mentions(&e, &["`ipsvvi`", "did you mean [ipsvi]?"]);
+    let e = error_of(MINIMAL, &["lightvolumes.scale=2"]);
+    assert_mentions(&e, &["`lightvolumes`", "did you mean [lightvolume]?"]);
+    let e = error_of(&format!("{MINIMAL}ipsvi = 2\n"), &[]);
+    assert_mentions(&e, &["`ipsvi`"]);
+}
+
+#[test]
+fn technique_values_out_of_range_name_key_value_and_range() {
+    let cases: &[(&str, &str)] = &[
+        ("[ipsvi]\nline_width = 99", "ipsvi.line_width = 99: must be a whole number in 1..=32"),
+        ("[ipsvi]\ncache_size = 8", "ipsvi.cache_size = 8: must be a whole number in 16..=4096"),
+        ("[ipsvi]\nalbedo = 1.5", "ipsvi.albedo = 1.5: must be in 0..=1"),
+        ("[ipsvi]\ncone_angle = 90", "ipsvi.cone_angle = 90: must be in 0..=80"),
+        ("[ipsvi]\nzone_blend = -1", "ipsvi.zone_blend = -1: must be in 0..=64"),
+        ("[ipsvi]\nlight_step = nan", "ipsvi.light_step = NaN: must be in 0.01..=16"),
+        ("[ipsvi]\nert_scale = 0", "ipsvi.ert_scale = 0: must be a whole number in 1..=16"),
+        ("[lightvolume]\nscale = 3", "lightvolume.scale = 3: must be 1, 2 or 4"),
+        ("[lightvolume]\npass_lights = 65", "lightvolume.pass_lights = 65: must be a whole number in 1..=64"),
+        ("[lightvolume]\nrebase_tolerance = 0.0", "lightvolume.rebase_tolerance = 0: must be finite and > 0"),
+        ("[lightvolume]\nsubstep = 0.01", "lightvolume.substep = 0.01: must be in 0.05..=4"),
+        ("[half_angle]\nslice_step = 20", "half_angle.slice_step = 20: must be in 0.01..=16"),
+        (
+            "[half_angle]\nlight_buffer_size = 8",
+            "half_angle.light_buffer_size = 8: must be a whole number in 16..=4096",
+        ),
+    ];
+    for (table, message) in cases {
+        let e = error_of(&format!("{MINIMAL}{table}\n"), &[]);
+        assert_mentions(&e, &["test.toml", message]);
+    }
+    // Wrong types and unknown names name the key too.
+    let cases: &[(&str, &[&str])] = &[
+        ("[ipsvi]\nline_width = \"wide\"", &["ipsvi.line_width", "invalid type"]),
+        ("[ipsvi]\nearly_termination = \"sometimes\"", &["ipsvi.early_termination", "sometimes", "exit-points"]),
+        ("[ipsvi]\nsync = \"fences\"", &["ipsvi.sync", "fences", "barrier-global"]),
+        ("[lightvolume]\ncost_estimate = \"cheap\"", &["lightvolume.cost_estimate", "cheap", "passes"]),
+        ("[lightvolume]\ncoherent = 1", &["lightvolume.coherent", "invalid type"]),
+    ];
+    for (table, parts) in cases {
+        assert_mentions(&error_of(&format!("{MINIMAL}{table}\n"), &[]), parts);
     }
 }

@@ -144,12 +144,15 @@ pub const MAX_BITS: u32 = 12;
 pub const MAX_CLUSTERS: u32 = 2048;
 
 impl AoSettings {
-    /// Reads `[ao]` (defaults when the table is missing) and validates it.
+    /// The scene-file table.
+    pub const TABLE: &'static str = "ao";
+
+    /// The scene's `[ao]` settings (read and checked with the scene file;
+    /// checked again here for settings changed in code).
     pub fn from_scene(scene: &Scene) -> Result<Self, AoError> {
-        match scene.techniques.get("ao") {
-            None => Ok(AoSettings::default()),
-            Some(value) => Self::from_toml(value),
-        }
+        let settings = scene.settings.ao.clone();
+        settings.validate()?;
+        Ok(settings)
     }
 
     /// Parses and validates an `[ao]` table; a misspelt key is an error that

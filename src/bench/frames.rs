@@ -4,7 +4,7 @@
 use super::harness::Sample;
 use crate::ipsvi::renderer::IpsviRenderer;
 use crate::ipsvi::SyncStrategy;
-use crate::render::technique::FrameResult;
+use crate::render::FrameResult;
 use crate::render::{render, GpuScene, RenderError, RenderOutput, Technique};
 use crate::vk::{Context, ProfileReport, Profiler};
 

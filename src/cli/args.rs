@@ -2,6 +2,12 @@
 
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
+use sweeplab::render::Technique;
+
+/// `--technique` short help: the registry's names.
+fn technique_names() -> String {
+    Technique::ALL.map(|t| t.name()).join(" | ")
+}
 
 #[derive(Parser, Debug)]
 #[command(name = "sweeplab", version, about = "Volume illumination with explicit Vulkan synchronization")]
@@ -189,8 +195,7 @@ pub struct RenderArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    /// dvr | phong | reference
-    #[arg(long, default_value = "dvr")]
+    #[arg(long, default_value = "dvr", help = technique_names(), long_help = Technique::help())]
     pub technique: String,
     /// Output PNG (8-bit sRGB of the linear image).
     #[arg(long, default_value = "sweeplab.png")]
@@ -212,8 +217,8 @@ pub struct CompareArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    /// Technique to compare against the ground truth.
-    #[arg(long)]
+    // Compared with the ground truth of the model it approximates (RenderTechnique::reference_model).
+    #[arg(long, help = technique_names(), long_help = Technique::help())]
     pub technique: String,
     /// Ground truth on the gpu (brute-force shadow rays) or the cpu (f64).
     #[arg(long, default_value = "gpu", value_parser = ["gpu", "cpu"])]

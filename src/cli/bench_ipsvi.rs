@@ -61,7 +61,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let harness = session::harness(0, args.repeat)?;
     let mut scene = scene_args::load(&args.scene)?;
     scene.reference.model = OpticalModel::EmissiveScattering;
-    let base = IpsviSettings::from_scene(&scene)?;
+    let base = scene.settings.ipsvi.clone();
     let configs = configurations(args, &base);
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let ctx = session::open(&args.gpu)?;
@@ -204,9 +204,7 @@ fn half_angle_rows(
         if !(step.is_finite() && (0.01..=16.0).contains(&step)) {
             anyhow::bail!("--half-angle-slices: {step} is not a slice spacing in 0.01..=16 voxels");
         }
-        let mut table_toml = toml::Table::new();
-        table_toml.insert("slice_step".into(), toml::Value::Float(step as f64));
-        scene.techniques.insert("half_angle".into(), toml::Value::Table(table_toml));
+        scene.settings.half_angle.slice_step = Some(step);
         let gpu = GpuScene::upload_with(ctx, &scene, session::volume_texels(&args.gpu))?;
         let label = format!("{size}x{size} half-angle slices {step} voxel");
         let measured = harness

@@ -18,6 +18,7 @@ use sweeplab::bench::{
     fit_line, median, plot_error_vs_time, plot_lines, technique_frame, AxisScale, BenchRow, BenchTable, Chart, Harness,
     Progress, Series,
 };
+use sweeplab::lightvolume::CostEstimate;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique};
@@ -136,7 +137,13 @@ fn table1(args: &BenchLightsArgs, meter: &mut LightsMeter, scene: &Scene, report
                 (false, &[Update::EntireSequential][..]),
                 (true, &[Update::EntireCoherent, Update::StateChange, Update::Toggle][..]),
             ] {
-                let s = lightvolume_scene(scene, scale, coherent, if coherent { "selective" } else { "entire" }, &[]);
+                let s = lightvolume_scene(
+                    scene,
+                    scale,
+                    coherent,
+                    if coherent { CostEstimate::Selective } else { CostEstimate::Entire },
+                    |_| {},
+                );
                 let results = meter.measure_updates(&s, &lights, updates, &label)?;
                 measured.extend(updates.iter().copied().zip(results));
             }
@@ -223,12 +230,13 @@ fn incremental(
     let scale = args.scaling_scale;
     let count = args.light_counts.iter().copied().max().unwrap_or(2);
     let lights: Vec<Option<Light>> = table1_lights(count as usize).into_iter().map(Some).collect();
-    let entire = meter.entire_update_ms(&lightvolume_scene(scene, scale, true, "entire", &[]), &lights)?;
+    let entire =
+        meter.entire_update_ms(&lightvolume_scene(scene, scale, true, CostEstimate::Entire, |_| {}), &lights)?;
     for &n in &args.incremental_passes {
         meter
             .progress
             .start_step(&format!("incremental {} {count} lights, {n} passes a frame", resolution_label(scale)));
-        let s = lightvolume_scene(scene, scale, true, "passes", &[("max_passes_per_frame", n.into())]);
+        let s = lightvolume_scene(scene, scale, true, CostEstimate::Passes, |lv| lv.max_passes_per_frame = n);
         let run = meter.incremental(&s, &lights)?;
         meter.progress.finish_step();
         let frames = run.frame_ms;
@@ -249,7 +257,7 @@ fn scaling(args: &BenchLightsArgs, meter: &mut LightsMeter, scene: &Scene, repor
         let lights = scaling_lights(count);
         for (i, update) in [Update::EntireCoherent, Update::EntireSequential].into_iter().enumerate() {
             let propagation = if update == Update::EntireCoherent { "coherent" } else { "sequential" };
-            let s = lightvolume_scene(scene, scale, update == Update::EntireCoherent, "entire", &[]);
+            let s = lightvolume_scene(scene, scale, update == Update::EntireCoherent, CostEstimate::Entire, |_| {});
             let label = format!("scaling {} {count} lights", resolution_label(scale));
             let m = meter.measure_updates(&s, &lights, &[update], &label)?.pop().context("no measurement")?;
             let ms = m.timing.median();
@@ -332,7 +340,7 @@ fn error_rows(
         meter
             .progress
             .start_step(&format!("{width}x{height} light volume {} frame, {medium} medium", resolution_label(scale)));
-        let s = lightvolume_scene(&lit, scale, true, "passes", &[("shared_medium", shared.into())]);
+        let s = lightvolume_scene(&lit, scale, true, CostEstimate::Passes, |lv| lv.shared_medium = shared);
         let frames = meter.lightvolume_frames(&s, texels, &all_on, (width, height))?;
         meter.progress.finish_step();
         let gpu_ms = frames.timing.median();

@@ -39,7 +39,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
         .collect::<Result<_, _>>()?;
     let harness = session::harness(0, args.repeat)?;
     let scene = scene_args::load(&args.scene)?;
-    let base = IpsviSettings::from_scene(&scene)?;
+    let base = scene.settings.ipsvi.clone();
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;

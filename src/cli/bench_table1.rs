@@ -29,7 +29,7 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     for (file, paper) in PAIRS {
         let path = data_dir().join(file);
         let scene = scene_for_volume_file(&path, &args.set).with_context(|| format!("loading {}", path.display()))?;
-        let base = IpsviSettings { piecewise: true, ..IpsviSettings::from_scene(&scene)? };
+        let base = IpsviSettings { piecewise: true, ..scene.settings.ipsvi.clone() };
         let gpu = GpuScene::upload(&ctx, &scene).context("uploading the scene")?;
         let mut fps = std::collections::BTreeMap::new();
         for &size in &args.sizes {

@@ -23,9 +23,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     };
     output.image.save_png(&args.out)?;
     print!("{}", output.profile.table());
-    if technique == Technique::Ipsvi {
-        let settings = sweeplab::ipsvi::IpsviSettings::from_scene(&scene)?;
-        println!("ipsvi sync strategy: {}", settings.sync);
+    if let Some(note) = technique.settings_note(&scene) {
+        println!("{note}");
     }
     println!(
         "{technique}: {}x{} -> {} ({} dispatches, {} barriers)",

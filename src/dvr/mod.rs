@@ -1,66 +1,62 @@
 //! Baselines: unshaded emission-absorption DVR and gradient Blinn-Phong, one
-//! dispatch each (glsl/raycast.comp, variant chosen by specialization constant).
+//! dispatch each of the plain ray cast ([`crate::render::raycast`]). Compared
+//! with the optical model the scene names.
 
-use crate::render::frame_params::{frame_params, MarchSteps};
-use crate::render::technique::FrameResult;
-use crate::render::{GpuScene, OutputImage, RenderError};
-use crate::shaders::raycast;
-use crate::vk::commands::submit_and_wait;
-use crate::vk::descriptors::Resource;
-use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
-use crate::vk::{Buffer, Profiler};
-use ash::vk;
+use crate::render::raycast::{self, Shading};
+use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::scene::{OpticalModel, Scene};
+use crate::vk::Profiler;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Shading {
-    Unshaded = 0,
-    BlinnPhong = 1,
-    /// The emission term `emission * rgb` alone: a lit technique with no lights.
-    EmissionOnly = 2,
-}
+/// Unshaded emission-absorption ray casting.
+pub struct Dvr;
 
-impl Shading {
-    pub fn pass_name(self) -> &'static str {
-        match self {
-            Shading::Unshaded => "dvr",
-            Shading::BlinnPhong => "phong",
-            Shading::EmissionOnly => "emission_only",
-        }
+/// Gradient Blinn-Phong ray casting, no shadows.
+pub struct Phong;
+
+impl RenderTechnique for Dvr {
+    fn name(&self) -> &'static str {
+        "dvr"
+    }
+    fn summary(&self) -> &'static str {
+        "unshaded emission-absorption ray casting (one dispatch)"
+    }
+    fn reference_model(&self, scene: &Scene) -> OpticalModel {
+        scene.reference.model
+    }
+    fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
+        raycast::resources(Shading::Unshaded, width, height)
+    }
+    fn render(
+        &self,
+        gpu: &GpuScene,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<FrameResult, RenderError> {
+        raycast::render(gpu, Shading::Unshaded, width, height, profiler)
     }
 }
 
-pub fn render(
-    gpu: &GpuScene,
-    shading: Shading,
-    width: u32,
-    height: u32,
-    profiler: &mut Profiler,
-) -> Result<FrameResult, RenderError> {
-    let ctx = gpu.ctx;
-    let name = shading.pass_name();
-    let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
-    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
-    let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
-    let mut pipeline = ComputePipeline::new(
-        ctx,
-        &ComputePipelineDesc { name, shader: &raycast::INTERFACE, specialization: &[(0, shading as u32)], max_sets: 1 },
-    )?;
-    let set = pipeline.create_set(&[
-        (raycast::FRAME, Resource::UniformBuffer(&frame)),
-        (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
-        (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
-        (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
-        (raycast::OUT_IMAGE, Resource::StorageImage(&output.image)),
-    ])?;
-    let readback = output.readback_buffer(ctx)?;
-    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
-        output.prepare_for_compute_write(rec);
-        let scope = profiler.begin(rec, name)?;
-        rec.bind(&pipeline, set);
-        rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
-        profiler.end(rec, scope)?;
-        output.record_readback(rec, &readback);
-        Ok((rec.dispatch_count, rec.barrier_count))
-    })?;
-    Ok(FrameResult { image: output.read(&readback)?, dispatches, barriers })
+impl RenderTechnique for Phong {
+    fn name(&self) -> &'static str {
+        "phong"
+    }
+    fn summary(&self) -> &'static str {
+        "gradient Blinn-Phong ray casting, no shadows (one dispatch)"
+    }
+    fn reference_model(&self, scene: &Scene) -> OpticalModel {
+        scene.reference.model
+    }
+    fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
+        raycast::resources(Shading::BlinnPhong, width, height)
+    }
+    fn render(
+        &self,
+        gpu: &GpuScene,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<FrameResult, RenderError> {
+        raycast::render(gpu, Shading::BlinnPhong, width, height, profiler)
+    }
 }

@@ -8,11 +8,18 @@
 //! (docs/optical-model.md). One light (directional, or a point/spot light outside
 //! the volume's bounding sphere); none renders the emission term alone.
 
-use crate::ipsvi::cache_geometry::{CacheGeometry, CacheProjection};
-use crate::ipsvi::image_space::ImageSpace;
+pub mod settings;
+pub mod technique;
+
+pub use settings::HalfAngleSettings;
+pub use technique::HalfAngle;
+
 use crate::render::frame_params::{frame_params, MarchSteps};
-use crate::render::technique::FrameResult;
+use crate::render::frame_result::FrameResult;
+use crate::render::image_space::ImageSpace;
+use crate::render::light_space::{CacheGeometry, CacheProjection};
 use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::scene::settings_table::SettingsTable;
 use crate::scene::{LightKind, Scene};
 use crate::shaders::half_angle_slice as shader;
 use crate::vk::barriers::{Access, Barrier};
@@ -23,38 +30,6 @@ use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-
-/// `[half_angle]` table of the scene.
-#[derive(Clone, Debug, PartialEq)]
-pub struct HalfAngleSettings {
-    /// Distance between slices, in voxels.
-    pub slice_step_voxels: f32,
-    /// The light buffer is N x N.
-    pub light_buffer_size: u32,
-}
-
-impl HalfAngleSettings {
-    pub fn from_scene(scene: &Scene) -> Result<Self, RenderError> {
-        let mut s = HalfAngleSettings { slice_step_voxels: scene.render.step_voxels, light_buffer_size: 256 };
-        let Some(table) = scene.techniques.get("half_angle") else { return Ok(s) };
-        let table = table.as_table().ok_or_else(|| RenderError::Invalid("[half_angle] must be a table".into()))?;
-        for (key, v) in table {
-            let n = v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
-            match (key.as_str(), n) {
-                ("slice_step", Some(x)) if x.is_finite() && (0.01..=16.0).contains(&x) => s.slice_step_voxels = x as f32,
-                ("light_buffer_size", Some(x)) if x.fract() == 0.0 && (16.0..=4096.0).contains(&x) => {
-                    s.light_buffer_size = x as u32
-                }
-                _ => {
-                    return Err(RenderError::Invalid(format!(
-                        "half_angle.{key} = {v}: known keys are slice_step (0.01..=16 voxels) and light_buffer_size (16..=4096)"
-                    )))
-                }
-            }
-        }
-        Ok(s)
-    }
-}
 
 #[repr(C)]
 #[derive(Clone, Copy, Default, Pod, Zeroable)]
@@ -113,7 +88,7 @@ pub fn slicing(scene: &Scene, settings: &HalfAngleSettings) -> Result<Slicing, R
         let s = c.dot(half_vector);
         (lo.min(s), hi.max(s))
     });
-    let spacing = settings.slice_step_voxels * bx.voxel_length;
+    let spacing = settings.slice_step_voxels(scene) * bx.voxel_length;
     let count = ((hi - lo) / spacing).ceil().max(1.0) as u32;
     Ok(Slicing { half_vector, front_to_back, first_plane: lo, spacing, count })
 }
@@ -124,12 +99,13 @@ fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Image, RenderError> {
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
     let scene = gpu.scene;
+    let settings = &scene.settings.half_angle;
+    settings.validate()?;
     match scene.lights.len() {
-        0 => return crate::dvr::render(gpu, crate::dvr::Shading::EmissionOnly, width, height, profiler),
+        0 => return crate::render::raycast::emission_only(gpu, width, height, profiler),
         1 => {}
         n => return Err(RenderError::Invalid(format!("half-angle slicing takes one light; the scene has {n}"))),
     }
-    let settings = HalfAngleSettings::from_scene(scene)?;
     if width == 0 || height == 0 {
         return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
     }
@@ -141,7 +117,7 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
             "half-angle slicing needs the light outside the volume's bounding sphere".into(),
         ));
     }
-    let sl = slicing(scene, &settings)?;
+    let sl = slicing(scene, settings)?;
     let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
     let rect = space.projected_box(&bx);
     let rect = [rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0];

@@ -5,7 +5,7 @@
 //! as of its own block (a texel outside both regions did not change since the
 //! image was last written two blocks ago), so nothing stale is ever read.
 
-use super::cache_geometry::{CacheGeometry, CacheProjection};
+use crate::render::light_space::{CacheGeometry, CacheProjection};
 use crate::scene::VolumeBox;
 use glam::Vec3;
 

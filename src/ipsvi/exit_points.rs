@@ -5,9 +5,10 @@
 //! complete; the main pass stops a ray once it is opaque and past l_max.
 //! Allocated and recorded only in `early_termination = "exit-points"` mode.
 
-use super::image_space::{LightAnchor, PixelRect};
+use super::light_anchor::LightAnchor;
 use super::settings::IpsviSettings;
 use super::sweep_plan::{plan, LineAxis, SweepPlan};
+use crate::render::image_space::PixelRect;
 use crate::render::{GpuScene, RenderError};
 use crate::shaders::{ipsvi_ert_depths, ipsvi_ert_sweep};
 use crate::vk::barriers::{Access, Barrier};

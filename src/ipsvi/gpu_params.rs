@@ -1,7 +1,7 @@
 //! Host mirrors of glsl/ipsvi_common.glsl's `Sweep` block and `Planes` buffer.
 
-use super::cache_geometry::CacheGeometry;
-use super::image_space::LightAnchor;
+use super::light_anchor::LightAnchor;
+use crate::render::light_space::CacheGeometry;
 use crate::scene::RayBasis;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};

@@ -6,18 +6,19 @@
 //! dispatch, followed by the barrier `cache_write_to_next_line_read` (or, in
 //! the synchronization study, another [`SyncStrategy`]'s object from [`sync`]).
 
-pub mod cache_geometry;
 pub mod cache_region;
 pub mod exit_points;
 pub mod gpu_params;
-pub mod image_space;
+pub mod light_anchor;
 pub mod paper_table1;
 pub mod renderer;
 pub mod settings;
 pub mod sweep_plan;
 pub mod sync;
 pub mod sync_strategy;
+pub mod technique;
 
 pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};
 pub use sync_strategy::SyncStrategy;
+pub use technique::Ipsvi;

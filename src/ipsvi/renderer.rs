@@ -3,14 +3,12 @@
 //! with the synchronization of the frame's strategy (`super::sync`) before and
 //! after each.
 
-use super::cache_geometry::CacheGeometry;
 use super::cache_region::{plane_region, TexelRect};
 use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{
     line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_EARLY_TERMINATION, FLAG_EXIT_POINTS,
     FLAG_FIRST_LIGHT, FLAG_PIECEWISE,
 };
-use super::image_space::ImageSpace;
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync::{
@@ -19,8 +17,12 @@ use super::sync::{
 };
 use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
-use crate::render::technique::FrameResult;
+use crate::render::frame_result::FrameResult;
+use crate::render::image_space::ImageSpace;
+use crate::render::light_space::CacheGeometry;
 use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::scene::settings_table::SettingsTable;
+use crate::scene::Scene;
 use crate::shaders::{ipsvi_cache_init, ipsvi_line};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait, SecondaryCommands};
@@ -63,9 +65,14 @@ impl Cache {
 
 /// Plans for every light, in light order.
 pub fn plans(gpu: &GpuScene, settings: &IpsviSettings, width: u32, height: u32) -> Vec<SweepPlan> {
-    let space = ImageSpace { basis: gpu.scene.camera.basis(width, height), width, height };
-    let bbox = space.projected_box(&gpu.scene.volume_box());
-    gpu.scene
+    scene_plans(gpu.scene, settings, width, height)
+}
+
+/// [`plans`] from the scene alone (what a frame will allocate, before it is rendered).
+pub fn scene_plans(scene: &Scene, settings: &IpsviSettings, width: u32, height: u32) -> Vec<SweepPlan> {
+    let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
+    let bbox = space.projected_box(&scene.volume_box());
+    scene
         .lights
         .iter()
         .map(|l| {
@@ -91,8 +98,8 @@ fn single_block(blocks: &[LineBlock]) -> LineBlock {
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
-    let settings = IpsviSettings::from_scene(gpu.scene)?;
-    render_with(gpu, &settings, width, height, profiler, settings.sync)
+    let settings = &gpu.scene.settings.ipsvi;
+    render_with(gpu, settings, width, height, profiler, settings.sync)
 }
 
 pub fn render_with(
@@ -105,7 +112,7 @@ pub fn render_with(
 ) -> Result<FrameResult, RenderError> {
     if gpu.scene.lights.is_empty() {
         // No light, no sweep: emission-absorption ray casting, nothing else allocated.
-        return crate::dvr::render(gpu, crate::dvr::Shading::EmissionOnly, width, height, profiler);
+        return crate::render::raycast::emission_only(gpu, width, height, profiler);
     }
     IpsviRenderer::new(gpu, settings, width, height)?.frame(profiler, sync)
 }
@@ -146,7 +153,7 @@ impl<'a> IpsviRenderer<'a> {
         if width == 0 || height == 0 {
             return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
         }
-        settings.check()?;
+        settings.validate()?;
         let ctx = gpu.ctx;
         let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
         let bx = scene.volume_box();

@@ -1,10 +1,13 @@
-//! IPSVI parameters from the scene file's `[ipsvi]` table (or `--set ipsvi.key=value`).
+//! IPSVI parameters from the scene file's `[ipsvi]` table (or `--set ipsvi.key=value`),
+//! read when the scene is read ([`crate::scene::settings_table`]).
 
 use super::sync_strategy::SyncStrategy;
-use crate::render::RenderError;
-use crate::scene::Scene;
+use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
+use serde::Deserialize;
 
-#[derive(Clone, Debug, PartialEq)]
+/// The file's key names are those of the fields unless renamed; defaults below.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct IpsviSettings {
     /// Lines per dispatch, 1..=32; the first block of a sweep is always one line.
     pub line_width: u32,
@@ -17,22 +20,29 @@ pub struct IpsviSettings {
     /// Share of light scattered in the forward cone (equation 2's albedo), 0..=1.
     pub albedo: f32,
     /// Half-angle of the forward scattering cone, degrees.
+    #[serde(rename = "cone_angle")]
     pub cone_angle_deg: f32,
     /// Width in pixels over which the four zones of a point light are blended.
+    #[serde(rename = "zone_blend")]
     pub zone_blend_px: f32,
     /// Step along light rays (cache updates and piecewise integration), voxels.
+    #[serde(rename = "light_step")]
     pub light_step_voxels: f32,
     /// Full-resolution pixels per pre-pass pixel, per axis (exit-points only).
     pub ert_scale: u32,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
+    #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
     /// Study baseline, not an illumination result: every sweep is one dispatch
     /// over all its lines (the same shader and pixels with no sweep to sync).
+    /// Set in code only, never from a file.
+    #[serde(skip)]
     pub single_dispatch_baseline: bool,
 }
 
 /// When the view rays of the main pass stop.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(try_from = "EarlyTerminationValue")]
 pub enum EarlyTermination {
     /// March every ray to its exit.
     Off,
@@ -73,85 +83,41 @@ impl Default for IpsviSettings {
     }
 }
 
-const KEYS: [&str; 10] = [
-    "line_width",
-    "cache_size",
-    "piecewise",
-    "early_termination",
-    "albedo",
-    "cone_angle",
-    "zone_blend",
-    "light_step",
-    "ert_scale",
-    "sync",
-];
+impl SettingsTable for IpsviSettings {
+    const TABLE: &'static str = "ipsvi";
 
-impl IpsviSettings {
-    /// The ranges `from_scene` enforces, for settings built in code (benchmarks).
-    pub fn check(&self) -> Result<(), RenderError> {
-        whole(self.line_width as f64, 1, 32, "line_width")?;
-        whole(self.cache_size as f64, 16, 4096, "cache_size")?;
-        within(self.albedo as f64, 0.0, 1.0, "albedo")?;
-        within(self.light_step_voxels as f64, 0.01, 16.0, "light_step")?;
-        whole(self.ert_scale as f64, 1, 16, "ert_scale")?;
-        Ok(())
+    fn validate(&self) -> Result<(), SettingsError> {
+        let t = Self::TABLE;
+        check_whole(t, "line_width", self.line_width, 1, 32)?;
+        check_whole(t, "cache_size", self.cache_size, 16, 4096)?;
+        check_range(t, "albedo", self.albedo, 0.0, 1.0)?;
+        check_range(t, "cone_angle", self.cone_angle_deg, 0.0, 80.0)?;
+        check_range(t, "zone_blend", self.zone_blend_px, 0.0, 64.0)?;
+        check_range(t, "light_step", self.light_step_voxels, 0.01, 16.0)?;
+        check_whole(t, "ert_scale", self.ert_scale, 1, 16)
     }
+}
 
-    pub fn from_scene(scene: &Scene) -> Result<IpsviSettings, RenderError> {
-        let mut s = IpsviSettings::default();
-        let Some(value) = scene.techniques.get("ipsvi") else {
-            return Ok(s);
-        };
-        let table = value.as_table().ok_or_else(|| bad("[ipsvi] must be a table"))?;
-        for (key, v) in table {
-            let number = || {
-                v.as_float()
-                    .or_else(|| v.as_integer().map(|i| i as f64))
-                    .ok_or_else(|| bad(&format!("ipsvi.{key} must be a number")))
-            };
-            let boolean = || v.as_bool().ok_or_else(|| bad(&format!("ipsvi.{key} must be true or false")));
-            match key.as_str() {
-                "line_width" => s.line_width = whole(number()?, 1, 32, key)?,
-                "cache_size" => s.cache_size = whole(number()?, 16, 4096, key)?,
-                "piecewise" => s.piecewise = boolean()?,
-                "early_termination" => {
-                    s.early_termination = match (v.as_bool(), v.as_str()) {
-                        (Some(true), _) | (_, Some("plain")) => EarlyTermination::Plain,
-                        (Some(false), _) | (_, Some("off")) => EarlyTermination::Off,
-                        (_, Some("exit-points")) => EarlyTermination::ExitPoints,
-                        _ => return Err(bad("ipsvi.early_termination must be \"off\", \"plain\" or \"exit-points\"")),
-                    }
-                }
-                "ert_scale" => s.ert_scale = whole(number()?, 1, 16, key)?,
-                "sync" => {
-                    let name = v.as_str().ok_or_else(|| bad("ipsvi.sync must be a strategy name"))?;
-                    s.sync = name.parse().map_err(|e: String| bad(&format!("ipsvi.sync: {e}")))?;
-                }
-                "albedo" => s.albedo = within(number()?, 0.0, 1.0, key)?,
-                "cone_angle" => s.cone_angle_deg = within(number()?, 0.0, 80.0, key)?,
-                "zone_blend" => s.zone_blend_px = within(number()?, 0.0, 64.0, key)?,
-                "light_step" => s.light_step_voxels = within(number()?, 0.01, 16.0, key)?,
-                other => return Err(bad(&format!("unknown key ipsvi.{other}; known: {}", KEYS.join(", ")))),
+/// `early_termination` as written: `true` / `false` (plain / off) or a name.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum EarlyTerminationValue {
+    Flag(bool),
+    Name(String),
+}
+
+impl TryFrom<EarlyTerminationValue> for EarlyTermination {
+    type Error = String;
+    fn try_from(value: EarlyTerminationValue) -> Result<Self, String> {
+        match value {
+            EarlyTerminationValue::Flag(true) => Ok(EarlyTermination::Plain),
+            EarlyTerminationValue::Flag(false) => Ok(EarlyTermination::Off),
+            EarlyTerminationValue::Name(name) => {
+                [EarlyTermination::Off, EarlyTermination::Plain, EarlyTermination::ExitPoints]
+                    .into_iter()
+                    .find(|e| e.name() == name)
+                    .ok_or_else(|| format!("is {name:?}, not \"off\", \"plain\", \"exit-points\", true or false"))
             }
         }
-        Ok(s)
     }
-}
-
-fn bad(message: &str) -> RenderError {
-    RenderError::Invalid(message.to_string())
-}
-
-fn whole(v: f64, lo: u32, hi: u32, key: &str) -> Result<u32, RenderError> {
-    if v.fract() != 0.0 || v < lo as f64 || v > hi as f64 {
-        return Err(bad(&format!("ipsvi.{key} = {v}: must be a whole number in {lo}..={hi}")));
-    }
-    Ok(v as u32)
-}
-
-fn within(v: f64, lo: f32, hi: f32, key: &str) -> Result<f32, RenderError> {
-    if !v.is_finite() || v < lo as f64 || v > hi as f64 {
-        return Err(bad(&format!("ipsvi.{key} = {v}: must be in {lo}..={hi}")));
-    }
-    Ok(v as f32)
 }

@@ -8,7 +8,8 @@
 //! a source or inward toward a sink. Lines cover only the volume's projected
 //! bounding box; zone lines only the zone's wedge plus the blend margin.
 
-use super::image_space::{LightAnchor, PixelRect};
+use super::light_anchor::LightAnchor;
+use crate::render::image_space::PixelRect;
 use glam::Vec2;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -37,25 +37,20 @@ pub mod propagation;
 pub mod raycast;
 pub mod renderer;
 pub mod settings;
+pub mod technique;
 
 pub use groups::{contributions, group_passes, Contribution, PropagationGroup};
 pub use illumination::{IlluminationReadback, IlluminationVolume};
 pub use plan::{UpdateKind, UpdatePlan};
 pub use renderer::{LightVolumeFrame, LightVolumeRenderer, UpdateReport};
 pub use settings::{CostEstimate, LightVolumeSettings};
+pub use technique::LightVolume;
 
-use crate::render::technique::FrameResult;
 use crate::render::{GpuScene, RenderError};
 use crate::vk::Profiler;
 
-/// One frame of the scene's lights from an empty volume (an entire update).
-pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
-    let out = render_frame(gpu, width, height, profiler, false)?;
-    let image = out.image.ok_or_else(|| RenderError::Invalid("light volume frame without an image".into()))?;
-    Ok(FrameResult { image, dispatches: out.dispatches, barriers: out.barriers })
-}
-
-/// Renders one frame of the scene's lights; with `read_illumination` also
+/// Renders one frame of the scene's lights from an empty volume (an entire
+/// update); with `read_illumination` also
 /// reads the illumination volume back.
 pub fn render_frame(
     gpu: &GpuScene,

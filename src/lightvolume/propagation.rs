@@ -12,7 +12,7 @@ use super::groups::PropagationGroup;
 use super::illumination::IlluminationVolume;
 use super::settings::LightVolumeSettings;
 use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
-use crate::render::{GpuScene, RenderError};
+use crate::render::{GpuScene, RenderError, ResourceNeed};
 use crate::shaders::lightvolume_slice as shader;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::SecondaryCommands;
@@ -66,6 +66,50 @@ pub struct Capacity {
 }
 
 impl Capacity {
+    /// What `passes` need: slice layers for the largest pass, a slot per
+    /// distinct light state, an entry per member.
+    pub fn needed(passes: &[PropagationGroup]) -> Capacity {
+        let mut distinct: Vec<GpuLight> = Vec::new();
+        for m in passes.iter().flat_map(|p| &p.members) {
+            if !distinct.contains(&m.state) {
+                distinct.push(m.state);
+            }
+        }
+        Capacity {
+            layers: passes.iter().map(|p| p.members.len()).max().unwrap_or(1) as u32,
+            slots: distinct.len(),
+            entries: passes.iter().map(|p| p.members.len()).sum(),
+        }
+    }
+
+    /// The buffers to create for this need, beside an `old` capacity that is
+    /// too small: powers of two with room to grow, so that later frames rarely
+    /// re-create them (at most `pass_lights` layers).
+    pub fn grown(&self, old: Option<Capacity>, pass_lights: u32) -> Capacity {
+        let grow = |now: Option<usize>, needed: usize, least: usize| {
+            needed.max(now.unwrap_or(0)).max(least).next_power_of_two()
+        };
+        Capacity {
+            layers: grow(old.map(|c| c.layers as usize), self.layers as usize, 1)
+                .min(pass_lights as usize)
+                .max(self.layers as usize) as u32,
+            slots: grow(old.map(|c| c.slots), self.slots, 8),
+            entries: grow(old.map(|c| c.entries), 4 * self.entries, 64),
+        }
+    }
+
+    /// The slice images (a and b, RGBA32F) and the slot and entry buffers
+    /// [`Propagation::new`] creates for this capacity.
+    pub fn resources(&self, grid: UVec3) -> [ResourceNeed; 4] {
+        let side = grid.max_element();
+        [
+            ResourceNeed::image("lightvolume slice a", [side, side, self.layers], 16),
+            ResourceNeed::image("lightvolume slice b", [side, side, self.layers], 16),
+            ResourceNeed::of::<GpuLight>("lightvolume light slots", self.slots),
+            ResourceNeed::of::<GroupEntry>("lightvolume pass entries", self.entries),
+        ]
+    }
+
     pub fn holds(&self, other: &Capacity) -> bool {
         self.layers >= other.layers && self.slots >= other.slots && self.entries >= other.entries
     }

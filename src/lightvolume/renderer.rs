@@ -13,6 +13,7 @@ use super::settings::LightVolumeSettings;
 use crate::linear_image::LinearImage;
 use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
 use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::scene::settings_table::SettingsTable;
 use crate::scene::Light;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
@@ -79,7 +80,8 @@ pub struct LightVolumeRenderer<'s> {
 
 impl<'s> LightVolumeRenderer<'s> {
     pub fn new(gpu: &'s GpuScene<'s>) -> Result<Self, RenderError> {
-        let settings = LightVolumeSettings::from_scene(gpu.scene)?;
+        let settings = gpu.scene.settings.lightvolume.clone();
+        settings.validate()?;
         let illumination =
             IlluminationVolume::new(gpu.ctx, gpu.scene.volume.dims, settings.scale, settings.compensated)?;
         let bx = gpu.scene.volume_box();
@@ -267,29 +269,11 @@ impl<'s> LightVolumeRenderer<'s> {
         if passes.is_empty() {
             return Ok((Vec::new(), 0));
         }
-        let mut distinct: Vec<GpuLight> = Vec::new();
-        for m in passes.iter().flat_map(|p| &p.members) {
-            if !distinct.contains(&m.state) {
-                distinct.push(m.state);
-            }
-        }
-        let slots_needed = distinct.len();
-        let layers = passes.iter().map(|p| p.members.len()).max().unwrap_or(1) as u32;
-        let entries_needed: usize = passes.iter().map(|p| p.members.len()).sum();
-        let need = Capacity { layers, slots: slots_needed, entries: entries_needed };
+        let need = Capacity::needed(passes);
         let fits = self.propagation.as_ref().is_some_and(|p| p.capacity.holds(&need));
         if !fits {
             let old = self.propagation.as_ref().map(|p| p.capacity);
-            let grow = |now: Option<usize>, needed: usize, least: usize| {
-                needed.max(now.unwrap_or(0)).max(least).next_power_of_two()
-            };
-            let capacity = Capacity {
-                layers: grow(old.map(|c| c.layers as usize), layers as usize, 1)
-                    .min(self.settings.pass_lights as usize)
-                    .max(layers as usize) as u32,
-                slots: grow(old.map(|c| c.slots), slots_needed, 8),
-                entries: grow(old.map(|c| c.entries), 4 * entries_needed, 64),
-            };
+            let capacity = need.grown(old, self.settings.pass_lights);
             // New buffers: nothing recorded against the old ones survives.
             self.cache = PassCache::default();
             self.slot_states.clear();

@@ -1,11 +1,12 @@
 //! Light volume parameters from the scene file's `[lightvolume]` table (or
 //! `--set lightvolume.key=value`).
 
-use crate::render::RenderError;
-use crate::scene::Scene;
+use crate::scene::settings_table::{check_range, check_whole, out_of_range, SettingsError, SettingsTable};
+use serde::Deserialize;
 
 /// Section 5's cost estimates deciding between a selective and an entire update.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum CostEstimate {
     /// Selective when at most half of the lights changed.
     Share,
@@ -29,7 +30,9 @@ impl CostEstimate {
     }
 }
 
-#[derive(Clone, Debug, PartialEq)]
+/// The file's key names are those of the fields; defaults below.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
 pub struct LightVolumeSettings {
     /// Data voxels per illumination voxel along each axis: 1, 2 or 4.
     pub scale: u32,
@@ -82,46 +85,27 @@ impl Default for LightVolumeSettings {
     }
 }
 
-const KNOWN: &str = "scale (1, 2 or 4), coherent, compensated (true or false), cost_estimate (\"share\", \
-                     \"passes\", \"selective\" or \"entire\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0), substep (0.05..=4 illumination voxels), shared_medium, racy (true or false)";
-
 impl LightVolumeSettings {
     /// The sub-step in data voxels, as the shader takes it.
     pub fn substep_data_voxels(&self) -> f32 {
         self.substep * self.scale as f32
     }
+}
 
-    /// Reads `[lightvolume]`; a missing table gives the defaults, unknown keys
-    /// and out-of-range values are errors.
-    pub fn from_scene(scene: &Scene) -> Result<Self, RenderError> {
-        let mut s = LightVolumeSettings::default();
-        let Some(table) = scene.techniques.get("lightvolume") else { return Ok(s) };
-        let table = table.as_table().ok_or_else(|| RenderError::Invalid("[lightvolume] must be a table".into()))?;
-        for (key, v) in table {
-            let float = v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
-            match (key.as_str(), v.as_integer(), v.as_bool(), v.as_str()) {
-                ("scale", Some(x), _, _) if matches!(x, 1 | 2 | 4) => s.scale = x as u32,
-                ("coherent", _, Some(b), _) => s.coherent = b,
-                ("compensated", _, Some(b), _) => s.compensated = b,
-                ("racy", _, Some(b), _) => s.racy = b,
-                ("shared_medium", _, Some(b), _) => s.shared_medium = b,
-                ("substep", _, _, _) if float.is_some_and(|f| (0.05..=4.0).contains(&f)) => {
-                    s.substep = float.unwrap_or_default() as f32
-                }
-                ("cost_estimate", _, _, Some("share")) => s.cost_estimate = CostEstimate::Share,
-                ("cost_estimate", _, _, Some("passes")) => s.cost_estimate = CostEstimate::Passes,
-                ("cost_estimate", _, _, Some("selective")) => s.cost_estimate = CostEstimate::Selective,
-                ("cost_estimate", _, _, Some("entire")) => s.cost_estimate = CostEstimate::Entire,
-                ("max_passes_per_frame", Some(x), _, _) if (0..=1_000_000).contains(&x) => {
-                    s.max_passes_per_frame = x as u32
-                }
-                ("pass_lights", Some(x), _, _) if (1..=64).contains(&x) => s.pass_lights = x as u32,
-                ("rebase_tolerance", _, _, _) if float.is_some_and(|f| f.is_finite() && f > 0.0) => {
-                    s.rebase_tolerance = float.unwrap_or_default()
-                }
-                _ => return Err(RenderError::Invalid(format!("lightvolume.{key} = {v}: the known keys are {KNOWN}"))),
-            }
+impl SettingsTable for LightVolumeSettings {
+    const TABLE: &'static str = "lightvolume";
+
+    fn validate(&self) -> Result<(), SettingsError> {
+        let t = Self::TABLE;
+        if !matches!(self.scale, 1 | 2 | 4) {
+            return Err(out_of_range(t, "scale", self.scale, "1, 2 or 4".into()));
         }
-        Ok(s)
+        // 0: every pass in one frame.
+        check_whole(t, "max_passes_per_frame", self.max_passes_per_frame, 0, 1_000_000)?;
+        check_whole(t, "pass_lights", self.pass_lights, 1, 64)?;
+        if !(self.rebase_tolerance.is_finite() && self.rebase_tolerance > 0.0) {
+            return Err(out_of_range(t, "rebase_tolerance", self.rebase_tolerance, "finite and > 0".into()));
+        }
+        check_range(t, "substep", self.substep, 0.05, 4.0)
     }
 }

@@ -4,10 +4,9 @@
 //! samples, one dispatch per chunk, each within a loop budget; the partial sums
 //! travel between dispatches through a ping-pong pair of images.
 
-use crate::render::frame_params::{frame_params, MarchSteps};
-use crate::render::technique::FrameResult;
-use crate::render::{GpuScene, OutputImage, RenderError};
-use crate::scene::OpticalModel;
+use crate::render::frame_params::{frame_params, FrameParams, MarchSteps};
+use crate::render::{FrameResult, GpuScene, OutputImage, RenderError, RenderTechnique, ResourceNeed};
+use crate::scene::{OpticalModel, Scene};
 use crate::shaders::reference as shader;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
@@ -84,8 +83,35 @@ pub enum ChunkSync {
     RacyNoBarrier,
 }
 
-pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
-    render_with(gpu, width, height, profiler, ChunkSync::Barrier)
+/// Ground truth on the GPU, of the model the scene names.
+pub struct Reference;
+
+impl RenderTechnique for Reference {
+    fn name(&self) -> &'static str {
+        "reference"
+    }
+    fn summary(&self) -> &'static str {
+        "ground truth: brute-force shadow rays per sample (model of [reference])"
+    }
+    fn reference_model(&self, scene: &Scene) -> OpticalModel {
+        scene.reference.model
+    }
+    fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
+        vec![
+            ResourceNeed::output_image("reference accum a", width, height),
+            ResourceNeed::output_image("reference accum b", width, height),
+            ResourceNeed::of::<FrameParams>("frame params", 1),
+        ]
+    }
+    fn render(
+        &self,
+        gpu: &GpuScene,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<FrameResult, RenderError> {
+        render_with(gpu, width, height, profiler, ChunkSync::Barrier)
+    }
 }
 
 pub fn render_with(

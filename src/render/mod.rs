@@ -1,14 +1,22 @@
 //! What every GPU technique shares: the scene uploaded once ([`GpuScene`]), the
-//! frame parameters, the output image and its readback, and the list of
-//! techniques the CLI can name. Each technique lives in its own module.
+//! frame parameters, the output image and its readback, the light-space and
+//! image-space geometry, the plain ray cast, and the [`RenderTechnique`] trait
+//! each technique implements in its own module. [`registry`] lists them.
 
 pub mod error;
 pub mod frame_params;
+pub mod frame_result;
 pub mod gpu_scene;
+pub mod image_space;
+pub mod light_space;
 pub mod output;
+pub mod raycast;
+pub mod registry;
 pub mod technique;
 
 pub use error::RenderError;
+pub use frame_result::FrameResult;
 pub use gpu_scene::{GpuScene, VolumeTexels};
 pub use output::OutputImage;
-pub use technique::{render, RenderOutput, Technique};
+pub use registry::{render, RenderOutput, Technique};
+pub use technique::{RenderTechnique, ResourceNeed};

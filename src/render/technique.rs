@@ -1,117 +1,76 @@
-//! The techniques a user can name, and one entry point that renders any of them
-//! into a [`LinearImage`] with its GPU profile.
+//! What a technique is: a name, the optical model it approximates, the GPU
+//! memory a frame allocates, and the recording of a frame. Each technique's
+//! module has one small type implementing [`RenderTechnique`]; the list of
+//! them, which the command line names, is [`super::registry`].
 
 use super::error::RenderError;
+use super::frame_result::FrameResult;
 use super::gpu_scene::GpuScene;
-use crate::linear_image::LinearImage;
-use crate::vk::{ProfileReport, Profiler};
-use std::fmt;
-use std::str::FromStr;
+use crate::scene::{OpticalModel, Scene};
+use crate::vk::Profiler;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Technique {
-    /// Unshaded emission-absorption ray casting (one dispatch).
-    Dvr,
-    /// Gradient Blinn-Phong ray casting, no shadows (one dispatch).
-    Phong,
-    /// Ground truth on the GPU: brute-force shadow rays per sample.
-    Reference,
-    /// Image plane sweep volume illumination: one dispatch and barrier per line.
-    Ipsvi,
-    /// Half-angle slicing: one dispatch and barrier per slice.
-    HalfAngle,
-    /// Light volume: slice-by-slice propagation in coherence-based groups, one
-    /// secondary command buffer per group, then a ray cast.
-    LightVolume,
-}
+pub trait RenderTechnique: Sync {
+    /// What `--technique` calls it.
+    fn name(&self) -> &'static str;
 
-impl Technique {
-    pub const ALL: [Technique; 6] = [
-        Technique::Dvr,
-        Technique::Phong,
-        Technique::Reference,
-        Technique::Ipsvi,
-        Technique::HalfAngle,
-        Technique::LightVolume,
-    ];
+    /// One line for the `--technique` help.
+    fn summary(&self) -> &'static str;
 
-    pub fn name(self) -> &'static str {
-        match self {
-            Technique::Dvr => "dvr",
-            Technique::Phong => "phong",
-            Technique::Reference => "reference",
-            Technique::Ipsvi => "ipsvi",
-            Technique::HalfAngle => "half-angle",
-            Technique::LightVolume => "lightvolume",
-        }
-    }
+    /// The ground-truth model it is compared with (docs/optical-model.md).
+    fn reference_model(&self, scene: &Scene) -> OpticalModel;
 
-    /// The ground-truth model this technique approximates (docs/optical-model.md):
-    /// IPSVI carries emission along its light rays (model ii); the light volume and
-    /// half-angle slicing carry transmittance alone (model i); the baselines are
-    /// compared with the model the scene names.
-    pub fn reference_model(self, scene: &crate::scene::Scene) -> crate::scene::OpticalModel {
-        match self {
-            Technique::Ipsvi => crate::scene::OpticalModel::EmissiveScattering,
-            Technique::LightVolume | Technique::HalfAngle => crate::scene::OpticalModel::SingleScattering,
-            _ => scene.reference.model,
-        }
+    /// The device memory one frame allocates, by resource, beside the scene's
+    /// own (volume, transfer LUT, lights).
+    fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed>;
+
+    /// Records, runs and reads back one frame of `gpu.scene`, with its settings
+    /// (`gpu.scene.settings`) checked first.
+    fn render(
+        &self,
+        gpu: &GpuScene,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<FrameResult, RenderError>;
+
+    /// A line worth printing beside the frame's figures (IPSVI's sync strategy).
+    fn settings_note(&self, _scene: &Scene) -> Option<String> {
+        None
     }
 }
 
-impl fmt::Display for Technique {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
+/// One GPU resource a frame allocates.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResourceNeed {
+    pub name: String,
+    /// Bytes of its contents (a driver may pad an image's rows and layers).
+    pub bytes: u64,
+    /// For an image: texels along x, y, z and bytes per texel.
+    pub image: Option<([u32; 3], u32)>,
+}
+
+impl ResourceNeed {
+    pub fn buffer(name: &str, bytes: u64) -> ResourceNeed {
+        ResourceNeed { name: name.to_string(), bytes, image: None }
+    }
+
+    /// `count` values of `T` (a parameter buffer).
+    pub fn of<T>(name: &str, count: usize) -> ResourceNeed {
+        ResourceNeed::buffer(name, (count * std::mem::size_of::<T>()) as u64)
+    }
+
+    pub fn image(name: &str, extent: [u32; 3], texel_bytes: u32) -> ResourceNeed {
+        let bytes = extent.iter().map(|&e| e as u64).product::<u64>() * texel_bytes as u64;
+        ResourceNeed { name: name.to_string(), bytes, image: Some((extent, texel_bytes)) }
+    }
+
+    /// An RGBA32F image of `width` x `height` (render::OutputImage).
+    pub fn output_image(name: &str, width: u32, height: u32) -> ResourceNeed {
+        ResourceNeed::image(name, [width, height, 1], 16)
     }
 }
 
-impl FromStr for Technique {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Technique::ALL
-            .into_iter()
-            .find(|t| t.name() == s)
-            .ok_or_else(|| format!("unknown technique {s:?}; known: {}", Technique::ALL.map(|t| t.name()).join(", ")))
-    }
-}
-
-pub struct RenderOutput {
-    pub technique: Technique,
-    pub image: LinearImage,
-    pub profile: ProfileReport,
-    /// Compute dispatches and pipeline barriers recorded for the frame.
-    pub dispatches: u32,
-    pub barriers: u32,
-}
-
-/// What a technique module returns before the profile is resolved.
-pub struct FrameResult {
-    pub image: LinearImage,
-    pub dispatches: u32,
-    pub barriers: u32,
-}
-
-/// Renders one frame of `technique` at `width` x `height`.
-pub fn render(
-    gpu: &GpuScene,
-    technique: Technique,
-    width: u32,
-    height: u32,
-    profiler: &mut Profiler,
-) -> Result<RenderOutput, RenderError> {
-    if width == 0 || height == 0 {
-        return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
-    }
-    gpu.ctx.memory.reset_peak();
-    profiler.reset();
-    let frame = match technique {
-        Technique::Dvr => crate::dvr::render(gpu, crate::dvr::Shading::Unshaded, width, height, profiler)?,
-        Technique::Phong => crate::dvr::render(gpu, crate::dvr::Shading::BlinnPhong, width, height, profiler)?,
-        Technique::Reference => crate::reference::gpu::render(gpu, width, height, profiler)?,
-        Technique::Ipsvi => crate::ipsvi::render(gpu, width, height, profiler)?,
-        Technique::HalfAngle => crate::half_angle::render(gpu, width, height, profiler)?,
-        Technique::LightVolume => crate::lightvolume::render(gpu, width, height, profiler)?,
-    };
-    let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
-    Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })
+/// Bytes of all `needs`.
+pub fn total_bytes(needs: &[ResourceNeed]) -> u64 {
+    needs.iter().map(|n| n.bytes).sum()
 }

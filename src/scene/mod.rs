@@ -11,13 +11,17 @@ pub mod presets;
 pub mod scene_file;
 pub mod scene_schema;
 pub mod scene_spec;
+pub mod settings_table;
+pub mod suggest;
 pub mod synthetic;
+pub mod technique_settings;
 pub mod transfer;
 pub mod volume;
 
 pub use camera::{Camera, Projection, RayBasis};
 pub use geometry::VolumeBox;
 pub use light::{Falloff, Light, LightKind};
+pub use technique_settings::TechniqueSettings;
 pub use transfer::{ControlPoint, TransferFunction, TransferLut};
 pub use volume::{Volume, VoxelData};
 
@@ -74,9 +78,9 @@ pub struct Scene {
     pub render: RenderSettings,
     pub reference: ReferenceSettings,
     pub phong: PhongSettings,
-    /// Parameter tables of the illumination techniques (`[ipsvi]`, `[lightvolume]`,
-    /// ...), read by each technique's own module.
-    pub techniques: toml::Table,
+    /// Settings of the techniques with their own table (`[ipsvi]`,
+    /// `[lightvolume]`, `[half_angle]`), checked when the scene file is read.
+    pub settings: TechniqueSettings,
 }
 
 impl Scene {

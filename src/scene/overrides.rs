@@ -6,7 +6,9 @@
 //! value (number, bool, string in quotes, array, inline table) and taken as a
 //! plain string when it is not one, so `camera.projection=orthographic` works
 //! without quotes. Whether the key means anything is checked later, when the
-//! document is read into a scene.
+//! document is read into a scene: an edit of the document rather than of the
+//! typed settings, so that the file and the command line share one parser and
+//! one error message (`ipsvi.cone_angel`: did you mean `cone_angle`?).
 
 use toml::{Table, Value};
 

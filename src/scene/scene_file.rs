@@ -2,9 +2,10 @@
 //! into a [`Scene`].
 //!
 //! Every key has a default except the volume, so `[volume]\nsynthetic = "noise"`
-//! is a complete scene. Misspelt keys are errors (`deny_unknown_fields`); tables
-//! other than the scene sections below are technique parameters, passed through
-//! verbatim into [`Scene::techniques`].
+//! is a complete scene. Misspelt keys are errors (`deny_unknown_fields`); besides
+//! the scene sections below, the techniques' tables (`[ipsvi]`, `[lightvolume]`,
+//! `[half_angle]`, see [`TechniqueSettings`]) are read into
+//! [`Scene::settings`]; any other table is an error naming it.
 //!
 //! ```toml
 //! [volume]     # exactly one of:
@@ -58,7 +59,8 @@
 //! specular = 0.3
 //! shininess = 32.0
 //!
-//! [ipsvi]      # any other table: technique parameters, free-form
+//! [ipsvi]      # and [lightvolume], [half_angle]: each technique's settings
+//! line_width = 1             # keys and ranges: the technique's settings type
 //! ```
 
 use std::path::{Path, PathBuf};
@@ -69,7 +71,9 @@ use super::loaders::LoadError;
 use super::overrides::{apply_overrides, OverrideError};
 use super::scene_schema::{check_scene, SceneTables, DEFAULT_LIGHT_DIRECTION};
 use super::scene_spec::SceneSpec;
-use super::Scene;
+use super::settings_table::SettingsError;
+use super::suggest::nearest;
+use super::{Scene, TechniqueSettings};
 
 /// Why a scene could not be read or built. Every variant names where the scene
 /// came from (`origin`: the scene file's path, `<default scene>`, `--volume FILE`).
@@ -87,6 +91,10 @@ pub enum SceneError {
     /// A value of the right type but out of range, or contradicting another key.
     #[error("{origin}: `{key}` {problem}")]
     Invalid { origin: String, key: String, problem: String },
+    /// A technique table with an unknown key or a value out of range.
+    /// (Not a `source`: the message already says all of it.)
+    #[error("{origin}: {error}")]
+    Settings { origin: String, error: SettingsError },
     #[error("{origin}: cannot load volume {path}: {source}")]
     Volume { origin: String, path: PathBuf, source: Box<LoadError> },
 }
@@ -127,12 +135,12 @@ pub fn parse_scene_str(
     parse_scene_table(doc, base_dir, origin, overrides)
 }
 
-/// The scene sections, for telling a misspelt one from a technique table.
+/// The scene sections.
 const SECTIONS: [&str; 7] = ["volume", "transfer", "camera", "lights", "render", "reference", "phong"];
 
 /// Applies `overrides` to `doc` and checks it. A missing `lights` array gets the
-/// default light first, so `--set lights.0.intensity=2` applies to it. Tables
-/// other than the scene sections go to [`SceneSpec::techniques`].
+/// default light first, so `--set lights.0.intensity=2` applies to it. The
+/// techniques' tables go to [`SceneSpec::settings`].
 pub fn parse_scene_table(
     mut doc: Table,
     base_dir: &Path,
@@ -148,7 +156,7 @@ pub fn parse_scene_table(
     let invalid =
         |key: &str, problem: String| SceneError::Invalid { origin: origin.to_string(), key: key.to_string(), problem };
     let mut tables = SceneTables::default();
-    let mut techniques = Table::new();
+    let mut settings = TechniqueSettings::default();
     for (key, value) in doc {
         let slot = match key.as_str() {
             "volume" => &mut tables.volume,
@@ -162,16 +170,26 @@ pub fn parse_scene_table(
                 return Err(invalid(&key, "is not a scene setting (settings belong in tables such as [render])".into()))
             }
             _ => {
-                if let Some(near) = SECTIONS.iter().find(|s| edit_distance(s, &key) <= 2) {
-                    return Err(invalid(&key, format!("is not a known table; did you mean [{near}]?")));
+                let technique_table = settings
+                    .read(&key, value)
+                    .map_err(|error| SceneError::Settings { origin: origin.to_string(), error })?;
+                if !technique_table {
+                    return Err(invalid(&key, unknown_table(&key)));
                 }
-                techniques.insert(key, value);
                 continue;
             }
         };
         *slot = Some(value);
     }
-    check_scene(origin, base_dir, tables, techniques)
+    check_scene(origin, base_dir, tables, settings)
+}
+
+/// "is not a known table", with the nearest known one and the list.
+fn unknown_table(name: &str) -> String {
+    let known = SECTIONS.iter().chain(&TechniqueSettings::TABLES).copied();
+    let near = nearest(name, known.clone()).map(|n| format!("; did you mean [{n}]?")).unwrap_or_default();
+    let list: Vec<String> = known.map(|k| format!("[{k}]")).collect();
+    format!("is not a known table{near} (known: {})", list.join(" "))
 }
 
 /// `{ type = "directional", direction = DEFAULT_LIGHT_DIRECTION }`
@@ -185,22 +203,6 @@ fn default_light_table() -> Table {
     t
 }
 
-/// Levenshtein distance, to tell a misspelt section from a technique table.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let substitution = diagonal + usize::from(ca != cb);
-            diagonal = row[j + 1];
-            row[j + 1] = substitution.min(row[j] + 1).min(row[j + 1] + 1);
-        }
-    }
-    row[b.len()]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -210,15 +212,5 @@ mod tests {
         // The binary wraps them in anyhow, which needs Send + Sync + 'static.
         fn assert_send_sync<T: Send + Sync + 'static>() {}
         assert_send_sync::<SceneError>();
-    }
-
-    #[test]
-    fn edit_distance_counts_single_character_edits() {
-        assert_eq!(edit_distance("camera", "camera"), 0);
-        assert_eq!(edit_distance("camera", "camra"), 1);
-        assert_eq!(edit_distance("lights", "light"), 1);
-        assert_eq!(edit_distance("render", "rendre"), 2);
-        assert_eq!(edit_distance("ipsvi", "phong"), 5);
-        assert_eq!(edit_distance("", "ao"), 2);
     }
 }

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use serde::de::DeserializeOwned;
 use serde::Deserialize;
-use toml::{Table, Value};
+use toml::Value;
 
 use super::camera::{Camera, Projection};
 use super::light::{Falloff, Light, LightKind};
@@ -17,7 +17,7 @@ use super::scene_file::SceneError;
 use super::scene_spec::{CameraPlacement, CameraSpec, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource};
 use super::synthetic::SyntheticKind;
 use super::transfer::{ControlPoint, TransferError, TransferFunction};
-use super::{OpticalModel, PhongSettings, ReferenceSettings, RenderSettings};
+use super::{OpticalModel, PhongSettings, ReferenceSettings, RenderSettings, TechniqueSettings};
 
 pub const MAX_IMAGE_SIZE: u32 = 16384;
 pub const MAX_SYNTHETIC_SIZE: u32 = 512;
@@ -55,7 +55,7 @@ pub(crate) fn check_scene(
     origin: &str,
     base_dir: &Path,
     tables: SceneTables,
-    techniques: Table,
+    settings: TechniqueSettings,
 ) -> Result<SceneSpec, SceneError> {
     let c = Checker { origin };
     let volume = c.volume(c.section(tables.volume, "volume")?, base_dir)?;
@@ -65,7 +65,7 @@ pub(crate) fn check_scene(
     let render = c.render(c.section(tables.render, "render")?.unwrap_or_default())?;
     let reference = c.reference(c.section(tables.reference, "reference")?.unwrap_or_default())?;
     let phong = c.phong(c.section(tables.phong, "phong")?.unwrap_or_default())?;
-    Ok(SceneSpec { origin: origin.to_string(), volume, transfer, camera, lights, render, reference, phong, techniques })
+    Ok(SceneSpec { origin: origin.to_string(), volume, transfer, camera, lights, render, reference, phong, settings })
 }
 
 // The schema, one struct per table. Options where "absent" means something

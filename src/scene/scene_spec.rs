@@ -5,7 +5,6 @@
 use std::path::PathBuf;
 
 use glam::Vec3;
-use toml::Table;
 
 use super::camera::{Camera, Projection};
 use super::light::Light;
@@ -15,7 +14,7 @@ use super::scene_file::SceneError;
 use super::synthetic::SyntheticKind;
 use super::transfer::TransferFunction;
 use super::volume::Volume;
-use super::{PhongSettings, ReferenceSettings, RenderSettings, Scene, VolumeBox};
+use super::{PhongSettings, ReferenceSettings, RenderSettings, Scene, TechniqueSettings, VolumeBox};
 
 /// Auto-framing leaves this much room around the volume's bounding sphere.
 pub const FRAMING_MARGIN: f32 = 1.05;
@@ -109,7 +108,7 @@ pub struct SceneSpec {
     pub render: RenderSettings,
     pub reference: ReferenceSettings,
     pub phong: PhongSettings,
-    pub techniques: Table,
+    pub settings: TechniqueSettings,
 }
 
 impl SceneSpec {
@@ -146,7 +145,7 @@ impl SceneSpec {
             render: self.render,
             reference: self.reference,
             phong: self.phong,
-            techniques: self.techniques,
+            settings: self.settings,
         }
     }
 }

@@ -7,7 +7,7 @@
 use crate::bench::harness::{Harness, Measurement, Sample};
 use crate::bench::progress::Progress;
 use crate::bench::ExperimentError;
-use crate::lightvolume::{LightVolumeFrame, LightVolumeRenderer, UpdateKind};
+use crate::lightvolume::{CostEstimate, LightVolumeFrame, LightVolumeRenderer, LightVolumeSettings, UpdateKind};
 use crate::render::{GpuScene, RenderError, VolumeTexels};
 use crate::scene::{Falloff, Light, LightKind, Scene};
 use crate::vk::{Context, Profiler};
@@ -55,25 +55,20 @@ impl Update {
     }
 }
 
-/// `scene` with `[lightvolume]` set to what a measurement needs (scale,
-/// coherent, cost estimate, then `extra` keys); other light volume keys from the
+/// `scene` with its light volume settings set to what a measurement needs
+/// (scale, coherent, cost estimate, then `extra`); other settings from the
 /// scene (`--set lightvolume.substep=0.5`) are kept.
 pub fn lightvolume_scene(
     scene: &Scene,
     scale: u32,
     coherent: bool,
-    cost_estimate: &str,
-    extra: &[(&str, toml::Value)],
+    cost_estimate: CostEstimate,
+    extra: impl FnOnce(&mut LightVolumeSettings),
 ) -> Scene {
     let mut s = scene.clone();
-    let mut lv = s.techniques.get("lightvolume").and_then(|v| v.as_table()).cloned().unwrap_or_default();
-    lv.insert("scale".into(), toml::Value::Integer(scale.into()));
-    lv.insert("coherent".into(), toml::Value::Boolean(coherent));
-    lv.insert("cost_estimate".into(), toml::Value::String(cost_estimate.into()));
-    for (key, value) in extra {
-        lv.insert((*key).into(), value.clone());
-    }
-    s.techniques.insert("lightvolume".into(), toml::Value::Table(lv));
+    let lv = &mut s.settings.lightvolume;
+    (lv.scale, lv.coherent, lv.cost_estimate) = (scale, coherent, cost_estimate);
+    extra(lv);
     s
 }
 

@@ -1,8 +1,10 @@
-//! Where the illumination cache sits: a plane fitted to the volume as seen from
-//! the light (light-frustum adaptation, section 5.2), square texels so the aspect
-//! is kept. Directional lights: an orthographic light view. Point and spot lights
-//! outside the volume's bounding sphere: a perspective light frustum around the
-//! box. Lights inside it: an octahedral map of all directions around the light.
+//! Light space: a plane of texels fitted to the volume as seen from the light,
+//! where IPSVI keeps its illumination cache and half-angle slicing its light
+//! buffer (IPSVI paper's light-frustum adaptation, section 5.2); square texels
+//! so the aspect is kept. Directional lights: an orthographic light view. Point
+//! and spot lights outside the volume's bounding sphere: a perspective light
+//! frustum around the box. Lights inside it: an octahedral map of all
+//! directions around the light.
 
 use crate::scene::{LightKind, VolumeBox};
 use glam::Vec3;

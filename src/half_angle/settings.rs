@@ -1,0 +1,39 @@
+//! Half-angle slicing parameters from the scene file's `[half_angle]` table (or
+//! `--set half_angle.key=value`).
+
+use crate::scene::settings_table::{check_range, check_whole, SettingsError, SettingsTable};
+use crate::scene::Scene;
+use serde::Deserialize;
+
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct HalfAngleSettings {
+    /// Distance between slices, in voxels; `None`: the scene's `render.step`.
+    pub slice_step: Option<f32>,
+    /// The light buffer is N x N.
+    pub light_buffer_size: u32,
+}
+
+impl Default for HalfAngleSettings {
+    fn default() -> Self {
+        HalfAngleSettings { slice_step: None, light_buffer_size: 256 }
+    }
+}
+
+impl HalfAngleSettings {
+    /// Distance between slices in voxels.
+    pub fn slice_step_voxels(&self, scene: &Scene) -> f32 {
+        self.slice_step.unwrap_or(scene.render.step_voxels)
+    }
+}
+
+impl SettingsTable for HalfAngleSettings {
+    const TABLE: &'static str = "half_angle";
+
+    fn validate(&self) -> Result<(), SettingsError> {
+        if let Some(step) = self.slice_step {
+            check_range(Self::TABLE, "slice_step", step, 0.01, 16.0)?;
+        }
+        check_whole(Self::TABLE, "light_buffer_size", self.light_buffer_size, 16, 4096)
+    }
+}

@@ -1,0 +1,52 @@
+//! Half-angle slicing as a [`RenderTechnique`]: settings from `[half_angle]`,
+//! model (i), and the frame of [`super::render`].
+
+use super::LightBufferParams;
+use crate::render::frame_params::FrameParams;
+use crate::render::raycast::{self, Shading};
+use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::scene::{OpticalModel, Scene};
+use crate::vk::Profiler;
+
+/// Half-angle slicing.
+pub struct HalfAngle;
+
+impl RenderTechnique for HalfAngle {
+    fn name(&self) -> &'static str {
+        "half-angle"
+    }
+
+    fn summary(&self) -> &'static str {
+        "half-angle slicing: one dispatch and barrier per slice, one light ([half_angle])"
+    }
+
+    /// Slices carry the transmittance alone.
+    fn reference_model(&self, _scene: &Scene) -> OpticalModel {
+        OpticalModel::SingleScattering
+    }
+
+    fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
+        if scene.lights.is_empty() {
+            return raycast::resources(Shading::EmissionOnly, width, height);
+        }
+        let n = scene.settings.half_angle.light_buffer_size;
+        vec![
+            ResourceNeed::of::<FrameParams>("frame params", 1),
+            ResourceNeed::of::<LightBufferParams>("half-angle light buffer", 1),
+            // R32F transmittance, ping-pong.
+            ResourceNeed::image("half-angle light a", [n, n, 1], 4),
+            ResourceNeed::image("half-angle light b", [n, n, 1], 4),
+            ResourceNeed::output_image("half-angle eye buffer", width, height),
+        ]
+    }
+
+    fn render(
+        &self,
+        gpu: &GpuScene,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<FrameResult, RenderError> {
+        super::render(gpu, width, height, profiler)
+    }
+}

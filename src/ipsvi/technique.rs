@@ -1,0 +1,79 @@
+//! IPSVI as a [`RenderTechnique`]: settings from `[ipsvi]`, model (ii), and the
+//! frame of [`super::renderer`].
+
+use super::gpu_params::{BlockParams, SweepParams};
+use super::renderer::{render_with, scene_plans};
+use super::settings::EarlyTermination;
+use crate::render::frame_params::FrameParams;
+use crate::render::raycast::{self, Shading};
+use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::scene::settings_table::SettingsTable;
+use crate::scene::{OpticalModel, Scene};
+use crate::vk::Profiler;
+
+/// Image plane sweep volume illumination.
+pub struct Ipsvi;
+
+impl RenderTechnique for Ipsvi {
+    fn name(&self) -> &'static str {
+        "ipsvi"
+    }
+
+    fn summary(&self) -> &'static str {
+        "image plane sweep volume illumination: one dispatch and barrier per line block ([ipsvi])"
+    }
+
+    /// IPSVI carries emission along its light rays.
+    fn reference_model(&self, _scene: &Scene) -> OpticalModel {
+        OpticalModel::EmissiveScattering
+    }
+
+    fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
+        if scene.lights.is_empty() {
+            return raycast::resources(Shading::EmissionOnly, width, height);
+        }
+        let s = &scene.settings.ipsvi;
+        let plans = scene_plans(scene, s, width, height);
+        let blocks: usize = plans.iter().flat_map(|p| &p.sweeps).map(|sweep| sweep.blocks.len()).sum();
+        let cache = [s.cache_size, s.cache_size, 1];
+        let mut needs = vec![
+            ResourceNeed::output_image("ipsvi output", width, height),
+            // Illumination: RGBA16F; front: R16_UINT.
+            ResourceNeed::image("ipsvi cache a", cache, 8),
+            ResourceNeed::image("ipsvi cache b", cache, 8),
+            ResourceNeed::image("ipsvi front a", cache, 2),
+            ResourceNeed::image("ipsvi front b", cache, 2),
+            ResourceNeed::of::<FrameParams>("frame params", 1),
+            ResourceNeed::of::<[f32; 4]>("ipsvi line planes", (width + height) as usize),
+            ResourceNeed::of::<SweepParams>("ipsvi sweeps", scene.lights.len()),
+            ResourceNeed::of::<BlockParams>("ipsvi blocks", blocks),
+        ];
+        if s.early_termination == EarlyTermination::ExitPoints {
+            // The pre-pass resolution: RG32F depths, R32F l_max.
+            let low = [width.div_ceil(s.ert_scale), height.div_ceil(s.ert_scale), 1];
+            needs.push(ResourceNeed::image("ipsvi ert depths", low, 8));
+            for name in ["ipsvi lmax a", "ipsvi lmax b", "ipsvi lmax"] {
+                needs.push(ResourceNeed::image(name, low, 4));
+            }
+        } else {
+            needs.push(ResourceNeed::image("ipsvi lmax placeholder", [1, 1, 1], 4));
+        }
+        needs
+    }
+
+    fn render(
+        &self,
+        gpu: &GpuScene,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<FrameResult, RenderError> {
+        let settings = &gpu.scene.settings.ipsvi;
+        settings.validate()?;
+        render_with(gpu, settings, width, height, profiler, settings.sync)
+    }
+
+    fn settings_note(&self, scene: &Scene) -> Option<String> {
+        Some(format!("ipsvi sync strategy: {}", scene.settings.ipsvi.sync))
+    }
+}

@@ -1,0 +1,87 @@
+//! The plain ray cast of glsl/raycast.comp, one dispatch, variant chosen by
+//! specialization constant: the DVR and Phong baselines, and the emission term
+//! alone that a lit technique renders for a scene without lights.
+
+use super::frame_params::{frame_params, FrameParams, MarchSteps};
+use super::frame_result::FrameResult;
+use super::technique::ResourceNeed;
+use super::{GpuScene, OutputImage, RenderError};
+use crate::shaders::raycast;
+use crate::vk::commands::submit_and_wait;
+use crate::vk::descriptors::Resource;
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::{Buffer, Profiler};
+use ash::vk;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    Unshaded = 0,
+    BlinnPhong = 1,
+    /// The emission term `emission * rgb` alone: a lit technique with no lights.
+    EmissionOnly = 2,
+}
+
+impl Shading {
+    pub fn pass_name(self) -> &'static str {
+        match self {
+            Shading::Unshaded => "dvr",
+            Shading::BlinnPhong => "phong",
+            Shading::EmissionOnly => "emission_only",
+        }
+    }
+}
+
+pub fn render(
+    gpu: &GpuScene,
+    shading: Shading,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+) -> Result<FrameResult, RenderError> {
+    let ctx = gpu.ctx;
+    let name = shading.pass_name();
+    let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
+    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
+    let mut pipeline = ComputePipeline::new(
+        ctx,
+        &ComputePipelineDesc { name, shader: &raycast::INTERFACE, specialization: &[(0, shading as u32)], max_sets: 1 },
+    )?;
+    let set = pipeline.create_set(&[
+        (raycast::FRAME, Resource::UniformBuffer(&frame)),
+        (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+        (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+        (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+        (raycast::OUT_IMAGE, Resource::StorageImage(&output.image)),
+    ])?;
+    let readback = output.readback_buffer(ctx)?;
+    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
+        output.prepare_for_compute_write(rec);
+        let scope = profiler.begin(rec, name)?;
+        rec.bind(&pipeline, set);
+        rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
+        profiler.end(rec, scope)?;
+        output.record_readback(rec, &readback);
+        Ok((rec.dispatch_count, rec.barrier_count))
+    })?;
+    Ok(FrameResult { image: output.read(&readback)?, dispatches, barriers })
+}
+
+/// A lit technique's frame for a scene without lights: no light, nothing to
+/// sweep or propagate, so the emission-absorption ray cast alone.
+pub fn emission_only(
+    gpu: &GpuScene,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+) -> Result<FrameResult, RenderError> {
+    render(gpu, Shading::EmissionOnly, width, height, profiler)
+}
+
+/// What [`render`] allocates.
+pub fn resources(shading: Shading, width: u32, height: u32) -> Vec<ResourceNeed> {
+    vec![
+        ResourceNeed::output_image(&format!("{} output", shading.pass_name()), width, height),
+        ResourceNeed::of::<FrameParams>("frame params", 1),
+    ]
+}

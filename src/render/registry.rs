@@ -1,0 +1,141 @@
+//! The techniques a user can name, and one entry point that renders any of them
+//! into a [`LinearImage`] with its GPU profile. The one part of `render` above
+//! the techniques: it lists them; they know nothing of it.
+
+use super::error::RenderError;
+use super::gpu_scene::GpuScene;
+use super::technique::RenderTechnique;
+use crate::linear_image::LinearImage;
+use crate::vk::{ProfileReport, Profiler};
+use std::fmt;
+use std::ops::Deref;
+use std::str::FromStr;
+
+/// A technique by name: a copyable handle on its [`RenderTechnique`].
+#[derive(Clone, Copy)]
+pub struct Technique(&'static dyn RenderTechnique);
+
+// Named like the variants of the enum this handle replaced, so that call sites
+// keep reading `Technique::Ipsvi`.
+#[allow(non_upper_case_globals)]
+impl Technique {
+    pub const Dvr: Technique = Technique(&crate::dvr::Dvr);
+    pub const Phong: Technique = Technique(&crate::dvr::Phong);
+    pub const Reference: Technique = Technique(&crate::reference::gpu::Reference);
+    pub const Ipsvi: Technique = Technique(&crate::ipsvi::Ipsvi);
+    pub const HalfAngle: Technique = Technique(&crate::half_angle::HalfAngle);
+    pub const LightVolume: Technique = Technique(&crate::lightvolume::LightVolume);
+
+    /// The registry: every technique, in the order help text lists them.
+    pub const ALL: [Technique; 6] = [
+        Technique::Dvr,
+        Technique::Phong,
+        Technique::Reference,
+        Technique::Ipsvi,
+        Technique::HalfAngle,
+        Technique::LightVolume,
+    ];
+
+    /// `name: summary` of every technique, one per line (for `--technique` help).
+    pub fn help() -> String {
+        Technique::ALL.map(|t| format!("{}: {}", t.name(), t.summary())).join("\n")
+    }
+}
+
+impl Deref for Technique {
+    type Target = dyn RenderTechnique;
+    fn deref(&self) -> &Self::Target {
+        self.0
+    }
+}
+
+impl PartialEq for Technique {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name()
+    }
+}
+
+impl Eq for Technique {}
+
+impl fmt::Debug for Technique {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl fmt::Display for Technique {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Technique {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Technique::ALL.into_iter().find(|t| t.name() == s).ok_or_else(|| {
+            let names = Technique::ALL.map(|t| t.name());
+            let near = crate::scene::suggest::nearest(s, names).map(|n| format!(" (did you mean {n}?)"));
+            format!("unknown technique {s:?}{}; known: {}", near.unwrap_or_default(), names.join(", "))
+        })
+    }
+}
+
+pub struct RenderOutput {
+    pub technique: Technique,
+    pub image: LinearImage,
+    pub profile: ProfileReport,
+    /// Compute dispatches and pipeline barriers recorded for the frame.
+    pub dispatches: u32,
+    pub barriers: u32,
+}
+
+/// Renders one frame of `technique` at `width` x `height`.
+pub fn render(
+    gpu: &GpuScene,
+    technique: Technique,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+) -> Result<RenderOutput, RenderError> {
+    if width == 0 || height == 0 {
+        return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
+    }
+    gpu.ctx.memory.reset_peak();
+    profiler.reset();
+    let frame = technique.render(gpu, width, height, profiler)?;
+    let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
+    Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::scene_file::scene_from_toml_str;
+    use crate::scene::OpticalModel;
+
+    #[test]
+    fn every_technique_is_found_by_its_own_name_only() {
+        for t in Technique::ALL {
+            assert_eq!(t.name().parse::<Technique>(), Ok(t));
+            assert_eq!(Technique::ALL.iter().filter(|u| u.name() == t.name()).count(), 1, "{t} twice");
+            assert!(Technique::help().contains(&format!("{t}: {}", t.summary())));
+        }
+        let e = "half_angle".parse::<Technique>().unwrap_err();
+        assert!(e.contains("did you mean half-angle?") && e.contains("lightvolume"), "{e}");
+    }
+
+    #[test]
+    fn each_technique_names_the_model_it_approximates() {
+        let text = "[volume]\nsynthetic = \"noise\"\nsize = 4\n";
+        let mut scene = scene_from_toml_str(text, std::path::Path::new(""), "test", &[]).unwrap();
+        for model in [OpticalModel::SingleScattering, OpticalModel::EmissiveScattering] {
+            scene.reference.model = model;
+            for t in [Technique::Dvr, Technique::Phong, Technique::Reference] {
+                assert_eq!(t.reference_model(&scene), model, "{t} follows the scene");
+            }
+            assert_eq!(Technique::Ipsvi.reference_model(&scene), OpticalModel::EmissiveScattering);
+            assert_eq!(Technique::HalfAngle.reference_model(&scene), OpticalModel::SingleScattering);
+            assert_eq!(Technique::LightVolume.reference_model(&scene), OpticalModel::SingleScattering);
+        }
+    }
+}
