@@ -17,7 +17,7 @@ pub use technique::HalfAngle;
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
-use crate::render::light_space::{CacheGeometry, CacheProjection};
+use crate::render::light_space::{LightProjection, LightSpacePlane};
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::{LightKind, Scene};
@@ -111,8 +111,8 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
     }
     let ctx = gpu.ctx;
     let bx = scene.volume_box();
-    let geometry = CacheGeometry::fit(&scene.lights[0].kind, &bx, settings.light_buffer_size);
-    if geometry.projection == CacheProjection::Octahedral {
+    let geometry = LightSpacePlane::fit(&scene.lights[0].kind, &bx, settings.light_buffer_size);
+    if geometry.projection == LightProjection::Octahedral {
         return Err(RenderError::Invalid(
             "half-angle slicing needs the light outside the volume's bounding sphere".into(),
         ));

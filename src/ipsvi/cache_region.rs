@@ -5,7 +5,7 @@
 //! as of its own block (a texel outside both regions did not change since the
 //! image was last written two blocks ago), so nothing stale is ever read.
 
-use crate::render::light_space::{CacheGeometry, CacheProjection};
+use crate::render::light_space::{LightProjection, LightSpacePlane};
 use crate::scene::VolumeBox;
 use glam::Vec3;
 
@@ -46,9 +46,9 @@ const EDGES: [(usize, usize); 12] =
     [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7)];
 
 /// Texels whose rays cross plane (n, d) inside the box, one texel of margin.
-pub fn plane_region(geometry: &CacheGeometry, bx: &VolumeBox, plane: [f32; 4]) -> TexelRect {
+pub fn plane_region(geometry: &LightSpacePlane, bx: &VolumeBox, plane: [f32; 4]) -> TexelRect {
     let size = geometry.size;
-    if geometry.projection == CacheProjection::Octahedral {
+    if geometry.projection == LightProjection::Octahedral {
         // The octahedral map does not keep polygons convex: update it all.
         return TexelRect::full(size);
     }
@@ -88,7 +88,7 @@ mod tests {
     fn plane_across_the_light_is_a_thin_band_and_outside_the_box_is_empty() {
         let bx = VolumeBox::new(UVec3::splat(32), Vec3::ONE);
         // Light from +x; a plane x = 0.1 contains no light ray direction, every ray crosses it.
-        let g = CacheGeometry::fit(&LightKind::Directional { direction: Vec3::NEG_X }, &bx, 64);
+        let g = LightSpacePlane::fit(&LightKind::Directional { direction: Vec3::NEG_X }, &bx, 64);
         let across = plane_region(&g, &bx, [1.0, 0.0, 0.0, -0.1]);
         assert!(across.count() > 60 * 60, "{across:?}");
         // A plane containing the light direction (y = 0.1) is crossed by one band of rays.

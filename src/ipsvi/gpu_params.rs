@@ -1,7 +1,7 @@
 //! Host mirrors of glsl/ipsvi_common.glsl's `Sweep` block and `Planes` buffer.
 
 use super::light_anchor::LightAnchor;
-use crate::render::light_space::CacheGeometry;
+use crate::render::light_space::LightSpacePlane;
 use crate::scene::RayBasis;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
@@ -105,7 +105,7 @@ crate::assert_gpu_layout!(
 );
 
 pub struct SweepInputs<'a> {
-    pub geometry: &'a CacheGeometry,
+    pub geometry: &'a LightSpacePlane,
     pub anchor: LightAnchor,
     pub blend_px: f32,
     pub light_scale: f32,

@@ -19,7 +19,7 @@ use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
-use crate::render::light_space::CacheGeometry;
+use crate::render::light_space::LightSpacePlane;
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::Scene;
@@ -190,8 +190,8 @@ impl<'a> IpsviRenderer<'a> {
         };
         let planes_host = line_planes(&space.basis, width, height);
         let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
-        let geometries: Vec<CacheGeometry> =
-            scene.lights.iter().map(|l| CacheGeometry::fit(&l.kind, &bx, settings.cache_size)).collect();
+        let geometries: Vec<LightSpacePlane> =
+            scene.lights.iter().map(|l| LightSpacePlane::fit(&l.kind, &bx, settings.cache_size)).collect();
         let light_scale = |i: usize| scene.lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
         let sweep_records: Vec<SweepParams> = (0..scene.lights.len())
             .map(|i| {
@@ -410,7 +410,7 @@ fn line_groups(record: &BlockParams) -> u32 {
 /// The parameters of every line block of the frame, in dispatch order.
 fn block_params(
     plans: &[SweepPlan],
-    geometries: &[CacheGeometry],
+    geometries: &[LightSpacePlane],
     bx: &crate::scene::VolumeBox,
     planes: &[[f32; 4]],
     height: u32,

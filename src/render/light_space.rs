@@ -10,15 +10,15 @@ use crate::scene::{LightKind, VolumeBox};
 use glam::Vec3;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CacheProjection {
+pub enum LightProjection {
     Orthographic = 0,
     Perspective = 1,
     Octahedral = 2,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CacheGeometry {
-    pub projection: CacheProjection,
+pub struct LightSpacePlane {
+    pub projection: LightProjection,
     /// Light position, or (directional) a point behind the whole volume.
     pub origin: Vec3,
     /// Light travel direction (orthographic) or frustum axis (perspective).
@@ -33,8 +33,8 @@ pub struct CacheGeometry {
     pub size: u32,
 }
 
-impl CacheGeometry {
-    pub fn fit(light: &LightKind, bx: &VolumeBox, size: u32) -> CacheGeometry {
+impl LightSpacePlane {
+    pub fn fit(light: &LightKind, bx: &VolumeBox, size: u32) -> LightSpacePlane {
         let size = size.max(2);
         let radius = bx.half_extent.length();
         match *light {
@@ -43,8 +43,8 @@ impl CacheGeometry {
                 let (u, v) = axis.any_orthonormal_pair();
                 let (lo, hi) = extent(bx.corners().iter().map(|c| (c.dot(u), c.dot(v))));
                 let (a0, b0, texel) = square(lo, hi, size);
-                CacheGeometry {
-                    projection: CacheProjection::Orthographic,
+                LightSpacePlane {
+                    projection: LightProjection::Orthographic,
                     origin: -axis * (2.0 * radius + 1.0),
                     axis,
                     u,
@@ -65,8 +65,8 @@ impl CacheGeometry {
                         (q.dot(u) / z, q.dot(v) / z)
                     }));
                     let (a0, b0, texel) = square(lo, hi, size);
-                    CacheGeometry {
-                        projection: CacheProjection::Perspective,
+                    LightSpacePlane {
+                        projection: LightProjection::Perspective,
                         origin: position,
                         axis,
                         u,
@@ -79,8 +79,8 @@ impl CacheGeometry {
                 } else {
                     // Texel "size" of the octahedral map: the angle one texel spans, roughly.
                     let texel = std::f32::consts::PI / size as f32;
-                    CacheGeometry {
-                        projection: CacheProjection::Octahedral,
+                    LightSpacePlane {
+                        projection: LightProjection::Octahedral,
                         origin: position,
                         axis: Vec3::Z,
                         u: Vec3::X,
@@ -100,14 +100,14 @@ impl CacheGeometry {
     pub fn coord(&self, p: Vec3) -> (f32, f32, f32) {
         let q = p - self.origin;
         match self.projection {
-            CacheProjection::Orthographic => {
+            LightProjection::Orthographic => {
                 ((q.dot(self.u) - self.a0) / self.texel, (q.dot(self.v) - self.b0) / self.texel, q.dot(self.axis))
             }
-            CacheProjection::Perspective => {
+            LightProjection::Perspective => {
                 let z = q.dot(self.axis).max(1e-12);
                 ((q.dot(self.u) / z - self.a0) / self.texel, (q.dot(self.v) / z - self.b0) / self.texel, q.length())
             }
-            CacheProjection::Octahedral => {
+            LightProjection::Octahedral => {
                 let d = q.normalize_or(Vec3::Z);
                 let s = d.x.abs() + d.y.abs() + d.z.abs();
                 let (mut ex, mut ey) = (d.x / s, d.y / s);
@@ -146,7 +146,7 @@ mod tests {
     use super::*;
     use glam::UVec3;
 
-    fn inside(g: &CacheGeometry, p: Vec3) -> bool {
+    fn inside(g: &LightSpacePlane, p: Vec3) -> bool {
         let (x, y, _) = g.coord(p);
         x >= 0.0 && y >= 0.0 && x <= g.size as f32 && y <= g.size as f32
     }
@@ -159,7 +159,7 @@ mod tests {
             LightKind::Point { position: Vec3::new(2.0, 1.0, 0.5) },
             LightKind::Point { position: Vec3::new(0.1, 0.0, 0.0) },
         ] {
-            let g = CacheGeometry::fit(&light, &bx, 64);
+            let g = LightSpacePlane::fit(&light, &bx, 64);
             for c in bx.corners() {
                 assert!(inside(&g, c), "{light:?}: corner {c} maps to {:?}", g.coord(c));
             }
@@ -169,7 +169,7 @@ mod tests {
     #[test]
     fn fitted_cache_is_tight_for_a_directional_light() {
         let bx = VolumeBox::new(UVec3::splat(32), Vec3::ONE);
-        let g = CacheGeometry::fit(&LightKind::Directional { direction: Vec3::NEG_Y }, &bx, 66);
+        let g = LightSpacePlane::fit(&LightKind::Directional { direction: Vec3::NEG_Y }, &bx, 66);
         // The unit cube seen from above: 1 world unit over 64 texels plus margins.
         assert!((g.texel - 1.0 / 64.0).abs() < 1e-6, "{}", g.texel);
     }
@@ -177,8 +177,8 @@ mod tests {
     #[test]
     fn light_inside_the_volume_uses_the_octahedral_map() {
         let bx = VolumeBox::new(UVec3::splat(32), Vec3::ONE);
-        let g = CacheGeometry::fit(&LightKind::Point { position: Vec3::ZERO }, &bx, 32);
-        assert_eq!(g.projection, CacheProjection::Octahedral);
+        let g = LightSpacePlane::fit(&LightKind::Point { position: Vec3::ZERO }, &bx, 32);
+        assert_eq!(g.projection, LightProjection::Octahedral);
         let (_, _, t) = g.coord(Vec3::new(0.3, 0.0, 0.4));
         assert!((t - 0.5).abs() < 1e-6);
     }
