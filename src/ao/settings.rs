@@ -18,6 +18,7 @@
 use serde::Deserialize;
 
 use super::error::AoError;
+use crate::scene::suggest::nearest;
 use crate::scene::Scene;
 
 /// Distance between histograms during vector quantization (paper figure 6).
@@ -221,36 +222,16 @@ impl AoSettings {
 }
 
 fn check_keys(prefix: &str, table: &toml::Table, known: &[&str]) -> Result<(), AoError> {
-    for key in table.keys() {
-        if known.contains(&key.as_str()) {
-            continue;
-        }
-        let hint = match known.iter().min_by_key(|k| edit_distance(k, key)) {
-            Some(near) if edit_distance(near, key) <= 3 => format!("did you mean {prefix}.{near}? "),
-            _ => String::new(),
-        };
+    if let Some(key) = table.keys().find(|k| !known.contains(&k.as_str())) {
+        let hint = nearest(key, known.iter().copied())
+            .map(|near| format!("did you mean {prefix}.{near}? "))
+            .unwrap_or_default();
         return Err(AoError::Invalid(format!(
             "{prefix}.{key} is not a setting: {hint}the known keys are {}",
             known.join(", ")
         )));
     }
     Ok(())
-}
-
-/// Levenshtein distance between two keys.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let substitution = diagonal + usize::from(ca != cb);
-            diagonal = row[j + 1];
-            row[j + 1] = substitution.min(row[j] + 1).min(row[j + 1] + 1);
-        }
-    }
-    row[b.len()]
 }
 
 #[cfg(test)]
