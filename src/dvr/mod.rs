@@ -7,48 +7,32 @@ use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, Resourc
 use crate::scene::{OpticalModel, Scene};
 use crate::vk::Profiler;
 
-/// Unshaded emission-absorption ray casting.
-pub struct Dvr;
-
-/// Gradient Blinn-Phong ray casting, no shadows.
-pub struct Phong;
-
-impl RenderTechnique for Dvr {
-    fn name(&self) -> &'static str {
-        "dvr"
-    }
-    fn summary(&self) -> &'static str {
-        "unshaded emission-absorption ray casting (one dispatch)"
-    }
-    fn reference_model(&self, scene: &Scene) -> OpticalModel {
-        scene.reference.model
-    }
-    fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
-        raycast::resources(Shading::Unshaded, width, height)
-    }
-    fn render(
-        &self,
-        gpu: &GpuScene,
-        width: u32,
-        height: u32,
-        profiler: &mut Profiler,
-    ) -> Result<FrameResult, RenderError> {
-        raycast::render(gpu, Shading::Unshaded, width, height, profiler)
-    }
+/// A baseline: the plain ray cast with one shading.
+pub struct Baseline {
+    shading: Shading,
+    summary: &'static str,
 }
 
-impl RenderTechnique for Phong {
+/// Unshaded emission-absorption ray casting.
+pub const DVR: Baseline =
+    Baseline { shading: Shading::Unshaded, summary: "unshaded emission-absorption ray casting (one dispatch)" };
+
+/// Gradient Blinn-Phong ray casting, no shadows.
+pub const PHONG: Baseline =
+    Baseline { shading: Shading::BlinnPhong, summary: "gradient Blinn-Phong ray casting, no shadows (one dispatch)" };
+
+impl RenderTechnique for Baseline {
     fn name(&self) -> &'static str {
-        "phong"
+        self.shading.pass_name()
     }
     fn summary(&self) -> &'static str {
-        "gradient Blinn-Phong ray casting, no shadows (one dispatch)"
+        self.summary
     }
     fn reference_model(&self, scene: &Scene) -> OpticalModel {
         scene.reference.model
     }
     fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
-        raycast::resources(Shading::BlinnPhong, width, height)
+        raycast::resources(self.shading, width, height)
     }
     fn render(
         &self,
@@ -57,6 +41,6 @@ impl RenderTechnique for Phong {
         height: u32,
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError> {
-        raycast::render(gpu, Shading::BlinnPhong, width, height, profiler)
+        raycast::render(gpu, self.shading, width, height, profiler)
     }
 }

@@ -19,8 +19,8 @@ pub struct Technique(&'static dyn RenderTechnique);
 // keep reading `Technique::Ipsvi`.
 #[allow(non_upper_case_globals)]
 impl Technique {
-    pub const Dvr: Technique = Technique(&crate::dvr::Dvr);
-    pub const Phong: Technique = Technique(&crate::dvr::Phong);
+    pub const Dvr: Technique = Technique(&crate::dvr::DVR);
+    pub const Phong: Technique = Technique(&crate::dvr::PHONG);
     pub const Reference: Technique = Technique(&crate::reference::gpu::Reference);
     pub const Ipsvi: Technique = Technique(&crate::ipsvi::Ipsvi);
     pub const HalfAngle: Technique = Technique(&crate::half_angle::HalfAngle);
