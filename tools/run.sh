@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
-# The main job: set up, build, render the embedded default scene (3D Shepp-Logan
-# phantom, one directional light) and print its per-pass GPU profile.
-# Extra arguments go to `sweeplab render` (e.g. --technique reference --size 256x256).
+# The main job: set up, build, and render the known-shadow scene (a sphere over a
+# slab, light from above) with image plane sweep volume illumination, one
+# dispatch and one barrier per line, timed per line: prints the per-pass GPU
+# profile (the `ipsvi_line` row: lines, total and mean per line) and writes the
+# image, the profile with every line's time, and a Perfetto trace.
+# Arguments replace the defaults and go to `sweeplab render`
+# (e.g. --technique reference, or --volume ../shared/data/engine.vti --technique ipsvi --detail).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source tools/setup.sh
 cargo build --release --quiet
 mkdir -p out
+if [ $# -eq 0 ]; then
+  set -- --scene tests/scenes/slab-under-sphere.toml --technique ipsvi --detail
+fi
 ./target/release/sweeplab render --out out/render.png --profile-json out/profile.json --trace out/trace.json "$@"
-echo "wrote out/render.png, out/profile.json (per-pass GPU times) and out/trace.json (open in Perfetto)"
+echo "wrote out/render.png (the sphere's shadow on the slab), out/profile.json (per-pass and per-line GPU times) and out/trace.json (open in Perfetto)"
