@@ -248,3 +248,59 @@ fn every_bench_refuses_zero_repeats() {
         assert!(!out.exists(), "{bench} wrote {} before refusing", out.display());
     }
 }
+
+/// Bad outputs and list values are refused before the GPU is opened (the
+/// `device:` line is printed when it is).
+#[test]
+fn outputs_and_list_values_are_checked_before_any_gpu_work() {
+    let dir = temp_dir("checked-first");
+    let jpg = dir.join("r.jpg");
+    let missing = dir.join("no-such-folder").join("h.png");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["render", "--out", jpg.to_str().unwrap()], "PNG"),
+        (vec!["compare", "--technique", "dvr", "--heatmap", missing.to_str().unwrap()], "does not exist"),
+        (vec!["bench", "ipsvi", "--line-widths", "1,0", "--out", dir.to_str().unwrap()], "line_width = 0"),
+        (vec!["bench", "ipsvi", "--sizes", "0", "--out", dir.to_str().unwrap()], "--sizes"),
+        (vec!["bench", "ipsvi", "--half-angle-slices", "100", "--out", dir.to_str().unwrap()], "slice_step = 100"),
+        (vec!["bench", "sync", "--line-widths", "64", "--out", dir.to_str().unwrap()], "line_width = 64"),
+        (vec!["bench", "table1", "--sizes", "20000", "--out", dir.to_str().unwrap()], "--sizes"),
+    ];
+    for (args, mention) in cases {
+        let o = sweeplab(&args);
+        assert_user_error(&o, mention);
+        assert!(!stderr(&o).contains("device:"), "{args:?}: opened the GPU before refusing: {}", stderr(&o));
+        // One cause, printed once.
+        assert_eq!(stderr(&o).matches("error:").count(), 1, "{}", stderr(&o));
+    }
+}
+
+/// A second bench run into the same folder removes the files the first wrote
+/// and this one does not (a strategy left out), and nothing else.
+#[test]
+fn bench_output_folders_hold_no_stale_files() {
+    let dir = temp_dir("stale");
+    std::fs::write(dir.join("mine.txt"), "a user's file").unwrap();
+    let run = |strategies: &str| {
+        let o = sweeplab(&[
+            "bench",
+            "sync",
+            "--sizes",
+            "8",
+            "--line-widths",
+            "1",
+            "--strategies",
+            strategies,
+            "--repeat",
+            "1",
+            "--out",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    };
+    run("barrier-global,events");
+    assert!(dir.join("lines_events.json").exists());
+    run("barrier-global");
+    assert!(!dir.join("lines_events.json").exists(), "a stale file of the first run is left");
+    assert!(dir.join("lines_barrier-global.json").exists() && dir.join("sync.csv").exists());
+    assert!(dir.join("mine.txt").exists(), "a file the bench did not write was removed");
+}

@@ -58,24 +58,24 @@ pub struct BenchLightsArgs {
     pub gpu: GpuArgs,
     #[arg(long, default_value = "bench-lights")]
     pub out: PathBuf,
-    /// Data voxels per illumination voxel for the Table 1 rows (the paper's DR*1 and DR*1/4).
+    /// Data voxels per illumination voxel for the Table 1 rows (the paper's DR*1 and DR*1/4). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 4])]
     pub scales: Vec<u32>,
     /// Lights of the Table 1 rows (2..=16, taken in order from a fixed coloured set;
-    /// the paper's Engine rows have 2 and 3).
+    /// the paper's Engine rows have 2 and 3). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![2, 3])]
     pub light_counts: Vec<u32>,
-    /// Light counts of the scaling test (the paper's Figure 10: 1-40 lights of one direction).
+    /// Light counts of the scaling test (the paper's Figure 10: 1-40 lights of one direction). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4, 8, 16, 24, 32, 40])]
     pub scaling_counts: Vec<u32>,
     /// Scale of the scaling test (sequential propagation at 40 lights is 80 passes).
     #[arg(long, default_value_t = 4)]
     pub scaling_scale: u32,
-    /// Scales of the error-against-time rows (one full frame each, against the ground truth).
+    /// Scales of the error-against-time rows (one full frame each, against the ground truth). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
     pub error_scales: Vec<u32>,
     /// Incremental mode: passes per frame to converge with (at the scaling scale,
-    /// with the most Table 1 lights, from an empty volume).
+    /// with the most Table 1 lights, from an empty volume). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2])]
     pub incremental_passes: Vec<u32>,
     /// Timed updates per measurement after an untimed warm-up; the median is reported.
@@ -89,7 +89,7 @@ pub struct BenchTable1Args {
     pub gpu: GpuArgs,
     #[arg(long, default_value = "bench-table1")]
     pub out: PathBuf,
-    /// Square image sizes (the paper's: 64,128,256,512,1024).
+    /// Square image sizes (the paper's: 64,128,256,512,1024). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
     pub sizes: Vec<u32>,
     /// Frames per configuration; the median is reported.
@@ -108,12 +108,14 @@ pub struct BenchSyncArgs {
     pub gpu: GpuArgs,
     #[arg(long, default_value = "bench-sync")]
     pub out: PathBuf,
-    /// barrier-global, barrier-image, events, secondary, submits, racy
+    /// Sync strategies, comma-separated: barrier-global, barrier-image, events,
+    /// secondary, submits, racy.
     #[arg(long, value_delimiter = ',', default_values_t = ["barrier-global", "barrier-image", "events", "secondary", "submits", "racy"].map(String::from).to_vec())]
     pub strategies: Vec<String>,
+    /// Lines per dispatch (1..=32). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
     pub line_widths: Vec<u32>,
-    /// Square image sizes.
+    /// Square image sizes. Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512])]
     pub sizes: Vec<u32>,
     /// Frames per configuration; the median GPU time is reported.
@@ -130,11 +132,13 @@ pub struct BenchIpsviArgs {
     /// Output folder for ipsvi.csv, ipsvi.json, ipsvi.md and the plots.
     #[arg(long, default_value = "bench-out")]
     pub out: PathBuf,
+    /// Lines per dispatch (1..=32). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4, 8, 16])]
     pub line_widths: Vec<u32>,
+    /// Illumination cache texels per side (16..=4096). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
     pub cache_sizes: Vec<u32>,
-    /// Square image sizes.
+    /// Square image sizes. Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![256, 512])]
     pub sizes: Vec<u32>,
     /// Runs per configuration; the median GPU time is reported.
@@ -144,8 +148,9 @@ pub struct BenchIpsviArgs {
     #[arg(long)]
     pub one_at_a_time: bool,
     /// Half-angle slicing runs beside IPSVI (slice spacing in voxels), compared
-    /// with the ground truth of model (i); empty to leave them out.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![1.0, 0.5, 0.25])]
+    /// with the ground truth of model (i). Comma-separated; the flag with no
+    /// value leaves them out.
+    #[arg(long, value_delimiter = ',', num_args = 0.., default_values_t = vec![1.0, 0.5, 0.25])]
     pub half_angle_slices: Vec<f32>,
 }
 

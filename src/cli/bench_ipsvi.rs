@@ -2,12 +2,12 @@
 
 use super::args::BenchIpsviArgs;
 use super::render_cmd::PROFILER_CAPACITY;
-use super::{scene_args, session};
+use super::{bench_args, scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::{
-    ipsvi_frame, plot_error_vs_time, technique_frame, AxisScale, BenchRow, BenchTable, Chart, ProfiledFrame, Progress,
-    Series,
+    ipsvi_frame, plot_error_vs_time, technique_frame, AxisScale, BenchRow, BenchTable, Chart, OutFolder, ProfiledFrame,
+    Progress, Series,
 };
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{EarlyTermination, IpsviSettings, SyncStrategy};
@@ -58,12 +58,16 @@ fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSetti
 }
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
-    let harness = session::harness(0, args.repeat)?;
+    // One untimed frame first: llvmpipe compiles shader variants on first use.
+    let harness = session::harness(1, args.repeat)?;
+    bench_args::check_sizes("--sizes", &args.sizes)?;
+    bench_args::check_slice_steps("--half-angle-slices", &args.half_angle_slices)?;
     let mut scene = scene_args::load(&args.scene)?;
     scene.reference.model = OpticalModel::EmissiveScattering;
     let base = scene.settings.ipsvi.clone();
     let configs = configurations(args, &base);
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    bench_args::check_ipsvi("--line-widths/--cache-sizes", &configs)?;
+    let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
@@ -177,6 +181,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     std::fs::write(args.out.join("ipsvi.md"), table.to_markdown()).context("writing ipsvi.md")?;
     println!("{}", table.to_markdown());
     println!("wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md and ipsvi_<size>_error_vs_time.png", args.out.display());
+    out_folder.finish()?;
     Ok(session::finish(&ctx))
 }
 

@@ -16,7 +16,7 @@ use sweeplab::bench::experiments::lights::{
 };
 use sweeplab::bench::{
     fit_line, median, plot_error_vs_time, plot_lines, technique_frame, AxisScale, BenchRow, BenchTable, Chart, Harness,
-    Progress, Series,
+    OutFolder, Progress, Series,
 };
 use sweeplab::lightvolume::CostEstimate;
 use sweeplab::linear_image::LinearImage;
@@ -89,7 +89,7 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     let mut scene = scene_args::load(&args.scene)?;
     // The light volume carries transmittance alone: optical model (i).
     scene.reference.model = Technique::LightVolume.reference_model(&scene);
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let table1_steps = args.scales.len() * args.light_counts.len() * Update::ALL.len();
     let steps =
@@ -107,6 +107,7 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     error_rows(args, &mut meter, &scene, (width, height), &mut report)?;
     meter.progress.finish();
     report.write(args)?;
+    out_folder.finish()?;
     Ok(session::finish(&ctx))
 }
 

@@ -2,12 +2,12 @@
 
 use super::args::BenchSyncArgs;
 use super::render_cmd::{write_json, PROFILER_CAPACITY};
-use super::{scene_args, session};
+use super::{bench_args, scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::{
     ipsvi_frame, median, plot_error_vs_time, plot_lines, AxisScale, BenchRow, BenchTable, Chart, Harness, Measurement,
-    ProfiledFrame, Progress, Series,
+    OutFolder, ProfiledFrame, Progress, Series,
 };
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
@@ -37,10 +37,15 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|s| s.parse().map_err(|e: String| anyhow::anyhow!("--strategies: {e}")))
         .collect::<Result<_, _>>()?;
-    let harness = session::harness(0, args.repeat)?;
+    // One untimed frame first: llvmpipe compiles shader variants on first use.
+    let harness = session::harness(1, args.repeat)?;
+    bench_args::check_sizes("--sizes", &args.sizes)?;
     let scene = scene_args::load(&args.scene)?;
     let base = scene.settings.ipsvi.clone();
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let line_widths: Vec<IpsviSettings> =
+        args.line_widths.iter().map(|&line_width| IpsviSettings { line_width, ..base.clone() }).collect();
+    bench_args::check_ipsvi("--line-widths", &line_widths)?;
+    let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
@@ -112,6 +117,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
     println!("{}", table.to_markdown());
     println!("racy rows are unsynchronized: their images are undefined and only their cost is meaningful.");
     println!("wrote {}/sync.csv, sync.json, sync.md, plots and trace_<strategy>.json (Perfetto)", args.out.display());
+    out_folder.finish()?;
     Ok(session::finish(&ctx))
 }
 

@@ -2,10 +2,10 @@
 
 use super::args::BenchTable1Args;
 use super::render_cmd::PROFILER_CAPACITY;
-use super::session;
+use super::{bench_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::bench::{ipsvi_frame, BenchRow, BenchTable, Progress};
+use sweeplab::bench::{ipsvi_frame, BenchRow, BenchTable, OutFolder, Progress};
 use sweeplab::ipsvi::paper_table1::{PaperColumn, CT_ENGINE, CT_GIRAFFE, LINE_WIDTHS, US_BABY};
 use sweeplab::ipsvi::renderer::IpsviRenderer;
 use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
@@ -21,7 +21,8 @@ const PAIRS: [(&str, &PaperColumn); 3] =
 pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     // One untimed frame first: llvmpipe compiles shader variants on first use.
     let harness = session::harness(1, args.repeat)?;
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    bench_args::check_sizes("--sizes", &args.sizes)?;
+    let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let mut progress = Progress::new(PAIRS.len() * args.sizes.len() * LINE_WIDTHS.len());
@@ -76,5 +77,6 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     std::fs::write(args.out.join("table1.md"), table.to_markdown()).context("writing table1.md")?;
     println!("{}", table.to_markdown());
     println!("wrote {}/table1.csv, table1.json, table1.md", args.out.display());
+    out_folder.finish()?;
     Ok(session::finish(&ctx))
 }

@@ -1,6 +1,6 @@
 use super::args::CompareArgs;
 use super::render_cmd::{write_json, PROFILER_CAPACITY};
-use super::{scene_args, session};
+use super::{output_paths, scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -11,6 +11,14 @@ use sweeplab::vk::Profiler;
 
 pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
+    for (flag, path) in [("--heatmap", &args.heatmap), ("--out", &args.out), ("--reference-out", &args.reference_out)] {
+        if let Some(path) = path {
+            output_paths::check_png(flag, path)?;
+        }
+    }
+    if let Some(path) = &args.json {
+        output_paths::check_file("--json", path)?;
+    }
     let mut scene = scene_args::load(&args.scene)?;
     // Each technique is compared against the model it approximates.
     scene.reference.model = technique.reference_model(&scene);

@@ -1,10 +1,13 @@
 pub mod args;
+mod bench_args;
 mod bench_ipsvi;
 mod bench_lights;
 mod bench_sync;
 mod bench_table1;
 mod compare_cmd;
 mod devices_cmd;
+pub mod error_report;
+mod output_paths;
 mod render_cmd;
 mod scene_args;
 mod session;

@@ -1,5 +1,5 @@
 use super::args::RenderArgs;
-use super::{scene_args, session};
+use super::{output_paths, scene_args, session};
 use anyhow::Context as _;
 use std::path::Path;
 use std::process::ExitCode;
@@ -11,6 +11,12 @@ pub const PROFILER_CAPACITY: u32 = 65_536;
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
+    output_paths::check_png("--out", &args.out)?;
+    for (flag, path) in [("--profile-json", &args.profile_json), ("--trace", &args.trace)] {
+        if let Some(path) = path {
+            output_paths::check_file(flag, path)?;
+        }
+    }
     let scene = scene_args::load(&args.scene)?;
     let ctx = session::open(&args.gpu)?;
     let output = {

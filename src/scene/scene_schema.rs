@@ -192,6 +192,18 @@ impl Default for PhongSection {
     }
 }
 
+/// serde's "unknown field `x`, expected one of `a`, `b`" with the nearest known
+/// field suggested: "... (did you mean `a`?)".
+fn with_suggestion(message: &str) -> String {
+    let unknown = message.strip_prefix("unknown field `").and_then(|rest| rest.split_once('`'));
+    let Some((field, rest)) = unknown else { return message.to_string() };
+    let known = rest.split('`').skip(1).step_by(2);
+    match super::suggest::nearest(field, known) {
+        Some(near) => format!("{message} (did you mean `{near}`?)"),
+        None => message.to_string(),
+    }
+}
+
 /// Checks values and turns the schema structs into scene types, naming the key
 /// of anything wrong.
 struct Checker<'a> {
@@ -216,7 +228,7 @@ impl Checker<'_> {
             SceneError::Schema {
                 origin: self.origin.to_string(),
                 key: inner.map_or_else(|| key.to_string(), |k| format!("{key}.{k}")),
-                message: e.message().trim_end().to_string(),
+                message: with_suggestion(e.message().trim_end()),
             }
         })
     }
@@ -548,5 +560,20 @@ impl Checker<'_> {
             specular: self.non_negative("phong.specular", s.specular)?,
             shininess: self.non_negative("phong.shininess", s.shininess)?,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::with_suggestion;
+
+    #[test]
+    fn unknown_fields_get_the_nearest_known_one() {
+        let m = "unknown field `intensityy`, expected one of `type`, `direction`, `intensity`";
+        assert_eq!(with_suggestion(m), format!("{m} (did you mean `intensity`?)"));
+        let far = "unknown field `zzz`, expected one of `type`, `direction`";
+        assert_eq!(with_suggestion(far), far);
+        let other = "invalid type: string \"abc\", expected f32";
+        assert_eq!(with_suggestion(other), other);
     }
 }

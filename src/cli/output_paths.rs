@@ -1,0 +1,45 @@
+//! Output paths checked before any GPU work: images are PNG (the only format the
+//! image writer is built with), and every file goes into a folder that exists,
+//! so a typo costs nothing but the message.
+
+use anyhow::bail;
+use std::path::Path;
+
+/// A PNG image to write for `flag`.
+pub fn check_png(flag: &str, path: &Path) -> anyhow::Result<()> {
+    let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+    if extension.as_deref() != Some("png") {
+        bail!("{flag} {}: images are written as PNG; name the file *.png", path.display());
+    }
+    check_file(flag, path)
+}
+
+/// A file to write for `flag`: its folder must exist and it must not be a folder.
+pub fn check_file(flag: &str, path: &Path) -> anyhow::Result<()> {
+    if path.is_dir() {
+        bail!("{flag} {}: is a folder, not a file", path.display());
+    }
+    let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if !folder.is_dir() {
+        bail!("{flag} {}: the folder {} does not exist", path.display(), folder.display());
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn images_must_be_png_in_an_existing_folder() {
+        let dir = std::env::temp_dir();
+        assert!(check_png("--out", &dir.join("a.png")).is_ok());
+        assert!(check_png("--out", &dir.join("a.PNG")).is_ok());
+        assert!(check_png("--out", Path::new("a.png")).is_ok());
+        let jpg = check_png("--out", &dir.join("a.jpg")).unwrap_err().to_string();
+        assert!(jpg.contains("--out") && jpg.contains("PNG"), "{jpg}");
+        let missing = check_png("--out", &dir.join("no-such-folder-sweeplab/a.png")).unwrap_err().to_string();
+        assert!(missing.contains("does not exist"), "{missing}");
+        assert!(check_file("--json", &dir).unwrap_err().to_string().contains("is a folder"));
+    }
+}
