@@ -104,6 +104,11 @@ pub fn render_with(
         OutputImage::new(ctx, "reference accum a", width, height)?,
         OutputImage::new(ctx, "reference accum b", width, height)?,
     ];
+    if scene.reference.chromatic && scene.reference.model != OpticalModel::SingleScattering {
+        return Err(RenderError::Invalid(
+            "reference.chromatic = true needs reference.model = \"single-scattering\"".into(),
+        ));
+    }
     let model = match scene.reference.model {
         OpticalModel::SingleScattering => 0,
         OpticalModel::EmissiveScattering => 1,
@@ -115,7 +120,7 @@ pub fn render_with(
             spirv: shaders::REFERENCE,
             bindings: &bindings_after_scene(&BINDINGS_OWN),
             push_constant_bytes: 16,
-            specialization: &[(0, model)],
+            specialization: &[(0, model), (1, scene.reference.chromatic as u32)],
             max_sets: 2,
         },
     )?;

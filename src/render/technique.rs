@@ -59,6 +59,20 @@ impl Technique {
     }
 }
 
+impl Technique {
+    /// Whether the ground truth this technique is compared with uses coloured
+    /// extinction along shadow rays: the light volume's `chromatic` setting;
+    /// IPSVI and half-angle slicing carry one transmittance; the baselines
+    /// follow the scene's `reference.chromatic`.
+    pub fn reference_chromatic(self, scene: &crate::scene::Scene) -> Result<bool, RenderError> {
+        Ok(match self {
+            Technique::LightVolume => crate::lightvolume::LightVolumeSettings::from_scene(scene)?.chromatic,
+            Technique::Ipsvi | Technique::HalfAngle => false,
+            _ => scene.reference.chromatic,
+        })
+    }
+}
+
 impl fmt::Display for Technique {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
