@@ -35,7 +35,9 @@ pub struct GroupEntry {
     pub factor: f32,
     /// Layer of the slice buffers.
     pub slot: u32,
-    pub pad: u32,
+    /// 1: the factor is weighted per voxel by cos^2 between the light's travel
+    /// and the axis (a light inside the volume, in all six groups).
+    pub per_voxel: u32,
 }
 
 impl GpuData for GroupEntry {}
@@ -137,6 +139,7 @@ impl Propagation {
                 (0, compensated),
                 (1, settings.substep_data_voxels().to_bits()),
                 (2, settings.shared_medium as u32),
+                (3, settings.chromatic as u32),
             ],
             max_sets: 1,
         };

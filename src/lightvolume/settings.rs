@@ -58,6 +58,10 @@ pub struct LightVolumeSettings {
     /// voxel along the axis and shared by every light of the pass (scaled by
     /// each light's path length), instead of along each light's direction.
     pub shared_medium: bool,
+    /// Coloured propagation (the paper's l_i = (1 - alpha) l_{i-1} + alpha c):
+    /// per-channel transmittance, the medium passing its own colour on;
+    /// off: one transmittance for all channels, optical model (i).
+    pub chromatic: bool,
     /// RACY: leaves out the barrier between the slices of a pass, so that
     /// synchronization validation can be shown to catch it (the volume is wrong).
     pub racy: bool,
@@ -76,14 +80,16 @@ impl Default for LightVolumeSettings {
             pass_lights: 16,
             rebase_tolerance: 1e-6,
             substep: 0.25,
-            shared_medium: false,
+            // The paper's propagation: the pass shares the medium's sampling.
+            shared_medium: true,
+            chromatic: true,
             racy: false,
         }
     }
 }
 
 const KNOWN: &str = "scale (1, 2 or 4), coherent, compensated (true or false), cost_estimate (\"share\", \
-                     \"passes\", \"selective\" or \"entire\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0), substep (0.05..=4 illumination voxels), shared_medium, racy (true or false)";
+                     \"passes\", \"selective\" or \"entire\"), max_passes_per_frame (0 = all), pass_lights (1..=64), rebase_tolerance (> 0), substep (0.05..=4 illumination voxels), shared_medium, chromatic, racy (true or false)";
 
 impl LightVolumeSettings {
     /// The sub-step in data voxels, as the shader takes it.
@@ -105,6 +111,7 @@ impl LightVolumeSettings {
                 ("compensated", _, Some(b), _) => s.compensated = b,
                 ("racy", _, Some(b), _) => s.racy = b,
                 ("shared_medium", _, Some(b), _) => s.shared_medium = b,
+                ("chromatic", _, Some(b), _) => s.chromatic = b,
                 ("substep", _, _, _) if float.is_some_and(|f| (0.05..=4.0).contains(&f)) => {
                     s.substep = float.unwrap_or_default() as f32
                 }
