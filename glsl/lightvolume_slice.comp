@@ -182,15 +182,18 @@ void main() {
         // have both), so it adds nothing here.
         if (c > 1e-4) {
             float along = segment / c;
+            vec3 q = p + w.xyz * along;
+            bool near_light = w.w * c <= NEAR_LIGHT_SLICES * dstep;
             // Where the light enters the volume (through any face) or leaves the
             // light itself before the previous slice, nothing attenuates it
-            // beyond: the path ends there with transmittance 1.
-            float reach = min(intersect_box(p, w.xyz).y, w.w);
-            bool near_light = w.w * c <= NEAR_LIGHT_SLICES * dstep;
+            // beyond: the path ends there with transmittance 1. The box is only
+            // intersected where the path may leave it before the previous slice
+            // (q outside the box laterally, or near the light).
+            bool inside = abs(q[u]) <= frame.box_half[u] && abs(q[v]) <= frame.box_half[v];
+            float reach = inside && !near_light ? w.w : min(intersect_box(p, w.xyz).y, w.w);
             float len = near_light ? reach : min(along, reach);
             vec3 T = vec3(1.0);
             if (k > 0 && along < reach && !near_light) {
-                vec3 q = p + w.xyz * along;
                 vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
                                (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
                 // The light enters through a lateral face where it travels inward:
