@@ -427,3 +427,12 @@ fn volume_file_scene_frames_the_box_and_makes_the_background_clear() {
         assert!(x.abs() < 1.0 && y.abs() < 1.0, "corner {corner} at ndc ({x}, {y})");
     }
 }
+
+#[test]
+fn reference_chromatic_parses_and_is_refused_with_model_ii() {
+    let spec = parse_scene_str(&format!("{MINIMAL}[reference]\nchromatic = true\n"), Path::new(""), "t", &[]).unwrap();
+    assert!(spec.build().unwrap().reference.chromatic);
+    let message = error_of(&format!("{MINIMAL}[reference]\nmodel = \"emissive-scattering\"\nchromatic = true\n"), &[]);
+    assert_mentions(&message, &["reference.chromatic", "single-scattering"]);
+    assert_mentions(&error_of(MINIMAL, &["reference.chromatic=yes"]), &["chromatic"]);
+}
