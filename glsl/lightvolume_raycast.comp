@@ -15,23 +15,33 @@ layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
 
 const float LOG_FLOOR = 1e-3;
 
-// Trilinear, clamp to edge, texel centres at (i + 0.5) / n like the sampler,
-// of the logarithm of the light: light decays exponentially through the
-// medium, so interpolating log(light) between voxel centres reproduces the
-// decay inside an opaque surface where a linear blend of the centres would
-// light the surface's first voxel far too brightly. The floor keeps fully
-// shadowed corners finite, relative to the brightest corner.
+// Trilinear, texel centres at (i + 0.5) / n like the sampler, of the logarithm
+// of the light: light decays exponentially through the medium, so
+// interpolating log(light) between voxel centres reproduces the decay inside
+// an opaque surface where a linear blend of the centres would light the
+// surface's first voxel far too brightly. The floor keeps fully shadowed
+// corners finite, relative to the brightest corner.
+// Between the outermost centres and the box faces (half an illumination voxel)
+// log(light) is extrapolated linearly from the two outermost centres instead of
+// clamped, so the light rises toward a face it enters through and keeps
+// decaying toward one it leaves by: exact for a homogeneous medium (clamping
+// was off by the transmittance of half a voxel at each face). The extrapolation
+// changes the light by at most MAX_EXTRAPOLATION over the corners' range, so a
+// dense layer between the outermost centres cannot blow up a face.
+const float MAX_EXTRAPOLATION = 2.0;
 vec3 illumination_at(vec3 p) {
     ivec3 n = imageSize(illumination);
-    vec3 c = clamp(to_uvw(p) * vec3(n) - 0.5, vec3(0.0), vec3(n - 1));
-    ivec3 i0 = ivec3(floor(c));
+    vec3 c = clamp(to_uvw(p) * vec3(n) - 0.5, vec3(-0.5), vec3(n) - 0.5);
+    ivec3 i0 = clamp(ivec3(floor(c)), ivec3(0), max(n - 2, ivec3(0)));
     vec3 f = c - vec3(i0);
     vec3 v[8];
     vec3 peak = vec3(0.0);
+    vec3 least = vec3(3.0e38);
     for (int k = 0; k < 8; ++k) {
         ivec3 i = min(i0 + ivec3(k & 1, (k >> 1) & 1, k >> 2), n - 1);
         v[k] = imageLoad(illumination, i).rgb;
         peak = max(peak, v[k]);
+        least = min(least, v[k]);
     }
     if (all(equal(peak, vec3(0.0)))) return vec3(0.0);
     vec3 floor_value = max(peak * LOG_FLOOR, vec3(1e-37));
@@ -40,7 +50,7 @@ vec3 illumination_at(vec3 p) {
         vec3 w3 = mix(1.0 - f, f, vec3(k & 1, (k >> 1) & 1, k >> 2));
         acc += w3.x * w3.y * w3.z * log(max(v[k], floor_value));
     }
-    vec3 r = exp(acc);
+    vec3 r = clamp(exp(acc), max(least, floor_value) / MAX_EXTRAPOLATION, peak * MAX_EXTRAPOLATION);
     return mix(vec3(0.0), r, greaterThan(peak, vec3(0.0)));
 }
 

@@ -5,9 +5,10 @@
 // slice, i.e. one voxel of the illumination volume, and handles every light of
 // the group (so the read-modify-write of the illumination voxel is race free).
 // Per light it takes the transmittance arriving at the previous slice along the
-// light's direction, attenuates it by the medium between the two slices, writes
-// it to its slice buffer and adds factor * light into the illumination volume
-// (a negative factor subtracts a light's old state: selective updates).
+// light's direction, attenuates it by the medium between the two slices and
+// writes it to its slice buffer; the lights' factor * light are summed in
+// registers (a two-float sum) and added into the illumination volume once per
+// voxel (a negative factor subtracts a light's old state: selective updates).
 // Compiled twice by build.rs (PARITY 0 reads slice side a and writes b, 1 the
 // opposite), each variant referencing only its sides, so synchronization
 // validation sees what a slice really reads and writes.
@@ -18,22 +19,29 @@ layout(local_size_x = 8, local_size_y = 8) in;
 // subtraction cancels the earlier addition of the same contribution to about
 // u^2 of the running sum instead of u (selective updates do not drift).
 layout(constant_id = 0) const bool COMPENSATED = true;
+// Coloured propagation (`lightvolume.chromatic`, the paper's
+// l_i = (1 - alpha) l_{i-1} + alpha c l_{i-1} in the limit of small steps): each
+// channel's optical depth is sigma * (1 - rgb), so the medium passes its own
+// colour on (docs/optical-model.md, "chromatic"). Off: one transmittance, model (i).
+layout(constant_id = 3) const bool CHROMATIC = true;
 
 #include "volume.glsl"
 #include "lights.glsl"
 
 // One light of the group: which light, its contribution factor (equations 5a
-// and 5b) and its layer of the slice buffers.
+// and 5b), its layer of the slice buffers, and whether the factor is further
+// weighted per voxel by the squared cosine between the light's travel and the
+// axis (a light inside the volume: six groups whose weights sum to one).
 struct GroupEntry {
     uint light;
     float factor;
     uint slot;
-    uint pad;
+    uint per_voxel;
 };
 layout(std430, set = 0, binding = 4) readonly buffer GroupEntries { GroupEntry entries[]; };
 
 // Slice buffers: x, y = texel of the slice, z = slot of the light in its group;
-// rgb = light arriving at the voxel centre, a = its transmittance.
+// rgb = the light's transmittance to the voxel centre, per channel.
 // Each binding has one name in both builds (the Rust side binds by name).
 #if PARITY == 0
 layout(set = 0, binding = 5, rgba32f) readonly uniform image3D slice_a_read;
@@ -77,19 +85,32 @@ const int MAX_SUBSTEPS = 64;
 // Lights whose travel direction is this close to perpendicular to the axis (a
 // cosine, not a transmittance) do not propagate along it: 1/c would blow up.
 const float MIN_AXIS_COSINE = 1e-4;
+// Within this many slices of a point or spot light (along the axis) the path is
+// integrated all the way to the light instead of read from the previous slice:
+// the distance to a light has a cusp there that bilinear resampling between
+// texel centres cannot follow (it lengthened the path by a third of a voxel next
+// to the light, a deficit every slice beyond then carried on).
+const float NEAR_LIGHT_SLICES = 4.0;
 
 vec3 voxel_centre(ivec3 g) {
     return ((vec3(g) + 0.5) / vec3(pass.grid) * 2.0 - 1.0) * frame.box_half;
 }
 
-// Optical depth (sigma per voxel times voxels) of `len` world units from p along dir.
-float optical_depth(vec3 p, vec3 dir, float len) {
-    if (len <= 0.0) return 0.0;
+// Optical depth per channel of the medium sample m: sigma, times the share of
+// each channel the medium does not pass on when chromatic.
+vec3 extinction(vec4 m) {
+    return CHROMATIC ? m.a * max(vec3(1.0) - m.rgb, vec3(0.0)) : vec3(m.a);
+}
+
+// Optical depth (sigma per voxel times voxels, per channel) of `len` world units
+// from p along dir.
+vec3 optical_depth(vec3 p, vec3 dir, float len) {
+    if (len <= 0.0) return vec3(0.0);
     float vl = frame.voxel_length;
     int n = int(clamp(ceil(len / (SUBSTEP_VOXELS * vl)), 1.0, float(MAX_SUBSTEPS)));
     float g = len / float(n);
-    float tau = 0.0;
-    for (int j = 0; j < n; ++j) tau += medium(p + dir * ((float(j) + 0.5) * g)).a;
+    vec3 tau = vec3(0.0);
+    for (int j = 0; j < n; ++j) tau += extinction(medium(p + dir * ((float(j) + 0.5) * g)));
     return tau * g / vl;
 }
 
@@ -99,20 +120,20 @@ float optical_depth(vec3 p, vec3 dir, float len) {
 // and a face the light enters through (`enters`: per lateral axis, -1 low face,
 // +1 high face, 0 neither) it blends toward 1, the transmittance at that face;
 // elsewhere it clamps to the edge.
-float previous_transmittance(vec2 c, ivec2 size, int slot, ivec2 enters) {
+vec3 previous_transmittance(vec2 c, ivec2 size, int slot, ivec2 enters) {
     vec2 cc = clamp(c, vec2(0.5), vec2(size) - 0.5);
     vec2 t = cc - 0.5;
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
-    float v[4];
+    vec3 v[4];
     for (int k = 0; k < 4; ++k) {
         ivec2 i = min(i0 + ivec2(k & 1, k >> 1), size - 1);
-        v[k] = imageLoad(slice_in, ivec3(i, slot)).a;
+        v[k] = imageLoad(slice_in, ivec3(i, slot)).rgb;
     }
-    float T = mix(mix(v[0], v[1], f.x), mix(v[2], v[3], f.x), f.y);
+    vec3 T = mix(mix(v[0], v[1], f.x), mix(v[2], v[3], f.x), f.y);
     // How far past the outermost texel centre, in half texels, toward an entry face.
     vec2 excess = (c - cc) * vec2(enters) * 2.0;
-    return mix(T, 1.0, clamp(max(excess.x, excess.y), 0.0, 1.0));
+    return mix(T, vec3(1.0), clamp(max(excess.x, excess.y), 0.0, 1.0));
 }
 
 // (s, e) with s + e == a + b exactly (TwoSum; `precise` keeps the compiler
@@ -155,9 +176,12 @@ void main() {
     float segment = (k == 0 ? 0.5 : 1.0) * dstep;
     vec3 back_along_axis = vec3(0.0);
     back_along_axis[a] = -travel;
-    float axis_depth = SHARED_MEDIUM ? optical_depth(p, back_along_axis, segment) : 0.0;
-    vec4 hi = imageLoad(illumination, g);
-    vec3 lo = COMPENSATED ? imageLoad(illumination_low, g).rgb : vec3(0.0);
+    // Shared medium: sampled once per voxel for every light of the pass.
+    vec3 axis_depth = SHARED_MEDIUM ? optical_depth(p, back_along_axis, segment) : vec3(0.0);
+    // This pass's light at the voxel, summed in registers (two-float when
+    // compensated) and added into the volume once below.
+    vec3 sum_hi = vec3(0.0);
+    vec3 sum_lo = vec3(0.0);
     for (int e = 0; e < pass.entry_count; ++e) {
         GroupEntry entry = entries[pass.first_entry + e];
         Light l = lights[entry.light];
@@ -165,18 +189,23 @@ void main() {
         // Cosine between the light's travel direction and the propagation axis.
         float c = -w[a] * travel;
         vec4 result = vec4(0.0);
-        // Light travelling against this group's direction (possible for the
-        // second group of a point light) cannot arrive from the previous slice.
+        // Light travelling against this group's direction is carried by the
+        // group of the opposite direction (lights inside or beside the volume
+        // have both), so it adds nothing here.
         if (c > MIN_AXIS_COSINE) {
             float along = segment / c;
+            vec3 q = p + w.xyz * along;
+            bool near_light = w.w * c <= NEAR_LIGHT_SLICES * dstep;
             // Where the light enters the volume (through any face) or leaves the
             // light itself before the previous slice, nothing attenuates it
-            // beyond: the path ends there with transmittance 1.
-            float reach = min(intersect_box(p, w.xyz).y, w.w);
-            float len = min(along, reach);
-            float T = 1.0;
-            if (k > 0 && along < reach) {
-                vec3 q = p + w.xyz * along;
+            // beyond: the path ends there with transmittance 1. The box is only
+            // intersected where the path may leave it before the previous slice
+            // (q outside the box laterally, or near the light).
+            bool inside = abs(q[u]) <= frame.box_half[u] && abs(q[v]) <= frame.box_half[v];
+            float reach = inside && !near_light ? w.w : min(intersect_box(p, w.xyz).y, w.w);
+            float len = near_light ? reach : min(along, reach);
+            vec3 T = vec3(1.0);
+            if (k > 0 && along < reach && !near_light) {
                 vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
                                (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
                 // The light enters through a lateral face where it travels inward:
@@ -184,20 +213,28 @@ void main() {
                 ivec2 enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
                 T = previous_transmittance(cq, size, int(entry.slot), enters);
             }
-            T *= exp(-(SHARED_MEDIUM ? axis_depth * (len / segment) : optical_depth(p, w.xyz, len)));
-            vec3 light = l.radiance.rgb * light_shape(l, w) * T;
-            result = vec4(light, T);
-            // Each entry on its own: a contribution's value does not depend on
-            // which other lights share the pass.
-            vec3 x = entry.factor * light;
+            bool shared_path = SHARED_MEDIUM && !near_light;
+            T *= exp(-(shared_path ? axis_depth * (len / segment) : optical_depth(p, w.xyz, len)));
+            result = vec4(T, 0.0);
+            float weight = entry.factor * (entry.per_voxel != 0u ? c * c : 1.0);
+            vec3 x = weight * l.radiance.rgb * light_shape(l, w) * T;
             if (COMPENSATED) {
-                compensated_add(hi.rgb, lo, x);
+                compensated_add(sum_hi, sum_lo, x);
             } else {
-                hi.rgb += x;
+                sum_hi += x;
             }
         }
         imageStore(slice_out, ivec3(t, int(entry.slot)), result);
     }
-    imageStore(illumination, g, vec4(hi.rgb, 1.0));
-    if (COMPENSATED) imageStore(illumination_low, g, vec4(lo, 0.0));
+    vec3 hi = imageLoad(illumination, g).rgb;
+    if (COMPENSATED) {
+        // (hi + lo) += (sum_hi + sum_lo): the high word exactly, then the low words.
+        vec3 lo = imageLoad(illumination_low, g).rgb;
+        compensated_add(hi, lo, sum_hi);
+        compensated_add(hi, lo, sum_lo);
+        imageStore(illumination_low, g, vec4(lo, 0.0));
+    } else {
+        hi += sum_hi;
+    }
+    imageStore(illumination, g, vec4(hi, 1.0));
 }

@@ -9,6 +9,8 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const uint MODEL = 0; // 0: single scattering, 1: emissive scattering
+// Coloured extinction along shadow rays (`reference.chromatic`, model (i) only).
+layout(constant_id = 1) const bool CHROMATIC = false;
 
 #include "shadow.glsl"
 #include "view_ray.glsl"
@@ -40,8 +42,10 @@ void main() {
             vec3 light = vec3(frame.emission);
             for (int l = 0; l < count; ++l) {
                 vec4 w = toward_light(lights[l], p);
-                vec4 sh = shadow_ray(lights[l], p, w, MODEL == 1);
-                light += lights[l].radiance.rgb * light_shape(lights[l], w) * sh.a + sh.rgb;
+                // Chromatic: model (i) only (one shadow march either way).
+                vec4 sh = CHROMATIC ? vec4(0.0, 0.0, 0.0, 1.0) : shadow_ray(lights[l], p, w, MODEL == 1);
+                vec3 T = CHROMATIC ? chromatic_shadow_ray(lights[l], p, w) : vec3(sh.a);
+                light += lights[l].radiance.rgb * light_shape(lights[l], w) * T + sh.rgb;
             }
             acc.rgb += acc.a * alpha * m.rgb * light;
             acc.a *= 1.0 - alpha;

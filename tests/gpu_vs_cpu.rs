@@ -107,6 +107,40 @@ fn gpu_reference_matches_cpu_reference_for_every_light_type_and_both_models() {
     }
 }
 
+/// The chromatic variant of model (i) (coloured extinction along shadow rays)
+/// on the GPU against the CPU: the same tight tolerance; it differs from the
+/// grey model (i) by far more (the check can tell them apart), and model (ii)
+/// with it is refused on both.
+#[test]
+fn gpu_chromatic_reference_matches_cpu_chromatic_reference() {
+    let mut scene = spheres_scene(32, 32);
+    scene.lights.push(Light {
+        kind: LightKind::Point { position: Vec3::new(0.05, 0.1, 0.0) },
+        color: Vec3::new(1.0, 0.8, 0.6),
+        intensity: 0.5,
+        falloff: Falloff::None,
+    });
+    scene.reference.chromatic = true;
+    let kind = CpuRenderKind::Reference(OpticalModel::SingleScattering);
+    let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Reference, kind);
+    let stats = compare(&gpu, &cpu).unwrap();
+    let peak = cpu.max_value() as f64;
+    assert!(peak > 0.05, "empty image");
+    assert!(stats.max_abs <= TIGHT * peak && stats.rmse <= 2e-4 * peak, "{stats:?} peak {peak}");
+    scene.reference.chromatic = false;
+    let grey = render_cpu(&scene, kind, 32, 32).unwrap();
+    let apart = compare(&grey, &cpu).unwrap();
+    println!("chromatic against grey model (i): max_abs {:.3e} (GPU against CPU {:.3e})", apart.max_abs, stats.max_abs);
+    assert!(apart.max_abs > 20.0 * TIGHT * peak, "chromatic and grey model (i) barely differ: {apart:?}");
+    scene.reference.chromatic = true;
+    scene.reference.model = OpticalModel::EmissiveScattering;
+    assert!(render_cpu(&scene, CpuRenderKind::Reference(OpticalModel::EmissiveScattering), 8, 8).is_err());
+    let ctx = validated_context();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    assert!(render(&gpu, Technique::Reference, 8, 8, &mut profiler).is_err());
+}
+
 /// A scene whose brute-force shadow rays would take one invocation past
 /// llvmpipe's 65,535 loop iterations: the chunked GPU reference must still agree.
 #[test]

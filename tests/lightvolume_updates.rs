@@ -314,7 +314,7 @@ fn drift(settings: impl FnOnce(&mut LightVolumeSettings), updates: usize) -> Dri
         }
         let selective_volume = r.read_illumination().unwrap();
         let fresh = entire(ctx, gpu, &lights);
-        let weakest = sweeplab::lightvolume::contributions(&lights)
+        let weakest = sweeplab::lightvolume::contributions(&lights, geometry.box_half)
             .iter()
             .map(|c| geometry.peak(&c.state, c.factor))
             .fold(f64::INFINITY, f64::min);
@@ -424,7 +424,8 @@ fn shortening_and_growing_the_light_list_subtracts_and_adds_the_lights_it_drops_
 /// gives the entire update's volume.
 #[test]
 fn near_opaque_media_grazing_lights_and_group_crossings_stay_finite_and_exact() {
-    let mut scene = scene(defaults);
+    // Model (i): one transmittance, so the white-red medium shadows every channel.
+    let mut scene = scene(|lv| lv.chromatic = false);
     scene.transfer = sweeplab::scene::TransferFunction {
         points: vec![
             sweeplab::scene::ControlPoint { value: 0.0, rgba: [1.0, 1.0, 1.0, 0.0] },
@@ -516,4 +517,39 @@ fn groups_larger_than_a_pass_are_split_and_give_the_same_volume() {
     let peak = largest_value(&volumes[1]);
     assert!(largest_difference(&volumes[0], &volumes[1]) <= SELECTIVE_TOLERANCE * peak);
     assert_validation_clean(&ctx);
+}
+
+/// A point light moved from outside the volume to near its centre (all six
+/// groups, weighted per voxel) and back: each move subtracts the old groups and
+/// adds the new ones in one selective update (the other lights use all six
+/// groups, so the passes tie with an entire update's and the share of changed
+/// lights decides), which gives the volume of an entire update.
+#[test]
+fn moving_a_point_light_inside_the_volume_and_back_is_a_selective_update() {
+    on_renderer(scene(defaults), |ctx, gpu, r, run| {
+        let mut lights = four_lights();
+        lights.push(Some(coloured(dir(0.0, 1.0, -0.3), Vec3::new(0.8, 0.8, 1.0), 0.5)));
+        let outside = lights[3];
+        let (first, _) = run.update(r, &lights);
+        assert_eq!(first.update.plan.kind, UpdateKind::Entire);
+        let inside =
+            Some(Light { kind: LightKind::Point { position: Vec3::new(0.05, -0.1, 0.02) }, ..outside.unwrap() });
+        // Outside, the light is beside the volume (within its x extent): +z, and
+        // its x share both ways.
+        for (what, state, groups) in [("inside", inside, 6), ("outside", outside, 3)] {
+            lights[3] = state;
+            let (moved, scopes) = run.update(r, &lights);
+            let plan = &moved.update.plan;
+            assert_eq!(plan.kind, UpdateKind::Selective, "{what}: {}", plan.reason);
+            assert_eq!(plan.changed_lights, 1);
+            let added: Vec<_> = moved.groups().iter().flat_map(|g| &g.members).filter(|m| m.factor > 0.0).collect();
+            assert_eq!(added.len(), groups, "{what}: {scopes:?}");
+            assert!(added.iter().all(|m| m.light == 3 && m.per_voxel == (what == "inside")));
+            let selective = r.read_illumination().unwrap();
+            let fresh = entire(ctx, gpu, &lights);
+            let (peak, diff) = (largest_value(&fresh), largest_difference(&selective, &fresh));
+            println!("moved {what}: {} passes, largest difference {diff:.3e} of peak {peak:.3}", plan.passes.len());
+            assert!(diff <= SELECTIVE_TOLERANCE * peak, "{what}: selective differs from entire by {diff:.3e}");
+        }
+    });
 }

@@ -70,6 +70,7 @@ fn tiny_scene(volume: Volume, transfer: TransferFunction, lights: Vec<Light>) ->
             step_voxels: 0.5,
             shadow_step_voxels: 0.5,
             min_transmittance: 0.0,
+            chromatic: false,
         },
         phong: PhongSettings { ambient: 0.2, diffuse: 0.6, specular: 0.3, shininess: 16.0 },
         settings: TechniqueSettings::default(),

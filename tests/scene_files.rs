@@ -452,7 +452,7 @@ fn technique_defaults_are_the_documented_ones() {
     let lv = LightVolumeSettings::default();
     assert_eq!((lv.scale, lv.coherent, lv.compensated, lv.cost_estimate), (2, true, true, CostEstimate::Passes));
     assert_eq!((lv.max_passes_per_frame, lv.pass_lights, lv.rebase_tolerance), (0, 16, 1e-6));
-    assert_eq!((lv.substep, lv.shared_medium, lv.racy), (0.25, false, false));
+    assert_eq!((lv.substep, lv.shared_medium, lv.chromatic, lv.racy), (0.25, true, true, false));
     assert_eq!(HalfAngleSettings::default(), HalfAngleSettings { slice_step: None, light_buffer_size: 256 });
     // The slice step follows render.step unless given.
     let scene = scene_from_toml_str(&format!("{MINIMAL}[render]\nstep = 0.75\n"), Path::new(""), "t", &[]).unwrap();
@@ -480,8 +480,8 @@ fn technique_tables_are_read_into_typed_settings() {
         "[ipsvi]\nline_width = 4\ncache_size = 128\npiecewise = false\nearly_termination = \"exit-points\"\n\
          albedo = 0.5\ncone_angle = 30\nzone_blend = 4.5\nlight_step = 0.125\nert_scale = 2\nsync = \"events\"\n\
          [lightvolume]\nscale = 4\ncoherent = false\ncompensated = false\ncost_estimate = \"selective\"\n\
-         max_passes_per_frame = 3\npass_lights = 8\nrebase_tolerance = 1e-3\nsubstep = 0.5\nshared_medium = true\n\
-         racy = true\n[half_angle]\nslice_step = 0.25\nlight_buffer_size = 64\n[ao]\nradius = 4\nclusters = 64\n",
+         max_passes_per_frame = 3\npass_lights = 8\nrebase_tolerance = 1e-3\nsubstep = 0.5\nshared_medium = false\n\
+         chromatic = false\nracy = true\n[half_angle]\nslice_step = 0.25\nlight_buffer_size = 64\n[ao]\nradius = 4\nclusters = 64\n",
         &[],
     );
     let ipsvi = IpsviSettings {
@@ -506,7 +506,8 @@ fn technique_tables_are_read_into_typed_settings() {
         pass_lights: 8,
         rebase_tolerance: 1e-3,
         substep: 0.5,
-        shared_medium: true,
+        shared_medium: false,
+        chromatic: false,
         racy: true,
     };
     let half_angle = HalfAngleSettings { slice_step: Some(0.25), light_buffer_size: 64 };
@@ -589,4 +590,13 @@ fn technique_values_out_of_range_name_key_value_and_range() {
     for (table, parts) in cases {
         assert_mentions(&error_of(&format!("{MINIMAL}{table}\n"), &[]), parts);
     }
+}
+
+#[test]
+fn reference_chromatic_parses_and_is_refused_with_model_ii() {
+    let spec = parse_scene_str(&format!("{MINIMAL}[reference]\nchromatic = true\n"), Path::new(""), "t", &[]).unwrap();
+    assert!(spec.build().unwrap().reference.chromatic);
+    let message = error_of(&format!("{MINIMAL}[reference]\nmodel = \"emissive-scattering\"\nchromatic = true\n"), &[]);
+    assert_mentions(&message, &["reference.chromatic", "single-scattering"]);
+    assert_mentions(&error_of(MINIMAL, &["reference.chromatic=yes"]), &["chromatic"]);
 }

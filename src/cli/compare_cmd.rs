@@ -22,6 +22,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     let mut scene = scene_args::load(&args.scene)?;
     // Each technique is compared against the model it approximates.
     scene.reference.model = technique.reference_model(&scene);
+    scene.reference.chromatic = technique.reference_chromatic(&scene);
     let (w, h) = (scene.render.width, scene.render.height);
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
@@ -38,7 +39,8 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     drop(gpu);
     let stats = compare(&tested.image, &reference).context("comparing against the reference")?;
     println!("technique        {technique}");
-    println!("reference        {} ({:?} model)", args.reference, scene.reference.model);
+    let coloured = if scene.reference.chromatic { ", chromatic" } else { "" };
+    println!("reference        {} ({:?} model{coloured})", args.reference, scene.reference.model);
     println!("image            {w}x{h}");
     println!("rmse             {:.6e}", stats.rmse);
     println!("max_abs          {:.6e}", stats.max_abs);

@@ -25,6 +25,11 @@ impl RenderTechnique for HalfAngle {
         OpticalModel::SingleScattering
     }
 
+    /// One transmittance in the light buffer.
+    fn reference_chromatic(&self, _scene: &Scene) -> bool {
+        false
+    }
+
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         if scene.lights.is_empty() {
             return raycast::resources(Shading::EmissionOnly, width, height);

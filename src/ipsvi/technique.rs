@@ -28,6 +28,11 @@ impl RenderTechnique for Ipsvi {
         OpticalModel::EmissiveScattering
     }
 
+    /// One transmittance per light ray.
+    fn reference_chromatic(&self, _scene: &Scene) -> bool {
+        false
+    }
+
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         if scene.lights.is_empty() {
             return raycast::resources(Shading::EmissionOnly, width, height);

@@ -4,6 +4,15 @@
 //! and the group of the second closest face with alpha_sc = 1 - alpha_c (5b).
 //! A light's share of one group is a [`Contribution`]; passes are built from
 //! contributions, each with a sign (+1 adds it to the volume, -1 subtracts it).
+//!
+//! Point and spot lights near the volume send light both ways along an axis:
+//! one *beside* the volume (outside it, but within its extent along one of its
+//! two group axes) also joins the opposite group of that axis with the same
+//! factor, and each group carries the light only where it travels the group's
+//! way; one *inside* the volume joins all six groups (section 7.3), each voxel
+//! weighted by the squared cosine between the light's travel and the group's
+//! axis (the weights of the three axes sum to one), and a spot light only the
+//! groups its cone reaches. Nothing travelling against a group is dropped.
 
 use crate::render::frame_params::{gpu_light, GpuLight};
 use crate::scene::{Light, LightKind};
@@ -24,6 +33,8 @@ pub struct GroupMember {
     pub factor: f32,
     /// The light as propagated (for a subtraction: its old state).
     pub state: GpuLight,
+    /// The factor is weighted per voxel by cos^2 (a light inside the volume).
+    pub per_voxel: bool,
 }
 
 /// What one light in one state adds to the volume through one group. Equal
@@ -38,6 +49,8 @@ pub struct Contribution {
     pub travel: i32,
     /// Positive alpha.
     pub factor: f32,
+    /// Weighted per voxel by cos^2 between travel and axis (a light inside).
+    pub per_voxel: bool,
 }
 
 impl Contribution {
@@ -103,16 +116,48 @@ pub fn face_factors(l_pos: Vec3) -> [(usize, i32, f32); 2] {
     [(closest, travel(closest), alpha_c), (second, travel(second), 1.0 - alpha_c)]
 }
 
+/// Whether a spot light's cone (outer half-angle) reaches a direction that
+/// travels `travel` along `axis`; other lights reach every direction.
+fn cone_reaches(light: &Light, axis: usize, travel: i32) -> bool {
+    let LightKind::Spot { direction, outer_cone_deg, .. } = light.kind else { return true };
+    let spot = direction.normalize_or(Vec3::NEG_Y);
+    let angle = (spot[axis] * travel as f32).clamp(-1.0, 1.0).acos();
+    angle - outer_cone_deg.to_radians() < 0.5 * PI
+}
+
 /// Every contribution of the lights that are on (`None` is a light switched
-/// off), in light order.
-pub fn contributions(lights: &[Option<Light>]) -> Vec<Contribution> {
+/// off), in light order, for a volume box of half extent `box_half` (world
+/// units, centred at the origin).
+pub fn contributions(lights: &[Option<Light>], box_half: Vec3) -> Vec<Contribution> {
     let mut out = Vec::new();
     for (index, light) in lights.iter().enumerate() {
         let Some(light) = light else { continue };
         let state = gpu_light(light);
-        for (axis, travel, factor) in face_factors(light_position_direction(light)) {
+        let position = match light.kind {
+            LightKind::Directional { .. } => None,
+            LightKind::Point { position } | LightKind::Spot { position, .. } => Some(position),
+        };
+        // Within the box's extent along `axis`: light leaves it both ways.
+        let within = |axis: usize| position.is_some_and(|p| p[axis].abs() < box_half[axis]);
+        let mut push = |axis: usize, travel: i32, factor: f32, per_voxel: bool| {
             if factor > MIN_FACTOR {
-                out.push(Contribution { light: index, state, axis, travel, factor });
+                out.push(Contribution { light: index, state, axis, travel, factor, per_voxel });
+            }
+        };
+        if (0..3).all(within) {
+            for axis in 0..3 {
+                for travel in [1, -1] {
+                    if cone_reaches(light, axis, travel) {
+                        push(axis, travel, 1.0, true);
+                    }
+                }
+            }
+            continue;
+        }
+        for (axis, travel, factor) in face_factors(light_position_direction(light)) {
+            push(axis, travel, factor, false);
+            if within(axis) && cone_reaches(light, axis, -travel) {
+                push(axis, -travel, factor, false);
             }
         }
     }
@@ -126,7 +171,12 @@ pub fn contributions(lights: &[Option<Light>]) -> Vec<Contribution> {
 pub fn group_passes(items: &[(Contribution, f32)], coherent: bool, pass_lights: usize) -> Vec<PropagationGroup> {
     let mut by_group: Vec<Vec<GroupMember>> = vec![Vec::new(); 6];
     for (c, sign) in items {
-        by_group[c.group_slot()].push(GroupMember { light: c.light, factor: sign * c.factor, state: c.state });
+        by_group[c.group_slot()].push(GroupMember {
+            light: c.light,
+            factor: sign * c.factor,
+            state: c.state,
+            per_voxel: c.per_voxel,
+        });
     }
     let per_pass = if coherent { pass_lights.max(1) } else { 1 };
     let mut passes = Vec::new();
@@ -150,7 +200,9 @@ mod tests {
     /// The passes of an entire coherent update of `lights`, all on.
     fn propagation_groups(lights: &[Light]) -> Vec<PropagationGroup> {
         let on: Vec<Option<Light>> = lights.iter().copied().map(Some).collect();
-        let items: Vec<_> = contributions(&on).into_iter().map(|c| (c, 1.0)).collect();
+        // A box small enough that the point lights below are outside it and
+        // beside none of its faces.
+        let items: Vec<_> = contributions(&on, Vec3::splat(0.25)).into_iter().map(|c| (c, 1.0)).collect();
         group_passes(&items, true, usize::MAX)
     }
 
@@ -187,5 +239,54 @@ mod tests {
         assert_eq!(names, ["-y", "+z"]);
         let sum: f32 = groups.iter().map(|g| g.members[0].factor).sum();
         assert!((sum - 1.0).abs() < 1e-6);
+    }
+
+    fn point(position: Vec3) -> Option<Light> {
+        Some(Light { kind: LightKind::Point { position }, color: Vec3::ONE, intensity: 1.0, falloff: Falloff::None })
+    }
+
+    fn slots(cs: &[Contribution]) -> Vec<String> {
+        let names = ["+x", "-x", "+y", "-y", "+z", "-z"];
+        cs.iter().map(|c| names[c.group_slot()].to_string()).collect()
+    }
+
+    #[test]
+    fn a_point_light_inside_joins_all_six_groups_weighted_per_voxel() {
+        let cs = contributions(&[point(Vec3::new(0.1, -0.2, 0.05))], Vec3::splat(0.5));
+        assert_eq!(slots(&cs), ["+x", "-x", "+y", "-y", "+z", "-z"]);
+        assert!(cs.iter().all(|c| c.per_voxel && c.factor == 1.0));
+    }
+
+    #[test]
+    fn a_point_light_beside_the_volume_carries_both_ways_along_the_axis_it_is_within() {
+        // Above the box (closest face +y: travels -y), within its x extent: the
+        // second group's axis is x, so both x directions carry its share.
+        let cs = contributions(&[point(Vec3::new(0.3, 0.8, 0.0))], Vec3::splat(0.5));
+        let mut names = slots(&cs);
+        names.sort();
+        assert_eq!(names, ["+x", "-x", "-y"]);
+        let x: Vec<f32> = cs.iter().filter(|c| c.axis == 0).map(|c| c.factor).collect();
+        assert_eq!(x[0], x[1]);
+        let y = cs.iter().find(|c| c.axis == 1).unwrap().factor;
+        assert!((x[0] + y - 1.0).abs() < 1e-6);
+        assert!(cs.iter().all(|c| !c.per_voxel));
+        // Far from every face's extent: the paper's two groups.
+        assert_eq!(contributions(&[point(Vec3::new(2.0, 3.0, 1.0))], Vec3::splat(0.5)).len(), 2);
+    }
+
+    #[test]
+    fn a_spot_light_inside_joins_the_groups_its_cone_reaches() {
+        let spot = |direction: Vec3, outer: f32| {
+            Some(Light {
+                kind: LightKind::Spot { position: Vec3::ZERO, direction, inner_cone_deg: outer, outer_cone_deg: outer },
+                color: Vec3::ONE,
+                intensity: 1.0,
+                falloff: Falloff::None,
+            })
+        };
+        let narrow = contributions(&[spot(Vec3::X, 30.0)], Vec3::splat(0.5));
+        assert_eq!(slots(&narrow), ["+x", "+y", "-y", "+z", "-z"], "never back toward -x");
+        let wide = contributions(&[spot(Vec3::X, 100.0)], Vec3::splat(0.5));
+        assert_eq!(wide.len(), 6);
     }
 }

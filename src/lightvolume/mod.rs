@@ -10,24 +10,26 @@
 //! ([`plan`]); compensated sums keep subtraction from drifting. A ray cast then
 //! lights each sample by the interpolated volume ([`raycast`]).
 //!
-//! Approximates optical model (i) (docs/optical-model.md): the propagated
-//! quantity is each light's transmittance (its colour, falloff and cone are
-//! applied per voxel), so the paper's blend of the material colour into the
-//! propagated light (model (ii)-like) is left out. Between slices the medium is
-//! integrated along each light's direction in sub-steps of a quarter
-//! illumination voxel (exact for homogeneous media), or, with `shared_medium`,
-//! once along the axis for all lights of a pass (the paper's, cheaper per
-//! light); a path ends where the light enters the volume, through any face, or
-//! at the light.
+//! Approximates optical model (i) (docs/optical-model.md), by default its
+//! chromatic variant (`chromatic`: per-channel transmittance, the paper's
+//! l_i = (1 - alpha) l_{i-1} + alpha c l_{i-1}); the propagated quantity is each
+//! light's transmittance (its colour, falloff and cone are applied per voxel).
+//! Between slices the medium is sampled once per voxel along the axis and
+//! shared by every light of the pass (`shared_medium`, the default and the
+//! paper's), or integrated along each light's own direction; the lights of a
+//! pass are summed in registers (two-float) and written into the volume once
+//! per voxel. A path ends where the light enters the volume, through any face,
+//! or at the light (within four slices of a point light it is integrated to
+//! the light). Lights inside the volume use all six groups, lights beside it
+//! both directions of an axis ([`groups`]): no light is dropped.
 //! Where it falls short of the model: light is known at illumination voxel
 //! centres only, so shadows are blurred by the grid and by bilinear resampling
 //! from slice to slice (which overestimates the convex exp(-depth), most for
 //! oblique light), and surfaces sharper than a voxel are lit by interpolation
 //! (log-space in the ray cast, which follows the exponential decay into a
-//! surface). A light splits between two groups by the factors of equations
-//! 5a/5b, each following the light's own direction. Light travelling against a
-//! group's direction (only possible for the second group of a point or spot
-//! light near or inside the volume) is not carried by that group.
+//! surface, and extrapolates it over the half voxel next to the box faces).
+//! A light outside splits between two groups by the factors of equations
+//! 5a/5b, each following the light's own direction.
 
 pub mod groups;
 pub mod illumination;

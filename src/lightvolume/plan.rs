@@ -242,6 +242,7 @@ pub fn apply(present: &mut Vec<Contribution>, cleared: bool, passes: &[Propagati
                 axis: pass.axis,
                 travel: pass.travel,
                 factor: m.factor.abs(),
+                per_voxel: m.per_voxel,
             };
             if m.factor < 0.0 {
                 if let Some(i) = present.iter().position(|p| *p == c) {
@@ -288,7 +289,8 @@ mod tests {
     const GEOMETRY: PeakGeometry = PeakGeometry { box_half: Vec3::ONE, voxel_length: 0.1 };
 
     fn plan(before: &[Option<Light>], after: &[Option<Light>], settings: &LightVolumeSettings) -> UpdatePlan {
-        plan_update(&contributions(before), &contributions(after), settings, &PlanState::default(), GEOMETRY)
+        let c = |lights| contributions(lights, GEOMETRY.box_half);
+        plan_update(&c(before), &c(after), settings, &PlanState::default(), GEOMETRY)
     }
 
     fn four_lights() -> Vec<Option<Light>> {
@@ -362,7 +364,7 @@ mod tests {
         let s = LightVolumeSettings::default();
         assert_eq!(plan(&lights, &lights, &s).kind, UpdateKind::Unchanged);
         let state = PlanState { invalid: true, ..Default::default() };
-        let c = contributions(&lights);
+        let c = contributions(&lights, GEOMETRY.box_half);
         let p = plan_update(&c, &c, &s, &state, GEOMETRY);
         assert_eq!(p.kind, UpdateKind::Entire);
         assert_eq!(p.passes.len(), p.entire.passes);
@@ -373,7 +375,7 @@ mod tests {
         let lights: Vec<_> =
             (0..6).map(|i| light(Vec3::new((i as f32 - 2.5) * 0.8, -0.5 + 0.3 * (i % 2) as f32, 0.7), 1.0)).collect();
         let s = LightVolumeSettings { max_passes_per_frame: 1, ..Default::default() };
-        let target = contributions(&lights);
+        let target = contributions(&lights, GEOMETRY.box_half);
         let mut present = Vec::new();
         let mut state = PlanState { invalid: true, ..Default::default() };
         let mut frames = 0;

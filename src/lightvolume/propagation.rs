@@ -35,10 +35,12 @@ pub struct GroupEntry {
     pub factor: f32,
     /// Layer of the slice buffers.
     pub slot: u32,
-    pub pad: u32,
+    /// 1: the factor is weighted per voxel by cos^2 between the light's travel
+    /// and the axis (a light inside the volume, in all six groups).
+    pub per_voxel: u32,
 }
 
-crate::assert_gpu_layout!(GroupEntry, shader::layout::GROUP_ENTRY, [light, factor, slot, pad]);
+crate::assert_gpu_layout!(GroupEntry, shader::layout::GROUP_ENTRY, [light, factor, slot, per_voxel]);
 
 /// Mirrors the `Pass` push constants.
 #[repr(C)]
@@ -170,6 +172,7 @@ impl Propagation {
                 (0, compensated),
                 (1, settings.substep_data_voxels().to_bits()),
                 (2, settings.shared_medium as u32),
+                (3, settings.chromatic as u32),
             ],
             max_sets: 1,
         };

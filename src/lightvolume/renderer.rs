@@ -140,7 +140,7 @@ impl<'s> LightVolumeRenderer<'s> {
         read_illumination: bool,
     ) -> Result<LightVolumeFrame, RenderError> {
         self.updates += 1;
-        let target = contributions(lights);
+        let target = contributions(lights, self.geometry.box_half);
         let plan = plan_update(&self.present, &target, &self.settings, &self.plan_state, self.geometry);
         let (pass_indices, recorded) = self.prepare_passes(&plan.passes)?;
         if let Some((width, height)) = view {
@@ -318,7 +318,12 @@ impl<'s> LightVolumeRenderer<'s> {
                 .iter()
                 .zip(pass_slots)
                 .enumerate()
-                .map(|(layer, (m, &slot))| GroupEntry { light: slot, factor: m.factor, slot: layer as u32, pad: 0 })
+                .map(|(layer, (m, &slot))| GroupEntry {
+                    light: slot,
+                    factor: m.factor,
+                    slot: layer as u32,
+                    per_voxel: m.per_voxel as u32,
+                })
                 .collect();
             propagation.write_entries(first, &entries)?;
             let commands = propagation.record_pass(self.gpu.ctx, pass, first as u32, self.settings.racy)?;

@@ -61,6 +61,10 @@ pub struct LightVolumeSettings {
     /// voxel along the axis and shared by every light of the pass (scaled by
     /// each light's path length), instead of along each light's direction.
     pub shared_medium: bool,
+    /// Coloured propagation (the paper's l_i = (1 - alpha) l_{i-1} + alpha c):
+    /// per-channel transmittance, the medium passing its own colour on;
+    /// off: one transmittance for all channels, optical model (i).
+    pub chromatic: bool,
     /// RACY: leaves out the barrier between the slices of a pass, so that
     /// synchronization validation can be shown to catch it (the volume is wrong).
     pub racy: bool,
@@ -79,7 +83,9 @@ impl Default for LightVolumeSettings {
             pass_lights: 16,
             rebase_tolerance: 1e-6,
             substep: 0.25,
-            shared_medium: false,
+            // The paper's propagation: the pass shares the medium's sampling.
+            shared_medium: true,
+            chromatic: true,
             racy: false,
         }
     }

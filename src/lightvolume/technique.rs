@@ -30,6 +30,11 @@ impl RenderTechnique for LightVolume {
         OpticalModel::SingleScattering
     }
 
+    /// Coloured when its propagation is (`lightvolume.chromatic`).
+    fn reference_chromatic(&self, scene: &Scene) -> bool {
+        scene.settings.lightvolume.chromatic
+    }
+
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         let s = &scene.settings.lightvolume;
         let grid = IlluminationVolume::size_for(scene.volume.dims, s.scale);
@@ -47,7 +52,7 @@ impl RenderTechnique for LightVolume {
         let bx = scene.volume_box();
         let geometry = PeakGeometry { box_half: bx.half_extent, voxel_length: bx.voxel_length };
         let state = PlanState { invalid: true, ..Default::default() };
-        let plan = plan_update(&[], &contributions(&lights), s, &state, geometry);
+        let plan = plan_update(&[], &contributions(&lights, bx.half_extent), s, &state, geometry);
         if !plan.passes.is_empty() {
             let capacity = Capacity::needed(&plan.passes).grown(None, s.pass_lights);
             needs.push(ResourceNeed::of::<FrameParams>("lightvolume frame params", 1));

@@ -120,6 +120,7 @@ impl<'a> CpuRenderer<'a> {
                 &self.medium,
                 &scene.lights,
                 model,
+                scene.reference.chromatic,
                 scene.render.emission as f64,
                 scene.reference.shadow_step_voxels as f64,
                 p,

@@ -129,6 +129,11 @@ pub fn render_with(
         OutputImage::new(ctx, "reference accum a", width, height)?,
         OutputImage::new(ctx, "reference accum b", width, height)?,
     ];
+    if scene.reference.chromatic && scene.reference.model != OpticalModel::SingleScattering {
+        return Err(RenderError::Invalid(
+            "reference.chromatic = true needs reference.model = \"single-scattering\"".into(),
+        ));
+    }
     let model = match scene.reference.model {
         OpticalModel::SingleScattering => 0,
         OpticalModel::EmissiveScattering => 1,
@@ -138,7 +143,7 @@ pub fn render_with(
         &ComputePipelineDesc {
             name: "reference",
             shader: &shader::INTERFACE,
-            specialization: &[(0, model)],
+            specialization: &[(0, model), (1, scene.reference.chromatic as u32)],
             max_sets: 2,
         },
     )?;

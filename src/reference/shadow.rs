@@ -14,6 +14,9 @@ pub struct ShadowSample {
     pub transmittance: f64,
     /// `El`: emission gathered along the shadow ray (zero unless asked for).
     pub emission: DVec3,
+    /// Per-channel transmittance under coloured extinction (the `chromatic`
+    /// option): optical depth `sigma * max(1 - rgb, 0)` per channel.
+    pub coloured: DVec3,
 }
 
 /// Marches from `p` toward the light of `path` with steps of about
@@ -31,7 +34,7 @@ pub fn trace_shadow(
     if !matches!(light.kind, LightKind::Directional { .. }) {
         distance = distance.min(path.distance);
     }
-    let mut result = ShadowSample { transmittance: 1.0, emission: DVec3::ZERO };
+    let mut result = ShadowSample { transmittance: 1.0, emission: DVec3::ZERO, coloured: DVec3::ONE };
     if distance <= 0.0 {
         return result;
     }
@@ -40,6 +43,7 @@ pub fn trace_shadow(
     let g = distance / steps;
     let gv = g / vl;
     let mut tau = 0.0f64;
+    let mut tau_coloured = DVec3::ZERO;
     for j in 0..steps as u64 {
         let q = p + path.toward * ((j as f64 + 0.5) * g);
         let m = medium.at(q);
@@ -48,8 +52,10 @@ pub fn trace_shadow(
             result.emission += (-tau).exp() * a * emission * m.rgb;
         }
         tau += m.sigma * gv;
+        tau_coloured += m.sigma * gv * (DVec3::ONE - m.rgb).max(DVec3::ZERO);
     }
     result.transmittance = (-tau).exp();
+    result.coloured = (-tau_coloured).exp();
     result
 }
 
@@ -97,6 +103,9 @@ mod tests {
             // sum_j exp(-tau_j) (1 - exp(-sigma gv)) = 1 - exp(-sigma D).
             let e = rgb * 0.4 * (1.0 - t);
             assert!((s.emission - e).abs().max_element() < 1e-14, "{step}");
+            // Coloured extinction: each channel's depth is sigma * (1 - rgb).
+            let coloured = (-(DVec3::ONE - rgb) * sigma * depth_voxels).exp();
+            assert!((s.coloured - coloured).abs().max_element() < 1e-14, "{step}");
         }
     }
 

@@ -67,11 +67,14 @@ pub fn phong(
 }
 
 /// Single scattering of every light (model (i)) or emissive scattering (model
-/// (ii)): `rgb * (emission + sum_l [radiance * falloff * cone * Tl (+ El)])`.
+/// (ii)): `rgb * (emission + sum_l [radiance * falloff * cone * Tl (+ El)])`;
+/// with `chromatic`, `Tl` is per channel under coloured extinction.
+#[allow(clippy::too_many_arguments)]
 pub fn scattering(
     medium: &Medium,
     lights: &[Light],
     model: OpticalModel,
+    chromatic: bool,
     emission: f64,
     shadow_step_voxels: f64,
     p: DVec3,
@@ -85,8 +88,9 @@ pub fn scattering(
     for light in lights {
         let path = toward_light(light, p);
         let shadow = trace_shadow(medium, light, p, &path, shadow_step_voxels, gather);
+        let transmittance = if chromatic { shadow.coloured } else { DVec3::splat(shadow.transmittance) };
         let direct =
-            radiance(light) * falloff(light, &path, medium.voxel_length()) * cone(light, &path) * shadow.transmittance;
+            radiance(light) * falloff(light, &path, medium.voxel_length()) * cone(light, &path) * transmittance;
         light_in += match model {
             OpticalModel::SingleScattering => direct,
             OpticalModel::EmissiveScattering => direct + shadow.emission,

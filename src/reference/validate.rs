@@ -19,6 +19,8 @@ pub enum CpuRenderError {
     NotFinite { setting: &'static str, value: String },
     #[error("light {index}: {problem}")]
     Light { index: usize, problem: String },
+    #[error("reference.chromatic = true needs reference.model = \"single-scattering\", got {model:?}")]
+    ChromaticModel { model: crate::scene::OpticalModel },
     #[error("pixel ({x}, {y}) is outside the {width}x{height} image")]
     PixelOutOfRange { x: u32, y: u32, width: u32, height: u32 },
 }
@@ -104,8 +106,11 @@ fn check_settings(scene: &Scene, kind: CpuRenderKind) -> Result<(), CpuRenderErr
             let p = &scene.phong;
             finite("phong (ambient, diffuse, specular, shininess)", &[p.ambient, p.diffuse, p.specular, p.shininess])
         }
-        CpuRenderKind::Reference(_) => {
+        CpuRenderKind::Reference(model) => {
             let r = &scene.reference;
+            if r.chromatic && model != crate::scene::OpticalModel::SingleScattering {
+                return Err(CpuRenderError::ChromaticModel { model });
+            }
             positive_step("reference.step_voxels", r.step_voxels)?;
             positive_step("reference.shadow_step_voxels", r.shadow_step_voxels)?;
             finite("reference.min_transmittance", &[r.min_transmittance])?;

@@ -19,6 +19,12 @@ pub trait RenderTechnique: Sync {
     /// The ground-truth model it is compared with (docs/optical-model.md).
     fn reference_model(&self, scene: &Scene) -> OpticalModel;
 
+    /// Whether that ground truth uses coloured extinction along shadow rays
+    /// (`reference.chromatic`); by default the scene's choice.
+    fn reference_chromatic(&self, scene: &Scene) -> bool {
+        scene.reference.chromatic
+    }
+
     /// The device memory one frame allocates, by resource, beside the scene's
     /// own (volume, transfer LUT, lights).
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed>;

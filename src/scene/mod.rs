@@ -59,6 +59,9 @@ pub struct ReferenceSettings {
     pub shadow_step_voxels: f32,
     /// View rays stop once their transmittance falls below this (0 disables).
     pub min_transmittance: f32,
+    /// Coloured extinction along shadow rays: each channel's optical depth is
+    /// `sigma * (1 - rgb)` (the light volume's `chromatic` propagation).
+    pub chromatic: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -52,6 +52,7 @@
 //! step = 0.25
 //! shadow_step = 0.5
 //! min_transmittance = 1e-4   # [0, 1)
+//! chromatic = false          # coloured extinction along shadow rays
 //!
 //! [phong]
 //! ambient = 0.2

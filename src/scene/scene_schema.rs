@@ -169,11 +169,18 @@ struct ReferenceSection {
     step: f32,
     shadow_step: f32,
     min_transmittance: f32,
+    chromatic: bool,
 }
 
 impl Default for ReferenceSection {
     fn default() -> Self {
-        ReferenceSection { model: ModelName::SingleScattering, step: 0.25, shadow_step: 0.5, min_transmittance: 1e-4 }
+        ReferenceSection {
+            model: ModelName::SingleScattering,
+            step: 0.25,
+            shadow_step: 0.5,
+            min_transmittance: 1e-4,
+            chromatic: false,
+        }
     }
 }
 
@@ -537,6 +544,12 @@ impl Checker<'_> {
     }
 
     fn reference(&self, s: ReferenceSection) -> Result<ReferenceSettings, SceneError> {
+        if s.chromatic && !matches!(s.model, ModelName::SingleScattering) {
+            return Err(self.err(
+                "reference.chromatic",
+                "coloured extinction is defined for model \"single-scattering\" only".to_string(),
+            ));
+        }
         if !(0.0..1.0).contains(&s.min_transmittance) {
             return Err(
                 self.err("reference.min_transmittance", format!("must be in [0, 1), got {}", s.min_transmittance))
@@ -550,6 +563,7 @@ impl Checker<'_> {
             step_voxels: self.positive("reference.step", s.step)?,
             shadow_step_voxels: self.positive("reference.shadow_step", s.shadow_step)?,
             min_transmittance: s.min_transmittance,
+            chromatic: s.chromatic,
         })
     }
 

@@ -63,6 +63,7 @@ pub fn scene_with(volume: Volume, lights: Vec<Light>, width: u32, height: u32) -
             step_voxels: 0.5,
             shadow_step_voxels: 0.5,
             min_transmittance: 1e-4,
+            chromatic: false,
         },
         phong: PhongSettings { ambient: 0.2, diffuse: 0.8, specular: 0.3, shininess: 32.0 },
         settings: TechniqueSettings::default(),
