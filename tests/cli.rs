@@ -209,9 +209,16 @@ fn bench_lights_writes_table1_scaling_memory_and_error_rows_validation_clean() {
     let incremental = part("incremental");
     assert_eq!(incremental.len(), 2, "one and two passes a frame");
     assert!(incremental[0]["frames"].as_u64() > incremental[1]["frames"].as_u64(), "{incremental:?}");
+    let inside = part("inside");
+    assert_eq!(inside.len(), 2, "a point light at the centre and outside: {inside:?}");
+    assert_eq!((inside[0]["passes"].as_u64(), inside[1]["passes"].as_u64()), (Some(6), Some(2)), "{inside:?}");
     let error = part("error");
-    assert_eq!(error.len(), 3, "DVR and the light volume at scale 4, per-light and shared medium");
-    assert!(error.iter().any(|r| r["technique"] == "lightvolume-shared-medium"));
+    assert_eq!(error.len(), 4, "DVR and the light volume at scale 4: default, per-light, per-light grey");
+    for (technique, chromatic) in
+        [("lightvolume", true), ("lightvolume-per-light", true), ("lightvolume-per-light-grey", false)]
+    {
+        assert!(error.iter().any(|r| r["technique"] == technique && r["chromatic"] == chromatic), "{error:?}");
+    }
     assert!(error.iter().all(|r| r["rmse"].as_f64().is_some_and(f64::is_finite)));
     let markdown = std::fs::read_to_string(out.join("lights.md")).unwrap();
     assert!(markdown.contains("paper (GTX 670)") && markdown.contains("ms_per_added_light"));

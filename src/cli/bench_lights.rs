@@ -9,6 +9,7 @@ use super::args::BenchLightsArgs;
 use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use anyhow::{bail, Context as _};
+use glam::Vec3;
 use std::process::ExitCode;
 use sweeplab::bench::experiments::lights::{
     grid_text, lightvolume_scene, resolution_label, scaling_lights, table1_lights, LightsMeter, Update,
@@ -22,7 +23,7 @@ use sweeplab::lightvolume::CostEstimate;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique};
-use sweeplab::scene::{Light, Scene};
+use sweeplab::scene::{Falloff, Light, LightKind, Scene};
 use sweeplab::vk::Profiler;
 
 /// The paper's Table 1, Engine (256x256x256) rows: (illumination scale, lights,
@@ -92,8 +93,12 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let table1_steps = args.scales.len() * args.light_counts.len() * Update::ALL.len();
-    let steps =
-        table1_steps + 2 * args.scaling_counts.len() + args.incremental_passes.len() + 2 + 2 * args.error_scales.len();
+    let steps = table1_steps
+        + 2 * args.scales.len()
+        + 2 * args.scaling_counts.len()
+        + args.incremental_passes.len()
+        + 3
+        + 3 * args.error_scales.len();
     let mut meter = LightsMeter {
         ctx: &ctx,
         profiler: Profiler::new(&ctx, PROFILER_CAPACITY)?,
@@ -102,6 +107,7 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     };
     let mut report = Report::default();
     table1(args, &mut meter, &scene, &mut report)?;
+    inside(args, &mut meter, &scene, &mut report)?;
     scaling(args, &mut meter, &scene, &mut report)?;
     incremental(args, &mut meter, &scene, &mut report)?;
     error_rows(args, &mut meter, &scene, (width, height), &mut report)?;
@@ -115,6 +121,7 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
 struct Report {
     updates: BenchTable,
     table1: BenchTable,
+    inside: BenchTable,
     scaling: BenchTable,
     scaling_fit: BenchTable,
     memory: BenchTable,
@@ -187,6 +194,33 @@ fn table1(args: &BenchLightsArgs, meter: &mut LightsMeter, scene: &Scene, report
                 set_ratios(&mut row);
                 report.table1.push(row);
             }
+        }
+    }
+    Ok(())
+}
+
+/// A point light inside the volume (at its centre: all six groups, the paper's
+/// section 7.3) beside the same light outside (two or three groups), entire
+/// coherent updates.
+fn inside(args: &BenchLightsArgs, meter: &mut LightsMeter, scene: &Scene, report: &mut Report) -> anyhow::Result<()> {
+    let point = |position: Vec3| Light {
+        kind: LightKind::Point { position },
+        color: Vec3::ONE,
+        intensity: 1.0,
+        falloff: Falloff::None,
+    };
+    for &scale in &args.scales {
+        for (place, light) in [("centre", point(Vec3::ZERO)), ("outside", point(Vec3::new(1.2, 0.8, 0.6)))] {
+            let s = lightvolume_scene(scene, scale, true, CostEstimate::Entire, |_| {});
+            let label = format!("{} point light {place}", resolution_label(scale));
+            let m = meter
+                .measure_updates(&s, &[light], &[Update::EntireCoherent], &label)?
+                .pop()
+                .context("no measurement")?;
+            let mut row = BenchRow::new();
+            row.set("resolution", resolution_label(scale)).set("light", format!("point, {place}"));
+            row.set("gpu_ms", m.timing.median()).set("passes", m.passes()).set("dispatches", m.timing.last.dispatches);
+            report.inside.push(row);
         }
     }
     Ok(())
@@ -312,12 +346,19 @@ fn error_rows(
     let mut lit = scene.clone();
     lit.lights = table1_lights(count as usize);
     let texels = session::volume_texels(&args.gpu);
-    meter.progress.start_step(&format!("{width}x{height} ground truth (GPU, model i), {count} lights"));
-    let reference: LinearImage = {
-        let gpu = GpuScene::upload_with(meter.ctx, &lit, texels).context("uploading the scene")?;
-        render(&gpu, Technique::Reference, width, height, &mut meter.profiler)?.image
-    };
-    meter.progress.finish_step();
+    // Two ground truths: model (i) with one transmittance, and with coloured
+    // extinction (`reference.chromatic`), each propagation against its own.
+    let mut references = Vec::new();
+    for chromatic in [false, true] {
+        let what = if chromatic { "chromatic" } else { "grey" };
+        meter.progress.start_step(&format!("{width}x{height} ground truth (GPU, model i, {what}), {count} lights"));
+        let mut truth = lit.clone();
+        truth.reference.chromatic = chromatic;
+        let gpu = GpuScene::upload_with(meter.ctx, &truth, texels).context("uploading the scene")?;
+        references.push(render(&gpu, Technique::Reference, width, height, &mut meter.profiler)?.image);
+        meter.progress.finish_step();
+    }
+    let reference: &LinearImage = &references[0];
     let dvr = {
         let gpu = GpuScene::upload_with(meter.ctx, &lit, texels).context("uploading the scene")?;
         // One untimed frame first: llvmpipe compiles the shader on first use.
@@ -326,31 +367,41 @@ fn error_rows(
             technique_frame(&gpu, Technique::Dvr, (width, height), &mut meter.profiler)
         })?
     };
-    let stats = compare(&dvr.last.image, &reference)?;
+    let stats = compare(&dvr.last.image, reference)?;
     let mut row = BenchRow::new();
-    row.set("technique", "dvr").set("width", width).set("height", height).set("lights", count);
+    row.set("technique", "dvr").set("chromatic", false).set("width", width).set("height", height).set("lights", count);
     row.set("gpu_ms", dvr.median()).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
     row.set("dispatches", dvr.last.dispatches);
     report.error.push(row);
     let all_on: Vec<Option<Light>> = lit.lights.iter().copied().map(Some).collect();
-    // Both propagations of the medium: along each light (default), and shared
-    // by the lights of a pass (the paper's, cheaper per light).
-    let variants = args.error_scales.iter().flat_map(|&scale| [(scale, false), (scale, true)]);
-    for (scale, shared) in variants {
-        let medium = if shared { "shared" } else { "per-light" };
-        meter
-            .progress
-            .start_step(&format!("{width}x{height} light volume {} frame, {medium} medium", resolution_label(scale)));
-        let s = lightvolume_scene(&lit, scale, true, CostEstimate::Passes, |lv| lv.shared_medium = shared);
+    // The default (the paper's: medium shared by a pass's lights, coloured), the
+    // accurate per-light integration, and the per-light integration of model (i)
+    // (the default before chromatic propagation), each against its own ground truth.
+    let variants = args.error_scales.iter().flat_map(|&scale| {
+        [
+            ("lightvolume", true, true),
+            ("lightvolume-per-light", false, true),
+            ("lightvolume-per-light-grey", false, false),
+        ]
+        .map(|(technique, shared, chromatic)| (scale, technique, shared, chromatic))
+    });
+    for (scale, technique, shared, chromatic) in variants {
+        meter.progress.start_step(&format!("{width}x{height} {technique} {} frame", resolution_label(scale)));
+        let s = lightvolume_scene(&lit, scale, true, CostEstimate::Passes, |lv| {
+            (lv.shared_medium, lv.chromatic) = (shared, chromatic)
+        });
         let frames = meter.lightvolume_frames(&s, texels, &all_on, (width, height))?;
         meter.progress.finish_step();
         let gpu_ms = frames.timing.median();
         let (frame, bytes) = frames.timing.last;
         let image = frame.image.context("light volume frame without an image")?;
-        let stats = compare(&image, &reference)?;
+        let stats = compare(&image, &references[chromatic as usize])?;
         let mut row = BenchRow::new();
-        let technique = if shared { "lightvolume-shared-medium" } else { "lightvolume" };
-        row.set("technique", technique).set("width", width).set("height", height).set("lights", count);
+        row.set("technique", technique)
+            .set("chromatic", chromatic)
+            .set("width", width)
+            .set("height", height)
+            .set("lights", count);
         row.set("resolution", resolution_label(scale)).set("grid", grid_text(frame.grid));
         row.set("gpu_ms", gpu_ms).set("rmse", stats.rmse).set("max_abs", stats.max_abs);
         row.set("psnr", stats.psnr).set("dispatches", frame.dispatches);
@@ -364,9 +415,10 @@ fn error_rows(
 }
 
 impl Report {
-    fn sections(&self) -> [(&'static str, &'static str, &BenchTable); 7] {
+    fn sections(&self) -> [(&'static str, &'static str, &BenchTable); 8] {
         [
             ("table1", "Table 1 shape: median GPU ms per update, ours beside the paper's Engine rows", &self.table1),
+            ("inside", "A point light inside the volume (six passes) and outside, entire update", &self.inside),
             ("update", "Every measured update", &self.updates),
             ("scaling", "Figure 10 shape: entire update over lights of one direction", &self.scaling),
             ("scaling_fit", "Figure 10 slopes (least squares), ms per added light", &self.scaling_fit),
@@ -376,7 +428,11 @@ impl Report {
                 "Incremental mode: frames and GPU ms per frame until the volume is complete",
                 &self.incremental,
             ),
-            ("error", "Error against time: one full frame (entire update + ray cast), model (i)", &self.error),
+            (
+                "error",
+                "Error against time: one full frame (entire update + ray cast), against model (i), grey or chromatic as the row says",
+                &self.error,
+            ),
         ]
     }
 
@@ -436,13 +492,13 @@ impl Report {
                 &series,
             )?;
         }
-        let error: Vec<Series> = ["lightvolume", "lightvolume-shared-medium", "dvr"]
+        let error: Vec<Series> = ["lightvolume", "lightvolume-per-light", "lightvolume-per-light-grey", "dvr"]
             .iter()
             .map(|t| Series::new(*t, self.error.points(|r| r.text("technique") == *t, "gpu_ms", "rmse")))
             .collect();
         plot_error_vs_time(
             args.out.join("lights_error_vs_time.png"),
-            &Chart::new("Light volume frames against the ground truth of model (i)", "GPU time (ms)", "RMSE")
+            &Chart::new("Light volume frames against the ground truth of their model", "GPU time (ms)", "RMSE")
                 .x_scale(AxisScale::Log10)
                 .y_scale(AxisScale::Log10),
             &error,
