@@ -1,0 +1,69 @@
+//! The scene as the viewer edits it: where it came from, the `--set` edits so
+//! far (reparsed with the same checks and suggestions as the command line),
+//! and the camera the mouse moved. The volume is loaded once and kept.
+
+use super::error::ViewerError;
+use crate::scene::scene_spec::SceneSpec;
+use crate::scene::{default_scene, scene_file, Camera, Scene};
+use std::path::PathBuf;
+
+#[derive(Clone, Debug)]
+pub enum SceneSource {
+    /// The embedded default scene.
+    Default,
+    /// A TOML scene file.
+    File(PathBuf),
+    /// A volume file with the default transfer function, camera and light.
+    Volume(PathBuf),
+}
+
+/// What an edit changed: only the lights (a session that follows lights goes
+/// on), or anything else (the scene is uploaded again).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Change {
+    Lights,
+    Scene,
+}
+
+pub struct LiveScene {
+    source: SceneSource,
+    edits: Vec<String>,
+    camera: Option<Camera>,
+    pub scene: Scene,
+}
+
+impl LiveScene {
+    pub fn load(source: SceneSource, overrides: &[String]) -> Result<LiveScene, ViewerError> {
+        let scene = spec(&source, overrides)?.build()?;
+        Ok(LiveScene { source, edits: overrides.to_vec(), camera: None, scene })
+    }
+
+    /// Applies `KEY=VALUE` as `--set` would.
+    pub fn set(&mut self, edit: &str) -> Result<Change, ViewerError> {
+        let mut edits = self.edits.clone();
+        edits.push(edit.to_string());
+        let spec = spec(&self.source, &edits)?;
+        let mut scene = spec.build_with_volume(self.scene.volume.clone());
+        if let Some(c) = self.camera {
+            scene.camera = c;
+        }
+        self.edits = edits;
+        self.scene = scene;
+        let key = edit.split('=').next().unwrap_or("").trim();
+        Ok(if key == "lights" || key.starts_with("lights.") { Change::Lights } else { Change::Scene })
+    }
+
+    /// The mouse moved the camera.
+    pub fn set_camera(&mut self, camera: Camera) {
+        self.camera = Some(camera);
+        self.scene.camera = camera;
+    }
+}
+
+fn spec(source: &SceneSource, overrides: &[String]) -> Result<SceneSpec, ViewerError> {
+    Ok(match source {
+        SceneSource::Default => default_scene::default_scene_spec(overrides)?,
+        SceneSource::File(path) => scene_file::parse_scene_file(path, overrides)?,
+        SceneSource::Volume(path) => default_scene::volume_file_scene_spec(path, overrides)?,
+    })
+}
