@@ -121,6 +121,7 @@ fn scripted_view_matches_headless_render_across_a_resize_validation_clean() {
             "phong",
             "--frames",
             "8",
+            "--no-ui",
             "--script",
             script.to_str().unwrap(),
             "--screenshot",
@@ -205,6 +206,45 @@ fn the_light_volume_in_the_viewer_updates_selectively_when_one_light_moves() {
     assert!(!has(2, "lightvolume_entire_update"), "{}", frames[2]);
     let decision = frames[2]["decision"].as_str().unwrap();
     assert!(decision.starts_with("lightvolume_selective_update") && decision.contains("1 of 2 lights"), "{decision}");
+}
+
+#[test]
+fn the_control_panel_is_drawn_and_timed_and_s_and_p_write_files() {
+    let x = xvfb_or_skip!();
+    let dir = temp_dir("panel");
+    let script = dir.join("script.txt");
+    std::fs::write(&script, "1 key S\n2 key P\n").unwrap();
+    let (log_path, panel_shot, plain_shot) = (dir.join("log.json"), dir.join("panel.png"), dir.join("plain.png"));
+    let run = |ui: bool, shot: &Path| {
+        let mut args = vec!["view", "--size", "320x200", "--frames", "4", "--screenshot", shot.to_str().unwrap()];
+        args.extend(["--script", script.to_str().unwrap(), "--log-json", log_path.to_str().unwrap()]);
+        if !ui {
+            args.push("--no-ui");
+        }
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_sweeplab"));
+        let o = cmd.args(&args).current_dir(&dir).env("SWEEPLAB_VALIDATE", "1").env("DISPLAY", &x.display).output();
+        let o = o.expect("run sweeplab");
+        assert_clean_run(&o);
+        log(&log_path)
+    };
+    let plain = run(false, &plain_shot);
+    assert!(plain["frames"].as_array().unwrap().iter().all(|f| f["ui_gpu_ms"].is_null()));
+    let panel = run(true, &panel_shot);
+    for f in panel["frames"].as_array().unwrap() {
+        assert!(f["ui_gpu_ms"].as_f64().is_some_and(|ms| ms > 0.0), "the panel's draw is a profiler scope: {f}");
+    }
+    // The panel covers the left of the frame: the two screenshots differ there.
+    let (a, b) = (image::open(&panel_shot).unwrap().to_rgb8(), image::open(&plain_shot).unwrap().to_rgb8());
+    let differing = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+    assert!(differing > 320 * 200 / 10, "panel visible in the screenshot: {differing} pixels differ");
+    // S and P (scripted key presses) wrote a screenshot and the frame's profile and trace.
+    assert!(image::open(dir.join("sweeplab-view-1.png")).is_ok());
+    let profile: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("sweeplab-view-2-profile.json")).unwrap()).unwrap();
+    assert_eq!(profile["passes"][0]["name"], "dvr");
+    let trace: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("sweeplab-view-2-trace.json")).unwrap()).unwrap();
+    assert_eq!(trace["traceEvents"][0]["ph"], "X");
 }
 
 #[test]

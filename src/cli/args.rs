@@ -261,6 +261,9 @@ pub struct ViewArgs {
     /// Steps by frame: `3 set lights.0.intensity=2`, `5 resize 96x64`, `7 key S`.
     #[arg(long, value_name = "FILE")]
     pub script: Option<PathBuf>,
+    /// No control panel: the frame alone (as `render` would write it).
+    #[arg(long)]
+    pub no_ui: bool,
     /// Per-frame log as JSON: passes, GPU and frame times, light volume decisions.
     #[arg(long, value_name = "FILE")]
     pub log_json: Option<PathBuf>,

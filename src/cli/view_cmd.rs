@@ -50,6 +50,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
         screenshot: args.screenshot.clone(),
         script,
         out_dir: std::path::PathBuf::from("."),
+        ui: !args.no_ui,
     };
     let (report, validation) = viewer::run(source, &overrides, &options).context("sweeplab view")?;
     let warm = report.frames.len().min(2);

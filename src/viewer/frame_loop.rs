@@ -6,11 +6,12 @@
 
 use super::controls;
 use super::error::ViewerError;
-use super::frames::{FramesInFlight, Upload};
+use super::frames::{FramesInFlight, Upload, FRAMES_IN_FLIGHT};
 use super::live_scene::{Change, LiveScene, SceneSource};
 use super::present_pass::{self, PresentTarget, ACQUIRE_WAIT_STAGE};
 use super::report::{FrameRecord, ViewerReport};
 use super::script::{Action, Script};
+use super::ui::{PanelView, PassHistory, Ui, UiEdit};
 use super::window::{self, WindowEvents};
 use crate::render::{self, GpuScene, RenderOutput, Technique, VolumeTexels};
 use crate::scene::Light;
@@ -42,6 +43,8 @@ pub struct ViewerOptions {
     pub script: Script,
     /// Where `S` (screenshot) and `P` (profile and trace) write.
     pub out_dir: PathBuf,
+    /// The control panel (off: the frame alone, e.g. to compare screenshots).
+    pub ui: bool,
 }
 
 /// Opens the window and runs frames until it is closed or `frames` are done.
@@ -85,19 +88,23 @@ fn frames_on(
     let surface = Surface::new(ctx, display, window)?;
     let mut frames = FramesInFlight::new(ctx)?;
     let mut swapchain: Option<Swapchain> = None;
+    let mut ui: Option<Ui> = None;
     let mut report = ViewerReport {
         technique: options.technique.to_string(),
         device: ctx.info.name.clone(),
         present_mode: present_mode_name(options.present_mode),
         ..Default::default()
     };
-    let result = frame_loop(ctx, &surface, &mut frames, &mut swapchain, live, event_loop, events, options, &mut report);
+    let result =
+        frame_loop(ctx, &surface, &mut frames, &mut swapchain, &mut ui, live, event_loop, events, options, &mut report);
     // Fences cover the submissions; presents are covered by nothing but the
     // queue, so it is waited for once here before the swapchain goes.
     let waited = frames.wait_all().and_then(|_| queue_idle(ctx));
     result?;
     waited?;
     resolve_present_profiles(&mut frames, &mut report)?;
+    events.egui = None;
+    drop(ui);
     drop(swapchain);
     Ok(report)
 }
@@ -108,6 +115,7 @@ fn frame_loop<'c>(
     surface: &Surface<'c>,
     frames: &mut FramesInFlight<'c>,
     swapchain: &mut Option<Swapchain<'c>>,
+    ui: &mut Option<Ui>,
     live: &mut LiveScene,
     event_loop: &mut EventLoop<()>,
     events: &mut WindowEvents,
@@ -119,10 +127,18 @@ fn frame_loop<'c>(
     let mut script_done_for: Option<u64> = None;
     let mut recreate = true;
     let mut last_present = Instant::now();
+    let mut technique = options.technique;
+    let mut enabled: Vec<bool> = vec![true; live.scene.lights.len()];
+    let mut ui_edits: Vec<UiEdit> = Vec::new();
+    let mut message: Option<String> = None;
+    let mut history = PassHistory::default();
     'scene: loop {
-        let scene = live.scene.clone();
+        enabled.resize(live.scene.lights.len(), true);
+        // Switched-off lights are left out of the uploaded scene.
+        let mut scene = live.scene.clone();
+        scene.lights = scene.lights.iter().zip(&enabled).filter(|(_, &on)| on).map(|(l, _)| *l).collect();
         let gpu = GpuScene::upload_with(ctx, &scene, options.texels)?;
-        let mut session = render::session(&gpu, options.technique)?;
+        let mut session = render::session(&gpu, technique)?;
         loop {
             if !events.pump(event_loop, Duration::ZERO)? || events.close_requested {
                 break 'scene;
@@ -153,6 +169,31 @@ fn frame_loop<'c>(
                     }
                 }
             }
+            for edit in ui_edits.drain(..) {
+                match edit {
+                    UiEdit::Technique(t) => {
+                        technique = t;
+                        rebuild = true;
+                    }
+                    UiEdit::Set(set) => match live.set(&set) {
+                        Ok(change) => rebuild |= change == Change::Scene || !session.follows_lights(),
+                        // The panel offers valid values only; say so rather than stop.
+                        Err(e) => message = Some(e.to_string()),
+                    },
+                    UiEdit::Lights(lights) => {
+                        live.set_lights(lights);
+                        rebuild |= !session.follows_lights();
+                    }
+                    UiEdit::Toggle(i, on) => {
+                        if let Some(e) = enabled.get_mut(i) {
+                            *e = on;
+                        }
+                        rebuild |= !session.follows_lights();
+                    }
+                    UiEdit::Key(c) => keys.push(c),
+                }
+            }
+            enabled.resize(live.scene.lights.len(), true);
             if let Some(camera) = mouse_camera(live, events) {
                 live.set_camera(camera);
                 rebuild = true;
@@ -181,6 +222,20 @@ fn frame_loop<'c>(
                     options.present_mode,
                     swapchain.as_ref(),
                 )?;
+                if options.ui && ui.is_none() {
+                    let panel = Ui::new(ctx, next.format, FRAMES_IN_FLIGHT)?;
+                    let window = events.window()?;
+                    let state = egui_winit::State::new(
+                        panel.egui.clone(),
+                        egui::ViewportId::ROOT,
+                        window,
+                        Some(window.scale_factor() as f32),
+                        None,
+                        None,
+                    );
+                    events.egui = Some(state);
+                    *ui = Some(panel);
+                }
                 *swapchain = Some(next);
                 recreate = false;
                 events.resized = false;
@@ -191,12 +246,35 @@ fn frame_loop<'c>(
                 continue;
             }
 
-            let lights: Vec<Option<Light>> = live.scene.lights.iter().copied().map(Some).collect();
+            let lights: Vec<Option<Light>> =
+                live.scene.lights.iter().zip(&enabled).map(|(l, &on)| on.then_some(*l)).collect();
             let started = Instant::now();
-            let output = render::profiled_frame(&gpu, options.technique, w, h, &mut profiler, |p| {
-                session.frame(&lights, w, h, p)
-            })?;
+            let output =
+                render::profiled_frame(&gpu, technique, w, h, &mut profiler, |p| session.frame(&lights, w, h, p))?;
             let render_ms = started.elapsed().as_secs_f64() * 1e3;
+            if let (Some(panel), Some(state)) = (ui.as_mut(), events.egui.as_mut()) {
+                if panel.has_pending_frees() {
+                    // Textures egui let go of may be in a frame in flight.
+                    frames.wait_all()?;
+                    panel.free_textures()?;
+                }
+                let window = events.window.as_ref().ok_or_else(|| ViewerError::Window("no window".into()))?;
+                let input = state.take_egui_input(window);
+                let last = report.frames.last();
+                let view = PanelView {
+                    technique,
+                    scene: &live.scene,
+                    enabled: &enabled,
+                    last,
+                    history: &history,
+                    ui_cpu_ms: panel.cpu_ms,
+                    ui_gpu_ms: report.frames.iter().rev().find_map(|f| f.ui_gpu_ms),
+                    message: message.as_deref(),
+                };
+                let (edits, platform) = panel.build(input, &view)?;
+                state.handle_platform_output(window, platform);
+                ui_edits = edits;
+            }
 
             let last = options.frames.is_some_and(|n| frame_index + 1 == n);
             let mut shots: Vec<PathBuf> = Vec::new();
@@ -206,7 +284,7 @@ fn frame_loop<'c>(
             if keys.contains(&'S') {
                 shots.push(options.out_dir.join(format!("sweeplab-view-{frame_index}.png")));
             }
-            let presented = present(ctx, frames, sc, &output, !shots.is_empty(), report)?;
+            let presented = present(ctx, frames, sc, &output, !shots.is_empty(), ui.as_mut(), report)?;
             let Some((should_recreate, screenshot)) = presented else {
                 recreate = true;
                 continue;
@@ -221,6 +299,8 @@ fn frame_loop<'c>(
                 render_ms,
                 gpu_ms: output.profile.gpu_ms_total,
                 present_gpu_ms: None,
+                ui_gpu_ms: None,
+                ui_cpu_ms: ui.as_ref().map_or(0.0, |u| u.cpu_ms),
                 dispatches: output.dispatches,
                 barriers: output.barriers,
                 passes: output.profile.passes.iter().map(|p| p.path.clone()).collect(),
@@ -228,6 +308,11 @@ fn frame_loop<'c>(
                 swapchain_recreated: recreated,
             });
             last_present = now;
+            if let Some(record) = report.frames.last() {
+                let pass_ms: Vec<(String, f64)> =
+                    output.profile.passes.iter().map(|p| (p.path.clone(), p.gpu_ms)).collect();
+                history.push(record, &pass_ms);
+            }
             if let Some(pixels) = screenshot {
                 for path in &shots {
                     write_png(path, &pixels, w, h, sc.format)?;
@@ -272,6 +357,9 @@ fn resize_window(event_loop: &mut EventLoop<()>, events: &mut WindowEvents, w: u
     Err(ViewerError::Window(format!("the window did not take the size {w}x{h}")))
 }
 
+/// Whether to recreate the swapchain, and the screenshot's bytes if asked for.
+type Presented = (bool, Option<Vec<u8>>);
+
 /// One frame slot: wait for its fence, acquire, upload, blit, submit, present.
 /// `None`: the swapchain was out of date before anything was submitted.
 /// Otherwise whether to recreate it, and the screenshot's bytes if asked for.
@@ -281,15 +369,17 @@ fn present(
     sc: &Swapchain,
     output: &RenderOutput,
     screenshot: bool,
+    ui: Option<&mut Ui>,
     report: &mut ViewerReport,
-) -> Result<Option<(bool, Option<Vec<u8>>)>, ViewerError> {
+) -> Result<Option<Presented>, ViewerError> {
     let device = &ctx.device;
     let slot = frames.next_slot()?;
     if let Some(i) = slot.profile_pending.take() {
         // Its fence was just waited: the timestamps are there.
         let p = slot.profiler.resolve(0)?;
         if let Some(r) = report.frames.get_mut(i as usize) {
-            r.present_gpu_ms = Some(p.gpu_ms_total);
+            r.present_gpu_ms = Some(p.pass_ms("present_blit"));
+            r.ui_gpu_ms = p.passes.iter().any(|s| s.name == "ui").then(|| p.pass_ms("ui"));
         }
     }
     let record_index = report.frames.len();
@@ -324,8 +414,9 @@ fn present(
     slot.profiler.reset();
     {
         let mut rec = Recorder::for_command_buffer(ctx, slot.cb);
-        let target = PresentTarget { image: sc.images[image_index as usize], extent: sc.extent };
-        present_pass::record(&mut rec, &mut slot.profiler, &upload.image, &upload.staging, &target, shot.as_ref())?;
+        let i = image_index as usize;
+        let target = PresentTarget { image: sc.images[i], view: sc.views[i], extent: sc.extent };
+        present_pass::record(&mut rec, &mut slot.profiler, &upload.image, &upload.staging, &target, shot.as_ref(), ui)?;
     }
     // SAFETY: recording began above.
     unsafe { device.end_command_buffer(slot.cb) }.call("vkEndCommandBuffer")?;
@@ -364,7 +455,8 @@ fn resolve_present_profiles(frames: &mut FramesInFlight, report: &mut ViewerRepo
         if let Some(i) = slot.profile_pending.take() {
             let p = slot.profiler.resolve(0)?;
             if let Some(r) = report.frames.get_mut(i as usize) {
-                r.present_gpu_ms = Some(p.gpu_ms_total);
+                r.present_gpu_ms = Some(p.pass_ms("present_blit"));
+                r.ui_gpu_ms = p.passes.iter().any(|s| s.name == "ui").then(|| p.pass_ms("ui"));
             }
         }
     }

@@ -4,7 +4,7 @@
 
 use super::error::ViewerError;
 use crate::scene::scene_spec::SceneSpec;
-use crate::scene::{default_scene, scene_file, Camera, Scene};
+use crate::scene::{default_scene, scene_file, Camera, Light, Scene};
 use std::path::PathBuf;
 
 #[derive(Clone, Debug)]
@@ -29,13 +29,14 @@ pub struct LiveScene {
     source: SceneSource,
     edits: Vec<String>,
     camera: Option<Camera>,
+    lights: Option<Vec<Light>>,
     pub scene: Scene,
 }
 
 impl LiveScene {
     pub fn load(source: SceneSource, overrides: &[String]) -> Result<LiveScene, ViewerError> {
         let scene = spec(&source, overrides)?.build()?;
-        Ok(LiveScene { source, edits: overrides.to_vec(), camera: None, scene })
+        Ok(LiveScene { source, edits: overrides.to_vec(), camera: None, lights: None, scene })
     }
 
     /// Applies `KEY=VALUE` as `--set` would.
@@ -47,10 +48,25 @@ impl LiveScene {
         if let Some(c) = self.camera {
             scene.camera = c;
         }
+        if let Some(l) = &self.lights {
+            if !edit.trim_start().starts_with("lights") {
+                scene.lights = l.clone();
+            }
+        }
         self.edits = edits;
         self.scene = scene;
+        if edit.trim_start().starts_with("lights") {
+            // The edit started from the file's lights: the panel's edits are gone.
+            self.lights = None;
+        }
         let key = edit.split('=').next().unwrap_or("").trim();
         Ok(if key == "lights" || key.starts_with("lights.") { Change::Lights } else { Change::Scene })
+    }
+
+    /// The panel edited the lights (kept over later `set` edits of other keys).
+    pub fn set_lights(&mut self, lights: Vec<Light>) {
+        self.scene.lights = lights.clone();
+        self.lights = Some(lights);
     }
 
     /// The mouse moved the camera.

@@ -7,7 +7,8 @@
 //! One idea per file: the window and its events ([`window`]), frames in
 //! flight ([`frames`]), the present pass ([`present_pass`]), the frame loop
 //! ([`frame_loop`]), the edited scene ([`live_scene`]), mouse camera control
-//! ([`controls`]), scripted runs ([`script`]), the per-frame log ([`report`]).
+//! ([`controls`]), scripted runs ([`script`]), the per-frame log ([`report`]),
+//! the control panel and live profiler ([`ui`]).
 //! The surface and swapchain wrappers live in `crate::vk`.
 
 pub mod controls;
@@ -18,6 +19,7 @@ pub mod live_scene;
 pub mod present_pass;
 pub mod report;
 pub mod script;
+pub mod ui;
 pub mod window;
 
 pub use error::ViewerError;

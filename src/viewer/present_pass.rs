@@ -1,8 +1,11 @@
 //! The present pass: the technique's linear frame, uploaded into an RGBA32F
 //! image, blitted into the swapchain image (the blit converts linear to the
-//! sRGB format), optionally copied out for a screenshot, and handed to the
-//! presentation engine. Each barrier is named for what it protects.
+//! sRGB format), the control panel drawn over it, optionally copied out for a
+//! screenshot, and handed to the presentation engine. Each barrier is named
+//! for what it protects; the blit and the panel have profiler scopes
+//! `present_blit` and `ui`.
 
+use super::ui::Ui;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::resources::color_layers;
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
@@ -14,15 +17,23 @@ const BLIT_WRITE: Access = Access { stage: vk::PipelineStageFlags2::BLIT, access
 /// The stage the "image acquired" semaphore is waited in: the barrier that
 /// takes the swapchain image starts from it, so the two chain.
 pub const ACQUIRE_WAIT_STAGE: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::BLIT;
+/// The panel blends over the frame: it reads and writes the attachment.
+const UI_DRAW: Access = Access {
+    stage: vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+    access: vk::AccessFlags2::from_raw(
+        vk::AccessFlags2::COLOR_ATTACHMENT_READ.as_raw() | vk::AccessFlags2::COLOR_ATTACHMENT_WRITE.as_raw(),
+    ),
+};
 /// Presentation waits on a semaphore; the signal covers all earlier work.
 const TO_PRESENT: Access = Access::NONE;
 
 pub struct PresentTarget {
     pub image: vk::Image,
+    pub view: vk::ImageView,
     pub extent: vk::Extent2D,
 }
 
-/// Records the pass under the profiler scope `present_blit`.
+/// Records the pass; `ui` draws the panel over the frame.
 pub fn record(
     rec: &mut Recorder,
     profiler: &mut Profiler,
@@ -30,6 +41,7 @@ pub fn record(
     staging: &Buffer,
     target: &PresentTarget,
     screenshot: Option<&Buffer>,
+    ui: Option<&mut Ui>,
 ) -> Result<(), VkError> {
     let scope = profiler.begin(rec, "present_blit")?;
     let (dst_layout, src_layout) = (vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
@@ -83,15 +95,47 @@ pub fn record(
             vk::Filter::NEAREST,
         )
     };
+    profiler.end(rec, scope)?;
+    let (mut last_write, mut layout) = (BLIT_WRITE, dst_layout);
+    if let Some(ui) = ui {
+        let attachment = vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL;
+        rec.barrier(&Barrier::raw_image(
+            "swapchain_blit_write_to_ui_draw",
+            target.image,
+            BLIT_WRITE,
+            UI_DRAW,
+            dst_layout,
+            attachment,
+        ));
+        let ui_scope = profiler.begin(rec, "ui")?;
+        let color = [vk::RenderingAttachmentInfo::default()
+            .image_view(target.view)
+            .image_layout(attachment)
+            .load_op(vk::AttachmentLoadOp::LOAD)
+            .store_op(vk::AttachmentStoreOp::STORE)];
+        let info = vk::RenderingInfo::default()
+            .render_area(vk::Rect2D { offset: vk::Offset2D::default(), extent: target.extent })
+            .layer_count(1)
+            .color_attachments(&color);
+        // SAFETY: the view is of the target image, now in COLOR_ATTACHMENT_OPTIMAL
+        // (barrier above); dynamic rendering is enabled on window contexts.
+        unsafe { rec.device().cmd_begin_rendering(rec.cb, &info) };
+        let drawn = ui.draw(rec.cb, target.extent);
+        // SAFETY: paired with the begin above, even when the draw failed.
+        unsafe { rec.device().cmd_end_rendering(rec.cb) };
+        drawn?;
+        profiler.end(rec, ui_scope)?;
+        (last_write, layout) = (UI_DRAW, attachment);
+    }
     let present = vk::ImageLayout::PRESENT_SRC_KHR;
     match screenshot {
         Some(buffer) => {
             rec.barrier(&Barrier::raw_image(
-                "swapchain_blit_write_to_screenshot_copy",
+                "swapchain_frame_write_to_screenshot_copy",
                 target.image,
-                BLIT_WRITE,
+                last_write,
                 Access::TRANSFER_READ,
-                dst_layout,
+                layout,
                 src_layout,
             ));
             let copy = vk::BufferImageCopy::default().image_subresource(color_layers()).image_extent(vk::Extent3D {
@@ -113,14 +157,13 @@ pub fn record(
             rec.barrier(&Barrier::memory("screenshot_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
         }
         None => rec.barrier(&Barrier::raw_image(
-            "swapchain_blit_write_to_present",
+            "swapchain_frame_write_to_present",
             target.image,
-            BLIT_WRITE,
+            last_write,
             TO_PRESENT,
-            dst_layout,
+            layout,
             present,
         )),
     }
-    profiler.end(rec, scope)?;
     Ok(())
 }

@@ -17,6 +17,10 @@ pub struct FrameRecord {
     pub gpu_ms: f64,
     /// GPU time of `present_blit`; filled in once the slot's fence is waited.
     pub present_gpu_ms: Option<f64>,
+    /// GPU time of the control panel's draw (`ui`), filled in like `present_gpu_ms`.
+    pub ui_gpu_ms: Option<f64>,
+    /// Host time of the panel's layout and tessellation.
+    pub ui_cpu_ms: f64,
     pub dispatches: u32,
     pub barriers: u32,
     /// The technique's profile scopes, by path.

@@ -33,6 +33,8 @@ pub fn event_loop() -> Result<EventLoop<()>, ViewerError> {
 pub struct WindowEvents {
     attributes: WindowAttributes,
     pub window: Option<Window>,
+    /// The control panel's input state; events it consumes do not move the camera.
+    pub egui: Option<egui_winit::State>,
     create_error: Option<String>,
     pub close_requested: bool,
     pub resized: bool,
@@ -56,6 +58,7 @@ impl WindowEvents {
                 .with_inner_size(PhysicalSize::new(width, height))
                 .with_resizable(true),
             window: None,
+            egui: None,
             create_error: None,
             close_requested: false,
             resized: false,
@@ -121,10 +124,14 @@ impl ApplicationHandler for WindowEvents {
     }
 
     fn window_event(&mut self, _event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let consumed = match (&mut self.egui, &self.window) {
+            (Some(state), Some(window)) => state.on_window_event(window, &event).consumed,
+            _ => false,
+        };
         match event {
             WindowEvent::CloseRequested => self.close_requested = true,
             WindowEvent::Resized(_) => self.resized = true,
-            WindowEvent::KeyboardInput { event, .. } => {
+            WindowEvent::KeyboardInput { event, .. } if !consumed => {
                 if let (ElementState::Pressed, PhysicalKey::Code(code), false) =
                     (event.state, event.physical_key, event.repeat)
                 {
@@ -132,7 +139,7 @@ impl ApplicationHandler for WindowEvents {
                 }
             }
             WindowEvent::MouseInput { state, button, .. } => {
-                let down = state == ElementState::Pressed;
+                let down = state == ElementState::Pressed && !consumed;
                 match button {
                     MouseButton::Left => self.left = down,
                     MouseButton::Right | MouseButton::Middle => self.right = down,
@@ -151,7 +158,7 @@ impl ApplicationHandler for WindowEvents {
                 self.cursor = Some((position.x, position.y));
             }
             WindowEvent::CursorLeft { .. } => self.cursor = None,
-            WindowEvent::MouseWheel { delta, .. } => {
+            WindowEvent::MouseWheel { delta, .. } if !consumed => {
                 self.zoom += match delta {
                     MouseScrollDelta::LineDelta(_, y) => y,
                     MouseScrollDelta::PixelDelta(p) => p.y as f32 / 40.0,

@@ -382,12 +382,16 @@ fn create_device(
     if swapchain && !has_swapchain {
         missing.push("VK_KHR_swapchain");
     }
+    // The viewer's control panel draws with dynamic rendering.
+    if swapchain && have13.dynamic_rendering != vk::TRUE {
+        missing.push("dynamicRendering");
+    }
     if !missing.is_empty() {
         return Err(VkError::MissingFeature { device: cand.info.name.clone(), missing: missing.join(", ") });
     }
     let extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
     let mut want12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true).timeline_semaphore(true);
-    let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true);
+    let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true).dynamic_rendering(swapchain);
     // r16ui / rgba16f storage images of the IPSVI cache.
     let core = vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true);
     let priorities = [1.0f32];

@@ -29,6 +29,8 @@ pub struct Swapchain<'c> {
     pub extent: vk::Extent2D,
     pub present_mode: vk::PresentModeKHR,
     pub images: Vec<vk::Image>,
+    /// Colour-attachment views of the images (the viewer's panel draws into them).
+    pub views: Vec<vk::ImageView>,
     /// Signalled by the frame that wrote image i, waited on by its present.
     pub ready_to_present: Vec<vk::Semaphore>,
 }
@@ -68,7 +70,9 @@ impl<'c> Swapchain<'c> {
                     formats.iter().map(|f| f.format).collect::<Vec<_>>()
                 ))
             })?;
-        let usage = vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC;
+        let usage = vk::ImageUsageFlags::TRANSFER_DST
+            | vk::ImageUsageFlags::TRANSFER_SRC
+            | vk::ImageUsageFlags::COLOR_ATTACHMENT;
         if !caps.supported_usage_flags.contains(usage) {
             return Err(VkError::Presentation(format!(
                 "swapchain images cannot be transfer source and destination (supported: {:?})",
@@ -113,12 +117,21 @@ impl<'c> Swapchain<'c> {
             extent,
             present_mode,
             images: Vec::new(),
+            views: Vec::new(),
             ready_to_present: Vec::new(),
         };
         // SAFETY: raw was just created.
         swapchain.images = unsafe { swapchain.loader.get_swapchain_images(raw) }.call("vkGetSwapchainImagesKHR")?;
         for (i, &image) in swapchain.images.clone().iter().enumerate() {
             ctx.set_name(image, &format!("swapchain image {i}"));
+            let view_info = vk::ImageViewCreateInfo::default()
+                .image(image)
+                .view_type(vk::ImageViewType::TYPE_2D)
+                .format(swapchain.format)
+                .subresource_range(super::resources::color_range());
+            // SAFETY: the image belongs to this swapchain; the view goes before it (Drop).
+            let view = unsafe { ctx.device.create_image_view(&view_info, None) }.call("vkCreateImageView")?;
+            swapchain.views.push(view);
             // SAFETY: valid device.
             let s = unsafe { ctx.device.create_semaphore(&vk::SemaphoreCreateInfo::default(), None) }
                 .call("vkCreateSemaphore")?;
@@ -163,6 +176,9 @@ impl Drop for Swapchain<'_> {
         // SAFETY: the owner waited for the frames that used the images and for
         // the queue (presents included) before dropping the swapchain.
         unsafe {
+            for &v in &self.views {
+                self.ctx.device.destroy_image_view(v, None);
+            }
             for &s in &self.ready_to_present {
                 self.ctx.device.destroy_semaphore(s, None);
             }
