@@ -248,6 +248,23 @@ fn the_control_panel_is_drawn_and_timed_and_s_and_p_write_files() {
 }
 
 #[test]
+fn mailbox_and_immediate_present_when_available_else_the_error_names_the_available_modes() {
+    let x = xvfb_or_skip!();
+    for mode in ["mailbox", "immediate"] {
+        let o = sweeplab(&["view", "--size", "32x32", "--frames", "3", "--present-mode", mode], Some(&x.display));
+        if o.status.success() {
+            assert_clean_run(&o);
+            let out = String::from_utf8_lossy(&o.stdout);
+            assert!(out.contains(&format!("{mode} present mode")), "{out}");
+        } else {
+            let err = stderr(&o);
+            assert!(err.contains(&format!("present mode {mode} is not available")), "{err}");
+            assert!(err.contains("available: ") && err.contains("fifo"), "{err}");
+        }
+    }
+}
+
+#[test]
 fn no_display_is_a_clear_error_not_a_panic() {
     for display in [None, Some(":1999")] {
         let o = sweeplab(&["view", "--frames", "1"], display);
