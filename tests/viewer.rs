@@ -7,6 +7,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
+use std::sync::atomic::{AtomicU32, Ordering};
 use std::time::{Duration, Instant};
 
 /// An Xvfb server this test started; killed (by its own pid) on drop.
@@ -22,9 +23,16 @@ impl Drop for Xvfb {
     }
 }
 
-/// Starts Xvfb on the first free display from :70 on, or says why it cannot.
+/// Display numbers handed to this process's tests, one each (tests run in parallel).
+static NEXT_DISPLAY: AtomicU32 = AtomicU32::new(70);
+
+/// Starts Xvfb on a free display from :70 on, or says why it cannot.
 fn start_xvfb() -> Result<Xvfb, String> {
-    for n in 70..130u32 {
+    loop {
+        let n = NEXT_DISPLAY.fetch_add(1, Ordering::Relaxed);
+        if n >= 200 {
+            break;
+        }
         let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
         if socket.exists() || Path::new(&format!("/tmp/.X{n}-lock")).exists() {
             continue;
@@ -39,7 +47,13 @@ fn start_xvfb() -> Result<Xvfb, String> {
         let start = Instant::now();
         while start.elapsed() < Duration::from_secs(10) {
             if socket.exists() {
-                return Ok(server);
+                // Ours only if our server is still running (another process may
+                // have taken the display first, and ours then exits).
+                std::thread::sleep(Duration::from_millis(100));
+                if let Ok(None) = server.child.try_wait() {
+                    return Ok(server);
+                }
+                break;
             }
             if let Ok(Some(_)) = server.child.try_wait() {
                 break; // lost a race for this display: try the next
@@ -47,7 +61,7 @@ fn start_xvfb() -> Result<Xvfb, String> {
             std::thread::sleep(Duration::from_millis(50));
         }
     }
-    Err("no free display for Xvfb between :70 and :129".into())
+    Err("no free display for Xvfb between :70 and :199".into())
 }
 
 macro_rules! xvfb_or_skip {
