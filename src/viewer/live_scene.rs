@@ -83,3 +83,42 @@ fn spec(source: &SceneSource, overrides: &[String]) -> Result<SceneSpec, ViewerE
         SceneSource::Volume(path) => default_scene::volume_file_scene_spec(path, overrides)?,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn live() -> LiveScene {
+        let small = ["volume.size=8".to_string()];
+        LiveScene::load(SceneSource::Default, &small).unwrap()
+    }
+
+    #[test]
+    fn light_edits_are_told_apart_from_scene_edits_and_typos_get_suggestions() {
+        let mut l = live();
+        assert_eq!(l.set("lights.0.intensity=2").unwrap(), Change::Lights);
+        assert_eq!(l.scene.lights[0].intensity, 2.0);
+        assert_eq!(l.set("camera.azimuth=75").unwrap(), Change::Scene);
+        assert_eq!(l.scene.lights[0].intensity, 2.0, "earlier edits stay");
+        let e = l.set("camera.azimth=3").unwrap_err().to_string();
+        assert!(e.contains("azimuth"), "{e}");
+        assert_eq!(l.scene.lights[0].intensity, 2.0, "a failed edit changes nothing");
+    }
+
+    #[test]
+    fn panel_lights_and_mouse_camera_survive_other_edits_until_a_lights_edit() {
+        let mut l = live();
+        let mut lights = l.scene.lights.clone();
+        lights[0].intensity = 7.0;
+        lights.push(lights[0]);
+        l.set_lights(lights);
+        let mut camera = l.scene.camera;
+        camera.eye.x += 1.0;
+        l.set_camera(camera);
+        l.set("render.emission=0.5").unwrap();
+        assert_eq!((l.scene.lights.len(), l.scene.lights[0].intensity), (2, 7.0));
+        assert_eq!(l.scene.camera, camera);
+        l.set("lights.0.intensity=3").unwrap();
+        assert_eq!((l.scene.lights.len(), l.scene.lights[0].intensity), (1, 3.0));
+    }
+}
