@@ -20,6 +20,7 @@ pub mod metrics;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod viewer;
 pub mod vk;
 
 /// SPIR-V of every `glsl/*.comp`, compiled by build.rs.

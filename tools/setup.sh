@@ -2,6 +2,7 @@
 # Installs what sweeplab needs on a fresh Debian machine (as root), only where
 # missing, then builds. Safe to run again.
 #   Vulkan loader + lavapipe (CPU Vulkan) + Khronos validation layers,
+#   Xvfb and the X11 libraries of the viewer (and its tests),
 #   Debian's static shaderc/glslang/SPIRV-Tools (build.rs links them: no 12-minute
 #   source build), and a Rust toolchain if none is on PATH.
 set -euo pipefail
@@ -11,6 +12,8 @@ packages=(
   libvulkan1 libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   libshaderc-dev glslang-dev spirv-tools
   pkg-config gcc g++ ca-certificates curl
+  # sweeplab view: Xvfb for its tests, and the X11 libraries winit loads at run time.
+  xvfb xauth libx11-6 libx11-xcb1 libxcursor1 libxrandr2 libxi6 libxkbcommon-x11-0
 )
 missing=()
 for p in "${packages[@]}"; do

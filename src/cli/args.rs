@@ -24,6 +24,9 @@ pub enum Command {
     Render(RenderArgs),
     /// Render a technique and the ground truth; print error and GPU time.
     Compare(CompareArgs),
+    /// Interactive viewer: a window on a Vulkan swapchain, the technique's
+    /// frames presented live (mouse: orbit, pan, zoom; S screenshot, P profile).
+    View(ViewArgs),
     /// Parameter sweeps: error against GPU time, CSV/JSON/Markdown and plots.
     #[command(subcommand)]
     Bench(BenchCommand),
@@ -240,4 +243,33 @@ pub struct CompareArgs {
     /// Write the reference image.
     #[arg(long, value_name = "FILE")]
     pub reference_out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct ViewArgs {
+    /// --size sets the window's first size.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    #[arg(long, default_value = "dvr", help = technique_names(), long_help = Technique::help())]
+    pub technique: String,
+    /// Stop after N presented frames.
+    #[arg(long, value_name = "N")]
+    pub frames: Option<u64>,
+    /// Write the last presented frame (8-bit sRGB, as the swapchain holds it) as PNG; needs --frames.
+    #[arg(long, value_name = "FILE")]
+    pub screenshot: Option<PathBuf>,
+    /// fifo (default, always available), mailbox, immediate, fifo-relaxed.
+    #[arg(long, default_value = "fifo")]
+    pub present_mode: String,
+    /// Steps by frame: `3 set lights.0.intensity=2`, `5 resize 96x64`, `7 key S`.
+    #[arg(long, value_name = "FILE")]
+    pub script: Option<PathBuf>,
+    /// No control panel: the frame alone (as `render` would write it).
+    #[arg(long)]
+    pub no_ui: bool,
+    /// Per-frame log as JSON: passes, GPU and frame times, light volume decisions.
+    #[arg(long, value_name = "FILE")]
+    pub log_json: Option<PathBuf>,
 }

@@ -38,6 +38,7 @@ pub mod plan;
 pub mod propagation;
 pub mod raycast;
 pub mod renderer;
+pub mod session;
 pub mod settings;
 pub mod technique;
 

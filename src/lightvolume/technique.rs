@@ -7,7 +7,7 @@ use super::plan::{plan_update, PeakGeometry, PlanState};
 use super::propagation::Capacity;
 use super::render_frame;
 use crate::render::frame_params::FrameParams;
-use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::render::{FrameResult, FrameSession, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene};
 use crate::vk::Profiler;
 use glam::UVec3;
@@ -61,6 +61,11 @@ impl RenderTechnique for LightVolume {
         needs.push(ResourceNeed::of::<FrameParams>("lightvolume view params", 1));
         needs.push(ResourceNeed::output_image("lightvolume output", width, height));
         needs
+    }
+
+    /// The volume kept across frames: a moved light is a selective update.
+    fn session<'s>(&self, gpu: &'s GpuScene<'s>) -> Result<Option<Box<dyn FrameSession + 's>>, RenderError> {
+        Ok(Some(Box::new(super::session::LightVolumeSession::new(gpu)?)))
     }
 
     fn render(

@@ -12,11 +12,13 @@ pub mod light_space;
 pub mod output;
 pub mod raycast;
 pub mod registry;
+pub mod session;
 pub mod technique;
 
 pub use error::RenderError;
 pub use frame_result::FrameResult;
 pub use gpu_scene::{GpuScene, VolumeTexels};
 pub use output::OutputImage;
-pub use registry::{render, RenderOutput, Technique};
+pub use registry::{profiled_frame, render, session, RenderOutput, Technique};
+pub use session::FrameSession;
 pub use technique::{RenderTechnique, ResourceNeed};

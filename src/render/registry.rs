@@ -3,7 +3,9 @@
 //! the techniques: it lists them; they know nothing of it.
 
 use super::error::RenderError;
+use super::frame_result::FrameResult;
 use super::gpu_scene::GpuScene;
+use super::session::{EachFrameAnew, FrameSession};
 use super::technique::RenderTechnique;
 use crate::linear_image::LinearImage;
 use crate::vk::{ProfileReport, Profiler};
@@ -97,14 +99,36 @@ pub fn render(
     height: u32,
     profiler: &mut Profiler,
 ) -> Result<RenderOutput, RenderError> {
+    profiled_frame(gpu, technique, width, height, profiler, |p| technique.render(gpu, width, height, p))
+}
+
+/// One frame of `technique` by `frame` (its `render`, or a [`FrameSession`]'s
+/// frame), with the profile of that frame: what `render` and the viewer share.
+pub fn profiled_frame(
+    gpu: &GpuScene,
+    technique: Technique,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+    frame: impl FnOnce(&mut Profiler) -> Result<FrameResult, RenderError>,
+) -> Result<RenderOutput, RenderError> {
     if width == 0 || height == 0 {
         return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
     }
     gpu.ctx.memory.reset_peak();
     profiler.reset();
-    let frame = technique.render(gpu, width, height, profiler)?;
+    let frame = frame(profiler)?;
     let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
     Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })
+}
+
+/// Frames of `technique` on `gpu` one after another: its own session where it
+/// keeps state across frames, else each frame rendered anew by `render`.
+pub fn session<'s>(gpu: &'s GpuScene<'s>, technique: Technique) -> Result<Box<dyn FrameSession + 's>, RenderError> {
+    Ok(match technique.0.session(gpu)? {
+        Some(s) => s,
+        None => Box::new(EachFrameAnew { technique: technique.0, gpu }),
+    })
 }
 
 #[cfg(test)]

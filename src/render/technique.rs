@@ -6,6 +6,7 @@
 use super::error::RenderError;
 use super::frame_result::FrameResult;
 use super::gpu_scene::GpuScene;
+use super::session::FrameSession;
 use crate::scene::{OpticalModel, Scene};
 use crate::vk::Profiler;
 
@@ -38,6 +39,13 @@ pub trait RenderTechnique: Sync {
         height: u32,
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError>;
+
+    /// A session that keeps state across frames of `gpu` (the viewer), for a
+    /// technique that has such state; `None`: each frame is rendered anew by
+    /// `render` ([`super::registry::session`] does that).
+    fn session<'s>(&self, _gpu: &'s GpuScene<'s>) -> Result<Option<Box<dyn FrameSession + 's>>, RenderError> {
+        Ok(None)
+    }
 
     /// A line worth printing beside the frame's figures (IPSVI's sync strategy).
     fn settings_note(&self, _scene: &Scene) -> Option<String> {

@@ -97,6 +97,19 @@ impl Barrier {
         Barrier { name, kind: BarrierKind::Image { image: image.raw, src, dst, old_layout, new_layout } }
     }
 
+    /// Image barrier on a colour image the caller does not own as an [`Image`]
+    /// (a swapchain image).
+    pub fn raw_image(
+        name: &'static str,
+        image: vk::Image,
+        src: Access,
+        dst: Access,
+        old_layout: vk::ImageLayout,
+        new_layout: vk::ImageLayout,
+    ) -> Barrier {
+        Barrier { name, kind: BarrierKind::Image { image, src, dst, old_layout, new_layout } }
+    }
+
     /// Image barriers narrowed to `images` (GENERAL layout, at most 8).
     pub fn images(name: &'static str, images: &[&Image], src: Access, dst: Access) -> Barrier {
         let mut raw = [vk::Image::null(); 8];

@@ -40,6 +40,13 @@ impl<'a> Recorder<'a> {
         }
     }
 
+    /// A recorder for `cb`, begun by a caller that ends and submits it itself
+    /// with its own semaphores and fence (the viewer's frames in flight). Such a
+    /// command buffer cannot be split into several submissions.
+    pub fn for_command_buffer(ctx: &'a Context, cb: vk::CommandBuffer) -> Self {
+        Recorder::fresh(ctx, cb, vk::CommandPool::null())
+    }
+
     pub fn device(&self) -> &ash::Device {
         &self.ctx.device
     }
@@ -96,6 +103,9 @@ impl<'a> Recorder<'a> {
     /// a full execution and memory dependency at queue-submission granularity.
     /// The new command buffer starts with nothing bound: bind again before use.
     pub fn split_submission(&mut self) -> Result<(), VkError> {
+        if self.pool == vk::CommandPool::null() {
+            return Err(VkError::Presentation("a command buffer submitted by its caller cannot be split".into()));
+        }
         let device = &self.ctx.device;
         let timeline = match self.timeline {
             Some(t) => t,

@@ -79,7 +79,12 @@ fn has_instance_extension(entry: &ash::Entry, layer: Option<&CStr>, name: &CStr)
     Ok(exts.iter().any(|e| e.extension_name_as_c_str().map(|n| n == name).unwrap_or(false)))
 }
 
-fn create_instance(entry: &ash::Entry, validate: bool, debug_utils: bool) -> Result<ash::Instance, VkError> {
+fn create_instance(
+    entry: &ash::Entry,
+    validate: bool,
+    debug_utils: bool,
+    surface_extensions: &[&CStr],
+) -> Result<ash::Instance, VkError> {
     let app_name = CString::new("sweeplab").unwrap_or_default();
     let app = vk::ApplicationInfo::default()
         .application_name(&app_name)
@@ -89,6 +94,12 @@ fn create_instance(entry: &ash::Entry, validate: bool, debug_utils: bool) -> Res
     let mut extensions = Vec::new();
     if debug_utils {
         extensions.push(ash::ext::debug_utils::NAME.as_ptr());
+    }
+    for name in surface_extensions {
+        if !has_instance_extension(entry, None, name)? {
+            return Err(VkError::MissingExtension(name.to_string_lossy().into_owned()));
+        }
+        extensions.push(name.as_ptr());
     }
     let mut validation_features_ext = false;
     if validate {
@@ -157,7 +168,7 @@ fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
 /// Lists the Vulkan devices without creating one.
 pub fn list_devices() -> Result<Vec<DeviceInfo>, VkError> {
     let entry = load_entry()?;
-    let instance = create_instance(&entry, false, false)?;
+    let instance = create_instance(&entry, false, false, &[])?;
     let result = candidates(&instance).map(|c| c.into_iter().map(|c| c.info).collect());
     // SAFETY: no object created from this instance survives.
     unsafe { instance.destroy_instance(None) };
@@ -166,9 +177,23 @@ pub fn list_devices() -> Result<Vec<DeviceInfo>, VkError> {
 
 impl Context {
     pub fn new(options: &ContextOptions) -> Result<Context, VkError> {
+        Context::create(options, &[])
+    }
+
+    /// A context that can present to a window: `surface_extensions` are the
+    /// instance extensions its surface needs (`ash_window` names them), and the
+    /// device gets VK_KHR_swapchain. Headless contexts (`new`) have neither.
+    pub fn for_window(options: &ContextOptions, surface_extensions: &[&CStr]) -> Result<Context, VkError> {
+        if surface_extensions.is_empty() {
+            return Err(VkError::Presentation("a window context needs its surface extensions".into()));
+        }
+        Context::create(options, surface_extensions)
+    }
+
+    fn create(options: &ContextOptions, surface_extensions: &[&CStr]) -> Result<Context, VkError> {
         let entry = load_entry()?;
         let debug_utils_ext = has_instance_extension(&entry, None, ash::ext::debug_utils::NAME)? || options.validate;
-        let instance = create_instance(&entry, options.validate, debug_utils_ext)?;
+        let instance = create_instance(&entry, options.validate, debug_utils_ext, surface_extensions)?;
 
         let (debug_instance, messenger, validation) = if debug_utils_ext {
             let di = ash::ext::debug_utils::Instance::new(&entry, &instance);
@@ -229,7 +254,8 @@ impl Context {
                 missing: format!("Vulkan 1.3 (it reports {})", cand.info.api_version),
             }));
         }
-        let device = match create_device(&instance, cand, queue_family) {
+        let swapchain = !surface_extensions.is_empty();
+        let device = match create_device(&instance, cand, queue_family, swapchain) {
             Ok(d) => d,
             Err(e) => return Err(cleanup_instance(e)),
         };
@@ -322,7 +348,12 @@ fn choose(all: &[Candidate], wanted: Option<&str>) -> Result<usize, VkError> {
     Ok(best)
 }
 
-fn create_device(instance: &ash::Instance, cand: &Candidate, queue_family: u32) -> Result<ash::Device, VkError> {
+fn create_device(
+    instance: &ash::Instance,
+    cand: &Candidate,
+    queue_family: u32,
+    swapchain: bool,
+) -> Result<ash::Device, VkError> {
     let mut have12 = vk::PhysicalDeviceVulkan12Features::default();
     let mut have13 = vk::PhysicalDeviceVulkan13Features::default();
     let mut have = vk::PhysicalDeviceFeatures2::default().push_next(&mut have12).push_next(&mut have13);
@@ -342,17 +373,32 @@ fn create_device(instance: &ash::Instance, cand: &Candidate, queue_family: u32) 
     if extended_formats != vk::TRUE {
         missing.push("shaderStorageImageExtendedFormats");
     }
+    // SAFETY: plain enumeration on a valid physical device.
+    let device_extensions = unsafe { instance.enumerate_device_extension_properties(cand.physical_device) }
+        .call("vkEnumerateDeviceExtensionProperties")?;
+    let has_swapchain = device_extensions
+        .iter()
+        .any(|e| e.extension_name_as_c_str().map(|n| n == ash::khr::swapchain::NAME).unwrap_or(false));
+    if swapchain && !has_swapchain {
+        missing.push("VK_KHR_swapchain");
+    }
+    // The viewer's control panel draws with dynamic rendering.
+    if swapchain && have13.dynamic_rendering != vk::TRUE {
+        missing.push("dynamicRendering");
+    }
     if !missing.is_empty() {
         return Err(VkError::MissingFeature { device: cand.info.name.clone(), missing: missing.join(", ") });
     }
+    let extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
     let mut want12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true).timeline_semaphore(true);
-    let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true);
+    let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true).dynamic_rendering(swapchain);
     // r16ui / rgba16f storage images of the IPSVI cache.
     let core = vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true);
     let priorities = [1.0f32];
     let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
     let info = vk::DeviceCreateInfo::default()
         .queue_create_infos(&queues)
+        .enabled_extension_names(&extensions)
         .enabled_features(&core)
         .push_next(&mut want12)
         .push_next(&mut want13);

@@ -26,6 +26,10 @@ pub enum VkError {
     Binding { shader: &'static str, binding: &'static str, problem: String },
     #[error("shader {shader}: {problem}")]
     Shader { shader: &'static str, problem: String },
+    #[error("the Vulkan loader lacks instance extension {0}, which a window needs")]
+    MissingExtension(String),
+    #[error("{0}")]
+    Presentation(String),
     #[error("profiler misuse: {0}")]
     Profiler(String),
 }

@@ -14,6 +14,8 @@ pub mod memory;
 pub mod pipeline;
 pub mod profiler;
 pub mod resources;
+pub mod surface;
+pub mod swapchain;
 pub mod validation;
 
 pub use barriers::Barrier;
@@ -23,3 +25,5 @@ pub use error::VkError;
 pub use pipeline::{ComputePipeline, ComputePipelineDesc};
 pub use profiler::{ProfileReport, Profiler, ScopeTimeline};
 pub use resources::{Buffer, Image};
+pub use surface::Surface;
+pub use swapchain::Swapchain;

@@ -1,0 +1,83 @@
+//! `sweeplab view`: thin wiring from the arguments to `sweeplab::viewer`.
+
+use super::args::ViewArgs;
+use super::render_cmd::write_json;
+use super::session;
+use anyhow::Context as _;
+use std::process::ExitCode;
+use sweeplab::render::Technique;
+use sweeplab::viewer::{self, SceneSource, Script, ViewerOptions};
+use sweeplab::vk::swapchain::PRESENT_MODES;
+use sweeplab::vk::ContextOptions;
+
+pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
+    let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
+    let present_mode =
+        PRESENT_MODES.iter().find(|(n, _)| *n == args.present_mode).map(|(_, m)| *m).ok_or_else(|| {
+            let names = PRESENT_MODES.map(|(n, _)| n);
+            let near = sweeplab::scene::suggest::nearest(&args.present_mode, names)
+                .map(|n| format!(" (did you mean {n}?)"))
+                .unwrap_or_default();
+            anyhow::anyhow!("--present-mode {:?}{near}; known: {}", args.present_mode, names.join(", "))
+        })?;
+    if args.screenshot.is_some() && args.frames.is_none() {
+        anyhow::bail!("--screenshot needs --frames N (the screenshot is of the last frame)");
+    }
+    if args.frames == Some(0) {
+        anyhow::bail!("--frames 0: at least one frame");
+    }
+    let mut overrides = args.scene.set.clone();
+    if let Some(size) = &args.scene.size {
+        let (w, h) = super::scene_args::parse_size(size)?;
+        overrides.push(format!("render.width={w}"));
+        overrides.push(format!("render.height={h}"));
+    }
+    let source = match (&args.scene.scene, &args.scene.volume) {
+        (Some(path), _) => SceneSource::File(path.clone()),
+        (None, Some(path)) => SceneSource::Volume(path.clone()),
+        (None, None) => SceneSource::Default,
+    };
+    let script = match &args.script {
+        Some(path) => Script::load(path)?,
+        None => Script::default(),
+    };
+    let options = ViewerOptions {
+        technique,
+        context: ContextOptions { device: args.gpu.device.clone(), validate: args.gpu.validate },
+        texels: session::volume_texels(&args.gpu),
+        present_mode,
+        frames: args.frames,
+        screenshot: args.screenshot.clone(),
+        script,
+        out_dir: std::path::PathBuf::from("."),
+        ui: !args.no_ui,
+    };
+    let (report, validation) = viewer::run(source, &overrides, &options).context("sweeplab view")?;
+    let warm = report.frames.len().min(2);
+    if let (Some(frame), Some(gpu)) = (report.mean(warm, |f| Some(f.frame_ms)), report.mean(warm, |f| Some(f.gpu_ms))) {
+        let present = report.mean(warm, |f| f.present_gpu_ms).unwrap_or(0.0);
+        println!(
+            "{technique}: {} frames, mean frame {frame:.3} ms, technique GPU {gpu:.3} ms, present pass GPU {present:.3} ms \
+             ({} present mode, first {warm} frames left out)",
+            report.frames.len(),
+            report.present_mode
+        );
+    }
+    for path in &report.screenshots {
+        println!("screenshot: {path}");
+    }
+    if let Some(path) = &args.log_json {
+        write_json(path, &serde_json::to_value(&report)?)?;
+    }
+    if validation.is_empty() {
+        if args.gpu.validate || std::env::var("SWEEPLAB_VALIDATE").is_ok_and(|v| v == "1") {
+            eprintln!("validation: clean");
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    eprintln!("validation: {} message(s)", validation.len());
+    for m in &validation {
+        eprintln!("{m}");
+    }
+    Ok(ExitCode::from(2))
+}

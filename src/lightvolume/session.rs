@@ -1,0 +1,42 @@
+//! The light volume across viewer frames: one [`LightVolumeRenderer`] kept from
+//! frame to frame, so a moved light is a selective update of the volume, not a
+//! rebuild.
+
+use super::renderer::{LightVolumeRenderer, UpdateReport};
+use crate::render::{FrameResult, FrameSession, GpuScene, RenderError};
+use crate::scene::Light;
+use crate::vk::Profiler;
+
+pub struct LightVolumeSession<'s> {
+    renderer: LightVolumeRenderer<'s>,
+    last: Option<UpdateReport>,
+}
+
+impl<'s> LightVolumeSession<'s> {
+    pub fn new(gpu: &'s GpuScene<'s>) -> Result<Self, RenderError> {
+        Ok(LightVolumeSession { renderer: LightVolumeRenderer::new(gpu)?, last: None })
+    }
+}
+
+impl FrameSession for LightVolumeSession<'_> {
+    fn frame(
+        &mut self,
+        lights: &[Option<Light>],
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<FrameResult, RenderError> {
+        let out = self.renderer.render(lights, width, height, profiler, false)?;
+        let image = out.image.ok_or_else(|| RenderError::Invalid("light volume frame without an image".into()))?;
+        self.last = Some(out.update);
+        Ok(FrameResult { image, dispatches: out.dispatches, barriers: out.barriers })
+    }
+
+    fn follows_lights(&self) -> bool {
+        true
+    }
+
+    fn last_decision(&self) -> Option<String> {
+        self.last.as_ref().map(|u| format!("{}: {}", u.plan.kind.scope_name(), u.plan.reason))
+    }
+}

@@ -1,0 +1,169 @@
+//! The present pass: the technique's linear frame, uploaded into an RGBA32F
+//! image, blitted into the swapchain image (the blit converts linear to the
+//! sRGB format), the control panel drawn over it, optionally copied out for a
+//! screenshot, and handed to the presentation engine. Each barrier is named
+//! for what it protects; the blit and the panel have profiler scopes
+//! `present_blit` and `ui`.
+
+use super::ui::Ui;
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::resources::color_layers;
+use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
+use ash::vk;
+
+/// Blits read and write in the BLIT stage (not COPY).
+const BLIT_READ: Access = Access { stage: vk::PipelineStageFlags2::BLIT, access: vk::AccessFlags2::TRANSFER_READ };
+const BLIT_WRITE: Access = Access { stage: vk::PipelineStageFlags2::BLIT, access: vk::AccessFlags2::TRANSFER_WRITE };
+/// The stage the "image acquired" semaphore is waited in: the barrier that
+/// takes the swapchain image starts from it, so the two chain.
+pub const ACQUIRE_WAIT_STAGE: vk::PipelineStageFlags2 = vk::PipelineStageFlags2::BLIT;
+/// The panel blends over the frame: it reads and writes the attachment.
+const UI_DRAW: Access = Access {
+    stage: vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT,
+    access: vk::AccessFlags2::from_raw(
+        vk::AccessFlags2::COLOR_ATTACHMENT_READ.as_raw() | vk::AccessFlags2::COLOR_ATTACHMENT_WRITE.as_raw(),
+    ),
+};
+/// Presentation waits on a semaphore; the signal covers all earlier work.
+const TO_PRESENT: Access = Access::NONE;
+
+pub struct PresentTarget {
+    pub image: vk::Image,
+    pub view: vk::ImageView,
+    pub extent: vk::Extent2D,
+}
+
+/// Records the pass; `ui` draws the panel over the frame.
+pub fn record(
+    rec: &mut Recorder,
+    profiler: &mut Profiler,
+    linear: &Image,
+    staging: &Buffer,
+    target: &PresentTarget,
+    screenshot: Option<&Buffer>,
+    ui: Option<&mut Ui>,
+) -> Result<(), VkError> {
+    let scope = profiler.begin(rec, "present_blit")?;
+    let (dst_layout, src_layout) = (vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+    // The slot's previous frame read this image; its fence was waited.
+    rec.barrier(&Barrier::image(
+        "frame_upload_discard_to_copy_write",
+        linear,
+        Access::NONE,
+        Access::TRANSFER_WRITE,
+        vk::ImageLayout::UNDEFINED,
+        dst_layout,
+    ));
+    rec.copy_buffer_to_image(staging, linear);
+    rec.barrier(&Barrier::image(
+        "frame_upload_write_to_blit_read",
+        linear,
+        Access::TRANSFER_WRITE,
+        BLIT_READ,
+        dst_layout,
+        src_layout,
+    ));
+    // Starts from the acquire semaphore's wait stage, so the layout change
+    // happens after the presentation engine let go of the image.
+    rec.barrier(&Barrier::raw_image(
+        "swapchain_acquired_to_blit_write",
+        target.image,
+        Access { stage: ACQUIRE_WAIT_STAGE, access: vk::AccessFlags2::NONE },
+        BLIT_WRITE,
+        vk::ImageLayout::UNDEFINED,
+        dst_layout,
+    ));
+    let e = linear.extent();
+    let src_end = vk::Offset3D { x: e.width as i32, y: e.height as i32, z: 1 };
+    let dst_end = vk::Offset3D { x: target.extent.width as i32, y: target.extent.height as i32, z: 1 };
+    let region = vk::ImageBlit::default()
+        .src_subresource(color_layers())
+        .src_offsets([vk::Offset3D::default(), src_end])
+        .dst_subresource(color_layers())
+        .dst_offsets([vk::Offset3D::default(), dst_end]);
+    // SAFETY: both images are in the layouts named (the barriers above), were
+    // created with TRANSFER usage, and their formats support BLIT_SRC/BLIT_DST
+    // (RGBA32F on every Vulkan device; the swapchain format was checked).
+    unsafe {
+        rec.device().cmd_blit_image(
+            rec.cb,
+            linear.raw,
+            src_layout,
+            target.image,
+            dst_layout,
+            &[region],
+            vk::Filter::NEAREST,
+        )
+    };
+    profiler.end(rec, scope)?;
+    let (mut last_write, mut layout) = (BLIT_WRITE, dst_layout);
+    if let Some(ui) = ui {
+        let attachment = vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL;
+        rec.barrier(&Barrier::raw_image(
+            "swapchain_blit_write_to_ui_draw",
+            target.image,
+            BLIT_WRITE,
+            UI_DRAW,
+            dst_layout,
+            attachment,
+        ));
+        let ui_scope = profiler.begin(rec, "ui")?;
+        let color = [vk::RenderingAttachmentInfo::default()
+            .image_view(target.view)
+            .image_layout(attachment)
+            .load_op(vk::AttachmentLoadOp::LOAD)
+            .store_op(vk::AttachmentStoreOp::STORE)];
+        let info = vk::RenderingInfo::default()
+            .render_area(vk::Rect2D { offset: vk::Offset2D::default(), extent: target.extent })
+            .layer_count(1)
+            .color_attachments(&color);
+        // SAFETY: the view is of the target image, now in COLOR_ATTACHMENT_OPTIMAL
+        // (barrier above); dynamic rendering is enabled on window contexts.
+        unsafe { rec.device().cmd_begin_rendering(rec.cb, &info) };
+        let drawn = ui.draw(rec.cb, target.extent);
+        // SAFETY: paired with the begin above, even when the draw failed.
+        unsafe { rec.device().cmd_end_rendering(rec.cb) };
+        drawn?;
+        profiler.end(rec, ui_scope)?;
+        (last_write, layout) = (UI_DRAW, attachment);
+    }
+    let present = vk::ImageLayout::PRESENT_SRC_KHR;
+    match screenshot {
+        Some(buffer) => {
+            rec.barrier(&Barrier::raw_image(
+                "swapchain_frame_write_to_screenshot_copy",
+                target.image,
+                last_write,
+                Access::TRANSFER_READ,
+                layout,
+                src_layout,
+            ));
+            let copy = vk::BufferImageCopy::default().image_subresource(color_layers()).image_extent(vk::Extent3D {
+                width: target.extent.width,
+                height: target.extent.height,
+                depth: 1,
+            });
+            // SAFETY: the image is in TRANSFER_SRC_OPTIMAL (barrier above) and the
+            // buffer holds width * height * 4 bytes (the caller sized it).
+            unsafe { rec.device().cmd_copy_image_to_buffer(rec.cb, target.image, src_layout, buffer.raw, &[copy]) };
+            rec.barrier(&Barrier::raw_image(
+                "screenshot_copy_to_present",
+                target.image,
+                Access::TRANSFER_READ,
+                TO_PRESENT,
+                src_layout,
+                present,
+            ));
+            rec.barrier(&Barrier::memory("screenshot_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
+        }
+        None => rec.barrier(&Barrier::raw_image(
+            "swapchain_frame_write_to_present",
+            target.image,
+            last_write,
+            TO_PRESENT,
+            layout,
+            present,
+        )),
+    }
+    Ok(())
+}

@@ -1,0 +1,49 @@
+//! What the viewer measured, frame by frame: the technique's passes and GPU
+//! time, the present pass, the wall-clock frame time, and the light volume's
+//! update decision. Written as JSON by `--log-json`.
+
+use serde::Serialize;
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct FrameRecord {
+    pub index: u64,
+    pub width: u32,
+    pub height: u32,
+    /// Wall clock from the previous frame's present to this one's.
+    pub frame_ms: f64,
+    /// Wall clock of the technique's frame on the host (record, submit, wait, read).
+    pub render_ms: f64,
+    /// The technique's GPU time (sum of its root scopes).
+    pub gpu_ms: f64,
+    /// GPU time of `present_blit`; filled in once the slot's fence is waited.
+    pub present_gpu_ms: Option<f64>,
+    /// GPU time of the control panel's draw (`ui`), filled in like `present_gpu_ms`.
+    pub ui_gpu_ms: Option<f64>,
+    /// Host time of the panel's layout and tessellation.
+    pub ui_cpu_ms: f64,
+    pub dispatches: u32,
+    pub barriers: u32,
+    /// The technique's profile scopes, by path.
+    pub passes: Vec<String>,
+    /// The light volume's update and its reason.
+    pub decision: Option<String>,
+    /// The swapchain was recreated before this frame.
+    pub swapchain_recreated: bool,
+}
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct ViewerReport {
+    pub technique: String,
+    pub device: String,
+    pub present_mode: String,
+    pub frames: Vec<FrameRecord>,
+    pub screenshots: Vec<String>,
+}
+
+impl ViewerReport {
+    /// Mean of `f` over the frames after the first `skip` (warm-up).
+    pub fn mean(&self, skip: usize, f: impl Fn(&FrameRecord) -> Option<f64>) -> Option<f64> {
+        let v: Vec<f64> = self.frames.iter().skip(skip).filter_map(f).collect();
+        (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+    }
+}

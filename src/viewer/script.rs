@@ -1,0 +1,105 @@
+//! A viewer script: what to do at which frame, so a run is reproducible
+//! (tests, measurements). One step a line, `#` starts a comment:
+//!
+//! ```text
+//! 3 set lights.0.direction=[-1, -1, 0.5]   # a scene edit, as --set takes it
+//! 5 resize 96x64                            # ask the window for a new size
+//! 7 key S                                   # as if the key were pressed (S, P)
+//! ```
+
+use super::error::ViewerError;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Action {
+    Set(String),
+    Resize(u32, u32),
+    Key(char),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    pub frame: u64,
+    pub action: Action,
+}
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Script {
+    pub steps: Vec<Step>,
+}
+
+const ACTIONS: [&str; 3] = ["set", "resize", "key"];
+
+impl Script {
+    pub fn parse(text: &str, origin: &str) -> Result<Script, ViewerError> {
+        let mut steps = Vec::new();
+        for (n, raw) in text.lines().enumerate() {
+            let line = raw.split('#').next().unwrap_or("").trim();
+            if line.is_empty() {
+                continue;
+            }
+            let at = |m: String| ViewerError::Script(format!("{origin}:{}: {m} (in `{}`)", n + 1, raw.trim()));
+            let mut parts = line.splitn(3, char::is_whitespace);
+            let frame = parts.next().unwrap_or("");
+            let frame: u64 = frame.parse().map_err(|_| at(format!("`{frame}` is not a frame number")))?;
+            let verb = parts.next().unwrap_or("");
+            let rest = parts.next().unwrap_or("").trim();
+            let action = match verb {
+                "set" if rest.contains('=') => Action::Set(rest.to_string()),
+                "set" => return Err(at("set needs KEY=VALUE".into())),
+                "resize" => {
+                    let (w, h) = rest.split_once('x').ok_or_else(|| at("resize needs WIDTHxHEIGHT".into()))?;
+                    let size = |s: &str| s.trim().parse::<u32>().ok().filter(|&v| (1..=16384).contains(&v));
+                    match (size(w), size(h)) {
+                        (Some(w), Some(h)) => Action::Resize(w, h),
+                        _ => return Err(at(format!("`{rest}` is not a size between 1x1 and 16384x16384"))),
+                    }
+                }
+                "key" => match rest.to_ascii_uppercase().as_str() {
+                    "S" => Action::Key('S'),
+                    "P" => Action::Key('P'),
+                    _ => return Err(at(format!("key `{rest}` has no action; known: S (screenshot), P (profile)"))),
+                },
+                other => {
+                    let near = crate::scene::suggest::nearest(other, ACTIONS)
+                        .map(|n| format!(" (did you mean {n}?)"))
+                        .unwrap_or_default();
+                    return Err(at(format!("unknown action `{other}`{near}; known: {}", ACTIONS.join(", "))));
+                }
+            };
+            steps.push(Step { frame, action });
+        }
+        Ok(Script { steps })
+    }
+
+    pub fn load(path: &std::path::Path) -> Result<Script, ViewerError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| ViewerError::Script(format!("cannot read script {}: {e}", path.display())))?;
+        Script::parse(&text, &path.display().to_string())
+    }
+
+    /// The steps of frame `frame`, in file order.
+    pub fn at(&self, frame: u64) -> impl Iterator<Item = &Action> {
+        self.steps.iter().filter(move |s| s.frame == frame).map(|s| &s.action)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn steps_parse_and_mistakes_name_the_line_and_a_suggestion() {
+        let s = Script::parse("# light moves\n2 set lights.0.intensity=3\n4 resize 96x64\n5 key s\n", "t").unwrap();
+        assert_eq!(s.steps.len(), 3);
+        assert_eq!(s.at(2).collect::<Vec<_>>(), vec![&Action::Set("lights.0.intensity=3".into())]);
+        assert_eq!(s.at(4).next(), Some(&Action::Resize(96, 64)));
+        assert_eq!(s.at(5).next(), Some(&Action::Key('S')));
+        let e = Script::parse("1 resise 9x9", "t").unwrap_err().to_string();
+        assert!(e.contains("t:1") && e.contains("did you mean resize?"), "{e}");
+        let e = Script::parse("x set a=1", "t").unwrap_err().to_string();
+        assert!(e.contains("not a frame number"), "{e}");
+        assert!(Script::parse("1 resize 0x9", "t").is_err());
+        assert!(Script::parse("1 set nothing", "t").is_err());
+        assert!(Script::parse("1 key Q", "t").is_err());
+    }
+}

@@ -1,0 +1,368 @@
+//! The control panel (egui, drawn by egui-ash-renderer into the swapchain
+//! image after the blit): technique, its settings, transfer-function presets,
+//! lights, and the live profiler (a rolling plot and a table of the per-pass
+//! GPU times, frame time, dispatches and barriers, the light volume's
+//! decision). The panel only proposes edits ([`UiEdit`]); the frame loop
+//! applies them through the same checks as `--set`.
+
+use super::report::FrameRecord;
+use crate::render::Technique;
+use crate::scene::presets::PRESET_NAMES;
+use crate::scene::{Light, LightKind, Scene};
+use crate::vk::error::VkResultExt;
+use crate::vk::{Context, VkError};
+use ash::vk;
+use egui_ash_renderer::{DynamicRendering, Options, Renderer};
+use std::collections::{BTreeMap, VecDeque};
+use std::time::Instant;
+
+/// Frames the rolling plots keep.
+const HISTORY: usize = 120;
+
+/// What the user asked for in the panel this frame.
+#[derive(Clone, Debug, PartialEq)]
+pub enum UiEdit {
+    Technique(Technique),
+    /// A scene edit as `--set` takes it.
+    Set(String),
+    Lights(Vec<Light>),
+    Toggle(usize, bool),
+    Key(char),
+}
+
+/// Per-pass GPU times of the last frames, for the plots and the table.
+#[derive(Default)]
+pub struct PassHistory {
+    pub passes: BTreeMap<String, VecDeque<f64>>,
+    pub frame_ms: VecDeque<f64>,
+}
+
+impl PassHistory {
+    pub fn push(&mut self, record: &FrameRecord, pass_ms: &[(String, f64)]) {
+        for (path, ms) in pass_ms {
+            let h = self.passes.entry(path.clone()).or_default();
+            h.push_back(*ms);
+            if h.len() > HISTORY {
+                h.pop_front();
+            }
+        }
+        // Passes of another technique fade out of the table once idle.
+        self.passes.retain(|p, _| pass_ms.iter().any(|(q, _)| q == p));
+        self.frame_ms.push_back(record.frame_ms);
+        if self.frame_ms.len() > HISTORY {
+            self.frame_ms.pop_front();
+        }
+    }
+}
+
+/// What the panel shows and edits.
+pub struct PanelView<'a> {
+    pub technique: Technique,
+    pub scene: &'a Scene,
+    pub enabled: &'a [bool],
+    pub last: Option<&'a FrameRecord>,
+    pub history: &'a PassHistory,
+    pub ui_cpu_ms: f64,
+    pub ui_gpu_ms: Option<f64>,
+    pub message: Option<&'a str>,
+}
+
+pub struct Ui {
+    pub egui: egui::Context,
+    renderer: Renderer,
+    upload_pool: vk::CommandPool,
+    device: ash::Device,
+    queue: vk::Queue,
+    primitives: Vec<egui::ClippedPrimitive>,
+    pixels_per_point: f32,
+    /// Textures egui let go of, freed once no frame in flight can use them.
+    pending_free: Vec<egui::TextureId>,
+    /// Host time of the last panel (layout and tessellation).
+    pub cpu_ms: f64,
+}
+
+impl Ui {
+    pub fn new(ctx: &Context, format: vk::Format, frames_in_flight: usize) -> Result<Ui, VkError> {
+        let renderer = Renderer::with_default_allocator(
+            &ctx.instance,
+            ctx.physical_device,
+            ctx.device.clone(),
+            DynamicRendering { color_attachment_format: format, depth_attachment_format: None },
+            Options { in_flight_frames: frames_in_flight, srgb_framebuffer: true, ..Default::default() },
+        )
+        .map_err(|e| VkError::Presentation(format!("egui renderer: {e}")))?;
+        let info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(ctx.queue_family)
+            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
+        // SAFETY: valid device and queue family; destroyed in Drop.
+        let upload_pool = unsafe { ctx.device.create_command_pool(&info, None) }.call("vkCreateCommandPool")?;
+        Ok(Ui {
+            egui: egui::Context::default(),
+            renderer,
+            upload_pool,
+            device: ctx.device.clone(),
+            queue: ctx.queue,
+            primitives: Vec::new(),
+            pixels_per_point: 1.0,
+            pending_free: Vec::new(),
+            cpu_ms: 0.0,
+        })
+    }
+
+    /// Lays the panel out for `input` and uploads new textures (egui-ash-renderer
+    /// waits for its own upload submission, only when egui's textures change).
+    pub fn build(
+        &mut self,
+        input: egui::RawInput,
+        view: &PanelView,
+    ) -> Result<(Vec<UiEdit>, egui::PlatformOutput), VkError> {
+        let started = Instant::now();
+        let mut edits = Vec::new();
+        let output = self.egui.run(input, |ctx| panel(ctx, view, &mut edits));
+        self.pixels_per_point = output.pixels_per_point;
+        self.primitives = self.egui.tessellate(output.shapes, output.pixels_per_point);
+        if !output.textures_delta.set.is_empty() {
+            self.renderer
+                .set_textures(self.queue, self.upload_pool, &output.textures_delta.set)
+                .map_err(|e| VkError::Presentation(format!("egui textures: {e}")))?;
+        }
+        self.pending_free.extend(output.textures_delta.free);
+        self.cpu_ms = started.elapsed().as_secs_f64() * 1e3;
+        Ok((edits, output.platform_output))
+    }
+
+    /// Textures to free once every frame in flight is done (the caller waits).
+    pub fn has_pending_frees(&self) -> bool {
+        !self.pending_free.is_empty()
+    }
+
+    pub fn free_textures(&mut self) -> Result<(), VkError> {
+        let ids = std::mem::take(&mut self.pending_free);
+        self.renderer.free_textures(&ids).map_err(|e| VkError::Presentation(format!("egui textures: {e}")))
+    }
+
+    /// Draws the panel; the caller has begun rendering into the target.
+    pub fn draw(&mut self, cb: vk::CommandBuffer, extent: vk::Extent2D) -> Result<(), VkError> {
+        self.renderer
+            .cmd_draw(cb, extent, self.pixels_per_point, &self.primitives)
+            .map_err(|e| VkError::Presentation(format!("egui draw: {e}")))
+    }
+}
+
+impl Drop for Ui {
+    fn drop(&mut self) {
+        // SAFETY: the viewer waits for every frame in flight before dropping the UI.
+        unsafe { self.device.destroy_command_pool(self.upload_pool, None) };
+    }
+}
+
+fn panel(ctx: &egui::Context, view: &PanelView, edits: &mut Vec<UiEdit>) {
+    egui::SidePanel::left("controls").default_width(260.0).show(ctx, |ui| {
+        egui::ScrollArea::vertical().show(ui, |ui| {
+            technique_section(ui, view, edits);
+            ui.separator();
+            lights_section(ui, view, edits);
+            ui.separator();
+            profiler_section(ui, view, edits);
+            if let Some(m) = view.message {
+                ui.separator();
+                ui.colored_label(egui::Color32::LIGHT_RED, m);
+            }
+        });
+    });
+}
+
+fn technique_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) {
+    ui.heading("Technique");
+    let mut chosen = view.technique;
+    egui::ComboBox::from_label("technique").selected_text(chosen.name()).show_ui(ui, |ui| {
+        for t in Technique::ALL {
+            ui.selectable_value(&mut chosen, t, t.name());
+        }
+    });
+    if chosen != view.technique {
+        edits.push(UiEdit::Technique(chosen));
+    }
+    let s = &view.scene.settings;
+    match view.technique.name() {
+        "ipsvi" => {
+            let mut sync = s.ipsvi.sync;
+            egui::ComboBox::from_label("sync strategy").selected_text(sync.name()).show_ui(ui, |ui| {
+                for strategy in crate::ipsvi::sync_strategy::SyncStrategy::ALL {
+                    ui.selectable_value(&mut sync, strategy, strategy.name());
+                }
+            });
+            if sync != s.ipsvi.sync {
+                edits.push(UiEdit::Set(format!("ipsvi.sync={}", sync.name())));
+            }
+            slider_u32(ui, "line width", s.ipsvi.line_width, 1..=16, "ipsvi.line_width", edits);
+            slider_u32(ui, "cache size", s.ipsvi.cache_size, 16..=1024, "ipsvi.cache_size", edits);
+            toggle(ui, "piecewise", s.ipsvi.piecewise, "ipsvi.piecewise", edits);
+        }
+        "lightvolume" => {
+            let mut scale = s.lightvolume.scale;
+            ui.horizontal(|ui| {
+                ui.label("scale");
+                for v in [1, 2, 4] {
+                    ui.selectable_value(&mut scale, v, format!("{v}"));
+                }
+            });
+            if scale != s.lightvolume.scale {
+                edits.push(UiEdit::Set(format!("lightvolume.scale={scale}")));
+            }
+            toggle(ui, "coherent", s.lightvolume.coherent, "lightvolume.coherent", edits);
+            toggle(ui, "compensated", s.lightvolume.compensated, "lightvolume.compensated", edits);
+            toggle(ui, "shared medium", s.lightvolume.shared_medium, "lightvolume.shared_medium", edits);
+        }
+        "half-angle" => slider_u32(
+            ui,
+            "light buffer",
+            s.half_angle.light_buffer_size,
+            32..=1024,
+            "half_angle.light_buffer_size",
+            edits,
+        ),
+        _ => {}
+    }
+    ui.horizontal_wrapped(|ui| {
+        ui.label("transfer preset");
+        for name in PRESET_NAMES {
+            if ui.small_button(name).clicked() {
+                edits.push(UiEdit::Set(format!("transfer={{preset=\"{name}\"}}")));
+            }
+        }
+    });
+}
+
+fn slider_u32(
+    ui: &mut egui::Ui,
+    label: &str,
+    value: u32,
+    range: std::ops::RangeInclusive<u32>,
+    key: &str,
+    edits: &mut Vec<UiEdit>,
+) {
+    let mut v = value;
+    let r = ui.add(egui::Slider::new(&mut v, range).text(label));
+    // Applied when the drag ends: each value rebuilds the technique.
+    if v != value && !r.dragged() {
+        edits.push(UiEdit::Set(format!("{key}={v}")));
+    }
+}
+
+fn toggle(ui: &mut egui::Ui, label: &str, value: bool, key: &str, edits: &mut Vec<UiEdit>) {
+    let mut v = value;
+    if ui.checkbox(&mut v, label).changed() {
+        edits.push(UiEdit::Set(format!("{key}={v}")));
+    }
+}
+
+fn lights_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) {
+    ui.heading("Lights");
+    let mut lights = view.scene.lights.clone();
+    let mut changed = false;
+    let mut remove = None;
+    for (i, light) in lights.iter_mut().enumerate() {
+        ui.push_id(i, |ui| {
+            ui.horizontal(|ui| {
+                let mut on = view.enabled.get(i).copied().unwrap_or(true);
+                if ui.checkbox(&mut on, format!("light {i}")).changed() {
+                    edits.push(UiEdit::Toggle(i, on));
+                }
+                let mut rgb = light.color.to_array();
+                changed |= ui.color_edit_button_rgb(&mut rgb).changed();
+                light.color = rgb.into();
+                if ui.small_button("remove").clicked() {
+                    remove = Some(i);
+                }
+            });
+            changed |= ui.add(egui::Slider::new(&mut light.intensity, 0.0..=10.0).text("intensity")).changed();
+            let (label, v) = match &mut light.kind {
+                LightKind::Directional { direction } => ("direction", direction),
+                LightKind::Point { position } => ("position", position),
+                LightKind::Spot { position, .. } => ("position", position),
+            };
+            ui.horizontal(|ui| {
+                ui.label(label);
+                for c in [&mut v.x, &mut v.y, &mut v.z] {
+                    changed |= ui.add(egui::DragValue::new(c).speed(0.02).range(-5.0..=5.0)).changed();
+                }
+            });
+        });
+    }
+    if let Some(i) = remove {
+        lights.remove(i);
+        changed = true;
+    }
+    if ui.button("add light").clicked() {
+        lights.push(Light {
+            kind: LightKind::Directional { direction: glam::Vec3::new(-1.0, -1.0, -1.0) },
+            color: glam::Vec3::ONE,
+            intensity: 1.0,
+            falloff: crate::scene::Falloff::None,
+        });
+        changed = true;
+    }
+    if changed {
+        edits.push(UiEdit::Lights(lights));
+    }
+}
+
+fn profiler_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) {
+    ui.heading("Profiler");
+    if let Some(f) = view.last {
+        ui.label(format!("frame {:.2} ms   technique GPU {:.2} ms", f.frame_ms, f.gpu_ms));
+        ui.label(format!("{} dispatches, {} barriers per frame", f.dispatches, f.barriers));
+        if let Some(d) = &f.decision {
+            ui.label(d);
+        }
+    }
+    ui.label(format!(
+        "UI: {:.2} ms host, {} GPU",
+        view.ui_cpu_ms,
+        view.ui_gpu_ms.map_or("-".to_string(), |ms| format!("{ms:.3} ms"))
+    ));
+    ui.horizontal(|ui| {
+        if ui.button("screenshot (S)").clicked() {
+            edits.push(UiEdit::Key('S'));
+        }
+        if ui.button("profile (P)").clicked() {
+            edits.push(UiEdit::Key('P'));
+        }
+    });
+    plot(ui, "frame ms", &view.history.frame_ms);
+    egui::Grid::new("passes").striped(true).show(ui, |ui| {
+        ui.label("pass");
+        ui.label("last ms");
+        ui.label("mean ms");
+        ui.end_row();
+        for (path, h) in &view.history.passes {
+            let mean = h.iter().sum::<f64>() / h.len().max(1) as f64;
+            ui.label(path.rsplit('/').next().unwrap_or(path));
+            ui.label(format!("{:.3}", h.back().copied().unwrap_or(0.0)));
+            ui.label(format!("{mean:.3}"));
+            ui.end_row();
+        }
+    });
+    for (path, h) in view.history.passes.iter().filter(|(p, _)| !p.contains('/')) {
+        plot(ui, path, h);
+    }
+}
+
+/// A rolling line plot of `values` with its largest value as the scale.
+fn plot(ui: &mut egui::Ui, label: &str, values: &VecDeque<f64>) {
+    let top = values.iter().copied().fold(0.0, f64::max).max(1e-6);
+    ui.label(format!("{label} (max {top:.2})"));
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(ui.available_width(), 40.0), egui::Sense::hover());
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 2.0, egui::Color32::from_gray(30));
+    let n = values.len().max(2) as f32 - 1.0;
+    let points: Vec<egui::Pos2> = values
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            egui::pos2(rect.left() + rect.width() * i as f32 / n, rect.bottom() - rect.height() * (v / top) as f32)
+        })
+        .collect();
+    painter.add(egui::Shape::line(points, egui::Stroke::new(1.0, egui::Color32::LIGHT_GREEN)));
+}

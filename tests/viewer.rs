@@ -1,0 +1,303 @@
+//! `sweeplab view` under Xvfb with lavapipe, validation (and synchronization
+//! validation) on throughout: scripted camera and light changes and a resize,
+//! the screenshot against the headless `render` of the same state, the light
+//! volume's selective update when one light moves, and clear errors. Each test
+//! starts its own Xvfb on a free display; it is skipped, saying why, only when
+//! no X server can be started.
+
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Output, Stdio};
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::time::{Duration, Instant};
+
+/// An Xvfb server this test started; killed (by its own pid) on drop.
+struct Xvfb {
+    child: Child,
+    display: String,
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Display numbers handed to this process's tests, one each (tests run in parallel).
+static NEXT_DISPLAY: AtomicU32 = AtomicU32::new(70);
+
+/// Starts Xvfb on a free display from :70 on, or says why it cannot.
+fn start_xvfb() -> Result<Xvfb, String> {
+    loop {
+        let n = NEXT_DISPLAY.fetch_add(1, Ordering::Relaxed);
+        if n >= 200 {
+            break;
+        }
+        let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
+        if socket.exists() || Path::new(&format!("/tmp/.X{n}-lock")).exists() {
+            continue;
+        }
+        let child = Command::new("Xvfb")
+            .args([format!(":{n}").as_str(), "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .map_err(|e| format!("cannot start Xvfb ({e}); tools/setup.sh installs it"))?;
+        let mut server = Xvfb { child, display: format!(":{n}") };
+        let start = Instant::now();
+        while start.elapsed() < Duration::from_secs(10) {
+            if socket.exists() {
+                // Ours only if our server is still running (another process may
+                // have taken the display first, and ours then exits).
+                std::thread::sleep(Duration::from_millis(100));
+                if let Ok(None) = server.child.try_wait() {
+                    return Ok(server);
+                }
+                break;
+            }
+            if let Ok(Some(_)) = server.child.try_wait() {
+                break; // lost a race for this display: try the next
+            }
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+    Err("no free display for Xvfb between :70 and :199".into())
+}
+
+macro_rules! xvfb_or_skip {
+    () => {
+        match start_xvfb() {
+            Ok(x) => x,
+            Err(why) => {
+                eprintln!("SKIPPED: {why}");
+                return;
+            }
+        }
+    };
+}
+
+fn sweeplab(args: &[&str], display: Option<&str>) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_sweeplab"));
+    cmd.args(args).env("SWEEPLAB_VALIDATE", "1").env_remove("WAYLAND_DISPLAY");
+    match display {
+        Some(d) => cmd.env("DISPLAY", d),
+        None => cmd.env_remove("DISPLAY"),
+    };
+    cmd.output().expect("run sweeplab")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("sweeplab-viewer-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn assert_clean_run(o: &Output) {
+    let err = stderr(o);
+    assert!(o.status.success(), "exit {:?}: {err}", o.status);
+    assert!(err.contains("validation: clean"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+fn log(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn passes(frame: &serde_json::Value) -> Vec<String> {
+    frame["passes"].as_array().unwrap().iter().map(|p| p.as_str().unwrap().to_string()).collect()
+}
+
+/// The swapchain holds 8 bits per channel and the blit converts linear to sRGB
+/// on the device, `render` on the host: the two roundings of one linear value
+/// may differ by one level, never more.
+const SRGB_LEVELS_TOLERANCE: i32 = 1;
+
+#[test]
+fn scripted_view_matches_headless_render_across_a_resize_validation_clean() {
+    let x = xvfb_or_skip!();
+    let dir = temp_dir("match");
+    let script = dir.join("script.txt");
+    // Camera and light change, then a resize away and back: the swapchain is
+    // recreated twice and the last frames are at the scene's size again.
+    std::fs::write(&script, "1 set camera.azimuth=60\n2 set lights.0.intensity=2.5\n3 resize 80x60\n5 resize 64x48\n")
+        .unwrap();
+    let (shot, log_path, reference) = (dir.join("view.png"), dir.join("log.json"), dir.join("render.png"));
+    let o = sweeplab(
+        &[
+            "view",
+            "--size",
+            "64x48",
+            "--technique",
+            "phong",
+            "--frames",
+            "8",
+            "--no-ui",
+            "--script",
+            script.to_str().unwrap(),
+            "--screenshot",
+            shot.to_str().unwrap(),
+            "--log-json",
+            log_path.to_str().unwrap(),
+        ],
+        Some(&x.display),
+    );
+    assert_clean_run(&o);
+    let r = sweeplab(
+        &[
+            "render",
+            "--size",
+            "64x48",
+            "--technique",
+            "phong",
+            "--set",
+            "camera.azimuth=60",
+            "--set",
+            "lights.0.intensity=2.5",
+            "--out",
+            reference.to_str().unwrap(),
+        ],
+        None,
+    );
+    assert_clean_run(&r);
+    let a = image::open(&shot).unwrap().to_rgb8();
+    let b = image::open(&reference).unwrap().to_rgb8();
+    assert_eq!(a.dimensions(), b.dimensions());
+    let worst = a.as_raw().iter().zip(b.as_raw()).map(|(&p, &q)| (p as i32 - q as i32).abs()).max().unwrap();
+    assert!(worst <= SRGB_LEVELS_TOLERANCE, "screenshot differs from render by {worst} levels");
+    // The state changed on screen: the first frame (before the edits) differs.
+    let frames = log(&log_path)["frames"].as_array().unwrap().clone();
+    assert_eq!(frames.len(), 8);
+    let sizes: Vec<(u64, u64)> =
+        frames.iter().map(|f| (f["width"].as_u64().unwrap(), f["height"].as_u64().unwrap())).collect();
+    assert_eq!(sizes[0], (64, 48));
+    assert!(sizes.contains(&(80, 60)), "the resize reached the swapchain: {sizes:?}");
+    assert_eq!(sizes[7], (64, 48));
+    let recreated = frames.iter().filter(|f| f["swapchain_recreated"] == true).count();
+    assert!(recreated >= 3, "swapchain created once and recreated per resize: {recreated}");
+    for f in &frames {
+        assert!(passes(f).contains(&"phong".to_string()), "{f}");
+        assert!(f["present_gpu_ms"].as_f64().is_some(), "present pass timed: {f}");
+    }
+}
+
+#[test]
+fn the_light_volume_in_the_viewer_updates_selectively_when_one_light_moves() {
+    let x = xvfb_or_skip!();
+    let dir = temp_dir("lightvolume");
+    let script = dir.join("script.txt");
+    std::fs::write(&script, "2 set lights.0.position=[-1.1, 0.3, 0.3]\n").unwrap();
+    let log_path = dir.join("log.json");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/scenes/three-spheres.toml");
+    let o = sweeplab(
+        &[
+            "view",
+            "--scene",
+            scene,
+            "--size",
+            "48x48",
+            "--technique",
+            "lightvolume",
+            "--frames",
+            "4",
+            "--script",
+            script.to_str().unwrap(),
+            "--log-json",
+            log_path.to_str().unwrap(),
+        ],
+        Some(&x.display),
+    );
+    assert_clean_run(&o);
+    let frames = log(&log_path)["frames"].as_array().unwrap().clone();
+    let has = |i: usize, scope: &str| passes(&frames[i]).iter().any(|p| p == scope);
+    assert!(has(0, "lightvolume_entire_update"), "first frame builds the volume: {}", frames[0]);
+    assert!(has(1, "lightvolume_unchanged") || !has(1, "lightvolume_entire_update"), "{}", frames[1]);
+    assert!(!has(1, "lightvolume_selective_update") && !has(1, "lightvolume_entire_update"), "{}", frames[1]);
+    assert!(has(2, "lightvolume_selective_update"), "the moved light: {}", frames[2]);
+    assert!(!has(2, "lightvolume_entire_update"), "{}", frames[2]);
+    let decision = frames[2]["decision"].as_str().unwrap();
+    assert!(decision.starts_with("lightvolume_selective_update") && decision.contains("1 of 2 lights"), "{decision}");
+}
+
+#[test]
+fn the_control_panel_is_drawn_and_timed_and_s_and_p_write_files() {
+    let x = xvfb_or_skip!();
+    let dir = temp_dir("panel");
+    let script = dir.join("script.txt");
+    std::fs::write(&script, "1 key S\n2 key P\n").unwrap();
+    let (log_path, panel_shot, plain_shot) = (dir.join("log.json"), dir.join("panel.png"), dir.join("plain.png"));
+    let run = |ui: bool, shot: &Path| {
+        let mut args = vec!["view", "--size", "320x200", "--frames", "4", "--screenshot", shot.to_str().unwrap()];
+        args.extend(["--script", script.to_str().unwrap(), "--log-json", log_path.to_str().unwrap()]);
+        if !ui {
+            args.push("--no-ui");
+        }
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_sweeplab"));
+        let o = cmd.args(&args).current_dir(&dir).env("SWEEPLAB_VALIDATE", "1").env("DISPLAY", &x.display).output();
+        let o = o.expect("run sweeplab");
+        assert_clean_run(&o);
+        log(&log_path)
+    };
+    let plain = run(false, &plain_shot);
+    assert!(plain["frames"].as_array().unwrap().iter().all(|f| f["ui_gpu_ms"].is_null()));
+    let panel = run(true, &panel_shot);
+    for f in panel["frames"].as_array().unwrap() {
+        assert!(f["ui_gpu_ms"].as_f64().is_some_and(|ms| ms > 0.0), "the panel's draw is a profiler scope: {f}");
+    }
+    // The panel covers the left of the frame: the two screenshots differ there.
+    let (a, b) = (image::open(&panel_shot).unwrap().to_rgb8(), image::open(&plain_shot).unwrap().to_rgb8());
+    let differing = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+    assert!(differing > 320 * 200 / 10, "panel visible in the screenshot: {differing} pixels differ");
+    // S and P (scripted key presses) wrote a screenshot and the frame's profile and trace.
+    assert!(image::open(dir.join("sweeplab-view-1.png")).is_ok());
+    let profile: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("sweeplab-view-2-profile.json")).unwrap()).unwrap();
+    assert_eq!(profile["passes"][0]["name"], "dvr");
+    let trace: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("sweeplab-view-2-trace.json")).unwrap()).unwrap();
+    assert_eq!(trace["traceEvents"][0]["ph"], "X");
+}
+
+#[test]
+fn mailbox_and_immediate_present_when_available_else_the_error_names_the_available_modes() {
+    let x = xvfb_or_skip!();
+    for mode in ["mailbox", "immediate"] {
+        let o = sweeplab(&["view", "--size", "32x32", "--frames", "3", "--present-mode", mode], Some(&x.display));
+        if o.status.success() {
+            assert_clean_run(&o);
+            let out = String::from_utf8_lossy(&o.stdout);
+            assert!(out.contains(&format!("{mode} present mode")), "{out}");
+        } else {
+            let err = stderr(&o);
+            assert!(err.contains(&format!("present mode {mode} is not available")), "{err}");
+            assert!(err.contains("available: ") && err.contains("fifo"), "{err}");
+        }
+    }
+}
+
+#[test]
+fn no_display_is_a_clear_error_not_a_panic() {
+    for display in [None, Some(":1999")] {
+        let o = sweeplab(&["view", "--frames", "1"], display);
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(err.contains("no display"), "{display:?}: {err}");
+    }
+}
+
+#[test]
+fn viewer_flags_and_script_mistakes_are_errors_with_suggestions() {
+    let o = sweeplab(&["view", "--present-mode", "mailbx", "--frames", "1"], None);
+    assert!(stderr(&o).contains("did you mean mailbox?"), "{}", stderr(&o));
+    let o = sweeplab(&["view", "--screenshot", "x.png"], None);
+    assert!(stderr(&o).contains("--screenshot needs --frames"), "{}", stderr(&o));
+    let dir = temp_dir("mistakes");
+    let script = dir.join("bad.txt");
+    std::fs::write(&script, "1 resise 9x9\n").unwrap();
+    let o = sweeplab(&["view", "--frames", "1", "--script", script.to_str().unwrap()], None);
+    assert!(!o.status.success() && stderr(&o).contains("did you mean resize?"), "{}", stderr(&o));
+}
