@@ -12,6 +12,7 @@ pub const PROFILER_CAPACITY: u32 = 65_536;
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
     let scene = scene_args::load(&args.scene)?;
+    technique.check(&scene).with_context(|| format!("rendering {technique}"))?;
     let ctx = session::open(&args.gpu)?;
     let output = {
         let gpu =

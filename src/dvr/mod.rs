@@ -3,6 +3,7 @@
 //! with the optical model the scene names.
 
 use crate::render::raycast::{self, Shading};
+use crate::render::view_chunks::check_view_step;
 use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene};
 use crate::vk::Profiler;
@@ -25,6 +26,9 @@ impl RenderTechnique for Dvr {
     }
     fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         raycast::resources(Shading::Unshaded, width, height)
+    }
+    fn check(&self, scene: &Scene) -> Result<(), RenderError> {
+        check_view_step(scene, self.name())
     }
     fn render(
         &self,
@@ -49,6 +53,9 @@ impl RenderTechnique for Phong {
     }
     fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         raycast::resources(Shading::BlinnPhong, width, height)
+    }
+    fn check(&self, scene: &Scene) -> Result<(), RenderError> {
+        check_view_step(scene, self.name())
     }
     fn render(
         &self,

@@ -58,6 +58,10 @@ impl RenderTechnique for LightVolume {
         needs
     }
 
+    fn check(&self, scene: &Scene) -> Result<(), RenderError> {
+        crate::render::view_chunks::check_view_step(scene, self.name())
+    }
+
     fn render(
         &self,
         gpu: &GpuScene,

@@ -13,6 +13,7 @@ pub mod output;
 pub mod raycast;
 pub mod registry;
 pub mod technique;
+pub mod view_chunks;
 
 pub use error::RenderError;
 pub use frame_result::FrameResult;

@@ -100,6 +100,7 @@ pub fn render(
     if width == 0 || height == 0 {
         return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
     }
+    technique.check(gpu.scene)?;
     gpu.ctx.memory.reset_peak();
     profiler.reset();
     let frame = technique.render(gpu, width, height, profiler)?;
