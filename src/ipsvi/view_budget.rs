@@ -43,9 +43,10 @@ pub fn piecewise_steps(scene: &Scene) -> Result<u32, RenderError> {
         (LOOP_BUDGET / samples).saturating_sub(1).min((HARD_LIMIT / samples).saturating_sub(OVERHEAD_PER_SAMPLE));
     if steps < MIN_PIECEWISE_STEPS {
         return Err(RenderError::Invalid(format!(
-            "render.step = {step:e} voxels is too small for ipsvi on this scene: its view rays and their piecewise \
+            "render.step = {:e} voxels is too small for ipsvi on this scene: its view rays and their piecewise \
              light integration run in one invocation, within llvmpipe's loop limit; the smallest step it supports \
-             here is {smallest:.3e} voxels"
+             here is {smallest:.3e} voxels",
+            scene.render.step_voxels
         )));
     }
     Ok(steps as u32)

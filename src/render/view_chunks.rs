@@ -108,8 +108,9 @@ pub fn check_view_step(scene: &Scene, technique: &str) -> Result<(), RenderError
     let smallest = smallest_view_step(scene);
     if !(step >= smallest) || !step.is_finite() {
         return Err(RenderError::Invalid(format!(
-            "render.step = {step:e} voxels is too small for {technique} on this scene: a view ray would take \
-             more than {MAX_VIEW_SAMPLES} samples; the smallest step it supports here is {smallest:.3e} voxels"
+            "render.step = {:e} voxels is too small for {technique} on this scene: a view ray would take \
+             more than {MAX_VIEW_SAMPLES} samples; the smallest step it supports here is {smallest:.3e} voxels",
+            scene.render.step_voxels
         )));
     }
     Ok(())
