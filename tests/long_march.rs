@@ -80,7 +80,7 @@ fn a_step_past_f32_sample_indices_is_refused_by_name() {
     let smallest = smallest_view_step(&scene);
     scene.render.step_voxels = (smallest * 0.5) as f32;
     for technique in [Technique::Dvr, Technique::Phong, Technique::LightVolume] {
-        let e = gpu_render(&scene, technique).err().expect("refused").to_string();
+        let e = gpu_render(&scene, technique).expect_err("refused").to_string();
         assert!(e.contains("render.step") && e.contains(technique.name()) && e.contains("smallest step"), "{e}");
     }
 }

@@ -114,7 +114,7 @@ fn check_slice_step(settings: &HalfAngleSettings, step: f32, extent_voxels: f32)
     let setting = if settings.slice_step.is_some() { "half_angle.slice_step" } else { "render.step" };
     let smallest = SLICE_STEP_RANGE.0.max(extent_voxels / MAX_SLICES);
     let largest = SLICE_STEP_RANGE.1;
-    if !(step >= smallest && step <= largest) {
+    if step.is_nan() || step < smallest || step > largest {
         return Err(RenderError::Invalid(format!(
             "{setting} = {step:e} voxels is outside what half-angle supports on this scene (one slice per step): from the smallest step {smallest:.3e} ({} slices at most) to {largest} voxels",
             MAX_SLICES as u32

@@ -106,7 +106,7 @@ impl ViewChunks {
 pub fn check_view_step(scene: &Scene, technique: &str) -> Result<(), RenderError> {
     let step = scene.render.step_voxels as f64;
     let smallest = smallest_view_step(scene);
-    if !(step >= smallest) || !step.is_finite() {
+    if !step.is_finite() || step < smallest {
         return Err(RenderError::Invalid(format!(
             "render.step = {:e} voxels is too small for {technique} on this scene: a view ray would take \
              more than {MAX_VIEW_SAMPLES} samples; the smallest step it supports here is {smallest:.3e} voxels",
