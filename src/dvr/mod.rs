@@ -19,7 +19,7 @@ impl RenderTechnique for Dvr {
         "dvr"
     }
     fn summary(&self) -> &'static str {
-        "unshaded emission-absorption ray casting (one dispatch)"
+        "unshaded emission-absorption ray casting (one dispatch; chunked past the loop limit)"
     }
     fn reference_model(&self, scene: &Scene) -> OpticalModel {
         scene.reference.model
@@ -46,7 +46,7 @@ impl RenderTechnique for Phong {
         "phong"
     }
     fn summary(&self) -> &'static str {
-        "gradient Blinn-Phong ray casting, no shadows (one dispatch)"
+        "gradient Blinn-Phong ray casting, no shadows (one dispatch; chunked past the loop limit)"
     }
     fn reference_model(&self, scene: &Scene) -> OpticalModel {
         scene.reference.model
