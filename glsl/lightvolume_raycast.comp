@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Light volume ray cast, one dispatch per frame, front to back with the
-// discretization of raycast.comp: the source term is
+// Light volume ray cast, front to back with the discretization of
+// raycast.comp, one dispatch per chunk of view samples (view_chunk.glsl): the source term is
 // rgb * (emission + illumination(p)), the illumination read trilinearly from
 // the propagated illumination volume (storage image, so filtered by hand).
 
@@ -9,9 +9,11 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "volume.glsl"
 #include "view_ray.glsl"
+#include "view_chunk.glsl"
 
 layout(set = 0, binding = 3, rgba32f) readonly uniform image3D illumination;
-layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
+// Read and written: it carries the march from chunk to chunk.
+layout(set = 0, binding = 4, rgba32f) uniform image2D out_image;
 
 const float LOG_FLOOR = 1e-3;
 
@@ -58,9 +60,11 @@ void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     ViewMarch v = view_march(camera_ray(px), frame.view_step);
-    vec3 C = vec3(0.0);
-    float T = 1.0;
-    for (int i = 0; i < v.samples; ++i) {
+    vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(out_image, ivec2(px));
+    vec3 C = acc.rgb;
+    float T = acc.a;
+    for (int i = int(chunk.first_sample); i < chunk_end(v.samples); ++i) {
+        if (view_ray_opaque(T)) break;
         vec3 p = sample_point(v, i);
         vec4 m = medium(p);
         float alpha = 1.0 - exp(-m.a * v.hv);
@@ -68,8 +72,7 @@ void main() {
             C += T * alpha * m.rgb * (frame.emission + illumination_at(p));
             T *= 1.0 - alpha;
         }
-        if (view_ray_opaque(T)) break;
     }
-    C += T * frame.background;
+    if (chunk.is_last != 0) C += T * frame.background;
     imageStore(out_image, ivec2(px), vec4(C, T));
 }

@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Baseline ray caster, one dispatch per frame, front to back: unshaded
+// Baseline ray caster, front to back, one dispatch per chunk of view samples
+// (view_chunk.glsl; one chunk at ordinary steps): unshaded
 // emission-absorption DVR (SHADING = 0), gradient Blinn-Phong (SHADING = 1), or
 // the emission term alone (SHADING = 2: what the illumination techniques render
 // for a scene without lights).
@@ -11,8 +12,10 @@ layout(constant_id = 0) const uint SHADING = 0;
 #include "volume.glsl"
 #include "lights.glsl"
 #include "view_ray.glsl"
+#include "view_chunk.glsl"
 
-layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
+// Read and written: it carries the march from chunk to chunk.
+layout(set = 0, binding = 4, rgba32f) uniform image2D out_image;
 
 vec3 gradient(vec3 uvw) {
     vec3 e = 1.0 / frame.dims;
@@ -45,9 +48,13 @@ void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     ViewMarch v = view_march(camera_ray(px), frame.view_step);
-    vec3 C = vec3(0.0);
-    float T = 1.0;
-    for (int i = 0; i < v.samples; ++i) {
+    vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(out_image, ivec2(px));
+    vec3 C = acc.rgb;
+    float T = acc.a;
+    for (int i = int(chunk.first_sample); i < chunk_end(v.samples); ++i) {
+        // Checked before a sample rather than after: the same stop, and a
+        // chunk that starts on an opaque ray does nothing.
+        if (view_ray_opaque(T)) break;
         vec3 p = sample_point(v, i);
         vec4 m = medium(p);
         float alpha = 1.0 - exp(-m.a * v.hv);
@@ -56,8 +63,7 @@ void main() {
             C += T * alpha * S;
             T *= 1.0 - alpha;
         }
-        if (view_ray_opaque(T)) break;
     }
-    C += T * frame.background;
+    if (chunk.is_last != 0) C += T * frame.background;
     imageStore(out_image, ivec2(px), vec4(C, T));
 }

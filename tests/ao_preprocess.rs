@@ -25,6 +25,7 @@ fn two_materials() -> Volume {
         spacing: Vec3::ONE,
         data: VoxelData::U8(data),
         value_range: (100.0, 200.0),
+        non_finite_voxels: 0,
     }
 }
 

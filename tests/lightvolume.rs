@@ -96,6 +96,7 @@ fn homogeneous(n: u32) -> Volume {
         spacing: Vec3::ONE,
         data: VoxelData::U8(vec![255; (n * n * n) as usize]),
         value_range: (0.0, 255.0),
+        non_finite_voxels: 0,
     }
 }
 

@@ -18,6 +18,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         }
     }
     let scene = scene_args::load(&args.scene)?;
+    technique.check(&scene).with_context(|| format!("rendering {technique}"))?;
     let ctx = session::open(&args.gpu)?;
     let output = {
         let gpu =

@@ -2,6 +2,7 @@
 
 use super::args::SceneArgs;
 use anyhow::{bail, Context as _};
+use sweeplab::scene::warnings::scene_warnings;
 use sweeplab::scene::Scene;
 use sweeplab::scene::{default_scene, scene_file};
 
@@ -19,6 +20,9 @@ pub fn load(args: &SceneArgs) -> anyhow::Result<Scene> {
     } else {
         default_scene::default_scene(&overrides)?
     };
+    for warning in scene_warnings(&scene) {
+        eprintln!("warning: {warning}");
+    }
     Ok(scene)
 }
 

@@ -3,6 +3,7 @@
 //! with the optical model the scene names.
 
 use crate::render::raycast::{self, Shading};
+use crate::render::view_chunks::check_view_step;
 use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene};
 use crate::vk::Profiler;
@@ -14,12 +15,16 @@ pub struct Baseline {
 }
 
 /// Unshaded emission-absorption ray casting.
-pub const DVR: Baseline =
-    Baseline { shading: Shading::Unshaded, summary: "unshaded emission-absorption ray casting (one dispatch)" };
+pub const DVR: Baseline = Baseline {
+    shading: Shading::Unshaded,
+    summary: "unshaded emission-absorption ray casting (one dispatch; chunked past the loop limit)",
+};
 
 /// Gradient Blinn-Phong ray casting, no shadows.
-pub const PHONG: Baseline =
-    Baseline { shading: Shading::BlinnPhong, summary: "gradient Blinn-Phong ray casting, no shadows (one dispatch)" };
+pub const PHONG: Baseline = Baseline {
+    shading: Shading::BlinnPhong,
+    summary: "gradient Blinn-Phong ray casting, no shadows (one dispatch; chunked past the loop limit)",
+};
 
 impl RenderTechnique for Baseline {
     fn name(&self) -> &'static str {
@@ -33,6 +38,9 @@ impl RenderTechnique for Baseline {
     }
     fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         raycast::resources(self.shading, width, height)
+    }
+    fn check(&self, scene: &Scene) -> Result<(), RenderError> {
+        check_view_step(scene, self.name())
     }
     fn render(
         &self,

@@ -11,7 +11,7 @@
 pub mod settings;
 pub mod technique;
 
-pub use settings::HalfAngleSettings;
+pub use settings::{HalfAngleSettings, SLICE_STEP_RANGE};
 pub use technique::HalfAngle;
 
 use crate::render::frame_params::{frame_params, MarchSteps};
@@ -72,6 +72,14 @@ pub struct Slicing {
     pub count: u32,
 }
 
+/// Checks the slice step before any GPU work.
+pub fn check(scene: &Scene) -> Result<(), RenderError> {
+    if scene.lights.len() == 1 {
+        slicing(scene, &scene.settings.half_angle)?;
+    }
+    Ok(())
+}
+
 pub fn slicing(scene: &Scene, settings: &HalfAngleSettings) -> Result<Slicing, RenderError> {
     let bx = scene.volume_box();
     let view = scene.camera.forward();
@@ -88,9 +96,31 @@ pub fn slicing(scene: &Scene, settings: &HalfAngleSettings) -> Result<Slicing, R
         let s = c.dot(half_vector);
         (lo.min(s), hi.max(s))
     });
-    let spacing = settings.slice_step_voxels(scene) * bx.voxel_length;
+    let step = settings.slice_step_voxels(scene);
+    let extent_voxels = (hi - lo) / bx.voxel_length;
+    check_slice_step(settings, step, extent_voxels)?;
+    let spacing = step * bx.voxel_length;
     let count = ((hi - lo) / spacing).ceil().max(1.0) as u32;
     Ok(Slicing { half_vector, front_to_back, first_plane: lo, spacing, count })
+}
+
+/// Most slices a frame may take: one dispatch, barrier and profiler scope each.
+pub const MAX_SLICES: f32 = 16_384.0;
+
+/// The slice distance in voxels, from `half_angle.slice_step` or else
+/// `render.step`, refused by name outside the range `slice_step` allows or
+/// past [`MAX_SLICES`] over the volume's `extent_voxels` along the half vector.
+fn check_slice_step(settings: &HalfAngleSettings, step: f32, extent_voxels: f32) -> Result<(), RenderError> {
+    let setting = if settings.slice_step.is_some() { "half_angle.slice_step" } else { "render.step" };
+    let smallest = SLICE_STEP_RANGE.0.max(extent_voxels / MAX_SLICES);
+    let largest = SLICE_STEP_RANGE.1;
+    if step.is_nan() || step < smallest || step > largest {
+        return Err(RenderError::Invalid(format!(
+            "{setting} = {step:e} voxels is outside what half-angle supports on this scene (one slice per step): from the smallest step {smallest:.3e} ({} slices at most) to {largest} voxels",
+            MAX_SLICES as u32
+        )));
+    }
+    Ok(())
 }
 
 fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Image, RenderError> {

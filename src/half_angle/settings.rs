@@ -27,12 +27,15 @@ impl HalfAngleSettings {
     }
 }
 
+/// Slice distances (voxels) half-angle slicing accepts, from either setting.
+pub const SLICE_STEP_RANGE: (f32, f32) = (0.01, 16.0);
+
 impl SettingsTable for HalfAngleSettings {
     const TABLE: &'static str = "half_angle";
 
     fn validate(&self) -> Result<(), SettingsError> {
         if let Some(step) = self.slice_step {
-            check_range(Self::TABLE, "slice_step", step, 0.01, 16.0)?;
+            check_range(Self::TABLE, "slice_step", step, SLICE_STEP_RANGE.0, SLICE_STEP_RANGE.1)?;
         }
         check_whole(Self::TABLE, "light_buffer_size", self.light_buffer_size, 16, 4096)
     }

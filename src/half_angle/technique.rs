@@ -45,6 +45,13 @@ impl RenderTechnique for HalfAngle {
         ]
     }
 
+    fn check(&self, scene: &Scene) -> Result<(), RenderError> {
+        match scene.lights.len() {
+            0 => crate::render::view_chunks::check_view_step(scene, self.name()),
+            _ => super::check(scene),
+        }
+    }
+
     fn render(
         &self,
         gpu: &GpuScene,

@@ -17,6 +17,7 @@ pub mod sweep_plan;
 pub mod sync;
 pub mod sync_strategy;
 pub mod technique;
+pub mod view_budget;
 
 pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};

@@ -32,9 +32,6 @@ use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
 use std::cell::OnceCell;
 
-/// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
-const LOOP_BUDGET: u32 = 60_000;
-
 /// local_size_x of glsl/ipsvi_line.comp (16 measured no faster on lavapipe).
 const LINE_GROUP: u32 = 64;
 
@@ -165,9 +162,7 @@ impl<'a> IpsviRenderer<'a> {
         let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
         let cache = Cache::new(gpu, settings.cache_size)?;
 
-        let diagonal_voxels = 2.0 * bx.half_extent.length() / bx.voxel_length;
-        let max_view_samples = (diagonal_voxels / scene.render.step_voxels).ceil() as u32 + 1;
-        let max_piecewise_steps = (LOOP_BUDGET / max_view_samples).saturating_sub(1).max(1);
+        let max_piecewise_steps = super::view_budget::piecewise_steps(scene)?;
 
         let mut flags = 0;
         if settings.piecewise {

@@ -66,6 +66,13 @@ impl RenderTechnique for Ipsvi {
         needs
     }
 
+    fn check(&self, scene: &Scene) -> Result<(), RenderError> {
+        match scene.lights.len() {
+            0 => crate::render::view_chunks::check_view_step(scene, self.name()),
+            _ => super::view_budget::piecewise_steps(scene).map(|_| ()),
+        }
+    }
+
     fn render(
         &self,
         gpu: &GpuScene,

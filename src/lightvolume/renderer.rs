@@ -172,7 +172,8 @@ impl<'s> LightVolumeRenderer<'s> {
                 profiler.end(rec, update_scope)?;
             }
             if let Some(v) = view_pass {
-                v.output.prepare_for_compute_write(rec);
+                // Read-write: the chunks of the ray cast carry the march in it.
+                v.output.prepare_for_compute_read_write(rec);
                 let scope = profiler.begin(rec, "lightvolume_raycast")?;
                 v.raycast.record(rec, v.width, v.height);
                 profiler.end(rec, scope)?;

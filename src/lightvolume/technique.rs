@@ -68,6 +68,10 @@ impl RenderTechnique for LightVolume {
         Ok(Some(Box::new(super::session::LightVolumeSession::new(gpu)?)))
     }
 
+    fn check(&self, scene: &Scene) -> Result<(), RenderError> {
+        crate::render::view_chunks::check_view_step(scene, self.name())
+    }
+
     fn render(
         &self,
         gpu: &GpuScene,

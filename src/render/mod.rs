@@ -14,6 +14,7 @@ pub mod raycast;
 pub mod registry;
 pub mod session;
 pub mod technique;
+pub mod view_chunks;
 
 pub use error::RenderError;
 pub use frame_result::FrameResult;

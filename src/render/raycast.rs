@@ -1,10 +1,11 @@
-//! The plain ray cast of glsl/raycast.comp, one dispatch, variant chosen by
-//! specialization constant: the DVR and Phong baselines, and the emission term
+//! The plain ray cast of glsl/raycast.comp, one dispatch per chunk of view
+//! samples ([`ViewChunks`]), variant chosen by specialization constant: the DVR and Phong baselines, and the emission term
 //! alone that a lit technique renders for a scene without lights.
 
 use super::frame_params::{frame_params, FrameParams, MarchSteps};
 use super::frame_result::FrameResult;
 use super::technique::ResourceNeed;
+use super::view_chunks::ViewChunks;
 use super::{GpuScene, OutputImage, RenderError};
 use crate::shaders::raycast;
 use crate::vk::commands::submit_and_wait;
@@ -40,6 +41,10 @@ pub fn render(
 ) -> Result<FrameResult, RenderError> {
     let ctx = gpu.ctx;
     let name = shading.pass_name();
+    // Per sample: the sample, and for Blinn-Phong the loop over the lights,
+    // which llvmpipe counts as one iteration more than it runs (measured).
+    let per_sample = 1 + if shading == Shading::BlinnPhong { gpu.scene.lights.len() as u64 + 1 } else { 0 };
+    let chunks = ViewChunks::for_render(gpu.scene, name, per_sample)?;
     let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
     let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
     let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
@@ -56,10 +61,10 @@ pub fn render(
     ])?;
     let readback = output.readback_buffer(ctx)?;
     let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
-        output.prepare_for_compute_write(rec);
+        output.prepare_for_compute_read_write(rec);
         let scope = profiler.begin(rec, name)?;
         rec.bind(&pipeline, set);
-        rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
+        chunks.record(rec, &pipeline, width, height);
         profiler.end(rec, scope)?;
         output.record_readback(rec, &readback);
         Ok((rec.dispatch_count, rec.barrier_count))

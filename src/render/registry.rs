@@ -115,9 +115,14 @@ pub fn profiled_frame(
     if width == 0 || height == 0 {
         return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
     }
+    technique.check(gpu.scene)?;
     gpu.ctx.memory.reset_peak();
     profiler.reset();
     let frame = frame(profiler)?;
+    let bad = frame.image.pixels.iter().filter(|p| !p.iter().all(|c| c.is_finite())).count();
+    if bad > 0 {
+        return Err(RenderError::NonFinite { technique: technique.name(), bad, total: frame.image.pixels.len() });
+    }
     let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
     Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })
 }

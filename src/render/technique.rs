@@ -47,6 +47,12 @@ pub trait RenderTechnique: Sync {
         Ok(None)
     }
 
+    /// Refuses what the technique cannot honour of `scene` (a step past what
+    /// its march can take), naming the setting; run before any GPU work.
+    fn check(&self, _scene: &Scene) -> Result<(), RenderError> {
+        Ok(())
+    }
+
     /// A line worth printing beside the frame's figures (IPSVI's sync strategy).
     fn settings_note(&self, _scene: &Scene) -> Option<String> {
         None

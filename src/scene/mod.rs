@@ -17,6 +17,7 @@ pub mod synthetic;
 pub mod technique_settings;
 pub mod transfer;
 pub mod volume;
+pub mod warnings;
 
 pub use camera::{Camera, Projection, RayBasis};
 pub use geometry::VolumeBox;

@@ -145,6 +145,7 @@ fn u8_volume(name: &str, n: u32, data: Vec<u8>) -> Volume {
         spacing: Vec3::ONE,
         data: VoxelData::U8(data),
         value_range: (lo as f64, hi as f64),
+        non_finite_voxels: 0,
     }
 }
 
@@ -160,6 +161,7 @@ fn rescaled_f32_volume(name: &str, n: u32, raw: Vec<f32>) -> Volume {
         spacing: Vec3::ONE,
         data: VoxelData::F32(data),
         value_range: (lo as f64, hi as f64),
+        non_finite_voxels: 0,
     }
 }
 

@@ -58,6 +58,10 @@ pub struct Volume {
     pub data: VoxelData,
     /// Range of the raw values in the file's own units, before normalization.
     pub value_range: (f64, f64),
+    /// NaN and infinite voxels of the file, which the loader mapped to 0 or 1
+    /// (src/scene/loaders/decode.rs); 0 for procedural volumes. Carried so the
+    /// user is warned ([`crate::scene::warnings`]).
+    pub non_finite_voxels: u64,
 }
 
 impl Volume {

@@ -36,6 +36,7 @@ pub fn sphere_volume(n: u32, r: f32) -> Volume {
         spacing: Vec3::ONE,
         data: VoxelData::U8(data),
         value_range: (0.0, 255.0),
+        non_finite_voxels: 0,
     }
 }
 

@@ -113,36 +113,41 @@ impl Layout {
                 found: bytes.len() as u64,
             });
         }
-        let (data, value_range) = decode_voxels(bytes, self.voxel_type, self.endian)?;
-        Ok(Volume { name, dims: self.dims, spacing: self.spacing, data, value_range })
+        let (data, value_range, non_finite_voxels) = decode_voxels(bytes, self.voxel_type, self.endian)?;
+        Ok(Volume { name, dims: self.dims, spacing: self.spacing, data, value_range, non_finite_voxels })
     }
 }
 
-/// Converts raw voxels into normalized storage; returns it with the raw [min, max].
-/// Non-finite floats are left out of the range; NaN and -inf map to 0, +inf to 1.
+/// Converts raw voxels into normalized storage; returns it with the raw [min, max]
+/// and the count of non-finite voxels. Non-finite floats are left out of the
+/// range; NaN and -inf map to 0, +inf to 1 (counted, so the user can be warned).
 pub fn decode_voxels(
     bytes: &[u8],
     voxel_type: VoxelType,
     endian: Endian,
-) -> Result<(VoxelData, (f64, f64)), FormatProblem> {
+) -> Result<(VoxelData, (f64, f64), u64), FormatProblem> {
     let count = bytes.len() / voxel_type.size();
     match voxel_type {
         VoxelType::U8 => {
             let (lo, hi) = bytes.iter().fold((u8::MAX, u8::MIN), |(lo, hi), &v| (lo.min(v), hi.max(v)));
             let range = if bytes.is_empty() { (0.0, 0.0) } else { (lo as f64, hi as f64) };
-            Ok((VoxelData::U8(copy_bytes(bytes)?), range))
+            Ok((VoxelData::U8(copy_bytes(bytes)?), range, 0))
         }
         VoxelType::U16 => {
             let values = bytes.chunks_exact(2).map(|c| read_u16(c, endian) as i32);
-            Ok(rescale_integers(values, count)?)
+            let (data, range) = rescale_integers(values, count)?;
+            Ok((data, range, 0))
         }
         VoxelType::I16 => {
             let values = bytes.chunks_exact(2).map(|c| read_u16(c, endian) as i16 as i32);
-            Ok(rescale_integers(values, count)?)
+            let (data, range) = rescale_integers(values, count)?;
+            Ok((data, range, 0))
         }
         VoxelType::F32 => {
             let values = bytes.chunks_exact(4).map(|c| f32::from_bits(read_u32(c, endian)));
-            Ok(rescale_floats(values, count)?)
+            let non_finite = values.clone().filter(|v| !v.is_finite()).count() as u64;
+            let (data, range) = rescale_floats(values, count)?;
+            Ok((data, range, non_finite))
         }
     }
 }
@@ -290,7 +295,7 @@ mod tests {
     fn int16_rescales_min_to_0_and_max_to_65535() {
         let values: [i16; 4] = [-100, 0, 50, 100];
         let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_be_bytes()).collect();
-        let (data, range) = decode_voxels(&bytes, VoxelType::I16, Endian::Big).unwrap();
+        let (data, range, _) = decode_voxels(&bytes, VoxelType::I16, Endian::Big).unwrap();
         assert_eq!(range, (-100.0, 100.0));
         // 100/200 * 65535 = 32767.5 rounds up; 150/200 * 65535 = 49151.25 rounds down.
         assert_eq!(data, VoxelData::U16(vec![0, 32768, 49151, 65535]));
@@ -299,11 +304,11 @@ mod tests {
     #[test]
     fn constant_data_maps_to_zero() {
         let bytes: Vec<u8> = [7u16; 5].iter().flat_map(|v| v.to_le_bytes()).collect();
-        let (data, range) = decode_voxels(&bytes, VoxelType::U16, Endian::Little).unwrap();
+        let (data, range, _) = decode_voxels(&bytes, VoxelType::U16, Endian::Little).unwrap();
         assert_eq!(range, (7.0, 7.0));
         assert_eq!(data, VoxelData::U16(vec![0; 5]));
         let bytes: Vec<u8> = [2.5f32; 3].iter().flat_map(|v| v.to_le_bytes()).collect();
-        let (data, _) = decode_voxels(&bytes, VoxelType::F32, Endian::Little).unwrap();
+        let (data, _, _) = decode_voxels(&bytes, VoxelType::F32, Endian::Little).unwrap();
         assert_eq!(data, VoxelData::F32(vec![0.0; 3]));
     }
 
@@ -311,7 +316,7 @@ mod tests {
     fn non_finite_floats_stay_out_of_the_range() {
         let values = [f32::NAN, 1.0, 3.0, f32::INFINITY, f32::NEG_INFINITY, 2.0];
         let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
-        let (data, range) = decode_voxels(&bytes, VoxelType::F32, Endian::Little).unwrap();
+        let (data, range, _) = decode_voxels(&bytes, VoxelType::F32, Endian::Little).unwrap();
         assert_eq!(range, (1.0, 3.0));
         assert_eq!(data, VoxelData::F32(vec![0.0, 0.0, 1.0, 1.0, 0.0, 0.5]));
     }
