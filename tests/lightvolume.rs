@@ -598,38 +598,44 @@ fn a_point_light_at_the_centre_of_a_homogeneous_cube_lights_all_octants() {
 }
 
 /// Stated tolerance for a spot light inside the cube pointing away from the
-/// centre (+x, hard 30 degree cone, model (i)): inside the cone (5 degrees
-/// clear of its edge) the largest error is below 0.01 of the peak (measured
-/// 0.0053); outside it (5 degrees clear) the light is below 1e-6 of the peak.
+/// centre (hard cone, model (i)): inside the cone (5 degrees clear of its edge)
+/// the largest error is below 0.01 of the peak (measured 0.0059 along +x,
+/// one pass; see the printed figure for the cone between +x and -y, two
+/// passes); outside it (5 degrees clear) the light is below 1e-6 of the peak.
 const SPOT_INSIDE_WORST: f64 = 0.01;
 
 #[test]
 fn a_spot_light_inside_pointing_away_from_the_centre_lights_what_its_cone_covers() {
     let ctx = validated_context();
     let n = 16;
-    let (mut scene, sigma) = homogeneous_scene(n, Vec3::NEG_Y, 1);
     let position = Vec3::new(0.1, 0.0, 0.0);
-    let outer = 30.0f32;
-    scene.lights[0].kind =
-        LightKind::Spot { position, direction: Vec3::X, inner_cone_deg: outer, outer_cone_deg: outer };
-    scene.lights[0].color = Vec3::ONE;
-    let (out, _) = frame(&ctx, &scene, 16, true);
-    let names: Vec<String> = out.groups().iter().map(|g| g.direction_name()).collect();
-    assert!(!names.contains(&"-x".to_string()), "the cone never travels toward -x: {names:?}");
-    let angle = |p: Vec3| (p - position).angle_between(Vec3::X).to_degrees();
-    let lit =
-        |p: Vec3| (angle(p) < outer - 5.0).then(|| 1.5 * (-sigma * ((p - position).length() * n as f32) as f64).exp());
-    let (worst, mean, _) = volume_against(&out, lit);
-    println!("spot inside: largest error {worst:.4} of the peak inside the cone, mean relative {mean:.4}");
-    assert!(worst <= SPOT_INSIDE_WORST, "inside the cone: {worst:.4}");
-    let volume = out.illumination.as_ref().unwrap();
-    let grid = out.grid;
-    let peak = (0..volume.high.len()).map(|i| volume.value(i, 0)).fold(0.0, f64::max);
-    for i in 0..volume.high.len() {
-        let (x, y, z) = (i as u32 % grid.x, i as u32 / grid.x % grid.y, i as u32 / (grid.x * grid.y));
-        let p = (Vec3::new(x as f32, y as f32, z as f32) + 0.5) / grid.as_vec3() - 0.5;
-        if angle(p) > outer + 5.0 {
-            assert!(volume.value(i, 0).abs() <= 1e-6 * peak, "light outside the cone at {p}");
+    // A cone along an axis fits one pass; one between two axes, inside both
+    // half-spaces, fits the two passes of a directional light along it.
+    for (direction, outer, passes) in
+        [(Vec3::X, 30.0f32, vec!["+x"]), (Vec3::new(1.0, -0.6, 0.0), 20.0, vec!["+x", "-y"])]
+    {
+        let (mut scene, sigma) = homogeneous_scene(n, Vec3::NEG_Y, 1);
+        scene.lights[0].kind = LightKind::Spot { position, direction, inner_cone_deg: outer, outer_cone_deg: outer };
+        scene.lights[0].color = Vec3::ONE;
+        let (out, _) = frame(&ctx, &scene, 16, true);
+        let names: Vec<String> = out.groups().iter().map(|g| g.direction_name()).collect();
+        assert_eq!(names, passes, "spot along {direction}, cone {outer}");
+        let angle = |p: Vec3| (p - position).angle_between(direction).to_degrees();
+        let lit = |p: Vec3| {
+            (angle(p) < outer - 5.0).then(|| 1.5 * (-sigma * ((p - position).length() * n as f32) as f64).exp())
+        };
+        let (worst, mean, _) = volume_against(&out, lit);
+        println!("spot inside along {direction}: largest error {worst:.4} of the peak inside the cone, mean relative {mean:.4}");
+        assert!(worst <= SPOT_INSIDE_WORST, "inside the cone: {worst:.4}");
+        let volume = out.illumination.as_ref().unwrap();
+        let grid = out.grid;
+        let peak = (0..volume.high.len()).map(|i| volume.value(i, 0)).fold(0.0, f64::max);
+        for i in 0..volume.high.len() {
+            let (x, y, z) = (i as u32 % grid.x, i as u32 / grid.x % grid.y, i as u32 / (grid.x * grid.y));
+            let p = (Vec3::new(x as f32, y as f32, z as f32) + 0.5) / grid.as_vec3() - 0.5;
+            if angle(p) > outer + 5.0 {
+                assert!(volume.value(i, 0).abs() <= 1e-6 * peak, "light outside the cone at {p}");
+            }
         }
     }
     assert_validation_clean(&ctx);

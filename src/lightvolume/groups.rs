@@ -100,6 +100,14 @@ pub fn light_position_direction(light: &Light) -> Vec3 {
     }
 }
 
+/// The direction a spot light points (unit).
+fn light_spot_direction(light: &Light) -> Vec3 {
+    match light.kind {
+        LightKind::Spot { direction, .. } => direction.normalize_or(Vec3::NEG_Y),
+        _ => Vec3::NEG_Y,
+    }
+}
+
 /// (axis, travel, factor) of the closest and the second closest face of a
 /// light at unit direction `l_pos`. The face closest to the light has the
 /// outward normal n with the largest `l_pos . n`; its group propagates along
@@ -125,6 +133,16 @@ fn cone_reaches(light: &Light, axis: usize, travel: i32) -> bool {
     angle - outer_cone_deg.to_radians() < 0.5 * PI
 }
 
+/// Whether every direction of a spot light's cone travels along `travel` on
+/// `axis` (so that group alone can carry all its light, with a constant factor).
+fn cone_within(light: &Light, axis: usize, travel: i32) -> bool {
+    let LightKind::Spot { direction, outer_cone_deg, .. } = light.kind else { return false };
+    let spot = direction.normalize_or(Vec3::NEG_Y);
+    let angle = (spot[axis] * travel as f32).clamp(-1.0, 1.0).acos();
+    // A margin of a degree: the shader drops directions within 1e-4 of the plane.
+    angle + outer_cone_deg.to_radians() < 0.5 * PI - 1f32.to_radians()
+}
+
 /// Every contribution of the lights that are on (`None` is a light switched
 /// off), in light order, for a volume box of half extent `box_half` (world
 /// units, centred at the origin).
@@ -145,6 +163,19 @@ pub fn contributions(lights: &[Option<Light>], box_half: Vec3) -> Vec<Contributi
             }
         };
         if (0..3).all(within) {
+            // A spot light whose cone fits the two groups a directional light
+            // along its axis would take gets those two, with their factors
+            // (section 7.3: a cone that fits two passes costs two).
+            let along_axis = matches!(light.kind, LightKind::Spot { direction, .. } if direction != Vec3::ZERO)
+                .then(|| face_factors(-light_spot_direction(light)));
+            if let Some(groups) =
+                along_axis.filter(|g| g.iter().all(|&(a, t, f)| f <= MIN_FACTOR || cone_within(light, a, t)))
+            {
+                for (axis, travel, factor) in groups {
+                    push(axis, travel, factor, false);
+                }
+                continue;
+            }
             for axis in 0..3 {
                 for travel in [1, -1] {
                     if cone_reaches(light, axis, travel) {
@@ -284,8 +315,19 @@ mod tests {
                 falloff: Falloff::None,
             })
         };
+        // Along an axis: that group alone carries the whole cone.
         let narrow = contributions(&[spot(Vec3::X, 30.0)], Vec3::splat(0.5));
-        assert_eq!(slots(&narrow), ["+x", "+y", "-y", "+z", "-z"], "never back toward -x");
+        assert_eq!(slots(&narrow), ["+x"]);
+        assert!(!narrow[0].per_voxel && narrow[0].factor == 1.0);
+        // Between two axes, inside both half-spaces: the two groups of a
+        // directional light along the spot, their factors summing to one.
+        let between = contributions(&[spot(Vec3::new(1.0, -0.6, 0.0), 20.0)], Vec3::splat(0.5));
+        assert_eq!(slots(&between), ["+x", "-y"]);
+        assert!((between.iter().map(|c| c.factor).sum::<f32>() - 1.0).abs() < 1e-6);
+        // A cone that crosses a group's plane: per voxel, the groups it reaches.
+        let crossing = contributions(&[spot(Vec3::new(1.0, -0.6, 0.0), 50.0)], Vec3::splat(0.5));
+        assert!(crossing.iter().all(|c| c.per_voxel), "{:?}", slots(&crossing));
+        assert_eq!(slots(&crossing), ["+x", "+y", "-y", "+z", "-z"], "never back toward -x");
         let wide = contributions(&[spot(Vec3::X, 100.0)], Vec3::splat(0.5));
         assert_eq!(wide.len(), 6);
     }
