@@ -304,8 +304,14 @@ fn bench_output_folders_hold_no_stale_files() {
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
     };
-    run("barrier-global,events");
+    run("barrier-global,events,secondary");
     assert!(dir.join("lines_events.json").exists());
+    // Replayed secondary buffers have no per-line timestamps: blank, not 0 or NaN.
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("sync.json")).unwrap()).unwrap();
+    let row = |s: &str| rows.iter().find(|r| r["strategy"] == s).unwrap().clone();
+    assert!(row("barrier-global")["median_line_us"].as_f64().is_some_and(|v| v > 0.0));
+    assert!(row("secondary").get("median_line_us").is_none(), "{}", row("secondary"));
     run("barrier-global");
     assert!(!dir.join("lines_events.json").exists(), "a stale file of the first run is left");
     assert!(dir.join("lines_barrier-global.json").exists() && dir.join("sync.csv").exists());

@@ -98,9 +98,13 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
                 row.set("rmse", rmse);
                 row.set("gpu_ms_with_line_timestamps", detailed_ms);
                 row.set("timestamp_perturbation_ms", detailed_ms - timed_ms);
-                row.set("inside_dispatches_ms", timeline.inside_ms).set("gaps_ms", timeline.gap_ms);
-                row.set("median_line_us", median(&timeline.durations_us))
-                    .set("median_gap_us", median(&timeline.gaps_us));
+                // Replayed secondary buffers carry no per-line timestamps: those
+                // columns stay blank rather than 0 or NaN.
+                if !timeline.durations_us.is_empty() {
+                    row.set("inside_dispatches_ms", timeline.inside_ms).set("gaps_ms", timeline.gap_ms);
+                    row.set("median_line_us", median(&timeline.durations_us))
+                        .set("median_gap_us", median(&timeline.gaps_us));
+                }
                 table.push(row);
                 if size == largest && lw == 1 {
                     let name = strategy.name();
