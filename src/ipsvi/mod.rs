@@ -7,6 +7,7 @@
 //! the synchronization study, another [`SyncStrategy`]'s object from [`sync`]).
 
 pub mod cache_region;
+pub mod cache_update;
 pub mod exit_points;
 pub mod gpu_params;
 pub mod light_anchor;
@@ -18,6 +19,7 @@ pub mod sync;
 pub mod sync_strategy;
 pub mod technique;
 
+pub use cache_update::{CacheUpdate, CacheWrite};
 pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};
 pub use sync_strategy::SyncStrategy;

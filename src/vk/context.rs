@@ -329,6 +329,7 @@ fn create_device(instance: &ash::Instance, cand: &Candidate, queue_family: u32) 
     // SAFETY: the chained structs live on the stack for the call.
     unsafe { instance.get_physical_device_features2(cand.physical_device, &mut have) };
     let extended_formats = have.features.shader_storage_image_extended_formats;
+    let int64 = have.features.shader_int64;
     let mut missing = Vec::new();
     if have13.synchronization2 != vk::TRUE {
         missing.push("synchronization2");
@@ -342,13 +343,23 @@ fn create_device(instance: &ash::Instance, cand: &Candidate, queue_family: u32) 
     if extended_formats != vk::TRUE {
         missing.push("shaderStorageImageExtendedFormats");
     }
+    // 64-bit atomicMax of IPSVI's cache_write = "farthest" claims.
+    if int64 != vk::TRUE {
+        missing.push("shaderInt64");
+    }
+    if have12.shader_buffer_int64_atomics != vk::TRUE {
+        missing.push("shaderBufferInt64Atomics");
+    }
     if !missing.is_empty() {
         return Err(VkError::MissingFeature { device: cand.info.name.clone(), missing: missing.join(", ") });
     }
-    let mut want12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true).timeline_semaphore(true);
+    let mut want12 = vk::PhysicalDeviceVulkan12Features::default()
+        .host_query_reset(true)
+        .timeline_semaphore(true)
+        .shader_buffer_int64_atomics(true);
     let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true);
     // r16ui / rgba16f storage images of the IPSVI cache.
-    let core = vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true);
+    let core = vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true).shader_int64(true);
     let priorities = [1.0f32];
     let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
     let info = vk::DeviceCreateInfo::default()
