@@ -232,9 +232,19 @@ uint key_index(uint half_index, ivec2 k) {
     return half_index * n * n + uint(k.y) * n + uint(k.x);
 }
 
-// The last sample of a run in texel k writes the light leaving it: the light l
-// it received, composited back to front with its own segment along the light
-// (one light step), stored at the segment's far end.
+// With piecewise integration a run's sample nearest the light writes, without
+// it the run's last sample (the paper's choice): readers then use the value as
+// it is, and it should have come as far along the light as the run did.
+bool run_keeps_nearest() { return (sweep.flags & FLAG_PIECEWISE) != 0u; }
+
+// A run of samples in texel k ends: its writing sample stores the light leaving it: the light l it received, composited back to front with its
+// own segment along the light (one light step), stored at the segment's far
+// end. (With piecewise integration, storing the run's last sample as the
+// paper does: on a surface lit from the camera's side it lies deep inside the
+// object, and the next line's surface samples, nearer the light, read its
+// attenuated light: measured 1.6e-2 RMSE on the engine at 256x256, 7.6e-3 with
+// the nearest sample, 2.7e-3 for light rays. Readers farther along march back
+// to the nearest sample exactly.)
 void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel) {
     if (CLAIMS) {
         // Only the claimed winner stores; compared on record and pixel.
@@ -267,7 +277,7 @@ bool may_stop() { return (sweep.flags & (FLAG_EXIT_POINTS | FLAG_EARLY_TERMINATI
 
 // cache_write = "farthest"/"nearest", one dispatch ahead: marches pixel `index`
 // of the next block exactly as shade_pixel will (same samples, same stop) and
-// claims each texel where one of its runs ends for its last sample.
+// claims each texel where one of its runs ends, for the run's writing sample.
 void claim_pixel(BlockParams next, uint index) {
     uvec2 px = block_pixel(next, index);
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
@@ -286,8 +296,8 @@ void claim_pixel(BlockParams next, uint index) {
             vec3 c = cache_coord(p);
             ivec2 k = sample_texel(c);
             if (run.x >= 0 && k != run) atomicMax(keys[key_index(KEY_HALF_NEXT, run)], claim_key(push.block_index + 1u, run_depth, index));
+            if (k != run || !run_keeps_nearest() || c.z < run_depth) run_depth = c.z;
             run = k;
-            run_depth = c.z;
             T *= 1.0 - alpha;
         }
         if (ert && view_ray_opaque(T) && v.t_enter + (float(i) + 1.0) * v.h >= keep_going) break;
@@ -324,10 +334,12 @@ void shade_pixel(uint index) {
                     ivec2 k = sample_texel(c);
                     if (run.x >= 0 && k != run) store_sample(run, run_p, run_depth, run_light, index);
                     l = light_from_samples(p, c);
+                    if (k != run || !run_keeps_nearest() || c.z < run_depth) {
+                        run_p = p;
+                        run_depth = c.z;
+                        run_light = l;
+                    }
                     run = k;
-                    run_p = p;
-                    run_depth = c.z;
-                    run_light = l;
                 } else {
                     l = light_at(p);
                 }

@@ -126,7 +126,7 @@ const FED_CACHE: u32 = 48;
 
 /// The stated tolerance of view-samples mode at FED_CACHE against model (ii),
 /// relative RMSE: 4% for a directional light, 10% for point and spot lights
-/// (measured on lavapipe 2.7%, and 1.0% to 8.3%, two lights 5.0%; light-rays
+/// (measured on lavapipe 2.7%, and 1.0% to 8.0%, two lights 4.8%; light-rays
 /// mode at the same cache 2.5%, and 0.9% to 3.8%). Why worse than light rays: a texel holds the light at one
 /// depth along its ray, written by one sample of the previous line; a reader
 /// nearer the light than that depth cannot march back and is over-attenuated,
