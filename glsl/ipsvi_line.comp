@@ -20,6 +20,9 @@ layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-c
 layout(constant_id = 2) const bool VIEW_SAMPLES = false;  // cache_update = "view-samples"
 layout(constant_id = 3) const bool CLAIMS = false;        // cache_write = "farthest" or "nearest": one writer per texel
 layout(constant_id = 4) const bool NEAREST = false;       // "nearest": the sample closest to the light wins
+// Cost breakdown (src/ipsvi/breakdown.rs): 0 ray casting only, 1 + cache reads,
+// 2 + piecewise integration, 3 + cache writes = IPSVI.
+layout(constant_id = 5) const uint STEP = 3u;
 
 #include "ipsvi_common.glsl"
 #include "view_ray.glsl"
@@ -146,7 +149,7 @@ vec4 cache_bilinear(vec2 c) {
 vec4 light_at(vec3 p) {
     vec3 c = cache_coord(p);
     vec4 cached = cache_bilinear(c.xy);
-    if ((sweep.flags & FLAG_PIECEWISE) == 0u) return vec4(cached.rgb, cached.a);
+    if ((sweep.flags & FLAG_PIECEWISE) == 0u || STEP < 2u) return vec4(cached.rgb, cached.a);
     uvec2 k = uvec2(clamp(ivec2(floor(c.xy)), ivec2(0), ivec2(sweep.cache_size) - 1));
     Ray r = cache_ray(k);
     vec2 io = ray_in_box(r);
@@ -200,7 +203,7 @@ vec4 light_from_samples(vec3 p, vec3 c) {
     vec2 t = c.xy - 0.5;
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
-    bool piecewise = (sweep.flags & FLAG_PIECEWISE) != 0u;
+    bool piecewise = (sweep.flags & FLAG_PIECEWISE) != 0u && STEP >= 2u;
     vec4 sum = vec4(0.0);
     float front = 0.0;
     for (int j = 0; j < 4; ++j) {
@@ -246,6 +249,7 @@ bool run_keeps_nearest() { return (sweep.flags & FLAG_PIECEWISE) != 0u; }
 // the nearest sample, 2.7e-3 for light rays. Readers farther along march back
 // to the nearest sample exactly.)
 void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel) {
+    if (STEP < 3u) return;
     if (CLAIMS) {
         // Only the claimed winner stores; compared on record and pixel.
         uint64_t mask = (uint64_t(0xFFFFFu) << 44) | uint64_t(0x1FFFFu);
@@ -329,7 +333,9 @@ void shade_pixel(uint index) {
             float alpha = 1.0 - exp(-m.a * v.hv);
             if (alpha > 0.0) {
                 vec4 l;
-                if (VIEW_SAMPLES) {
+                if (STEP == 0u) {
+                    l = vec4(0.0, 0.0, 0.0, 1.0);
+                } else if (VIEW_SAMPLES) {
                     vec3 c = cache_coord(p);
                     ivec2 k = sample_texel(c);
                     if (run.x >= 0 && k != run) store_sample(run, run_p, run_depth, run_light, index);
@@ -413,6 +419,8 @@ void main() {
     uint texels = block.region.z * block.region.w;
     if (id < block.pixel_count) {
         shade_pixel(id);
+    } else if (STEP < 3u) {
+        return;
     } else if (id < block.pixel_count + texels) {
         uint texel = id - block.pixel_count;
         if (VIEW_SAMPLES) {

@@ -289,3 +289,32 @@ fn claimed_writes_are_deterministic_and_racy_writes_are_reported() {
     }
     assert_validation_clean(&ctx);
 }
+
+/// The breakdown's steps (bench ipsvi --breakdown) run validation-clean; the
+/// last is the IPSVI frame bit for bit, and the earlier ones leave parts out
+/// (no cache: no shadow; no piecewise integration: another image).
+#[test]
+fn breakdown_steps_end_in_the_ipsvi_frame() {
+    use sweeplab::ipsvi::BreakdownStep;
+    let ctx = validated_context();
+    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    for cache_update in [CacheUpdate::ViewSamples, CacheUpdate::LightRays] {
+        let s = IpsviSettings { cache_update, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
+        let frame = ipsvi(&ctx, &gpu, &s, SyncStrategy::BarrierGlobal);
+        let steps: Vec<LinearImage> = BreakdownStep::ALL
+            .iter()
+            .map(|&breakdown_step| {
+                ipsvi(&ctx, &gpu, &IpsviSettings { breakdown_step, ..s.clone() }, SyncStrategy::BarrierGlobal)
+            })
+            .collect();
+        assert_eq!(steps[3], frame, "{cache_update:?}: the full step is the frame");
+        for (i, step) in steps[..3].iter().enumerate() {
+            assert!(compare(step, &frame).unwrap().rmse > 1e-4, "{cache_update:?}: step {i} should differ");
+        }
+        // Without the cache the light is unshadowed: brighter overall.
+        let sum = |img: &LinearImage| img.pixels.iter().map(|p| (p[0] + p[1] + p[2]) as f64).sum::<f64>();
+        assert!(sum(&steps[0]) > sum(&frame), "{cache_update:?}: no cache, no shadow");
+    }
+    assert_validation_clean(&ctx);
+}

@@ -500,6 +500,7 @@ fn technique_tables_are_read_into_typed_settings() {
         cache_write: CacheWrite::Racy,
         sync: SyncStrategy::Events,
         single_dispatch_baseline: false,
+        breakdown_step: sweeplab::ipsvi::BreakdownStep::Full,
     };
     let lightvolume = LightVolumeSettings {
         scale: 4,

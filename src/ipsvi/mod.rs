@@ -6,6 +6,7 @@
 //! dispatch, followed by the barrier `cache_write_to_next_line_read` (or, in
 //! the synchronization study, another [`SyncStrategy`]'s object from [`sync`]).
 
+pub mod breakdown;
 pub mod cache_region;
 pub mod cache_update;
 pub mod exit_points;
@@ -19,6 +20,7 @@ pub mod sync;
 pub mod sync_strategy;
 pub mod technique;
 
+pub use breakdown::BreakdownStep;
 pub use cache_update::{CacheUpdate, CacheWrite};
 pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};

@@ -3,6 +3,7 @@
 //! with the synchronization of the frame's strategy (`super::sync`) before and
 //! after each.
 
+use super::breakdown::BreakdownStep;
 use super::cache_region::{plane_region, TexelRect};
 use super::cache_update::{CacheUpdate, CacheWrite};
 use super::exit_points::{self, ExitPoints};
@@ -271,6 +272,7 @@ impl<'a> IpsviRenderer<'a> {
             (2, view_samples as u32),
             (3, claims as u32),
             (4, nearest as u32),
+            (5, settings.breakdown_step.shader_step()),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
@@ -541,7 +543,12 @@ fn block_params(
                 });
             }
             let count = out.len() - first_record;
-            if claims {
+            if settings.breakdown_step != BreakdownStep::Full {
+                // Nothing written: no texel or claim invocations either.
+                for r in &mut out[first_record..] {
+                    r.region = [0; 4];
+                }
+            } else if claims {
                 for r in first_record..first_record + count - 1 {
                     out[r].claim_count = out[r + 1].pixel_count;
                 }

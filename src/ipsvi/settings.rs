@@ -1,6 +1,7 @@
 //! IPSVI parameters from the scene file's `[ipsvi]` table (or `--set ipsvi.key=value`),
 //! read when the scene is read ([`crate::scene::settings_table`]).
 
+use super::breakdown::BreakdownStep;
 use super::cache_update::{CacheUpdate, CacheWrite};
 use super::sync_strategy::SyncStrategy;
 use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
@@ -45,6 +46,10 @@ pub struct IpsviSettings {
     /// Set in code only, never from a file.
     #[serde(skip)]
     pub single_dispatch_baseline: bool,
+    /// Study baseline: which parts of the line shader run (`bench ipsvi
+    /// --breakdown`); `Full` is IPSVI. Set in code only, never from a file.
+    #[serde(skip)]
+    pub breakdown_step: BreakdownStep,
 }
 
 /// When the view rays of the main pass stop.
@@ -89,6 +94,7 @@ impl Default for IpsviSettings {
             cache_write: CacheWrite::Farthest,
             sync: SyncStrategy::BarrierGlobal,
             single_dispatch_baseline: false,
+            breakdown_step: BreakdownStep::Full,
         }
     }
 }
