@@ -94,6 +94,11 @@ impl RenderTechnique for Ipsvi {
     }
 
     fn settings_note(&self, scene: &Scene) -> Option<String> {
-        Some(format!("ipsvi sync strategy: {}", scene.settings.ipsvi.sync))
+        let s = &scene.settings.ipsvi;
+        let write = match s.cache_update {
+            CacheUpdate::ViewSamples => format!(", cache_write: {}", s.cache_write.name()),
+            CacheUpdate::LightRays => String::new(),
+        };
+        Some(format!("ipsvi sync strategy: {}; cache_update: {}{write}", s.sync, s.cache_update.name()))
     }
 }
