@@ -3,7 +3,7 @@
 // Starts a sweep: every light ray of the cache carries the unattenuated light
 // (transmittance 1, no emission yet) with its front at its box entry. Both
 // images of the ping-pong pair are written, so whichever the first line reads
-// holds the start state.
+// holds the start state; the view-sample stamps are cleared.
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -13,6 +13,10 @@ layout(set = 0, binding = 6, rgba16f) writeonly uniform image2D cache_a;
 layout(set = 0, binding = 7, r16ui) writeonly uniform uimage2D front_a;
 layout(set = 0, binding = 8, rgba16f) writeonly uniform image2D cache_b;
 layout(set = 0, binding = 9, r16ui) writeonly uniform uimage2D front_b;
+// The view-sample pair's stamps (cache_update = "view-samples"; 1x1 otherwise):
+// stamp 0 is no block's, so the first block reads the history pair.
+layout(set = 0, binding = 10, r32ui) writeonly uniform uimage2D stamps_a;
+layout(set = 0, binding = 11, r32ui) writeonly uniform uimage2D stamps_b;
 layout(push_constant) uniform Push { uint light; } push;
 
 void main() {
@@ -25,4 +29,8 @@ void main() {
     imageStore(front_a, ivec2(k), code);
     imageStore(cache_b, ivec2(k), start);
     imageStore(front_b, ivec2(k), code);
+    if (all(lessThan(ivec2(k), imageSize(stamps_a)))) {
+        imageStore(stamps_a, ivec2(k), uvec4(0u));
+        imageStore(stamps_b, ivec2(k), uvec4(0u));
+    }
 }

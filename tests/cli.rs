@@ -317,3 +317,33 @@ fn bench_output_folders_hold_no_stale_files() {
     assert!(dir.join("lines_barrier-global.json").exists() && dir.join("sync.csv").exists());
     assert!(dir.join("mine.txt").exists(), "a file the bench did not write was removed");
 }
+
+/// `bench ipsvi --breakdown`: six steps per cache-update mode, each with its
+/// time, share and time per line. Run without validation: step b is the sweep
+/// with no barriers, which synchronization validation reports by design.
+#[test]
+fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
+    let dir = temp_dir("bench-breakdown");
+    let out = dir.join("breakdown");
+    let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
+        .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--out", out.to_str().unwrap()])
+        .env_remove("SWEEPLAB_VALIDATE")
+        .output()
+        .expect("run sweeplab");
+    assert!(o.status.success(), "{}", stderr(&o));
+    for file in ["ipsvi_breakdown.csv", "ipsvi_breakdown.md"] {
+        assert!(out.join(file).is_file(), "{file} missing");
+    }
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(out.join("ipsvi_breakdown.json")).unwrap()).unwrap();
+    for mode in ["view-samples", "light-rays"] {
+        let steps: Vec<&serde_json::Value> = rows.iter().filter(|r| r["cache_update"] == mode).collect();
+        assert_eq!(steps.len(), 6, "{mode}: a to f: {steps:?}");
+        assert!(steps[0]["step"].as_str().unwrap().starts_with("a:"));
+        assert!(steps[5]["step"].as_str().unwrap().starts_with("f:"));
+        assert_eq!(steps[5]["step_share"].as_f64().map(|s| s.is_finite()), Some(true));
+        assert!(steps.iter().all(|r| r["gpu_ms"].as_f64().is_some_and(|v| v > 0.0)), "{mode}: {steps:?}");
+        // Step b has no barriers between blocks; step c adds one per block.
+        assert!(steps[2]["barriers"].as_u64() > steps[1]["barriers"].as_u64(), "{mode}: {steps:?}");
+    }
+}

@@ -5,7 +5,7 @@ mod common;
 use common::*;
 use glam::Vec3;
 use sweeplab::ipsvi::renderer::plans;
-use sweeplab::ipsvi::{render_with, IpsviSettings, SyncStrategy};
+use sweeplab::ipsvi::{render_with, CacheUpdate, IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::{compare, ErrorStats};
 use sweeplab::render::{render, GpuScene, RenderOutput, Technique, VolumeTexels};
@@ -184,7 +184,13 @@ fn one_dispatch_per_line_block_and_only_inside_the_projected_box() {
         sweeplab::scene::Camera::orbit(Vec3::ZERO, 6.0, 30.0, 20.0, Projection::Perspective { fov_y_deg: 30.0 });
     let ctx = validated_context();
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
-    let s = IpsviSettings { line_width: 4, cache_size: 32, ..IpsviSettings::default() };
+    // Light rays: no claim dispatch ahead of the first block (tests/ipsvi_view_samples.rs).
+    let s = IpsviSettings {
+        line_width: 4,
+        cache_size: 32,
+        cache_update: CacheUpdate::LightRays,
+        ..IpsviSettings::default()
+    };
     let plan = &plans(&gpu, &s, SIZE, SIZE)[0];
     let lines = plan.lines();
     assert!(lines > 4 && lines < SIZE / 2, "the box spans {lines} of {SIZE} lines");
@@ -199,7 +205,9 @@ fn one_dispatch_per_line_block_and_only_inside_the_projected_box() {
 #[test]
 fn no_light_means_no_sweep_and_no_cache() {
     let ctx = validated_context();
-    let lit = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    // The cache pair of light-rays mode (view samples add their pair and claim keys).
+    let mut lit = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    lit.settings.ipsvi.cache_update = CacheUpdate::LightRays;
     let dark = slab_scene(vec![]);
     let mut memory = Vec::new();
     for scene in [&dark, &lit] {
@@ -302,7 +310,14 @@ fn exit_point_termination_gives_the_same_image_and_allocates_only_when_on() {
     let mut profiler = Profiler::new(&ctx, 4096).unwrap();
     let mut results = Vec::new();
     for ert in [EarlyTermination::Off, EarlyTermination::Plain, EarlyTermination::ExitPoints] {
-        let s = IpsviSettings { early_termination: ert, cache_size: 64, ..IpsviSettings::default() };
+        // Light rays: view rays do not feed the cache, so stopping them is exact
+        // (view samples lose features: tests/ipsvi_view_samples.rs, figure 5).
+        let s = IpsviSettings {
+            early_termination: ert,
+            cache_size: 64,
+            cache_update: CacheUpdate::LightRays,
+            ..IpsviSettings::default()
+        };
         profiler.reset();
         ctx.memory.reset_peak();
         let frame = render_with(&gpu, &s, SIZE, SIZE, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
@@ -331,7 +346,14 @@ fn forward_cone_scattering_blurs_light_and_stays_finite() {
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     let mut images = Vec::new();
     for albedo in [0.0, 0.6] {
-        let s = IpsviSettings { albedo, cone_angle_deg: 30.0, cache_size: 64, ..IpsviSettings::default() };
+        // Forward-cone scattering is a light-rays feature (view samples refuse albedo > 0).
+        let s = IpsviSettings {
+            albedo,
+            cone_angle_deg: 30.0,
+            cache_size: 64,
+            cache_update: CacheUpdate::LightRays,
+            ..IpsviSettings::default()
+        };
         profiler.reset();
         images.push(render_with(&gpu, &s, SIZE, SIZE, &mut profiler, SyncStrategy::BarrierGlobal).unwrap().image);
     }

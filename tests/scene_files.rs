@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use sweeplab::ao::AoSettings;
 use sweeplab::half_angle::HalfAngleSettings;
-use sweeplab::ipsvi::{EarlyTermination, IpsviSettings, SyncStrategy};
+use sweeplab::ipsvi::{CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy};
 use sweeplab::lightvolume::{CostEstimate, LightVolumeSettings};
 use sweeplab::scene::default_scene::volume_file_scene_spec;
 use sweeplab::scene::loaders::data_dir;
@@ -449,6 +449,7 @@ fn technique_defaults_are_the_documented_ones() {
     assert_eq!((ipsvi.early_termination, ipsvi.albedo, ipsvi.cone_angle_deg), (EarlyTermination::Plain, 0.0, 15.0));
     assert_eq!((ipsvi.zone_blend_px, ipsvi.light_step_voxels, ipsvi.ert_scale), (2.0, 0.5, 4));
     assert_eq!((ipsvi.sync, ipsvi.single_dispatch_baseline), (SyncStrategy::BarrierGlobal, false));
+    assert_eq!((ipsvi.cache_update, ipsvi.cache_write), (CacheUpdate::ViewSamples, CacheWrite::Farthest));
     let lv = LightVolumeSettings::default();
     assert_eq!((lv.scale, lv.coherent, lv.compensated, lv.cost_estimate), (2, true, true, CostEstimate::Passes));
     assert_eq!((lv.max_passes_per_frame, lv.pass_lights, lv.rebase_tolerance), (0, 16, 1e-6));
@@ -479,6 +480,7 @@ fn technique_tables_are_read_into_typed_settings() {
     let s = settings_of(
         "[ipsvi]\nline_width = 4\ncache_size = 128\npiecewise = false\nearly_termination = \"exit-points\"\n\
          albedo = 0.5\ncone_angle = 30\nzone_blend = 4.5\nlight_step = 0.125\nert_scale = 2\nsync = \"events\"\n\
+         cache_update = \"light-rays\"\ncache_write = \"racy\"\n\
          [lightvolume]\nscale = 4\ncoherent = false\ncompensated = false\ncost_estimate = \"selective\"\n\
          max_passes_per_frame = 3\npass_lights = 8\nrebase_tolerance = 1e-3\nsubstep = 0.5\nshared_medium = false\n\
          chromatic = false\nracy = true\n[half_angle]\nslice_step = 0.25\nlight_buffer_size = 64\n[ao]\nradius = 4\nclusters = 64\n",
@@ -494,8 +496,11 @@ fn technique_tables_are_read_into_typed_settings() {
         zone_blend_px: 4.5,
         light_step_voxels: 0.125,
         ert_scale: 2,
+        cache_update: CacheUpdate::LightRays,
+        cache_write: CacheWrite::Racy,
         sync: SyncStrategy::Events,
         single_dispatch_baseline: false,
+        breakdown_step: sweeplab::ipsvi::BreakdownStep::Full,
     };
     let lightvolume = LightVolumeSettings {
         scale: 4,
@@ -579,6 +584,13 @@ fn technique_values_out_of_range_name_key_value_and_range() {
         let e = error_of(&format!("{MINIMAL}{table}\n"), &[]);
         assert_mentions(&e, &["test.toml", message]);
     }
+    // The cache modes: a typo gets a suggestion; scattering needs light rays.
+    let e = error_of(&format!("{MINIMAL}[ipsvi]\ncache_update = \"view-sample\"\n"), &[]);
+    assert_mentions(&e, &["cache_update", "did you mean `view-samples`"]);
+    let e = error_of(&format!("{MINIMAL}[ipsvi]\ncache_write = \"farest\"\n"), &[]);
+    assert_mentions(&e, &["cache_write", "did you mean `farthest`"]);
+    let e = error_of(&format!("{MINIMAL}[ipsvi]\nalbedo = 0.5\n"), &[]);
+    assert_mentions(&e, &["ipsvi.albedo = 0.5 needs ipsvi.cache_update = \"light-rays\""]);
     // Wrong types and unknown names name the key too.
     let cases: &[(&str, &[&str])] = &[
         ("[ipsvi]\nline_width = \"wide\"", &["ipsvi.line_width", "invalid type"]),

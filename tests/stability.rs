@@ -10,6 +10,7 @@ mod common;
 
 use common::*;
 use std::path::{Path, PathBuf};
+use sweeplab::ipsvi::CacheUpdate;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
@@ -231,8 +232,25 @@ fn error_shrinks_as_the_step_shrinks_with_an_observed_order() {
     let base = scene_from_toml_str(&scene_text(NOISE, LIGHT), Path::new(""), "convergence", &[]).unwrap();
     let steps = [1.0f32, 0.5, 0.25, 0.125, 0.0625];
     let mut failures = Vec::new();
-    for t in Technique::ALL {
+    // IPSVI in both cache updates: the paper's view samples and the light rays.
+    let runs = Technique::ALL.into_iter().flat_map(|t| {
+        let modes: &[Option<CacheUpdate>] = if t == Technique::Ipsvi {
+            &[Some(CacheUpdate::LightRays), Some(CacheUpdate::ViewSamples)]
+        } else {
+            &[None]
+        };
+        modes.iter().map(move |&m| (t, m))
+    });
+    for (t, mode) in runs {
         let mut scene = base.clone();
+        if let Some(m) = mode {
+            scene.settings.ipsvi.cache_update = m;
+        }
+        let label = match mode {
+            Some(CacheUpdate::ViewSamples) => format!("{t} (view samples)"),
+            Some(CacheUpdate::LightRays) => format!("{t} (light rays)"),
+            None => t.to_string(),
+        };
         scene.reference.model = t.reference_model(&scene);
         scene.reference.chromatic = t.reference_chromatic(&scene);
         // The limit the technique converges to: its model's f64 march at a
@@ -253,16 +271,31 @@ fn error_shrinks_as_the_step_shrinks_with_an_observed_order() {
             .collect();
         let orders: Vec<String> = errors.windows(2).map(|e| format!("{:.2}", (e[0] / e[1]).log2())).collect();
         println!(
-            "{t:>12}: relative rmse {} ; observed order {}",
+            "{label:>24}: relative rmse {} ; observed order {}",
             errors.iter().map(|e| format!("{e:.2e}")).collect::<Vec<_>>().join(" "),
             orders.join(" ")
         );
+        if mode == Some(CacheUpdate::ViewSamples) {
+            // The paper's cache holds each texel's light at the one depth its
+            // writing sample had, so below half a voxel the view step no longer
+            // moves the error: it stays on that floor (measured 1.45e-3 at step
+            // 0.5, 1.70e-3 .. 1.92e-3 below), within 1.5x of its step-0.5 error.
+            for (i, &e) in errors.iter().enumerate().skip(2) {
+                if e > 1.5 * errors[1] {
+                    failures.push(format!(
+                        "{label}: step {} left the floor: {e:.2e} (step 0.5: {:.2e})",
+                        steps[i], errors[1]
+                    ));
+                }
+            }
+            continue;
+        }
         // Non-increasing within noise: 5 % of the previous error, or 1e-4 of
         // the peak once the technique sits on its approximation floor.
         for (i, e) in errors.windows(2).enumerate() {
             if e[1] > e[0] * 1.05 + 1e-4 {
                 failures.push(format!(
-                    "{t}: error grew from step {} to {}: {:.2e} -> {:.2e}",
+                    "{label}: error grew from step {} to {}: {:.2e} -> {:.2e}",
                     steps[i],
                     steps[i + 1],
                     e[0],

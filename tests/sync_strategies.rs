@@ -98,24 +98,31 @@ fn each_strategy_records_its_own_synchronization_per_block() {
     let ctx = validated_context();
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 256).unwrap();
-    let s = IpsviSettings { cache_size: 32, line_width: 2, ..IpsviSettings::default() };
-    let blocks: u32 = plans(&gpu, &s, 24, 24).iter().flat_map(|p| &p.sweeps).map(|sw| sw.blocks.len() as u32).sum();
-    assert!(blocks > 2, "a sweep of several blocks: {blocks}");
-    let mut renderer = IpsviRenderer::new(&gpu, &s, 24, 24).unwrap();
-    let mut barriers = |strategy| {
-        profiler.reset();
-        renderer.frame(&mut profiler, strategy).unwrap().barriers
-    };
-    let unsynchronized = barriers(SyncStrategy::Racy);
-    let _ = ctx.take_validation_messages(); // the racy frame's hazards
-    for (strategy, per_block) in [
-        (SyncStrategy::BarrierGlobal, 1),
-        (SyncStrategy::BarrierImage, 1),
-        (SyncStrategy::Events, 1),
-        (SyncStrategy::Secondary, 1),
-        (SyncStrategy::Submits, 0),
-    ] {
-        assert_eq!(barriers(strategy), unsynchronized + per_block * blocks, "{strategy}");
+    use sweeplab::ipsvi::CacheUpdate;
+    for cache_update in [CacheUpdate::LightRays, CacheUpdate::ViewSamples] {
+        let s = IpsviSettings { cache_size: 32, line_width: 2, cache_update, ..IpsviSettings::default() };
+        let sweeps = plans(&gpu, &s, 24, 24).iter().map(|p| p.sweeps.len() as u32).sum::<u32>();
+        let blocks: u32 = plans(&gpu, &s, 24, 24).iter().flat_map(|p| &p.sweeps).map(|sw| sw.blocks.len() as u32).sum();
+        assert!(blocks > 2, "a sweep of several blocks: {blocks}");
+        // View samples with farthest writes (the default) claim for a sweep's first
+        // block in a dispatch of its own, synchronized like a block.
+        let dispatches = if cache_update == CacheUpdate::ViewSamples { blocks + sweeps } else { blocks };
+        let mut renderer = IpsviRenderer::new(&gpu, &s, 24, 24).unwrap();
+        let mut barriers = |strategy| {
+            profiler.reset();
+            renderer.frame(&mut profiler, strategy).unwrap().barriers
+        };
+        let unsynchronized = barriers(SyncStrategy::Racy);
+        let _ = ctx.take_validation_messages(); // the racy frame's hazards
+        for (strategy, per_block) in [
+            (SyncStrategy::BarrierGlobal, 1),
+            (SyncStrategy::BarrierImage, 1),
+            (SyncStrategy::Events, 1),
+            (SyncStrategy::Secondary, 1),
+            (SyncStrategy::Submits, 0),
+        ] {
+            assert_eq!(barriers(strategy), unsynchronized + per_block * dispatches, "{strategy} {cache_update:?}");
+        }
     }
     assert_validation_clean(&ctx);
 }

@@ -155,6 +155,12 @@ pub struct BenchIpsviArgs {
     /// value leaves them out.
     #[arg(long, value_delimiter = ',', num_args = 0.., default_values_t = vec![1.0, 0.5, 0.25])]
     pub half_angle_slices: Vec<f32>,
+    /// Instead of the grid: the cost of one frame of the scene's settings, step
+    /// by step (DVR as one dispatch; the same pixels ray-cast line by line in the
+    /// sweep's order without and with the barriers; + cache reads; + piecewise
+    /// integration; + cache writes), in both cache-update modes, at --sizes.
+    #[arg(long)]
+    pub breakdown: bool,
 }
 
 #[derive(Args, Debug)]

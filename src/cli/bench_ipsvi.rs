@@ -58,6 +58,9 @@ fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSetti
 }
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
+    if args.breakdown {
+        return super::bench_breakdown::run(args);
+    }
     // One untimed frame first: llvmpipe compiles shader variants on first use.
     let harness = session::harness(1, args.repeat)?;
     bench_args::check_sizes("--sizes", &args.sizes)?;

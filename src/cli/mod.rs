@@ -1,5 +1,6 @@
 pub mod args;
 mod bench_args;
+mod bench_breakdown;
 mod bench_ipsvi;
 mod bench_lights;
 mod bench_sync;

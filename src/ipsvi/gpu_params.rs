@@ -80,8 +80,10 @@ pub struct BlockParams {
     pub parity: u32,
     /// Index of the light (and of its record in the sweeps buffer).
     pub light: u32,
-    pub pad0: u32,
-    pub pad1: u32,
+    /// view-samples: 1 + the block's index in its sweep, stamped on its sample writes.
+    pub stamp: u32,
+    /// cache_write = "farthest": pixels of the next block this dispatch claims texels for.
+    pub claim_count: u32,
 }
 
 crate::assert_gpu_layout!(
@@ -99,8 +101,8 @@ crate::assert_gpu_layout!(
         region,
         parity,
         light,
-        pad0,
-        pad1
+        stamp,
+        claim_count
     ]
 );
 

@@ -6,7 +6,9 @@
 //! dispatch, followed by the barrier `cache_write_to_next_line_read` (or, in
 //! the synchronization study, another [`SyncStrategy`]'s object from [`sync`]).
 
+pub mod breakdown;
 pub mod cache_region;
+pub mod cache_update;
 pub mod exit_points;
 pub mod gpu_params;
 pub mod light_anchor;
@@ -19,6 +21,8 @@ pub mod sync_strategy;
 pub mod technique;
 pub mod view_budget;
 
+pub use breakdown::BreakdownStep;
+pub use cache_update::{CacheUpdate, CacheWrite};
 pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};
 pub use sync_strategy::SyncStrategy;

@@ -3,7 +3,9 @@
 //! with the synchronization of the frame's strategy (`super::sync`) before and
 //! after each.
 
+use super::breakdown::BreakdownStep;
 use super::cache_region::{plane_region, TexelRect};
+use super::cache_update::{CacheUpdate, CacheWrite};
 use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{
     line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_EARLY_TERMINATION, FLAG_EXIT_POINTS,
@@ -30,33 +32,68 @@ use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
+use gpu_allocator::MemoryLocation;
 use std::cell::OnceCell;
 
 /// local_size_x of glsl/ipsvi_line.comp (16 measured no faster on lavapipe).
 const LINE_GROUP: u32 = 64;
 
 /// The ping-pong pair: illumination (E / scale, transmittance) and the position
-/// image (which sweep plane each light ray's front sits on).
+/// image (which sweep plane each light ray's front sits on, or with view
+/// samples the depth its value was computed at); with view samples a second
+/// pair that the samples of a block write (value, block stamp | depth), and
+/// the claim keys of `cache_write = "farthest"`. What a mode does not use is
+/// 1x1 (bound, never read).
 struct Cache {
     light: [Image; 2],
     front: [Image; 2],
+    samples: [Image; 2],
+    stamps: [Image; 2],
+    claim_keys: Buffer,
 }
 
 impl Cache {
-    fn new(gpu: &GpuScene, size: u32) -> Result<Cache, RenderError> {
-        let image =
-            |name: &str, format| Image::storage_2d(gpu.ctx, name, format, size, size, vk::ImageUsageFlags::empty());
+    fn new(gpu: &GpuScene, settings: &IpsviSettings) -> Result<Cache, RenderError> {
+        let size = settings.cache_size;
+        let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
+        let claims = view_samples && settings.cache_write.claims();
+        let sized =
+            |name: &str, format, n: u32| Image::storage_2d(gpu.ctx, name, format, n, n, vk::ImageUsageFlags::empty());
+        let image = |name: &str, format| sized(name, format, size);
+        let sample_size = if view_samples { size } else { 1 };
+        let sample = |name: &str, format| sized(name, format, sample_size);
+        // Two halves (this block's claims, the next block's) of N x N 64-bit keys.
+        let key_bytes = if claims { 2 * 8 * u64::from(size) * u64::from(size) } else { 16 };
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
         Ok(Cache {
             light: [
                 image("ipsvi cache a", vk::Format::R16G16B16A16_SFLOAT)?,
                 image("ipsvi cache b", vk::Format::R16G16B16A16_SFLOAT)?,
             ],
             front: [image("ipsvi front a", vk::Format::R16_UINT)?, image("ipsvi front b", vk::Format::R16_UINT)?],
+            samples: [
+                sample("ipsvi cache samples a", vk::Format::R16G16B16A16_SFLOAT)?,
+                sample("ipsvi cache samples b", vk::Format::R16G16B16A16_SFLOAT)?,
+            ],
+            stamps: [
+                sample("ipsvi cache stamps a", vk::Format::R32_UINT)?,
+                sample("ipsvi cache stamps b", vk::Format::R32_UINT)?,
+            ],
+            claim_keys: Buffer::new(gpu.ctx, "ipsvi claim keys", key_bytes, usage, MemoryLocation::GpuOnly)?,
         })
     }
 
-    fn images(&self) -> [&Image; 4] {
-        [&self.light[0], &self.light[1], &self.front[0], &self.front[1]]
+    fn images(&self) -> [&Image; 8] {
+        [
+            &self.light[0],
+            &self.light[1],
+            &self.front[0],
+            &self.front[1],
+            &self.samples[0],
+            &self.samples[1],
+            &self.stamps[0],
+            &self.stamps[1],
+        ]
     }
 }
 
@@ -123,6 +160,8 @@ pub struct IpsviRenderer<'a> {
     settings: IpsviSettings,
     plans: Vec<SweepPlan>,
     block_records: Vec<BlockParams>,
+    /// (first record, record count) of every sweep, in frame order.
+    sweep_records: Vec<SweepRecords>,
     _frame: Buffer,
     _planes: Buffer,
     _sweeps: Buffer,
@@ -152,6 +191,14 @@ impl<'a> IpsviRenderer<'a> {
         }
         settings.validate()?;
         let ctx = gpu.ctx;
+        // glsl/ipsvi_line.comp declares 64-bit atomics (the claims of the
+        // deterministic cache writes) for every variant of the module.
+        if !ctx.int64_atomics {
+            return Err(RenderError::Invalid(format!(
+                "IPSVI's line shader needs shaderInt64 and shaderBufferInt64Atomics, which {} lacks",
+                ctx.info.name
+            )));
+        }
         let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
         let bx = scene.volume_box();
         let plans = plans(gpu, settings, width, height);
@@ -160,7 +207,7 @@ impl<'a> IpsviRenderer<'a> {
         let params = frame_params(scene, width, height, gpu.lut_size, steps);
         let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
         let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
-        let cache = Cache::new(gpu, settings.cache_size)?;
+        let cache = Cache::new(gpu, settings)?;
 
         let max_piecewise_steps = super::view_budget::piecewise_steps(scene)?;
 
@@ -205,7 +252,7 @@ impl<'a> IpsviRenderer<'a> {
             })
             .collect();
         let sweeps = Buffer::with_data(ctx, "ipsvi sweeps", &sweep_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
-        let block_records = block_params(&plans, &geometries, &bx, &planes_host, height);
+        let (block_records, sweep_records) = block_params(&plans, &geometries, &bx, &planes_host, height, settings)?;
         let blocks = Buffer::with_data(ctx, "ipsvi blocks", &block_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
 
         let emissive = scene.render.emission > 0.0;
@@ -219,7 +266,17 @@ impl<'a> IpsviRenderer<'a> {
                 max_sets: 1,
             },
         )?;
-        let specialization = [(0, emissive as u32), (1, scatter as u32)];
+        let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
+        let claims = view_samples && settings.cache_write.claims();
+        let nearest = settings.cache_write == CacheWrite::Nearest;
+        let specialization = [
+            (0, emissive as u32),
+            (1, scatter as u32),
+            (2, view_samples as u32),
+            (3, claims as u32),
+            (4, nearest as u32),
+            (5, settings.breakdown_step.shader_step()),
+        ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
             shader: &ipsvi_line::INTERFACE,
@@ -237,6 +294,8 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_cache_init::FRONT_A, Resource::StorageImage(fa)),
             (ipsvi_cache_init::CACHE_B, Resource::StorageImage(b)),
             (ipsvi_cache_init::FRONT_B, Resource::StorageImage(fb)),
+            (ipsvi_cache_init::STAMPS_A, Resource::StorageImage(&cache.stamps[0])),
+            (ipsvi_cache_init::STAMPS_B, Resource::StorageImage(&cache.stamps[1])),
         ])?;
         let line_set = lines[0].create_set(&[
             (ipsvi_line::FRAME, Resource::UniformBuffer(&frame)),
@@ -256,6 +315,15 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_line::OUT_IMAGE, Resource::StorageImage(&output.image)),
             (ipsvi_line::BLOCKS, Resource::StorageBuffer(&blocks)),
             (ipsvi_line::LMAX, Resource::StorageImage(lmax)),
+            (ipsvi_line::SAMPLES_A_READ, Resource::StorageImage(&cache.samples[0])),
+            (ipsvi_line::STAMPS_A_READ, Resource::StorageImage(&cache.stamps[0])),
+            (ipsvi_line::SAMPLES_B_READ, Resource::StorageImage(&cache.samples[1])),
+            (ipsvi_line::STAMPS_B_READ, Resource::StorageImage(&cache.stamps[1])),
+            (ipsvi_line::SAMPLES_A_WRITE, Resource::StorageImage(&cache.samples[0])),
+            (ipsvi_line::STAMPS_A_WRITE, Resource::StorageImage(&cache.stamps[0])),
+            (ipsvi_line::SAMPLES_B_WRITE, Resource::StorageImage(&cache.samples[1])),
+            (ipsvi_line::STAMPS_B_WRITE, Resource::StorageImage(&cache.stamps[1])),
+            (ipsvi_line::KEYS, Resource::StorageBuffer(&cache.claim_keys)),
         ])?;
 
         let readback = output.readback_buffer(ctx)?;
@@ -265,6 +333,7 @@ impl<'a> IpsviRenderer<'a> {
             settings: settings.clone(),
             plans,
             block_records,
+            sweep_records,
             _frame: frame,
             _planes: planes,
             _sweeps: sweeps,
@@ -288,7 +357,7 @@ impl<'a> IpsviRenderer<'a> {
             return Ok(recorded);
         }
         let recorded =
-            record_sweeps(self.ctx, &self.plans, &self.block_records, &self.lines, self.line_set, line_groups)?;
+            record_sweeps(self.ctx, &self.sweep_records, &self.block_records, &self.lines, self.line_set, line_groups)?;
         Ok(self.secondaries.get_or_init(|| recorded))
     }
 
@@ -297,13 +366,15 @@ impl<'a> IpsviRenderer<'a> {
         let cache = &self.cache;
         Ok(match sync {
             SyncStrategy::BarrierGlobal => Box::new(GlobalBarrier),
-            SyncStrategy::BarrierImage => Box::new(ImageBarriers::new(&[
-                &cache.light[0],
-                &cache.light[1],
-                &cache.front[0],
-                &cache.front[1],
-                &self.output.image,
-            ])),
+            SyncStrategy::BarrierImage => {
+                let [l0, l1, f0, f1, s0, s1, t0, t1] = cache.images();
+                let claims =
+                    self.settings.cache_update == CacheUpdate::ViewSamples && self.settings.cache_write.claims();
+                Box::new(ImageBarriers::new(
+                    &[l0, l1, f0, f1, s0, s1, t0, t1, &self.output.image],
+                    claims.then_some(&cache.claim_keys),
+                ))
+            }
             SyncStrategy::Events => Box::new(SplitBarriers::new(self.ctx, self.block_records.len())?),
             SyncStrategy::Secondary => Box::new(ReplayedSweeps::new(self.recorded_sweeps()?)),
             SyncStrategy::Submits => Box::new(SubmissionPerBlock),
@@ -320,6 +391,7 @@ impl<'a> IpsviRenderer<'a> {
             settings,
             plans,
             block_records,
+            sweep_records,
             output,
             cache,
             exit_points,
@@ -341,6 +413,14 @@ impl<'a> IpsviRenderer<'a> {
                 "output_clear_to_line_accumulate",
             );
             rec.discard_for_compute("cache_discard_to_init_write", &cache.images());
+            // Claims carry a frame-wide block number: cleared once per frame.
+            rec.barrier(&Barrier::memory("claim_keys_previous_frame_to_clear", Access::ANY, Access::CLEAR_WRITE));
+            rec.fill_buffer(&cache.claim_keys, 0);
+            rec.barrier(&Barrier::memory(
+                "claim_keys_clear_to_first_claim",
+                Access::CLEAR_WRITE,
+                Access::COMPUTE_READ_WRITE,
+            ));
             if let Some(p) = &placeholder {
                 rec.discard_for_compute("lmax_placeholder_to_shader_read", &[p]);
             }
@@ -366,11 +446,11 @@ impl<'a> IpsviRenderer<'a> {
                     ));
                     let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
                     if line_sync.replay_sweep(rec, next_sweep) {
-                        next_block += sweep.blocks.len();
+                        next_block += sweep_records[next_sweep].1;
                     } else {
                         // Bound once per sweep: blocks find their parameters by index.
                         rec.bind(&lines[0], line_set);
-                        for _ in &sweep.blocks {
+                        for _ in 0..sweep_records[next_sweep].1 {
                             let record = &block_records[next_block];
                             line_sync.before_block(rec, next_block);
                             let line = &lines[record.parity as usize];
@@ -397,29 +477,58 @@ impl<'a> IpsviRenderer<'a> {
 }
 
 /// Workgroups of a block's line dispatch: one invocation per pixel of the
-/// block, then one per texel of the cache region it updates.
+/// block, then one per texel of the cache region it updates, then (farthest)
+/// one per pixel of the next block it claims texels for.
 fn line_groups(record: &BlockParams) -> u32 {
-    (record.pixel_count + record.region[2] * record.region[3]).div_ceil(LINE_GROUP)
+    (record.pixel_count + record.region[2] * record.region[3] + record.claim_count).div_ceil(LINE_GROUP)
 }
 
-/// The parameters of every line block of the frame, in dispatch order.
+/// A sweep's block records: (first, count).
+type SweepRecords = (usize, usize);
+
+/// The parameters of every line block of the frame, in dispatch order, and
+/// each sweep's (first record, record count). With `cache_update =
+/// "view-samples"` a block's region is the texels its samples may write (the
+/// union over its lines' planes) and it carries the previous two blocks'
+/// regions into the history pair; with "farthest" each sweep starts with a
+/// claim-only record for its first block.
 fn block_params(
     plans: &[SweepPlan],
     geometries: &[LightSpacePlane],
     bx: &crate::scene::VolumeBox,
     planes: &[[f32; 4]],
     height: u32,
-) -> Vec<BlockParams> {
-    let mut out = Vec::new();
+    settings: &IpsviSettings,
+) -> Result<(Vec<BlockParams>, Vec<SweepRecords>), RenderError> {
+    let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
+    let claims = view_samples && settings.cache_write.claims();
+    let mut out: Vec<BlockParams> = Vec::new();
+    let mut sweeps = Vec::new();
     for (li, plan) in plans.iter().enumerate() {
         for sweep in &plan.sweeps {
+            let first_record = out.len();
+            let columns = sweep.axis == LineAxis::Columns;
+            let plane_of = |line: u32| if columns { height + line } else { line };
+            let region_of = |line: u32| plane_region(&geometries[li], bx, planes[plane_of(line) as usize]);
             let mut previous_region = TexelRect::default();
-            for (bi, block) in sweep.blocks.iter().enumerate() {
-                let columns = sweep.axis == LineAxis::Columns;
-                let plane = if columns { height + block.last_line } else { block.last_line };
-                let region = plane_region(&geometries[li], bx, planes[plane as usize]);
-                let update = region.union(&previous_region);
+            let mut before_previous = TexelRect::default();
+            if claims {
+                // Claims for the first block; no pixels, no texels.
+                out.push(BlockParams { light: li as u32, zone: sweep.zone as u32, ..BlockParams::default() });
+            }
+            for block in sweep.blocks.iter() {
+                let plane = plane_of(block.last_line);
+                let (region, update) = if view_samples {
+                    let written = (block.first..block.first + block.width)
+                        .fold(TexelRect::default(), |r, l| r.union(&region_of(l)));
+                    (written, previous_region.union(&before_previous))
+                } else {
+                    let region = region_of(block.last_line);
+                    (region, region.union(&previous_region))
+                };
+                before_previous = previous_region;
                 previous_region = region;
+                let index = out.len() - first_record;
                 out.push(BlockParams {
                     line_first: block.first,
                     line_width: block.width,
@@ -430,13 +539,38 @@ fn block_params(
                     plane,
                     pixel_count: block.width * block.span_len,
                     region: [update.x0, update.y0, update.w, update.h],
-                    parity: (bi % 2) as u32,
+                    parity: (index % 2) as u32,
                     light: li as u32,
-                    pad0: 0,
-                    pad1: 0,
+                    stamp: index as u32 + 1,
+                    claim_count: 0,
                 });
             }
+            let count = out.len() - first_record;
+            if settings.breakdown_step != BreakdownStep::Full {
+                // Nothing written: no texel or claim invocations either.
+                for r in &mut out[first_record..] {
+                    r.region = [0; 4];
+                }
+            } else if claims {
+                for r in first_record..first_record + count - 1 {
+                    out[r].claim_count = out[r + 1].pixel_count;
+                }
+            }
+            // Stamps are 16 bits in the stamp image.
+            if view_samples && count >= 0xFFFF {
+                return Err(RenderError::Invalid(format!(
+                    "a sweep of {count} line blocks; view samples stamp at most 65534"
+                )));
+            }
+            sweeps.push((first_record, count));
         }
     }
-    out
+    // Claim keys hold the frame-wide block number + 1 in 20 bits.
+    if claims && out.len() + 1 >= 1 << 20 {
+        return Err(RenderError::Invalid(format!(
+            "{} line blocks in a frame; farthest claims count at most 2^20 - 2",
+            out.len()
+        )));
+    }
+    Ok((out, sweeps))
 }

@@ -1,6 +1,8 @@
 //! IPSVI parameters from the scene file's `[ipsvi]` table (or `--set ipsvi.key=value`),
 //! read when the scene is read ([`crate::scene::settings_table`]).
 
+use super::breakdown::BreakdownStep;
+use super::cache_update::{CacheUpdate, CacheWrite};
 use super::sync_strategy::SyncStrategy;
 use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
 use serde::Deserialize;
@@ -30,6 +32,12 @@ pub struct IpsviSettings {
     pub light_step_voxels: f32,
     /// Full-resolution pixels per pre-pass pixel, per axis (exit-points only).
     pub ert_scale: u32,
+    /// Who feeds the cache: the view samples (the paper) or each texel's light ray.
+    #[serde(deserialize_with = "from_name")]
+    pub cache_update: CacheUpdate,
+    /// view-samples only: which of the samples ending in one texel is stored.
+    #[serde(deserialize_with = "from_name")]
+    pub cache_write: CacheWrite,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
@@ -38,6 +46,10 @@ pub struct IpsviSettings {
     /// Set in code only, never from a file.
     #[serde(skip)]
     pub single_dispatch_baseline: bool,
+    /// Study baseline: which parts of the line shader run (`bench ipsvi
+    /// --breakdown`); `Full` is IPSVI. Set in code only, never from a file.
+    #[serde(skip)]
+    pub breakdown_step: BreakdownStep,
 }
 
 /// When the view rays of the main pass stop.
@@ -46,8 +58,9 @@ pub struct IpsviSettings {
 pub enum EarlyTermination {
     /// March every ray to its exit.
     Off,
-    /// Stop once the transmittance is below 1e-4. Exact here: view rays never
-    /// feed the cache (docs/ipsvi.md), so nothing behind the stop is needed.
+    /// Stop once the transmittance is below 1e-4. With `cache_update =
+    /// "light-rays"` exact (view rays never feed the cache); with
+    /// "view-samples" what lies behind the stop never reaches the cache (figure 5).
     Plain,
     /// The paper's section 5.1: a low-resolution pre-pass (first-opaque and
     /// last-structure distances) and an exit-point sweep toward the light give
@@ -77,8 +90,11 @@ impl Default for IpsviSettings {
             zone_blend_px: 2.0,
             light_step_voxels: 0.5,
             ert_scale: 4,
+            cache_update: CacheUpdate::ViewSamples,
+            cache_write: CacheWrite::Farthest,
             sync: SyncStrategy::BarrierGlobal,
             single_dispatch_baseline: false,
+            breakdown_step: BreakdownStep::Full,
         }
     }
 }
@@ -94,7 +110,15 @@ impl SettingsTable for IpsviSettings {
         check_range(t, "cone_angle", self.cone_angle_deg, 0.0, 80.0)?;
         check_range(t, "zone_blend", self.zone_blend_px, 0.0, 64.0)?;
         check_range(t, "light_step", self.light_step_voxels, 0.01, 16.0)?;
-        check_whole(t, "ert_scale", self.ert_scale, 1, 16)
+        check_whole(t, "ert_scale", self.ert_scale, 1, 16)?;
+        if self.albedo > 0.0 && self.cache_update == CacheUpdate::ViewSamples {
+            return Err(SettingsError::Technique(format!(
+                "{t}.albedo = {} needs {t}.cache_update = \"light-rays\": forward-cone scattering blends \
+                 neighbouring light rays, which view samples do not advance",
+                self.albedo
+            )));
+        }
+        Ok(())
     }
 }
 

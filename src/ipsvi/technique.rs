@@ -1,6 +1,7 @@
 //! IPSVI as a [`RenderTechnique`]: settings from `[ipsvi]`, model (ii), and the
 //! frame of [`super::renderer`].
 
+use super::cache_update::CacheUpdate;
 use super::gpu_params::{BlockParams, SweepParams};
 use super::renderer::{render_with, scene_plans};
 use super::settings::EarlyTermination;
@@ -40,7 +41,16 @@ impl RenderTechnique for Ipsvi {
         let s = &scene.settings.ipsvi;
         let plans = scene_plans(scene, s, width, height);
         let blocks: usize = plans.iter().flat_map(|p| &p.sweeps).map(|sweep| sweep.blocks.len()).sum();
+        let sweeps: usize = plans.iter().map(|p| p.sweeps.len()).sum();
+        let view_samples = s.cache_update == CacheUpdate::ViewSamples;
+        let claims = view_samples && s.cache_write.claims();
+        // A claim-only record ahead of each sweep's first block.
+        let records = if claims { blocks + sweeps } else { blocks };
         let cache = [s.cache_size, s.cache_size, 1];
+        // The view-sample pair; 1x1 and bound only in light-rays mode.
+        let sample = if view_samples { cache } else { [1, 1, 1] };
+        let n = u64::from(s.cache_size);
+        let key_bytes = if claims { 2 * 8 * n * n } else { 16 };
         let mut needs = vec![
             ResourceNeed::output_image("ipsvi output", width, height),
             // Illumination: RGBA16F; front: R16_UINT.
@@ -48,10 +58,15 @@ impl RenderTechnique for Ipsvi {
             ResourceNeed::image("ipsvi cache b", cache, 8),
             ResourceNeed::image("ipsvi front a", cache, 2),
             ResourceNeed::image("ipsvi front b", cache, 2),
+            ResourceNeed::image("ipsvi cache samples a", sample, 8),
+            ResourceNeed::image("ipsvi cache samples b", sample, 8),
+            ResourceNeed::image("ipsvi cache stamps a", sample, 4),
+            ResourceNeed::image("ipsvi cache stamps b", sample, 4),
+            ResourceNeed::buffer("ipsvi claim keys", key_bytes),
             ResourceNeed::of::<FrameParams>("frame params", 1),
             ResourceNeed::of::<[f32; 4]>("ipsvi line planes", (width + height) as usize),
             ResourceNeed::of::<SweepParams>("ipsvi sweeps", scene.lights.len()),
-            ResourceNeed::of::<BlockParams>("ipsvi blocks", blocks),
+            ResourceNeed::of::<BlockParams>("ipsvi blocks", records),
         ];
         if s.early_termination == EarlyTermination::ExitPoints {
             // The pre-pass resolution: RG32F depths, R32F l_max.
@@ -86,6 +101,11 @@ impl RenderTechnique for Ipsvi {
     }
 
     fn settings_note(&self, scene: &Scene) -> Option<String> {
-        Some(format!("ipsvi sync strategy: {}", scene.settings.ipsvi.sync))
+        let s = &scene.settings.ipsvi;
+        let write = match s.cache_update {
+            CacheUpdate::ViewSamples => format!(", cache_write: {}", s.cache_write.name()),
+            CacheUpdate::LightRays => String::new(),
+        };
+        Some(format!("ipsvi sync strategy: {}; cache_update: {}{write}", s.sync, s.cache_update.name()))
     }
 }

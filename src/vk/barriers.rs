@@ -2,7 +2,7 @@
 //! they prevent (`accum_write_to_next_chunk_read`). The name goes into the command
 //! buffer as a debug label, so RenderDoc shows the same words as the code.
 
-use super::resources::{color_range, Image};
+use super::resources::{color_range, Buffer, Image};
 use ash::vk;
 
 /// One side of a dependency: pipeline stages and the memory accesses in them.
@@ -70,10 +70,12 @@ pub(crate) enum BarrierKind {
         old_layout: vk::ImageLayout,
         new_layout: vk::ImageLayout,
     },
-    /// Up to 8 images in GENERAL layout, no transition.
+    /// Up to 12 images in GENERAL layout, no transition, and a whole buffer
+    /// (null: none).
     Images {
-        images: [vk::Image; 8],
+        images: [vk::Image; 12],
         count: usize,
+        buffer: vk::Buffer,
         src: Access,
         dst: Access,
     },
@@ -110,14 +112,26 @@ impl Barrier {
         Barrier { name, kind: BarrierKind::Image { image, src, dst, old_layout, new_layout } }
     }
 
-    /// Image barriers narrowed to `images` (GENERAL layout, at most 8).
+    /// Image barriers narrowed to `images` (GENERAL layout, at most 12).
     pub fn images(name: &'static str, images: &[&Image], src: Access, dst: Access) -> Barrier {
-        let mut raw = [vk::Image::null(); 8];
-        let count = images.len().min(8);
+        Barrier::images_and_buffer(name, images, None, src, dst)
+    }
+
+    /// [`Barrier::images`] plus a buffer barrier on the whole of `buffer`.
+    pub fn images_and_buffer(
+        name: &'static str,
+        images: &[&Image],
+        buffer: Option<&Buffer>,
+        src: Access,
+        dst: Access,
+    ) -> Barrier {
+        let mut raw = [vk::Image::null(); 12];
+        let count = images.len().min(12);
         for (r, i) in raw.iter_mut().zip(images) {
             *r = i.raw;
         }
-        Barrier { name, kind: BarrierKind::Images { images: raw, count, src, dst } }
+        let buffer = buffer.map_or(vk::Buffer::null(), |b| b.raw);
+        Barrier { name, kind: BarrierKind::Images { images: raw, count, buffer, src, dst } }
     }
 
     /// Calls `f` with this barrier as a `vk::DependencyInfo` (for barriers and events).
@@ -148,11 +162,26 @@ impl Barrier {
                 let b = [image_barrier(image, src, dst, old_layout, new_layout)];
                 f(&vk::DependencyInfo::default().image_memory_barriers(&b))
             }
-            BarrierKind::Images { images, count, src, dst } => {
+            BarrierKind::Images { images, count, buffer, src, dst } => {
                 let general = vk::ImageLayout::GENERAL;
                 let b: Vec<vk::ImageMemoryBarrier2> =
                     images[..count].iter().map(|&i| image_barrier(i, src, dst, general, general)).collect();
-                f(&vk::DependencyInfo::default().image_memory_barriers(&b))
+                let buffers: Vec<vk::BufferMemoryBarrier2> = (buffer != vk::Buffer::null())
+                    .then(|| {
+                        vk::BufferMemoryBarrier2::default()
+                            .src_stage_mask(src.stage)
+                            .src_access_mask(src.access)
+                            .dst_stage_mask(dst.stage)
+                            .dst_access_mask(dst.access)
+                            .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                            .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+                            .buffer(buffer)
+                            .offset(0)
+                            .size(vk::WHOLE_SIZE)
+                    })
+                    .into_iter()
+                    .collect();
+                f(&vk::DependencyInfo::default().image_memory_barriers(&b).buffer_memory_barriers(&buffers))
             }
         }
     }

@@ -51,6 +51,8 @@ pub struct Context {
     pub queue: vk::Queue,
     pub queue_family: u32,
     pub memory: Arc<GpuMemory>,
+    /// shaderInt64 and shaderBufferInt64Atomics are enabled (the device has them).
+    pub int64_atomics: bool,
 }
 
 struct Candidate {
@@ -255,7 +257,7 @@ impl Context {
             }));
         }
         let swapchain = !surface_extensions.is_empty();
-        let device = match create_device(&instance, cand, queue_family, swapchain) {
+        let (device, int64_atomics) = match create_device(&instance, cand, queue_family, swapchain) {
             Ok(d) => d,
             Err(e) => return Err(cleanup_instance(e)),
         };
@@ -286,6 +288,7 @@ impl Context {
             queue,
             queue_family,
             memory,
+            int64_atomics,
         })
     }
 
@@ -353,13 +356,14 @@ fn create_device(
     cand: &Candidate,
     queue_family: u32,
     swapchain: bool,
-) -> Result<ash::Device, VkError> {
+) -> Result<(ash::Device, bool), VkError> {
     let mut have12 = vk::PhysicalDeviceVulkan12Features::default();
     let mut have13 = vk::PhysicalDeviceVulkan13Features::default();
     let mut have = vk::PhysicalDeviceFeatures2::default().push_next(&mut have12).push_next(&mut have13);
     // SAFETY: the chained structs live on the stack for the call.
     unsafe { instance.get_physical_device_features2(cand.physical_device, &mut have) };
     let extended_formats = have.features.shader_storage_image_extended_formats;
+    let int64 = have.features.shader_int64;
     let mut missing = Vec::new();
     if have13.synchronization2 != vk::TRUE {
         missing.push("synchronization2");
@@ -390,10 +394,17 @@ fn create_device(
         return Err(VkError::MissingFeature { device: cand.info.name.clone(), missing: missing.join(", ") });
     }
     let extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
-    let mut want12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true).timeline_semaphore(true);
+    // 64-bit atomicMax of IPSVI's deterministic cache writes: enabled where the
+    // device has it; IPSVI refuses to render without it (`Context::int64_atomics`).
+    let int64_atomics = int64 == vk::TRUE && have12.shader_buffer_int64_atomics == vk::TRUE;
+    let mut want12 = vk::PhysicalDeviceVulkan12Features::default()
+        .host_query_reset(true)
+        .timeline_semaphore(true)
+        .shader_buffer_int64_atomics(int64_atomics);
     let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true).dynamic_rendering(swapchain);
     // r16ui / rgba16f storage images of the IPSVI cache.
-    let core = vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true);
+    let core =
+        vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true).shader_int64(int64_atomics);
     let priorities = [1.0f32];
     let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
     let info = vk::DeviceCreateInfo::default()
@@ -403,7 +414,8 @@ fn create_device(
         .push_next(&mut want12)
         .push_next(&mut want13);
     // SAFETY: all pointers in `info` refer to locals that outlive the call.
-    unsafe { instance.create_device(cand.physical_device, &info, None) }.call("vkCreateDevice")
+    let device = unsafe { instance.create_device(cand.physical_device, &info, None) }.call("vkCreateDevice")?;
+    Ok((device, int64_atomics))
 }
 
 impl Drop for Context {

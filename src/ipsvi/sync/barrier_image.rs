@@ -1,21 +1,23 @@
 use super::LineSync;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::Recorder;
-use crate::vk::{Image, VkError};
+use crate::vk::{Buffer, Image, VkError};
 
 /// `barrier-image`: after each block, image memory barriers narrowed to the
-/// images the next block reads: the cache pair (illumination and front) and
-/// the output it accumulates into.
+/// images the next block reads: the cache pairs (illumination and front; with
+/// view samples also the sample pair) and the output it accumulates into, plus
+/// a buffer barrier on the claim keys of `cache_write = "farthest"`.
 pub struct ImageBarriers {
     cache_write_to_next_line_read: Barrier,
 }
 
 impl ImageBarriers {
-    pub fn new(cache_and_output: &[&Image]) -> ImageBarriers {
+    pub fn new(cache_and_output: &[&Image], claim_keys: Option<&Buffer>) -> ImageBarriers {
         ImageBarriers {
-            cache_write_to_next_line_read: Barrier::images(
+            cache_write_to_next_line_read: Barrier::images_and_buffer(
                 "cache_write_to_next_line_read",
                 cache_and_output,
+                claim_keys,
                 Access::COMPUTE_WRITE,
                 Access::COMPUTE_READ_WRITE,
             ),

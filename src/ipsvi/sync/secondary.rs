@@ -1,6 +1,5 @@
 use super::LineSync;
 use crate::ipsvi::gpu_params::BlockParams;
-use crate::ipsvi::sweep_plan::SweepPlan;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{Recorder, SecondaryCommands};
 use crate::vk::pipeline::ComputePipeline;
@@ -32,28 +31,18 @@ impl LineSync for ReplayedSweeps<'_> {
     }
 }
 
-/// One secondary command buffer per sweep (in frame order): its blocks and the
+/// One secondary command buffer per sweep (in frame order, `sweeps` as
+/// (first block record, record count)): its blocks and the
 /// barrier after each, parameters read from the blocks buffer by block index.
 /// A secondary inherits nothing: it binds the line pipelines and `line_set`.
 pub fn record_sweeps(
     ctx: &Context,
-    plans: &[SweepPlan],
+    sweeps: &[(usize, usize)],
     block_records: &[BlockParams],
     lines: &[ComputePipeline; 2],
     line_set: vk::DescriptorSet,
     workgroups: impl Fn(&BlockParams) -> u32,
 ) -> Result<SecondaryCommands, VkError> {
-    let sweeps: Vec<(usize, usize)> = {
-        let mut first = 0;
-        let mut v = Vec::new();
-        for plan in plans {
-            for sweep in &plan.sweeps {
-                v.push((first, sweep.blocks.len()));
-                first += sweep.blocks.len();
-            }
-        }
-        v
-    };
     SecondaryCommands::record(ctx, "ipsvi sweep", sweeps.len(), |i, rec| {
         let (first, count) = sweeps[i];
         rec.bind(&lines[0], line_set);

@@ -1,0 +1,80 @@
+//! `sweeplab bench ipsvi --breakdown`: where the time of one IPSVI frame goes,
+//! in both cache-update modes (issue 9 item 3). Each step adds one part of the
+//! frame to the one before; its cost is its GPU time minus the previous step's.
+
+use super::args::BenchIpsviArgs;
+use super::render_cmd::PROFILER_CAPACITY;
+use super::{bench_args, scene_args, session};
+use anyhow::Context as _;
+use std::process::ExitCode;
+use sweeplab::bench::{ipsvi_frame, technique_frame, BenchRow, BenchTable, OutFolder, Progress};
+use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
+use sweeplab::ipsvi::{BreakdownStep, CacheUpdate, IpsviSettings, SyncStrategy};
+use sweeplab::render::{GpuScene, Technique};
+use sweeplab::vk::Profiler;
+
+/// (step label, breakdown step, synchronization) after the single-dispatch DVR.
+const STEPS: [(&str, BreakdownStep, SyncStrategy); 5] = [
+    ("b: lines, no barriers", BreakdownStep::Lines, SyncStrategy::Racy),
+    ("c: + barriers", BreakdownStep::Lines, SyncStrategy::BarrierGlobal),
+    ("d: + cache reads", BreakdownStep::CacheReads, SyncStrategy::BarrierGlobal),
+    ("e: + piecewise integration", BreakdownStep::Piecewise, SyncStrategy::BarrierGlobal),
+    ("f: + cache writes = IPSVI", BreakdownStep::Full, SyncStrategy::BarrierGlobal),
+];
+
+pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
+    let harness = session::harness(1, args.repeat)?;
+    bench_args::check_sizes("--sizes", &args.sizes)?;
+    let scene = scene_args::load(&args.scene)?;
+    let base = scene.settings.ipsvi.clone();
+    let modes = [CacheUpdate::ViewSamples, CacheUpdate::LightRays];
+    let configs: Vec<IpsviSettings> =
+        modes.iter().map(|&cache_update| IpsviSettings { cache_update, ..base.clone() }).collect();
+    bench_args::check_ipsvi("the scene's [ipsvi] settings", &configs)?;
+    let out_folder = OutFolder::prepare(&args.out)?;
+    let ctx = session::open(&args.gpu)?;
+    let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
+    let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
+    let mut progress = Progress::new(args.sizes.len() * (1 + modes.len() * STEPS.len()));
+    let mut table = BenchTable::new();
+    for &size in &args.sizes {
+        let dvr = harness.measure_step(&mut progress, &format!("{size}x{size} a: DVR, one dispatch"), || {
+            technique_frame(&gpu, Technique::Dvr, (size, size), &mut profiler)
+        })?;
+        let dvr_ms = dvr.median();
+        for s in &configs {
+            let mode = s.cache_update.name();
+            let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
+            let mut measured = vec![("a: DVR, one dispatch", dvr_ms, dvr.last.dispatches, dvr.last.barriers)];
+            for (label, step, sync) in STEPS {
+                let settings = IpsviSettings { breakdown_step: step, ..s.clone() };
+                let mut renderer = IpsviRenderer::new(&gpu, &settings, size, size)?;
+                let m = harness.measure_step(&mut progress, &format!("{size}x{size} {mode} {label}"), || {
+                    ipsvi_frame(&ctx, &mut renderer, &mut profiler, sync)
+                })?;
+                measured.push((label, m.median(), m.last.frame.dispatches, m.last.frame.barriers));
+            }
+            let total = measured.last().map(|m| m.1).unwrap_or(f64::NAN);
+            let mut previous = 0.0;
+            for (label, gpu_ms, dispatches, barriers) in measured {
+                let step_ms = gpu_ms - previous;
+                previous = gpu_ms;
+                let mut row = BenchRow::new();
+                row.set("width", size).set("height", size).set("cache_update", mode).set("step", label);
+                row.set("gpu_ms", gpu_ms).set("step_ms", step_ms).set("step_share", step_ms / total);
+                row.set("step_us_per_line", step_ms * 1000.0 / lines.max(1) as f64);
+                row.set("lines", lines).set("dispatches", dispatches).set("barriers", barriers);
+                table.push(row);
+            }
+        }
+    }
+    progress.finish();
+    drop(gpu);
+    table.write_csv(args.out.join("ipsvi_breakdown.csv"))?;
+    table.write_json(args.out.join("ipsvi_breakdown.json"))?;
+    std::fs::write(args.out.join("ipsvi_breakdown.md"), table.to_markdown()).context("writing ipsvi_breakdown.md")?;
+    println!("{}", table.to_markdown());
+    println!("wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md", args.out.display());
+    out_folder.finish()?;
+    Ok(session::finish(&ctx))
+}

@@ -1,0 +1,100 @@
+//! How the illumination cache is fed (`ipsvi.cache_update`) and, when view
+//! samples feed it, how the many samples of a line that write one texel are
+//! resolved (`ipsvi.cache_write`). docs/ipsvi.md compares the modes.
+
+use crate::scene::suggest::nearest;
+use std::str::FromStr;
+
+/// Who writes the light leaving line i into the cache that line i+1 reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CacheUpdate {
+    /// The paper's mechanism (section 4.3, Listing 4.1): each view sample
+    /// composites itself over the light it received and writes the outgoing
+    /// light into its cache texel. The line barrier protects a dependency from
+    /// view ray to view ray; plain early ray termination loses features (figure 5).
+    ViewSamples,
+    /// Every cache texel advances its own light ray to the block's sweep plane:
+    /// race-free and independent of the view rays (the comparison mode).
+    LightRays,
+}
+
+/// Which of the view samples of one line block that end in the same texel is stored.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CacheWrite {
+    /// The paper's plain store: whichever sample stores last wins (a race by design).
+    Racy,
+    /// Deterministic: the sample farthest along the light ray wins, ties by
+    /// pixel. A claim march (medium only) one dispatch ahead finds the winner
+    /// with a 64-bit atomicMax; the shading pass stores only the winner.
+    Farthest,
+    /// Deterministic like `Farthest`, but the sample closest to the light wins:
+    /// with piecewise integration a later sample farther along marches back to
+    /// it exactly, where a farther write would over-attenuate a nearer reader.
+    Nearest,
+}
+
+impl CacheUpdate {
+    pub const ALL: [CacheUpdate; 2] = [CacheUpdate::ViewSamples, CacheUpdate::LightRays];
+    pub fn name(self) -> &'static str {
+        match self {
+            CacheUpdate::ViewSamples => "view-samples",
+            CacheUpdate::LightRays => "light-rays",
+        }
+    }
+}
+
+impl CacheWrite {
+    pub const ALL: [CacheWrite; 3] = [CacheWrite::Racy, CacheWrite::Farthest, CacheWrite::Nearest];
+    pub fn name(self) -> &'static str {
+        match self {
+            CacheWrite::Racy => "racy",
+            CacheWrite::Farthest => "farthest",
+            CacheWrite::Nearest => "nearest",
+        }
+    }
+
+    /// Whether a claim march picks one writer per texel (deterministic).
+    pub fn claims(self) -> bool {
+        self != CacheWrite::Racy
+    }
+}
+
+fn parse<T: Copy>(s: &str, all: &[T], name: impl Fn(T) -> &'static str) -> Result<T, String> {
+    all.iter().copied().find(|t| name(*t) == s).ok_or_else(|| {
+        let names: Vec<&str> = all.iter().map(|t| name(*t)).collect();
+        let near = nearest(s, names.iter().copied()).map(|n| format!(" (did you mean `{n}`?)")).unwrap_or_default();
+        format!("is {s:?}{near}, not one of {}", names.join(", "))
+    })
+}
+
+impl FromStr for CacheUpdate {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        parse(s, &CacheUpdate::ALL, CacheUpdate::name)
+    }
+}
+
+impl FromStr for CacheWrite {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        parse(s, &CacheWrite::ALL, CacheWrite::name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_typos_get_a_suggestion() {
+        for m in CacheUpdate::ALL {
+            assert_eq!(m.name().parse::<CacheUpdate>().unwrap(), m);
+        }
+        for w in CacheWrite::ALL {
+            assert_eq!(w.name().parse::<CacheWrite>().unwrap(), w);
+        }
+        let e = "view-sample".parse::<CacheUpdate>().unwrap_err();
+        assert!(e.contains("did you mean `view-samples`"), "{e}");
+        assert!("farthes".parse::<CacheWrite>().unwrap_err().contains("`farthest`"));
+    }
+}

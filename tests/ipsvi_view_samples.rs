@@ -1,0 +1,321 @@
+//! IPSVI with `cache_update = "view-samples"` (the paper's mechanism, section
+//! 4.3): against the ground truth of model (ii), the figure 5 scene that plain
+//! early ray termination gets wrong, the line barrier under synchronization
+//! validation, and what each write resolution does with the race.
+mod common;
+
+use common::*;
+use glam::{UVec3, Vec3};
+use sweeplab::ipsvi::{render_with, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy};
+use sweeplab::linear_image::LinearImage;
+use sweeplab::metrics::compare;
+use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
+use sweeplab::scene::synthetic::slab_under_sphere;
+use sweeplab::scene::{presets, Camera, Falloff, Light, LightKind, OpticalModel, Projection, Scene, Volume, VoxelData};
+use sweeplab::vk::{Context, Profiler};
+
+const SIZE: u32 = 48;
+
+fn reference_settings(scene: &mut Scene) {
+    scene.transfer = presets::preset("slab-sphere").unwrap();
+    scene.reference.model = OpticalModel::EmissiveScattering;
+    scene.reference.step_voxels = scene.render.step_voxels;
+    scene.reference.shadow_step_voxels = 0.125;
+    scene.reference.min_transmittance = 1e-4;
+    scene.render.emission = 0.2;
+}
+
+fn slab_scene(lights: Vec<Light>) -> Scene {
+    let mut scene = scene_with(slab_under_sphere(32), lights, SIZE, SIZE);
+    reference_settings(&mut scene);
+    scene
+}
+
+fn point(position: Vec3) -> Light {
+    Light {
+        kind: LightKind::Point { position },
+        color: Vec3::new(1.0, 0.9, 0.8),
+        intensity: 1.5,
+        falloff: Falloff::None,
+    }
+}
+
+fn view_samples(cache_size: u32, cache_write: CacheWrite) -> IpsviSettings {
+    IpsviSettings {
+        cache_size,
+        light_step_voxels: 0.125,
+        cache_update: CacheUpdate::ViewSamples,
+        cache_write,
+        ..IpsviSettings::default()
+    }
+}
+
+fn ipsvi(ctx: &Context, gpu: &GpuScene, s: &IpsviSettings, sync: SyncStrategy) -> LinearImage {
+    let mut profiler = Profiler::new(ctx, 8192).unwrap();
+    profiler.reset();
+    render_with(gpu, s, SIZE, SIZE, &mut profiler, sync).unwrap().image
+}
+
+fn reference(ctx: &Context, gpu: &GpuScene) -> LinearImage {
+    let mut profiler = Profiler::new(ctx, 64).unwrap();
+    render(gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image
+}
+
+/// RMSE relative to the brightest reference value.
+fn relative_rmse(test: &LinearImage, reference: &LinearImage) -> f64 {
+    compare(test, reference).unwrap().rmse / reference.max_value() as f64
+}
+
+/// Figure 5 of the paper in a 32^3 volume: an opaque wall A in front (toward
+/// the camera) hides a block B behind it; light from above carries B's shadow
+/// onto the floor C, which the camera sees under A.
+fn figure5_scene(with_b: bool) -> Scene {
+    let n = 32u32;
+    let inside = |i: UVec3, lo: [u32; 3], hi: [u32; 3]| (0..3).all(|a| i[a] >= lo[a] && i[a] < hi[a]);
+    let mut data = Vec::with_capacity((n * n * n) as usize);
+    for z in 0..n {
+        for y in 0..n {
+            for x in 0..n {
+                let i = UVec3::new(x, y, z);
+                let floor = inside(i, [2, 2, 2], [30, 6, 30]);
+                let hidden = with_b && inside(i, [10, 18, 8], [22, 24, 14]);
+                let wall = inside(i, [6, 14, 23], [26, 28, 27]);
+                data.push(if floor || hidden || wall { 255u8 } else { 0 });
+            }
+        }
+    }
+    let volume = Volume {
+        name: "figure-5".into(),
+        dims: UVec3::splat(n),
+        spacing: Vec3::ONE,
+        data: VoxelData::U8(data),
+        value_range: (0.0, 255.0),
+        non_finite_voxels: 0,
+    };
+    let mut scene = scene_with(volume, vec![directional(Vec3::new(0.1, -1.0, 0.05), 2.0)], SIZE, SIZE);
+    reference_settings(&mut scene);
+    scene.camera = Camera::orbit(Vec3::ZERO, 2.5, 0.0, 12.0, Projection::Perspective { fov_y_deg: 30.0 });
+    scene
+}
+
+/// RMSE (relative to the reference's peak) over the pixels `mask` selects.
+fn masked_rmse(test: &LinearImage, reference: &LinearImage, mask: &[bool]) -> f64 {
+    let (mut sum, mut count) = (0.0f64, 0usize);
+    for ((a, b), _) in test.pixels.iter().zip(&reference.pixels).zip(mask).filter(|(_, m)| **m) {
+        sum += (0..3).map(|c| ((a[c] - b[c]) as f64).powi(2)).sum::<f64>() / 3.0;
+        count += 1;
+    }
+    (sum / count.max(1) as f64).sqrt() / reference.max_value() as f64
+}
+
+/// The pixels the hidden block B changes in the ground truth (its shadow on C:
+/// B itself is hidden behind A), by more than 5% of the peak.
+fn shadow_of_b(ctx: &Context) -> Vec<bool> {
+    let (with_b, without_b) = (figure5_scene(true), figure5_scene(false));
+    let a = reference(ctx, &GpuScene::upload_with(ctx, &with_b, VolumeTexels::Float32).unwrap());
+    let b = reference(ctx, &GpuScene::upload_with(ctx, &without_b, VolumeTexels::Float32).unwrap());
+    let peak = a.max_value();
+    a.pixels.iter().zip(&b.pixels).map(|(p, q)| (0..3).any(|c| (p[c] - q[c]).abs() > 0.05 * peak)).collect()
+}
+
+/// Cache texels about as many as pixels (48 for 48x48): the samples of a line
+/// then really feed the texels the next line reads. (With the 256 cache of
+/// tests/ipsvi.rs most texels a sample reads were never written, and piecewise
+/// integration marches back to the box entry: exact, and tested there at the
+/// light-rays tolerance.)
+const FED_CACHE: u32 = 48;
+
+/// The stated tolerance of view-samples mode at FED_CACHE against model (ii),
+/// relative RMSE: 4% for a directional light, 10% for point and spot lights
+/// (measured on lavapipe 2.7%, and 1.0% to 8.0%, two lights 4.8%; light-rays
+/// mode at the same cache 2.5%, and 0.9% to 3.8%). Why worse than light rays: a texel holds the light at one
+/// depth along its ray, written by one sample of the previous line; a reader
+/// nearer the light than that depth cannot march back and is over-attenuated,
+/// and bilinear reads mix texels written at different depths. Light-rays mode
+/// keeps every texel's front on the sweep plane, so neither happens there.
+const DIRECTIONAL_TOLERANCE: f64 = 0.04;
+const POINT_TOLERANCE: f64 = 0.10;
+
+#[test]
+fn view_samples_match_the_reference_on_the_ipsvi_scenes() {
+    let ctx = validated_context();
+    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
+    let basis = camera.basis(SIZE, SIZE);
+    let (r, u) = (basis.right.normalize(), basis.up.normalize());
+    let mut spot = slab_scene(vec![Light {
+        kind: LightKind::Spot {
+            position: Vec3::new(0.2, 1.2, 0.3),
+            direction: Vec3::new(-0.1, -1.0, -0.2),
+            inner_cone_deg: 15.0,
+            outer_cone_deg: 30.0,
+        },
+        color: Vec3::ONE,
+        intensity: 2.0,
+        falloff: Falloff::InverseSquare,
+    }]);
+    spot.camera.projection = Projection::Orthographic { height: 1.8 };
+    let cases = vec![
+        ("directional", slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]), DIRECTIONAL_TOLERANCE),
+        ("right zone", slab_scene(vec![point(r * 1.2 + u * 0.3)]), POINT_TOLERANCE),
+        ("left zone", slab_scene(vec![point(-r * 1.2 + u * 0.2)]), POINT_TOLERANCE),
+        ("up zone", slab_scene(vec![point(u * 1.2 + r * 0.2)]), POINT_TOLERANCE),
+        ("down zone", slab_scene(vec![point(-u * 1.2 - r * 0.2)]), POINT_TOLERANCE),
+        ("inside the volume", slab_scene(vec![point(Vec3::new(0.15, 0.35, 0.1))]), POINT_TOLERANCE),
+        ("orthographic, spot", spot, POINT_TOLERANCE),
+        (
+            "two lights",
+            slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 1.0), point(-r * 1.2 + u * 0.2)]),
+            POINT_TOLERANCE,
+        ),
+    ];
+    for (what, scene, tolerance) in &cases {
+        let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
+        let truth = reference(&ctx, &gpu);
+        let light_rays =
+            IpsviSettings { cache_update: CacheUpdate::LightRays, ..view_samples(FED_CACHE, CacheWrite::Racy) };
+        let lr = relative_rmse(&ipsvi(&ctx, &gpu, &light_rays, SyncStrategy::BarrierGlobal), &truth);
+        let vs_image = ipsvi(&ctx, &gpu, &view_samples(FED_CACHE, CacheWrite::Farthest), SyncStrategy::BarrierGlobal);
+        assert!(vs_image.all_finite(), "{what}: non-finite pixels");
+        let vs = relative_rmse(&vs_image, &truth);
+        println!("{what}: relative rmse view-samples {vs:.4}, light-rays {lr:.4}");
+        assert!(vs <= *tolerance, "{what}: view-samples relative rmse {vs:.4} > {tolerance}");
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// Figure 5: plain early ray termination stops the view rays at A, so B never
+/// reaches the cache and C is lit where B shadows it; exit points (section 5.1)
+/// march those rays on far enough. Measured without piecewise integration,
+/// where the cache is all a sample knows of the light. With it, a texel B never
+/// wrote still has its front at the box entry, and the march from C back to it
+/// passes through B: piecewise integration hides figure 5 here (printed).
+#[test]
+fn plain_early_termination_loses_the_hidden_feature_and_exit_points_recover_it() {
+    let ctx = validated_context();
+    let shadow = shadow_of_b(&ctx);
+    assert!(shadow.iter().filter(|m| **m).count() >= 10, "B must shadow part of the image");
+    let scene = figure5_scene(true);
+    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+    let truth = reference(&ctx, &gpu);
+    for piecewise in [false, true] {
+        let mut error = Vec::new();
+        for ert in [EarlyTermination::Off, EarlyTermination::Plain, EarlyTermination::ExitPoints] {
+            let s =
+                IpsviSettings { piecewise, early_termination: ert, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
+            error.push(masked_rmse(&ipsvi(&ctx, &gpu, &s, SyncStrategy::BarrierGlobal), &truth, &shadow));
+        }
+        let light_rays = IpsviSettings {
+            piecewise,
+            cache_update: CacheUpdate::LightRays,
+            ..view_samples(FED_CACHE, CacheWrite::Farthest)
+        };
+        let lr = masked_rmse(&ipsvi(&ctx, &gpu, &light_rays, SyncStrategy::BarrierGlobal), &truth, &shadow);
+        println!(
+            "piecewise {piecewise}: relative rmse in B's shadow: off {:.4}, plain {:.4}, exit-points {:.4} (light-rays plain {lr:.4})",
+            error[0], error[1], error[2]
+        );
+        if !piecewise {
+            // Measured 0.148 / 0.547 / 0.206.
+            assert!(error[1] > 2.0 * error[2], "plain should lose B's shadow: {error:?}");
+            assert!(error[2] < 1.5 * error[0], "exit points should recover it: {error:?}");
+        }
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// The barrier after each line block is load-bearing in both modes and with
+/// every write resolution: without it synchronization validation reports the
+/// hazard on the cache.
+#[test]
+fn line_barrier_is_reported_missing_in_both_modes() {
+    let ctx = validated_context();
+    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    let modes = [
+        (CacheUpdate::LightRays, CacheWrite::Racy),
+        (CacheUpdate::ViewSamples, CacheWrite::Racy),
+        (CacheUpdate::ViewSamples, CacheWrite::Farthest),
+        (CacheUpdate::ViewSamples, CacheWrite::Nearest),
+    ];
+    for (cache_update, cache_write) in modes {
+        let s = IpsviSettings { cache_size: 32, cache_update, cache_write, ..IpsviSettings::default() };
+        profiler.reset();
+        render_with(&gpu, &s, 16, 16, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
+        assert_validation_clean(&ctx);
+        profiler.reset();
+        render_with(&gpu, &s, 16, 16, &mut profiler, SyncStrategy::Racy).unwrap();
+        let messages = ctx.take_validation_messages();
+        assert!(
+            messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
+            "{cache_update:?}/{cache_write:?}: missing line barrier not reported: {messages:?}"
+        );
+    }
+}
+
+/// Claimed writes (farthest, nearest) give the same image every frame; the
+/// paper's racy store may not (printed: whether it differed on this device),
+/// and what the resolution changes against the racy store.
+#[test]
+fn claimed_writes_are_deterministic_and_racy_writes_are_reported() {
+    let ctx = validated_context();
+    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
+    let basis = camera.basis(SIZE, SIZE);
+    let scene = slab_scene(vec![point(basis.right.normalize() * 1.2 + basis.up.normalize() * 0.3)]);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut images = Vec::new();
+    for write in CacheWrite::ALL {
+        let s = IpsviSettings { line_width: 2, ..view_samples(FED_CACHE, write) };
+        let first = ipsvi(&ctx, &gpu, &s, SyncStrategy::BarrierGlobal);
+        let mut differing = 0;
+        for _ in 0..4 {
+            let again = ipsvi(&ctx, &gpu, &s, SyncStrategy::BarrierGlobal);
+            differing += (again != first) as u32;
+        }
+        println!("{}: {differing} of 4 repeated frames differ from the first", write.name());
+        if write.claims() {
+            assert_eq!(differing, 0, "{}: claimed writes must repeat exactly", write.name());
+        }
+        images.push(first);
+    }
+    let peak = images[0].max_value() as f64;
+    for i in 1..images.len() {
+        let d = compare(&images[i], &images[0]).unwrap();
+        println!(
+            "{} vs racy: relative rmse {:.5}, max {:.5}",
+            CacheWrite::ALL[i].name(),
+            d.rmse / peak,
+            d.max_abs / peak
+        );
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// The breakdown's steps (bench ipsvi --breakdown) run validation-clean; the
+/// last is the IPSVI frame bit for bit, and the earlier ones leave parts out
+/// (no cache: no shadow; no piecewise integration: another image).
+#[test]
+fn breakdown_steps_end_in_the_ipsvi_frame() {
+    use sweeplab::ipsvi::BreakdownStep;
+    let ctx = validated_context();
+    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    for cache_update in [CacheUpdate::ViewSamples, CacheUpdate::LightRays] {
+        let s = IpsviSettings { cache_update, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
+        let frame = ipsvi(&ctx, &gpu, &s, SyncStrategy::BarrierGlobal);
+        let steps: Vec<LinearImage> = BreakdownStep::ALL
+            .iter()
+            .map(|&breakdown_step| {
+                ipsvi(&ctx, &gpu, &IpsviSettings { breakdown_step, ..s.clone() }, SyncStrategy::BarrierGlobal)
+            })
+            .collect();
+        assert_eq!(steps[3], frame, "{cache_update:?}: the full step is the frame");
+        for (i, step) in steps[..3].iter().enumerate() {
+            assert!(compare(step, &frame).unwrap().rmse > 1e-4, "{cache_update:?}: step {i} should differ");
+        }
+        // Without the cache the light is unshadowed: brighter overall.
+        let sum = |img: &LinearImage| img.pixels.iter().map(|p| (p[0] + p[1] + p[2]) as f64).sum::<f64>();
+        assert!(sum(&steps[0]) > sum(&frame), "{cache_update:?}: no cache, no shadow");
+    }
+    assert_validation_clean(&ctx);
+}
