@@ -12,8 +12,10 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "view_chunk.glsl"
 
 layout(set = 0, binding = 3, rgba32f) readonly uniform image3D illumination;
-// Read and written: it carries the march from chunk to chunk.
-layout(set = 0, binding = 4, rgba32f) uniform image2D out_image;
+// The chunks ping-pong (src/render/view_chunks.rs): each writes one image and
+// reads the march so far from the other, so a missing barrier shows.
+layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
+layout(set = 0, binding = 5, rgba32f) readonly uniform image2D state_in;
 
 const float LOG_FLOOR = 1e-3;
 
@@ -60,7 +62,7 @@ void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     ViewMarch v = view_march(camera_ray(px), frame.view_step);
-    vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(out_image, ivec2(px));
+    vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(state_in, ivec2(px));
     vec3 C = acc.rgb;
     float T = acc.a;
     for (int i = int(chunk.first_sample); i < chunk_end(v.samples); ++i) {

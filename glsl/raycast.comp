@@ -14,8 +14,10 @@ layout(constant_id = 0) const uint SHADING = 0;
 #include "view_ray.glsl"
 #include "view_chunk.glsl"
 
-// Read and written: it carries the march from chunk to chunk.
-layout(set = 0, binding = 4, rgba32f) uniform image2D out_image;
+// The chunks ping-pong (src/render/view_chunks.rs): each writes one image and
+// reads the march so far from the other, so a missing barrier shows.
+layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
+layout(set = 0, binding = 5, rgba32f) readonly uniform image2D state_in;
 
 vec3 gradient(vec3 uvw) {
     vec3 e = 1.0 / frame.dims;
@@ -48,7 +50,7 @@ void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     ViewMarch v = view_march(camera_ray(px), frame.view_step);
-    vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(out_image, ivec2(px));
+    vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(state_in, ivec2(px));
     vec3 C = acc.rgb;
     float T = acc.a;
     for (int i = int(chunk.first_sample); i < chunk_end(v.samples); ++i) {

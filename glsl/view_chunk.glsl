@@ -2,8 +2,8 @@
 // invocation after 65,535 loop iterations, so a long march is split across
 // dispatches (src/render/view_chunks.rs plans them): each marches samples
 // [first_sample, first_sample + sample_count) and carries (colour,
-// transmittance) to the next in the output image itself, which the same
-// invocation reads and writes; a barrier separates the dispatches.
+// transmittance) to the next through a ping-pong pair (the output and a state
+// image, one read, the other written); a barrier separates the dispatches.
 #ifndef VIEW_CHUNK_GLSL
 #define VIEW_CHUNK_GLSL
 

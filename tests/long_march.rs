@@ -103,3 +103,28 @@ fn ipsvi_and_half_angle_refuse_a_step_they_cannot_march_before_any_gpu_work() {
         assert!(t.check(&scene).is_ok(), "{t} takes an ordinary step");
     }
 }
+
+/// The barrier between view chunks is load-bearing: the chunks ping-pong
+/// between the output and a state image, so recorded without it,
+/// synchronization validation reports the hazard (with it, clean).
+#[test]
+fn view_chunks_without_their_barrier_are_reported_by_sync_validation() {
+    use sweeplab::reference::gpu::ChunkSync;
+    use sweeplab::render::raycast::{render_with, Shading};
+    let mut scene = noise_scene(8);
+    scene.render.step_voxels = PAST_THE_CAP;
+    let ctx = validated_context();
+    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+    let mut profiler = Profiler::new(&ctx, 256).unwrap();
+    profiler.reset();
+    let frame = render_with(&gpu, Shading::Unshaded, (8, 8), &mut profiler, ChunkSync::Barrier).unwrap();
+    assert!(frame.dispatches >= 3, "several chunks: {} dispatches", frame.dispatches);
+    assert_validation_clean(&ctx);
+    profiler.reset();
+    render_with(&gpu, Shading::Unshaded, (8, 8), &mut profiler, ChunkSync::RacyNoBarrier).unwrap();
+    let messages = ctx.take_validation_messages();
+    assert!(
+        messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("view chunk state")),
+        "racy view chunks were not reported: {messages:?}"
+    );
+}

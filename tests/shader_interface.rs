@@ -61,9 +61,12 @@ fn sets_are_checked_by_binding_name() {
         "shader raycast: binding depths (index 3) is not declared by this shader: its binding 3 is Lights"
     );
 
-    pipeline
-        .create_set(&[&scene_part[..], &[(raycast::OUT_IMAGE, Resource::StorageImage(&output.image))]].concat())
-        .unwrap();
+    // Complete: the output and the view-chunk state it ping-pongs with.
+    let complete = [
+        (raycast::OUT_IMAGE, Resource::StorageImage(&output.image)),
+        (raycast::STATE_IN, Resource::StorageImage(&output.image)),
+    ];
+    pipeline.create_set(&[&scene_part[..], &complete[..]].concat()).unwrap();
     drop(pipeline);
     drop(gpu);
     assert_validation_clean(&ctx);

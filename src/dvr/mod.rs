@@ -36,8 +36,8 @@ impl RenderTechnique for Baseline {
     fn reference_model(&self, scene: &Scene) -> OpticalModel {
         scene.reference.model
     }
-    fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
-        raycast::resources(self.shading, width, height)
+    fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
+        raycast::resources(scene, self.shading, width, height)
     }
     fn check(&self, scene: &Scene) -> Result<(), RenderError> {
         check_view_step(scene, self.name())

@@ -32,7 +32,7 @@ impl RenderTechnique for HalfAngle {
 
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         if scene.lights.is_empty() {
-            return raycast::resources(Shading::EmissionOnly, width, height);
+            return raycast::resources(scene, Shading::EmissionOnly, width, height);
         }
         let n = scene.settings.half_angle.light_buffer_size;
         vec![

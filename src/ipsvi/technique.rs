@@ -36,7 +36,7 @@ impl RenderTechnique for Ipsvi {
 
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         if scene.lights.is_empty() {
-            return raycast::resources(Shading::EmissionOnly, width, height);
+            return raycast::resources(scene, Shading::EmissionOnly, width, height);
         }
         let s = &scene.settings.ipsvi;
         let plans = scene_plans(scene, s, width, height);

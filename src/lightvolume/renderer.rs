@@ -11,6 +11,7 @@ use super::propagation::{Capacity, GroupEntry, Propagation};
 use super::raycast::RayCast;
 use super::settings::LightVolumeSettings;
 use crate::linear_image::LinearImage;
+use crate::reference::gpu::ChunkSync;
 use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
 use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::scene::settings_table::SettingsTable;
@@ -172,10 +173,10 @@ impl<'s> LightVolumeRenderer<'s> {
                 profiler.end(rec, update_scope)?;
             }
             if let Some(v) = view_pass {
-                // Read-write: the chunks of the ray cast carry the march in it.
+                // Read and written: the chunks of the ray cast ping-pong with it.
                 v.output.prepare_for_compute_read_write(rec);
                 let scope = profiler.begin(rec, "lightvolume_raycast")?;
-                v.raycast.record(rec, v.width, v.height);
+                v.raycast.record(rec, v.width, v.height, ChunkSync::Barrier);
                 profiler.end(rec, scope)?;
                 v.output.record_readback(rec, &v.readback);
             }

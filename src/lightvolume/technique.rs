@@ -60,6 +60,7 @@ impl RenderTechnique for LightVolume {
         }
         needs.push(ResourceNeed::of::<FrameParams>("lightvolume view params", 1));
         needs.push(ResourceNeed::output_image("lightvolume output", width, height));
+        needs.extend(super::raycast::RayCast::resources(scene, width, height));
         needs
     }
 

@@ -7,6 +7,8 @@ use super::frame_result::FrameResult;
 use super::technique::ResourceNeed;
 use super::view_chunks::ViewChunks;
 use super::{GpuScene, OutputImage, RenderError};
+use crate::reference::gpu::ChunkSync;
+use crate::scene::Scene;
 use crate::shaders::raycast;
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
@@ -39,32 +41,47 @@ pub fn render(
     height: u32,
     profiler: &mut Profiler,
 ) -> Result<FrameResult, RenderError> {
+    render_with(gpu, shading, (width, height), profiler, ChunkSync::Barrier)
+}
+
+/// [`render`] with the barrier between view chunks chosen: `RacyNoBarrier`
+/// only proves that validation reports it.
+pub fn render_with(
+    gpu: &GpuScene,
+    shading: Shading,
+    (width, height): (u32, u32),
+    profiler: &mut Profiler,
+    sync: ChunkSync,
+) -> Result<FrameResult, RenderError> {
     let ctx = gpu.ctx;
     let name = shading.pass_name();
-    // Per sample: the sample, and for Blinn-Phong the loop over the lights,
-    // which llvmpipe counts as one iteration more than it runs (measured).
-    let per_sample = 1 + if shading == Shading::BlinnPhong { gpu.scene.lights.len() as u64 + 1 } else { 0 };
-    let chunks = ViewChunks::for_render(gpu.scene, name, per_sample)?;
+    let chunks = ViewChunks::for_render(gpu.scene, name, iterations_per_sample(gpu.scene, shading))?;
     let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
     let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
     let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
+    let state = chunks.state_image(ctx, &format!("{name} view chunk state"), width, height)?;
     let mut pipeline = ComputePipeline::new(
         ctx,
-        &ComputePipelineDesc { name, shader: &raycast::INTERFACE, specialization: &[(0, shading as u32)], max_sets: 1 },
+        &ComputePipelineDesc { name, shader: &raycast::INTERFACE, specialization: &[(0, shading as u32)], max_sets: 2 },
     )?;
-    let set = pipeline.create_set(&[
-        (raycast::FRAME, Resource::UniformBuffer(&frame)),
-        (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
-        (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
-        (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
-        (raycast::OUT_IMAGE, Resource::StorageImage(&output.image)),
-    ])?;
+    // Set 0 writes the output and reads the state image, set 1 the opposite.
+    let mut sets = [vk::DescriptorSet::null(); 2];
+    for (i, (write, read)) in [(&output.image, &state), (&state, &output.image)].into_iter().enumerate() {
+        sets[i] = pipeline.create_set(&[
+            (raycast::FRAME, Resource::UniformBuffer(&frame)),
+            (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+            (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+            (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+            (raycast::OUT_IMAGE, Resource::StorageImage(write)),
+            (raycast::STATE_IN, Resource::StorageImage(read)),
+        ])?;
+    }
     let readback = output.readback_buffer(ctx)?;
     let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
         output.prepare_for_compute_read_write(rec);
+        rec.discard_for_compute("view_chunk_state_discard_to_compute_access", &[&state]);
         let scope = profiler.begin(rec, name)?;
-        rec.bind(&pipeline, set);
-        chunks.record(rec, &pipeline, width, height);
+        chunks.record(rec, &pipeline, sets, (width, height), sync);
         profiler.end(rec, scope)?;
         output.record_readback(rec, &readback);
         Ok((rec.dispatch_count, rec.barrier_count))
@@ -84,9 +101,21 @@ pub fn emission_only(
 }
 
 /// What [`render`] allocates.
-pub fn resources(shading: Shading, width: u32, height: u32) -> Vec<ResourceNeed> {
-    vec![
-        ResourceNeed::output_image(&format!("{} output", shading.pass_name()), width, height),
+pub fn resources(scene: &Scene, shading: Shading, width: u32, height: u32) -> Vec<ResourceNeed> {
+    let name = shading.pass_name();
+    let mut needs = vec![
+        ResourceNeed::output_image(&format!("{name} output"), width, height),
         ResourceNeed::of::<FrameParams>("frame params", 1),
-    ]
+    ];
+    if let Ok(chunks) = ViewChunks::for_render(scene, name, iterations_per_sample(scene, shading)) {
+        needs.push(chunks.state_resource(&format!("{name} view chunk state"), width, height));
+    }
+    needs
+}
+
+/// Loop iterations one view sample costs: the sample, and for Blinn-Phong the
+/// loop over the lights, which llvmpipe counts as one iteration more than it
+/// runs (measured).
+fn iterations_per_sample(scene: &Scene, shading: Shading) -> u64 {
+    1 + if shading == Shading::BlinnPhong { scene.lights.len() as u64 + 1 } else { 0 }
 }

@@ -1,16 +1,22 @@
 //! How a view march is split into dispatches (glsl/view_chunk.glsl). llvmpipe
 //! silently ends an invocation after 65,535 loop iterations, so a march longer
 //! than [`LOOP_BUDGET`] iterations runs as several dispatches of consecutive
-//! sample ranges, the partial (colour, transmittance) carried in the output
-//! image from one to the next behind a named barrier. At ordinary steps the
-//! plan is one chunk: the frame is recorded exactly as before.
+//! sample ranges, the partial (colour, transmittance) carried from one to the
+//! next behind a named barrier. The chunks ping-pong between the output image
+//! and a state image of the same size, each reading one (bound readonly) and
+//! writing the other (writeonly), so that synchronization validation sees a
+//! missing barrier (it cannot on an image bound read-write); the last chunk
+//! writes the output. At ordinary steps the plan is one chunk and the state
+//! image a 1x1 placeholder the shader never reads.
 
 use super::error::RenderError;
-use crate::reference::gpu::LOOP_BUDGET;
+use super::technique::ResourceNeed;
+use crate::reference::gpu::{ChunkSync, LOOP_BUDGET};
 use crate::scene::Scene;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::pipeline::ComputePipeline;
-use crate::vk::Recorder;
+use crate::vk::{Context, Image, Recorder};
+use ash::vk;
 use bytemuck::{Pod, Zeroable};
 
 /// Most view samples a ray may take: the sample index and position are computed
@@ -81,19 +87,57 @@ impl ViewChunks {
         }
     }
 
-    /// Records the chunks' dispatches over a `width` x `height` image, the
-    /// pipeline and its set already bound.
-    pub fn record(&self, rec: &mut Recorder, pipeline: &ComputePipeline, width: u32, height: u32) {
+    /// Size of the state image: the frame's with more than one chunk, else a
+    /// 1x1 placeholder (bound, never read).
+    pub fn state_extent(&self, width: u32, height: u32) -> [u32; 2] {
+        if self.chunks > 1 {
+            [width, height]
+        } else {
+            [1, 1]
+        }
+    }
+
+    /// The state image the chunks ping-pong with the output (RGBA32F).
+    pub fn state_image(&self, ctx: &Context, name: &str, width: u32, height: u32) -> Result<Image, RenderError> {
+        let [w, h] = self.state_extent(width, height);
+        Ok(Image::storage_2d(ctx, name, vk::Format::R32G32B32A32_SFLOAT, w, h, vk::ImageUsageFlags::empty())?)
+    }
+
+    /// What [`ViewChunks::state_image`] allocates.
+    pub fn state_resource(&self, name: &str, width: u32, height: u32) -> ResourceNeed {
+        let [w, h] = self.state_extent(width, height);
+        ResourceNeed::image(name, [w, h, 1], 16)
+    }
+
+    /// Which set chunk `chunk` dispatches with: 0 writes the output (and reads
+    /// the state image), 1 writes the state image (and reads the output), so
+    /// that the last chunk writes the output.
+    pub fn set_of(&self, chunk: u64) -> usize {
+        ((self.chunks - 1 - chunk) % 2) as usize
+    }
+
+    /// Records the chunks' dispatches over a `width` x `height` image with
+    /// `sets` (see [`ViewChunks::set_of`]), the pipeline bound. `sync` leaves
+    /// the barrier out only to prove that validation reports it.
+    pub fn record(
+        &self,
+        rec: &mut Recorder,
+        pipeline: &ComputePipeline,
+        sets: [vk::DescriptorSet; 2],
+        (width, height): (u32, u32),
+        sync: ChunkSync,
+    ) {
         for chunk in 0..self.chunks {
-            if chunk > 0 {
+            if chunk > 0 && sync == ChunkSync::Barrier {
                 // The next chunk reads the colour and transmittance this one
-                // wrote, and overwrites them: write->read and write->write.
+                // wrote, and overwrites what the one before it read.
                 rec.barrier(&Barrier::memory(
-                    "view_chunk_write_to_next_chunk_read_write",
+                    "view_chunk_write_to_next_chunk_read",
                     Access::COMPUTE_WRITE,
                     Access::COMPUTE_READ_WRITE,
                 ));
             }
+            rec.bind(pipeline, sets[self.set_of(chunk)]);
             rec.push(pipeline, &self.push(chunk));
             rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
         }
