@@ -331,7 +331,7 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
         .output()
         .expect("run sweeplab");
     assert!(o.status.success(), "{}", stderr(&o));
-    for file in ["ipsvi_breakdown.csv", "ipsvi_breakdown.md"] {
+    for file in ["ipsvi_breakdown.csv", "ipsvi_breakdown.md", "ipsvi_breakdown.png"] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
     let rows: Vec<serde_json::Value> =

@@ -26,7 +26,10 @@ pub use frames::{ipsvi_frame, technique_frame, ProfiledFrame};
 pub use harness::{Harness, HarnessError, Measurement, Sample};
 pub use out_folder::{OutFolder, OutFolderError};
 pub use pareto::pareto_front;
-pub use plot::{palette_color, plot_error_vs_time, plot_lines, render_error_vs_time, render_lines, Chart, Series};
+pub use plot::{
+    palette_color, plot_error_vs_time, plot_lines, plot_stacked_bars, render_error_vs_time, render_lines,
+    render_stacked_bars, Chart, Series, StackedBar,
+};
 pub use progress::Progress;
 pub use rows::{BenchRow, BenchTable, BenchValue};
 pub use stats::{fit_line, median, LineFit};

@@ -202,6 +202,75 @@ pub fn render_lines(chart: &Chart, series: &[Series]) -> Result<RgbImage, BenchE
     Ok(frame.canvas.into_image())
 }
 
+/// One bar of a stacked bar chart: its label and its segments, bottom up, as
+/// (segment name, value). Segment names are shared across bars (one legend
+/// entry and colour each, in order of first appearance).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StackedBar {
+    pub label: String,
+    pub segments: Vec<(String, f64)>,
+}
+
+/// Draws the stacked bar chart and writes it as PNG.
+pub fn plot_stacked_bars(path: impl AsRef<Path>, chart: &Chart, bars: &[StackedBar]) -> Result<(), BenchError> {
+    save_png(path.as_ref(), &render_stacked_bars(chart, bars)?)
+}
+
+/// Bars side by side (x: bar number, each bar's label above it), each the
+/// stack of its segments' values from 0. A negative segment (a step that
+/// measured faster than the one below it, within noise) draws nothing and
+/// lowers nothing: the bar's top is the largest running sum.
+pub fn render_stacked_bars(chart: &Chart, bars: &[StackedBar]) -> Result<RgbImage, BenchError> {
+    let mut names: Vec<String> = Vec::new();
+    for (name, _) in bars.iter().flat_map(|b| b.segments.iter()) {
+        if !names.contains(name) {
+            names.push(name.clone());
+        }
+    }
+    let tops: Vec<f64> = bars
+        .iter()
+        .map(|b| b.segments.iter().fold((0.0f64, 0.0f64), |(sum, top), (_, v)| (sum + v, top.max(sum + v))).1)
+        .collect();
+    let highest = tops.iter().copied().fold(0.0, f64::max);
+    // Invisible corner points make the axes span every bar and 0..highest.
+    let extent = Series::new("", vec![(-0.6, 0.0), (bars.len() as f64 - 0.4, highest * 1.08)]);
+    let legend = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| LegendEntry::series(i, &Series::new(n.clone(), vec![]).with_color(palette_color(i)), false))
+        .collect();
+    let mut frame = ChartFrame::new(chart, std::slice::from_ref(&extent), legend)?;
+    let text_scale = frame.text_scale;
+    for (index, bar) in bars.iter().enumerate() {
+        let x = index as f64;
+        let (mut sum, mut top) = (0.0f64, 0.0f64);
+        for (name, value) in &bar.segments {
+            sum += value;
+            let (low, high) = (top, top.max(sum));
+            top = high;
+            let color = palette_color(names.iter().position(|n| n == name).unwrap_or(0));
+            let (Some(a), Some(b)) = (frame.to_pixel((x - 0.35, low)), frame.to_pixel((x + 0.35, high))) else {
+                continue;
+            };
+            if b.1.round() < a.1.round() {
+                let rect = PixelRect {
+                    x0: a.0.round() as i64,
+                    y0: b.1.round() as i64,
+                    x1: b.0.round() as i64,
+                    y1: a.1.round() as i64,
+                };
+                frame.canvas.fill_rect(rect, color);
+            }
+        }
+        if let Some(label_at) = frame.to_pixel((x, top)) {
+            let width = text_width(&bar.label, text_scale);
+            let y = label_at.1 as i64 - i64::from(GLYPH_HEIGHT * text_scale) - 4;
+            frame.canvas.text(label_at.0 as i64 - width / 2, y, &bar.label, text_scale, INK);
+        }
+    }
+    Ok(frame.canvas.into_image())
+}
+
 enum LegendSample {
     Points { marker: Marker, color: Rgb, line: bool },
     Front,
@@ -441,6 +510,23 @@ mod tests {
         assert!(fitted.ends_with(".."));
         assert!(text_width(&fitted, 2) <= 120);
         assert_eq!(fit_text("short", 2, 120), "short");
+    }
+
+    #[test]
+    fn stacked_bars_draw_each_segment_in_its_colour_and_skip_negative_ones() {
+        let bar = |label: &str, a: f64, b: f64, c: f64| StackedBar {
+            label: label.into(),
+            segments: vec![("a".into(), a), ("b".into(), b), ("c".into(), c)],
+        };
+        let chart = Chart::new("t", "x", "y").size(640, 400);
+        let image = render_stacked_bars(&chart, &[bar("one", 10.0, 20.0, 5.0), bar("two", 10.0, 30.0, -5.0)]).unwrap();
+        let count = |color: [u8; 3]| image.pixels().filter(|p| p.0 == color).count();
+        let (a, b, c) = (count(palette_color(0)), count(palette_color(1)), count(palette_color(2)));
+        // Both bars share a (10 each), b is 20 and 30, c only 5 (the -5 draws nothing);
+        // the legend adds a few pixels of each colour.
+        assert!(a > 0 && b > 0 && c > 0, "{a} {b} {c}");
+        assert!(b > 2 * a && b < 3 * a, "b (50 units) against a (20): {b} vs {a}");
+        assert!(c < a, "c is 5 units against a's 20: {c} vs {a}");
     }
 
     #[test]

@@ -7,7 +7,9 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::{bench_args, scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::bench::{ipsvi_frame, technique_frame, BenchRow, BenchTable, OutFolder, Progress};
+use sweeplab::bench::{
+    ipsvi_frame, plot_stacked_bars, technique_frame, BenchRow, BenchTable, Chart, OutFolder, Progress, StackedBar,
+};
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{BreakdownStep, CacheUpdate, IpsviSettings, SyncStrategy};
 use sweeplab::render::{GpuScene, Technique};
@@ -21,6 +23,14 @@ const STEPS: [(&str, BreakdownStep, SyncStrategy); 5] = [
     ("e: + piecewise integration", BreakdownStep::Piecewise, SyncStrategy::BarrierGlobal),
     ("f: + cache writes = IPSVI", BreakdownStep::Full, SyncStrategy::BarrierGlobal),
 ];
+
+/// A bar label's name for a cache update.
+fn short_mode(mode: CacheUpdate) -> &'static str {
+    match mode {
+        CacheUpdate::ViewSamples => "view",
+        CacheUpdate::LightRays => "rays",
+    }
+}
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let harness = session::harness(1, args.repeat)?;
@@ -37,6 +47,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let mut progress = Progress::new(args.sizes.len() * (1 + modes.len() * STEPS.len()));
     let mut table = BenchTable::new();
+    let mut bars = Vec::new();
     for &size in &args.sizes {
         let dvr = harness.measure_step(&mut progress, &format!("{size}x{size} a: DVR, one dispatch"), || {
             technique_frame(&gpu, Technique::Dvr, (size, size), &mut profiler)
@@ -55,10 +66,12 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
                 measured.push((label, m.median(), m.last.frame.dispatches, m.last.frame.barriers));
             }
             let total = measured.last().map(|m| m.1).unwrap_or(f64::NAN);
+            let mut bar = StackedBar { label: format!("{size} {}", short_mode(s.cache_update)), segments: Vec::new() };
             let mut previous = 0.0;
             for (label, gpu_ms, dispatches, barriers) in measured {
                 let step_ms = gpu_ms - previous;
                 previous = gpu_ms;
+                bar.segments.push((label.to_string(), step_ms));
                 let mut row = BenchRow::new();
                 row.set("width", size).set("height", size).set("cache_update", mode).set("step", label);
                 row.set("gpu_ms", gpu_ms).set("step_ms", step_ms).set("step_share", step_ms / total);
@@ -66,6 +79,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
                 row.set("lines", lines).set("dispatches", dispatches).set("barriers", barriers);
                 table.push(row);
             }
+            bars.push(bar);
         }
     }
     progress.finish();
@@ -73,8 +87,14 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     table.write_csv(args.out.join("ipsvi_breakdown.csv"))?;
     table.write_json(args.out.join("ipsvi_breakdown.json"))?;
     std::fs::write(args.out.join("ipsvi_breakdown.md"), table.to_markdown()).context("writing ipsvi_breakdown.md")?;
+    let chart = Chart::new("One IPSVI frame, step by step", "bars: size, view samples or light rays", "GPU time (ms)")
+        .size(960, 600);
+    plot_stacked_bars(args.out.join("ipsvi_breakdown.png"), &chart, &bars)?;
     println!("{}", table.to_markdown());
-    println!("wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md", args.out.display());
+    println!(
+        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md, ipsvi_breakdown.png",
+        args.out.display()
+    );
     out_folder.finish()?;
     Ok(session::finish(&ctx))
 }
