@@ -1,33 +1,10 @@
 //! The `sweeplab` binary as a user runs it: outputs, reports, and clear errors
 //! with a non-zero exit for bad input (never a panic).
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn sweeplab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweeplab"))
-        .args(args)
-        .env("SWEEPLAB_VALIDATE", "1")
-        .output()
-        .expect("run sweeplab")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sweeplab-cli-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn assert_user_error(o: &Output, must_mention: &str) {
-    let err = stderr(o);
-    assert!(!o.status.success(), "should fail: {err}");
-    assert!(!err.contains("panicked"), "panicked: {err}");
-    assert!(err.contains(must_mention), "error does not mention {must_mention:?}: {err}");
-}
+use common::cli::*;
+use std::process::Command;
 
 #[test]
 fn render_writes_png_profile_and_trace_validation_clean() {

@@ -50,14 +50,17 @@ fn every_example_scene_renders_with_every_technique_it_names() {
         let gpu = GpuScene::upload(&ctx, &scene).unwrap();
         let mut profiler = Profiler::new(&ctx, 8192).unwrap();
         // all-keys.toml documents every key (three lights of every kind), so a
-        // technique may refuse it, clearly; a scene written for a technique may not.
+        // technique may refuse it for a documented limit; a scene written for a
+        // technique may not be refused at all.
         let reference_of_keys = path.ends_with("all-keys.toml");
         for technique in std::iter::once(Technique::Dvr).chain(named_techniques(&path)) {
             let out = match render(&gpu, technique, SIZE, SIZE, &mut profiler) {
                 Ok(out) => out,
-                Err(e) if reference_of_keys => {
+                // Only the refusal a technique documents for it: half-angle
+                // slicing carries one light, all-keys.toml has several.
+                Err(e) if reference_of_keys && technique == Technique::HalfAngle && scene.lights.len() > 1 => {
                     println!("{} with {technique}: refused: {e}", path.display());
-                    assert!(!e.to_string().is_empty());
+                    assert!(e.to_string().contains("one light"), "{e}");
                     continue;
                 }
                 Err(e) => panic!("{} with {technique}: {e}", path.display()),

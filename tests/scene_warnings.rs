@@ -4,28 +4,15 @@
 //! is an error naming the technique and the count, never a written image.
 mod common;
 
+use common::cli::{sweeplab, temp_dir};
 use common::*;
 use glam::Vec3;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use sweeplab::render::{render, GpuScene, RenderError, Technique, VolumeTexels};
 use sweeplab::scene::loaders::load_volume;
 use sweeplab::scene::synthetic::noise;
 use sweeplab::vk::Profiler;
-
-fn sweeplab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sweeplab"))
-        .args(args)
-        .env("SWEEPLAB_VALIDATE", "1")
-        .output()
-        .expect("run sweeplab")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sweeplab-warnings-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// A 4^3 float NRRD, raw little-endian, with `values` (64 of them).
 fn write_float_nrrd(dir: &Path, name: &str, values: &[f32]) -> PathBuf {

@@ -10,13 +10,7 @@ use sweeplab::vk::{Context, ContextOptions};
 pub fn open(gpu: &GpuArgs) -> anyhow::Result<Context> {
     let options = ContextOptions { device: gpu.device.clone(), validate: gpu.validate }.with_env();
     let ctx = Context::new(&options).context("cannot start Vulkan")?;
-    eprintln!(
-        "device: {} ({}, Vulkan {}){}",
-        ctx.info.name,
-        ctx.info.driver_info,
-        ctx.info.api_version,
-        if ctx.validation_enabled() { ", validation on" } else { "" }
-    );
+    eprintln!("{}", ctx.summary());
     Ok(ctx)
 }
 

@@ -66,13 +66,7 @@ pub fn run(
     // SAFETY: ash_window returns pointers to static NUL-terminated extension names.
     let names: Vec<&CStr> = names.iter().map(|&p| unsafe { CStr::from_ptr(p) }).collect();
     let ctx = Context::for_window(&options.context.clone().with_env(), &names)?;
-    eprintln!(
-        "device: {} ({}, Vulkan {}){}",
-        ctx.info.name,
-        ctx.info.driver_info,
-        ctx.info.api_version,
-        if ctx.validation_enabled() { ", validation on" } else { "" }
-    );
+    eprintln!("{}", ctx.summary());
     let report = frames_on(&ctx, &mut live, &mut event_loop, &mut events, options)?;
     Ok((report, ctx.take_validation_messages()))
 }

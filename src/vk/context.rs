@@ -306,6 +306,17 @@ impl Context {
         self.validation.is_some()
     }
 
+    /// The `device:` line the commands print: name, driver, API version, validation.
+    pub fn summary(&self) -> String {
+        format!(
+            "device: {} ({}, Vulkan {}){}",
+            self.info.name,
+            self.info.driver_info,
+            self.info.api_version,
+            if self.validation_enabled() { ", validation on" } else { "" }
+        )
+    }
+
     pub fn timestamps_supported(&self) -> bool {
         self.info.timestamp_valid_bits > 0 && self.info.timestamp_period_ns > 0.0
     }

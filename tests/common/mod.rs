@@ -2,6 +2,8 @@
 //! directly from the scene types.
 #![allow(dead_code)]
 
+pub mod cli;
+
 use glam::{UVec3, Vec3};
 use sweeplab::scene::*;
 use sweeplab::vk::{Context, ContextOptions};
