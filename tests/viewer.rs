@@ -301,3 +301,46 @@ fn viewer_flags_and_script_mistakes_are_errors_with_suggestions() {
     let o = sweeplab(&["view", "--frames", "1", "--script", script.to_str().unwrap()], None);
     assert!(!o.status.success() && stderr(&o).contains("did you mean resize?"), "{}", stderr(&o));
 }
+
+/// The viewer's log of one run of `technique` (no panel), validation clean.
+fn view_log(x: &Xvfb, name: &str, technique: &str, size: &str, frames: &str) -> Vec<serde_json::Value> {
+    let log_path = temp_dir(name).join("log.json");
+    let args = ["view", "--size", size, "--technique", technique, "--frames", frames, "--no-ui", "--log-json"];
+    let mut args: Vec<&str> = args.to_vec();
+    args.push(log_path.to_str().unwrap());
+    let o = sweeplab(&args, Some(&x.display));
+    assert_clean_run(&o);
+    log(&log_path)["frames"].as_array().unwrap().clone()
+}
+
+#[test]
+fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
+    let x = xvfb_or_skip!();
+    // DVR and the light volume record into the frame slot's command buffer:
+    // their scopes and the present pass's are in one profile, no upload.
+    for technique in ["dvr", "lightvolume"] {
+        for f in view_log(&x, technique, technique, "32x32", "3") {
+            let p = passes(&f);
+            assert!(p.iter().any(|s| s.starts_with(technique)), "{technique}: {p:?}");
+            assert!(p.contains(&"present_blit".to_string()), "{technique}: {p:?}");
+            assert!(!p.contains(&"frame_upload".to_string()), "{technique}: host round trip: {p:?}");
+            assert!(f["gpu_ms"].as_f64().unwrap() > 0.0, "{f}");
+        }
+    }
+    // IPSVI submits several times for some strategies: it is rendered, read
+    // back and uploaded, and its profile says so.
+    for f in view_log(&x, "ipsvi", "ipsvi", "24x24", "2") {
+        assert!(passes(&f).contains(&"frame_upload".to_string()), "{f}");
+    }
+}
+
+#[test]
+fn without_the_handoff_barrier_synchronization_validation_reports_the_race() {
+    let x = xvfb_or_skip!();
+    let args = ["view", "--size", "32x32", "--frames", "2", "--no-ui", "--racy-no-handoff-barrier"];
+    let o = sweeplab(&args, Some(&x.display));
+    let err = stderr(&o);
+    assert!(!o.status.success(), "{err}");
+    assert!(err.contains("SYNC-HAZARD-READ-AFTER-WRITE") && err.contains("vkCmdBlitImage"), "{err}");
+    assert!(err.contains("dvr output") && err.contains("SYNC_COMPUTE_SHADER_SHADER_STORAGE_WRITE"), "{err}");
+}

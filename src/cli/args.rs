@@ -275,6 +275,10 @@ pub struct ViewArgs {
     /// No control panel: the frame alone (as `render` would write it).
     #[arg(long)]
     pub no_ui: bool,
+    /// Leave out the barrier between the technique's frame and the present
+    /// pass: a race, only for the test that proves validation reports it.
+    #[arg(long, hide = true)]
+    pub racy_no_handoff_barrier: bool,
     /// Per-frame log as JSON: passes, GPU and frame times, light volume decisions.
     #[arg(long, value_name = "FILE")]
     pub log_json: Option<PathBuf>,

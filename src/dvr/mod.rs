@@ -2,11 +2,12 @@
 //! dispatch each of the plain ray cast ([`crate::render::raycast`]). Compared
 //! with the optical model the scene names.
 
+use crate::reference::gpu::ChunkSync;
 use crate::render::raycast::{self, Shading};
 use crate::render::view_chunks::check_view_step;
-use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::render::{FrameResult, GpuScene, RecordedFrame, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene};
-use crate::vk::Profiler;
+use crate::vk::{Profiler, Recorder};
 
 /// A baseline: the plain ray cast with one shading.
 pub struct Baseline {
@@ -50,5 +51,15 @@ impl RenderTechnique for Baseline {
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError> {
         raycast::render(gpu, self.shading, width, height, profiler)
+    }
+    fn record(
+        &self,
+        gpu: &GpuScene,
+        rec: &mut Recorder,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<Option<RecordedFrame>, RenderError> {
+        raycast::record_with(gpu, self.shading, (width, height), rec, profiler, ChunkSync::Barrier).map(Some)
     }
 }

@@ -17,10 +17,11 @@ use crate::render::{GpuScene, OutputImage, RenderError};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::Light;
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::commands::submit_and_wait;
-use crate::vk::{Buffer, Profiler};
+use crate::vk::commands::{submit_and_wait, submit_and_wait_or};
+use crate::vk::{Buffer, Profiler, Recorder};
 use ash::vk;
 use glam::UVec3;
+use std::sync::Arc;
 
 /// What an update did and why.
 #[derive(Clone, Debug)]
@@ -33,6 +34,13 @@ pub struct UpdateReport {
     /// Bound on the rounding error selective updates have left since the last
     /// entire update (volume units).
     pub drift_bound: f64,
+}
+
+/// A frame recorded by [`LightVolumeRenderer::record_frame`]: its update, and
+/// the output image when a view was asked for.
+pub struct RecordedUpdate {
+    pub output: Option<Arc<OutputImage>>,
+    pub update: UpdateReport,
 }
 
 /// One frame: the update, and the image when a view was asked for.
@@ -58,7 +66,7 @@ struct ViewPass {
     width: u32,
     height: u32,
     _frame: Buffer,
-    output: OutputImage,
+    output: Arc<OutputImage>,
     raycast: RayCast,
     readback: Buffer,
 }
@@ -140,6 +148,43 @@ impl<'s> LightVolumeRenderer<'s> {
         profiler: &mut Profiler,
         read_illumination: bool,
     ) -> Result<LightVolumeFrame, RenderError> {
+        let ctx = self.gpu.ctx;
+        let illumination_readback =
+            if read_illumination { Some(self.illumination.readback_buffers(ctx)?) } else { None };
+        let (recorded, dispatches, barriers) = submit_and_wait_or(ctx, "lightvolume frame", |rec| {
+            let recorded = self.record_frame(rec, lights, view, profiler)?;
+            if let (Some(output), Some(v)) = (&recorded.output, &self.view) {
+                output.record_readback(rec, &v.readback);
+            }
+            if let Some(buffers) = &illumination_readback {
+                self.illumination.record_readback(rec, buffers);
+            }
+            Ok::<_, RenderError>((recorded, rec.dispatch_count, rec.barrier_count))
+        })?;
+        let image = match (&recorded.output, &self.view) {
+            (Some(output), Some(v)) => Some(output.read(&v.readback)?),
+            _ => None,
+        };
+        let volume = match &illumination_readback {
+            Some(buffers) => Some(self.illumination.read(buffers)?),
+            None => None,
+        };
+        let update = recorded.update;
+        Ok(LightVolumeFrame { image, dispatches, barriers, grid: self.illumination.size, update, illumination: volume })
+    }
+
+    /// Records the update to `lights` and, with `view`, the ray cast into
+    /// `rec`, a command buffer its caller submits (the viewer); the frame is
+    /// left in the view's output image as `crate::render::RecordedFrame` says.
+    /// The caller makes sure the previous frame finished: the update writes
+    /// host-visible buffers the previous one read, and replays its secondaries.
+    pub fn record_frame(
+        &mut self,
+        rec: &mut Recorder,
+        lights: &[Option<Light>],
+        view: Option<(u32, u32)>,
+        profiler: &mut Profiler,
+    ) -> Result<RecordedUpdate, RenderError> {
         self.updates += 1;
         let target = contributions(lights, self.geometry.box_half);
         let plan = plan_update(&self.present, &target, &self.settings, &self.plan_state, self.geometry);
@@ -147,57 +192,40 @@ impl<'s> LightVolumeRenderer<'s> {
         if let Some((width, height)) = view {
             self.prepare_view(width, height)?;
         }
-        let ctx = self.gpu.ctx;
-        let illumination_readback =
-            if read_illumination { Some(self.illumination.readback_buffers(ctx)?) } else { None };
         let view_pass = if view.is_some() { self.view.as_ref() } else { None };
         let (illumination, propagation, cache) = (&self.illumination, &self.propagation, &self.cache);
-        let (dispatches, barriers) = submit_and_wait(ctx, "lightvolume frame", |rec| {
-            // The volume, slots and entries carry over from the previous frame,
-            // whose last use of them varies (propagation, ray cast or readback).
-            rec.barrier(&Barrier::memory("previous_frame_to_this_frame", Access::ANY, Access::ANY));
-            if plan.kind != UpdateKind::Unchanged {
-                let update_scope = profiler.begin(rec, plan.kind.scope_name())?;
-                if plan.kind == UpdateKind::Entire {
-                    illumination.record_clear(rec);
+        // The volume, slots and entries carry over from the previous frame,
+        // whose last use of them varies (propagation, ray cast or readback).
+        rec.barrier(&Barrier::memory("previous_frame_to_this_frame", Access::ANY, Access::ANY));
+        if plan.kind != UpdateKind::Unchanged {
+            let update_scope = profiler.begin(rec, plan.kind.scope_name())?;
+            if plan.kind == UpdateKind::Entire {
+                illumination.record_clear(rec);
+            }
+            if let (Some(p), false) = (propagation, pass_indices.is_empty()) {
+                p.record_prepare(rec);
+                for &i in &pass_indices {
+                    let pass = &cache.passes[i];
+                    let scope = profiler.begin(rec, &pass.name)?;
+                    rec.execute(&pass.commands, 0);
+                    profiler.end(rec, scope)?;
                 }
-                if let (Some(p), false) = (propagation, pass_indices.is_empty()) {
-                    p.record_prepare(rec);
-                    for &i in &pass_indices {
-                        let pass = &cache.passes[i];
-                        let scope = profiler.begin(rec, &pass.name)?;
-                        rec.execute(&pass.commands, 0);
-                        profiler.end(rec, scope)?;
-                    }
-                }
-                profiler.end(rec, update_scope)?;
             }
-            if let Some(v) = view_pass {
-                // Read and written: the chunks of the ray cast ping-pong with it.
-                v.output.prepare_for_compute_read_write(rec);
-                let scope = profiler.begin(rec, "lightvolume_raycast")?;
-                v.raycast.record(rec, v.width, v.height, ChunkSync::Barrier);
-                profiler.end(rec, scope)?;
-                v.output.record_readback(rec, &v.readback);
-            }
-            if let Some(buffers) = &illumination_readback {
-                illumination.record_readback(rec, buffers);
-            }
-            Ok((rec.dispatch_count, rec.barrier_count))
-        })?;
-        let image = match view_pass {
-            Some(v) => Some(v.output.read(&v.readback)?),
-            None => None,
-        };
-        let volume = match &illumination_readback {
-            Some(buffers) => Some(self.illumination.read(buffers)?),
-            None => None,
-        };
+            profiler.end(rec, update_scope)?;
+        }
+        if let Some(v) = view_pass {
+            // Read and written: the chunks of the ray cast ping-pong with it.
+            v.output.prepare_for_compute_read_write(rec);
+            let scope = profiler.begin(rec, "lightvolume_raycast")?;
+            v.raycast.record(rec, v.width, v.height, ChunkSync::Barrier);
+            profiler.end(rec, scope)?;
+        }
+        let output = view_pass.map(|v| v.output.clone());
         let drift = drift_after(&self.plan_state, &self.present, &plan, &self.settings, self.geometry);
         apply(&mut self.present, plan.kind == UpdateKind::Entire, &plan.passes);
         self.plan_state = PlanState { invalid: false, pending: plan.deferred > 0, drift };
         let update = UpdateReport { recorded, reused: plan.passes.len() - recorded, drift_bound: drift.bound, plan };
-        Ok(LightVolumeFrame { image, dispatches, barriers, grid: self.illumination.size, update, illumination: volume })
+        Ok(RecordedUpdate { output, update })
     }
 
     /// Reads the illumination volume back (its own submission).
@@ -226,7 +254,7 @@ impl<'s> LightVolumeRenderer<'s> {
         let output = OutputImage::new(ctx, "lightvolume output", width, height)?;
         let raycast = RayCast::new(gpu, &frame, &self.illumination, &output)?;
         let readback = output.readback_buffer(ctx)?;
-        self.view = Some(ViewPass { width, height, _frame: frame, output, raycast, readback });
+        self.view = Some(ViewPass { width, height, _frame: frame, output: Arc::new(output), raycast, readback });
         Ok(())
     }
 

@@ -3,9 +3,9 @@
 //! rebuild.
 
 use super::renderer::{LightVolumeRenderer, UpdateReport};
-use crate::render::{FrameResult, FrameSession, GpuScene, RenderError};
+use crate::render::{FrameResult, FrameSession, GpuScene, RecordedFrame, RenderError};
 use crate::scene::Light;
-use crate::vk::Profiler;
+use crate::vk::{Profiler, Recorder};
 
 pub struct LightVolumeSession<'s> {
     renderer: LightVolumeRenderer<'s>,
@@ -30,6 +30,25 @@ impl FrameSession for LightVolumeSession<'_> {
         let image = out.image.ok_or_else(|| RenderError::Invalid("light volume frame without an image".into()))?;
         self.last = Some(out.update);
         Ok(FrameResult { image, dispatches: out.dispatches, barriers: out.barriers })
+    }
+
+    fn record(
+        &mut self,
+        lights: &[Option<Light>],
+        rec: &mut Recorder,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<Option<RecordedFrame>, RenderError> {
+        let recorded = self.renderer.record_frame(rec, lights, Some((width, height)), profiler)?;
+        let output =
+            recorded.output.ok_or_else(|| RenderError::Invalid("light volume frame without an image".into()))?;
+        self.last = Some(recorded.update);
+        Ok(Some(RecordedFrame::counted(rec, output, Vec::new())))
+    }
+
+    fn reuses_gpu_resources(&self) -> bool {
+        true
     }
 
     fn follows_lights(&self) -> bool {

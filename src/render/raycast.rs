@@ -4,17 +4,18 @@
 
 use super::frame_params::{frame_params, FrameParams, MarchSteps};
 use super::frame_result::FrameResult;
+use super::recorded_frame::{render_recorded, RecordedFrame};
 use super::technique::ResourceNeed;
 use super::view_chunks::ViewChunks;
 use super::{GpuScene, OutputImage, RenderError};
 use crate::reference::gpu::ChunkSync;
 use crate::scene::Scene;
 use crate::shaders::raycast;
-use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
-use crate::vk::{Buffer, Profiler};
+use crate::vk::{Buffer, Profiler, Recorder};
 use ash::vk;
+use std::sync::Arc;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Shading {
@@ -49,10 +50,22 @@ pub fn render(
 pub fn render_with(
     gpu: &GpuScene,
     shading: Shading,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     profiler: &mut Profiler,
     sync: ChunkSync,
 ) -> Result<FrameResult, RenderError> {
+    render_recorded(gpu, |rec| record_with(gpu, shading, size, rec, profiler, sync))
+}
+
+/// Records the frame into `rec` (see [`RecordedFrame`]).
+pub fn record_with(
+    gpu: &GpuScene,
+    shading: Shading,
+    (width, height): (u32, u32),
+    rec: &mut Recorder,
+    profiler: &mut Profiler,
+    sync: ChunkSync,
+) -> Result<RecordedFrame, RenderError> {
     let ctx = gpu.ctx;
     let name = shading.pass_name();
     let chunks = ViewChunks::for_render(gpu.scene, name, iterations_per_sample(gpu.scene, shading))?;
@@ -76,17 +89,12 @@ pub fn render_with(
             (raycast::STATE_IN, Resource::StorageImage(read)),
         ])?;
     }
-    let readback = output.readback_buffer(ctx)?;
-    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
-        output.prepare_for_compute_read_write(rec);
-        rec.discard_for_compute("view_chunk_state_discard_to_compute_access", &[&state]);
-        let scope = profiler.begin(rec, name)?;
-        chunks.record(rec, &pipeline, sets, (width, height), sync);
-        profiler.end(rec, scope)?;
-        output.record_readback(rec, &readback);
-        Ok((rec.dispatch_count, rec.barrier_count))
-    })?;
-    Ok(FrameResult { image: output.read(&readback)?, dispatches, barriers })
+    output.prepare_for_compute_read_write(rec);
+    rec.discard_for_compute("view_chunk_state_discard_to_compute_access", &[&state]);
+    let scope = profiler.begin(rec, name)?;
+    chunks.record(rec, &pipeline, sets, (width, height), sync);
+    profiler.end(rec, scope)?;
+    Ok(RecordedFrame::counted(rec, Arc::new(output), vec![Box::new(frame), Box::new(state), Box::new(pipeline)]))
 }
 
 /// A lit technique's frame for a scene without lights: no light, nothing to

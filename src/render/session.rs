@@ -7,9 +7,10 @@
 use super::error::RenderError;
 use super::frame_result::FrameResult;
 use super::gpu_scene::GpuScene;
+use super::recorded_frame::RecordedFrame;
 use super::technique::RenderTechnique;
 use crate::scene::Light;
-use crate::vk::Profiler;
+use crate::vk::{Profiler, Recorder};
 
 pub trait FrameSession {
     /// Renders one `width` x `height` frame with `lights` (the scene's lights as
@@ -21,6 +22,26 @@ pub trait FrameSession {
         height: u32,
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError>;
+
+    /// Records one frame into `rec`, a command buffer its caller submits (see
+    /// [`RenderTechnique::record`]); `None`: this session cannot, use `frame`.
+    fn record(
+        &mut self,
+        _lights: &[Option<Light>],
+        _rec: &mut Recorder,
+        _width: u32,
+        _height: u32,
+        _profiler: &mut Profiler,
+    ) -> Result<Option<RecordedFrame>, RenderError> {
+        Ok(None)
+    }
+
+    /// Whether a recorded frame reuses GPU resources of the previous one (the
+    /// light volume): then its caller lets the previous frame finish before
+    /// `record`; otherwise each frame allocates its own, and frames overlap.
+    fn reuses_gpu_resources(&self) -> bool {
+        false
+    }
 
     /// Whether `frame` follows edited lights; if not, a light change needs a
     /// new session on the re-uploaded scene.
@@ -48,6 +69,17 @@ impl FrameSession for EachFrameAnew<'_> {
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError> {
         self.technique.render(self.gpu, width, height, profiler)
+    }
+
+    fn record(
+        &mut self,
+        _lights: &[Option<Light>],
+        rec: &mut Recorder,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<Option<RecordedFrame>, RenderError> {
+        self.technique.record(self.gpu, rec, width, height, profiler)
     }
 
     fn follows_lights(&self) -> bool {

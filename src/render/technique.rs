@@ -6,9 +6,10 @@
 use super::error::RenderError;
 use super::frame_result::FrameResult;
 use super::gpu_scene::GpuScene;
+use super::recorded_frame::RecordedFrame;
 use super::session::FrameSession;
 use crate::scene::{OpticalModel, Scene};
-use crate::vk::Profiler;
+use crate::vk::{Profiler, Recorder};
 
 pub trait RenderTechnique: Sync {
     /// What `--technique` calls it.
@@ -39,6 +40,23 @@ pub trait RenderTechnique: Sync {
         height: u32,
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError>;
+
+    /// Records one frame of `gpu.scene` into `rec`, a command buffer its caller
+    /// submits (the viewer: with its present pass, in one submission), leaving
+    /// it in an output image ([`RecordedFrame`]). `render` is this plus a
+    /// read-back where a technique has it. `None`: the technique cannot
+    /// (it submits several times, or finishes the image on the host), and the
+    /// viewer uploads what `render` returns.
+    fn record(
+        &self,
+        _gpu: &GpuScene,
+        _rec: &mut Recorder,
+        _width: u32,
+        _height: u32,
+        _profiler: &mut Profiler,
+    ) -> Result<Option<RecordedFrame>, RenderError> {
+        Ok(None)
+    }
 
     /// A session that keeps state across frames of `gpu` (the viewer), for a
     /// technique that has such state; `None`: each frame is rendered anew by

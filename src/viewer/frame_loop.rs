@@ -1,23 +1,26 @@
-//! The frame loop: events, script steps and mouse edits; the technique's frame
-//! (through the same code as `render`); then a frame slot: wait for its fence,
-//! acquire a swapchain image, record and submit the present pass, present.
+//! The frame loop: events, script steps and mouse edits; then a frame slot:
+//! wait for its fence, acquire a swapchain image, record the technique's frame
+//! (the same recording as `render`), the hand-off barrier and the present pass
+//! into the slot's command buffer, submit once, present.
 //! The swapchain is recreated when the window's size changes or presentation
 //! reports it out of date or suboptimal; a minimized window renders nothing.
 
 use super::controls;
 use super::error::ViewerError;
-use super::frames::{FramesInFlight, Upload, FRAMES_IN_FLIGHT};
+use super::frames::{FrameSlot, FramesInFlight, InFlight, Upload, FRAMES_IN_FLIGHT, PROFILER_CAPACITY};
 use super::live_scene::{Change, LiveScene, SceneSource};
-use super::present_pass::{self, PresentTarget, ACQUIRE_WAIT_STAGE};
+use super::present_pass::{
+    self, PresentTarget, ACQUIRE_WAIT_STAGE, BLIT_SCOPE, BLIT_SOURCE_LAYOUT, UI_SCOPE, UPLOAD_SCOPE,
+};
 use super::report::{FrameRecord, ViewerReport};
 use super::script::{Action, Script};
 use super::ui::{PanelView, PassHistory, Ui, UiEdit};
 use super::window::{self, WindowEvents};
-use crate::render::{self, GpuScene, RenderOutput, Technique, VolumeTexels};
+use crate::render::{self, FrameSession, GpuScene, Technique, VolumeTexels};
 use crate::scene::Light;
 use crate::vk::error::VkResultExt;
 use crate::vk::swapchain::present_mode_name;
-use crate::vk::{Buffer, Context, ContextOptions, Profiler, Recorder, Surface, Swapchain, VkError};
+use crate::vk::{Buffer, Context, ContextOptions, ProfileReport, Profiler, Recorder, Surface, Swapchain, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::ffi::CStr;
@@ -26,9 +29,6 @@ use std::time::{Duration, Instant};
 use winit::dpi::PhysicalSize;
 use winit::event_loop::EventLoop;
 use winit::keyboard::KeyCode;
-
-/// Scopes per frame the technique's profiler holds.
-const PROFILER_CAPACITY: u32 = 16_384;
 
 #[derive(Clone, Debug)]
 pub struct ViewerOptions {
@@ -45,6 +45,9 @@ pub struct ViewerOptions {
     pub out_dir: PathBuf,
     /// The control panel (off: the frame alone, e.g. to compare screenshots).
     pub ui: bool,
+    /// The barrier between the technique's frame and the present pass; off
+    /// only to prove that validation reports its absence (a test).
+    pub handoff_barrier: bool,
 }
 
 /// Opens the window and runs frames until it is closed or `frames` are done.
@@ -89,14 +92,15 @@ fn frames_on(
         present_mode: present_mode_name(options.present_mode),
         ..Default::default()
     };
+    let mut log = FrameLog { report: &mut report, history: PassHistory::default(), out_dir: options.out_dir.clone() };
     let result =
-        frame_loop(ctx, &surface, &mut frames, &mut swapchain, &mut ui, live, event_loop, events, options, &mut report);
+        frame_loop(ctx, &surface, &mut frames, &mut swapchain, &mut ui, live, event_loop, events, options, &mut log);
     // Fences cover the submissions; presents are covered by nothing but the
     // queue, so it is waited for once here before the swapchain goes.
     let waited = frames.wait_all().and_then(|_| queue_idle(ctx));
     result?;
     waited?;
-    resolve_present_profiles(&mut frames, &mut report)?;
+    resolve_all(&mut frames, &mut log)?;
     events.egui = None;
     drop(ui);
     drop(swapchain);
@@ -114,9 +118,9 @@ fn frame_loop<'c>(
     event_loop: &mut EventLoop<()>,
     events: &mut WindowEvents,
     options: &ViewerOptions,
-    report: &mut ViewerReport,
+    log: &mut FrameLog,
 ) -> Result<(), ViewerError> {
-    let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
+    let mut host_profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
     let mut frame_index = 0u64;
     let mut script_done_for: Option<u64> = None;
     let mut recreate = true;
@@ -125,7 +129,6 @@ fn frame_loop<'c>(
     let mut enabled: Vec<bool> = vec![true; live.scene.lights.len()];
     let mut ui_edits: Vec<UiEdit> = Vec::new();
     let mut message: Option<String> = None;
-    let mut history = PassHistory::default();
     'scene: loop {
         enabled.resize(live.scene.lights.len(), true);
         // Switched-off lights are left out of the uploaded scene.
@@ -133,6 +136,9 @@ fn frame_loop<'c>(
         scene.lights = scene.lights.iter().zip(&enabled).filter(|(_, &on)| on).map(|(l, _)| *l).collect();
         let gpu = GpuScene::upload_with(ctx, &scene, options.texels)?;
         let mut session = render::session(&gpu, technique)?;
+        // Dropped first when the scene is left (edited, closed, or an error):
+        // frames in flight use the scene's and the session's resources.
+        let _in_flight_done = QueueIdleOnDrop(ctx);
         loop {
             if !events.pump(event_loop, Duration::ZERO)? || events.close_requested {
                 break 'scene;
@@ -209,7 +215,7 @@ fn frame_loop<'c>(
                 // Presents of the old swapchain hold its semaphores; the queue
                 // is waited for here only, never in a frame.
                 queue_idle(ctx)?;
-                resolve_present_profiles(frames, report)?;
+                resolve_all(frames, log)?;
                 let next = Swapchain::new(
                     surface,
                     vk::Extent2D { width: ww, height: wh },
@@ -242,10 +248,7 @@ fn frame_loop<'c>(
 
             let lights: Vec<Option<Light>> =
                 live.scene.lights.iter().zip(&enabled).map(|(l, &on)| on.then_some(*l)).collect();
-            let started = Instant::now();
-            let output =
-                render::profiled_frame(&gpu, technique, w, h, &mut profiler, |p| session.frame(&lights, w, h, p))?;
-            let render_ms = started.elapsed().as_secs_f64() * 1e3;
+            technique.check(gpu.scene)?;
             if let (Some(panel), Some(state)) = (ui.as_mut(), events.egui.as_mut()) {
                 if panel.has_pending_frees() {
                     // Textures egui let go of may be in a frame in flight.
@@ -254,15 +257,16 @@ fn frame_loop<'c>(
                 }
                 let window = events.window.as_ref().ok_or_else(|| ViewerError::Window("no window".into()))?;
                 let input = state.take_egui_input(window);
-                let last = report.frames.last();
+                let frames_so_far = &log.report.frames;
                 let view = PanelView {
                     technique,
                     scene: &live.scene,
                     enabled: &enabled,
-                    last,
-                    history: &history,
+                    // The last frame whose profile is in (its fence was waited).
+                    last: frames_so_far.iter().rev().find(|f| f.present_gpu_ms.is_some()),
+                    history: &log.history,
                     ui_cpu_ms: panel.cpu_ms,
-                    ui_gpu_ms: report.frames.iter().rev().find_map(|f| f.ui_gpu_ms),
+                    ui_gpu_ms: frames_so_far.iter().rev().find_map(|f| f.ui_gpu_ms),
                     message: message.as_deref(),
                 };
                 let (edits, platform) = panel.build(input, &view)?;
@@ -278,43 +282,38 @@ fn frame_loop<'c>(
             if keys.contains(&'S') {
                 shots.push(options.out_dir.join(format!("sweeplab-view-{frame_index}.png")));
             }
-            let presented = present(ctx, frames, sc, &output, !shots.is_empty(), ui.as_mut(), report)?;
-            let Some((should_recreate, screenshot)) = presented else {
+            let source = FrameSource { gpu: &gpu, technique, lights: &lights, host_profiler: &mut host_profiler };
+            let wants = Wants { screenshot: !shots.is_empty(), profile: keys.contains(&'P') };
+            let presented = present(ctx, frames, sc, session.as_mut(), source, wants, options, ui.as_mut(), log)?;
+            let Some(submitted) = presented else {
                 recreate = true;
                 continue;
             };
-            recreate |= should_recreate;
+            recreate |= submitted.recreate;
             let now = Instant::now();
-            report.frames.push(FrameRecord {
+            let technique_profile = submitted.uploaded_profile.as_ref();
+            log.report.frames.push(FrameRecord {
                 index: frame_index,
                 width: w,
                 height: h,
                 frame_ms: (now - last_present).as_secs_f64() * 1e3,
-                render_ms,
-                gpu_ms: output.profile.gpu_ms_total,
+                render_ms: submitted.render_ms,
+                gpu_ms: technique_profile.map_or(0.0, |p| p.gpu_ms_total),
                 present_gpu_ms: None,
                 ui_gpu_ms: None,
                 ui_cpu_ms: ui.as_ref().map_or(0.0, |u| u.cpu_ms),
-                dispatches: output.dispatches,
-                barriers: output.barriers,
-                passes: output.profile.passes.iter().map(|p| p.path.clone()).collect(),
+                dispatches: submitted.dispatches,
+                barriers: submitted.barriers,
+                passes: technique_profile.map_or(Vec::new(), |p| p.passes.iter().map(|p| p.path.clone()).collect()),
                 decision: session.last_decision(),
                 swapchain_recreated: recreated,
             });
             last_present = now;
-            if let Some(record) = report.frames.last() {
-                let pass_ms: Vec<(String, f64)> =
-                    output.profile.passes.iter().map(|p| (p.path.clone(), p.gpu_ms)).collect();
-                history.push(record, &pass_ms);
-            }
-            if let Some(pixels) = screenshot {
+            if let Some(pixels) = submitted.pixels {
                 for path in &shots {
                     write_png(path, &pixels, w, h, sc.format)?;
-                    report.screenshots.push(path.display().to_string());
+                    log.report.screenshots.push(path.display().to_string());
                 }
-            }
-            if keys.contains(&'P') {
-                write_profile(&options.out_dir, frame_index, &output)?;
             }
             frame_index += 1;
         }
@@ -351,48 +350,79 @@ fn resize_window(event_loop: &mut EventLoop<()>, events: &mut WindowEvents, w: u
     Err(ViewerError::Window(format!("the window did not take the size {w}x{h}")))
 }
 
-/// Whether to recreate the swapchain, and the screenshot's bytes if asked for.
-type Presented = (bool, Option<Vec<u8>>);
+/// What the technique's frame is made of.
+struct FrameSource<'a, 's> {
+    gpu: &'a GpuScene<'s>,
+    technique: Technique,
+    lights: &'a [Option<Light>],
+    /// Profiles a technique's frame rendered by its own submission (uploaded).
+    host_profiler: &'a mut Profiler,
+}
 
-/// One frame slot: wait for its fence, acquire, upload, blit, submit, present.
-/// `None`: the swapchain was out of date before anything was submitted.
-/// Otherwise whether to recreate it, and the screenshot's bytes if asked for.
+/// What this frame is asked for besides presentation.
+#[derive(Clone, Copy)]
+struct Wants {
+    screenshot: bool,
+    profile: bool,
+}
+
+/// A submitted and presented frame.
+struct Submitted {
+    /// Whether to recreate the swapchain.
+    recreate: bool,
+    /// The screenshot's bytes, if asked for.
+    pixels: Option<Vec<u8>>,
+    /// Host time of the technique's frame (recording; for an uploaded frame
+    /// also its submission, wait and read-back).
+    render_ms: f64,
+    dispatches: u32,
+    barriers: u32,
+    /// The profile of a frame rendered by its own submission and uploaded.
+    uploaded_profile: Option<ProfileReport>,
+}
+
+/// The viewer's measurements: the report, the panel's history, and where `P`
+/// writes.
+pub struct FrameLog<'r> {
+    pub report: &'r mut ViewerReport,
+    pub history: PassHistory,
+    pub out_dir: PathBuf,
+}
+
+/// One frame slot: wait for its fence (and resolve its last frame), acquire;
+/// record the technique's frame, the hand-off barrier and the present pass
+/// into the slot's command buffer; one submission; present. A technique that
+/// cannot record there renders by its own submission and is uploaded.
+/// `None`: the swapchain was out of date before anything was recorded.
+#[allow(clippy::too_many_arguments)]
 fn present(
     ctx: &Context,
     frames: &mut FramesInFlight,
     sc: &Swapchain,
-    output: &RenderOutput,
-    screenshot: bool,
+    session: &mut dyn FrameSession,
+    source: FrameSource,
+    wants: Wants,
+    options: &ViewerOptions,
     ui: Option<&mut Ui>,
-    report: &mut ViewerReport,
-) -> Result<Option<Presented>, ViewerError> {
+    log: &mut FrameLog,
+) -> Result<Option<Submitted>, ViewerError> {
     let device = &ctx.device;
-    let slot = frames.next_slot()?;
-    if let Some(i) = slot.profile_pending.take() {
-        // Its fence was just waited: the timestamps are there.
-        let p = slot.profiler.resolve(0)?;
-        if let Some(r) = report.frames.get_mut(i as usize) {
-            r.present_gpu_ms = Some(p.pass_ms("present_blit"));
-            r.ui_gpu_ms = p.passes.iter().any(|s| s.name == "ui").then(|| p.pass_ms("ui"));
-        }
+    if session.reuses_gpu_resources() {
+        // Its resources (and host-written buffers) are the previous frame's.
+        frames.wait_all()?;
     }
-    let record_index = report.frames.len();
+    let slot = frames.next_slot()?;
+    resolve_slot(slot, log)?;
+    let record_index = log.report.frames.len();
     let Some((image_index, suboptimal)) = sc.acquire(slot.image_acquired)? else {
         return Ok(None);
     };
-    let (w, h) = (output.image.width, output.image.height);
-    if slot.upload.as_ref().is_none_or(|u| (u.width, u.height) != (w, h)) {
-        // The slot's last use of the old one finished (its fence).
-        slot.upload = Some(Upload::new(ctx, w, h)?);
-    }
-    let upload = slot.upload.as_mut().ok_or_else(|| ViewerError::Window("no upload".into()))?;
-    let rgba: Vec<[f32; 4]> = output.image.pixels.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect();
-    upload.staging.write(&rgba)?;
-    let shot = if screenshot {
+    let (w, h) = (sc.extent.width, sc.extent.height);
+    let shot = if wants.screenshot {
         Some(Buffer::staging(
             ctx,
             "screenshot readback",
-            sc.extent.width as u64 * sc.extent.height as u64 * 4,
+            w as u64 * h as u64 * 4,
             vk::BufferUsageFlags::TRANSFER_DST,
             MemoryLocation::GpuToCpu,
         )?)
@@ -406,12 +436,39 @@ fn present(
     // SAFETY: the command buffer was just reset.
     unsafe { device.begin_command_buffer(slot.cb, &begin) }.call("vkBeginCommandBuffer")?;
     slot.profiler.reset();
-    {
-        let mut rec = Recorder::for_command_buffer(ctx, slot.cb);
-        let i = image_index as usize;
-        let target = PresentTarget { image: sc.images[i], view: sc.views[i], extent: sc.extent };
-        present_pass::record(&mut rec, &mut slot.profiler, &upload.image, &upload.staging, &target, shot.as_ref(), ui)?;
-    }
+    let mut rec = Recorder::for_command_buffer(ctx, slot.cb);
+    let started = Instant::now();
+    let recorded = session.record(source.lights, &mut rec, w, h, &mut slot.profiler)?;
+    let (frame, uploaded_profile, dispatches, barriers, linear_layout) = match recorded {
+        Some(frame) => {
+            let layout = present_pass::record_handoff(&mut rec, &frame.output.image, options.handoff_barrier);
+            let (d, b) = (frame.dispatches, frame.barriers);
+            (Some(frame), None, d, b, layout)
+        }
+        None => {
+            let output = render::profiled_frame(source.gpu, source.technique, w, h, source.host_profiler, |p| {
+                session.frame(source.lights, w, h, p)
+            })?;
+            if slot.upload.as_ref().is_none_or(|u| (u.width, u.height) != (w, h)) {
+                // The slot's last use of the old one finished (its fence).
+                slot.upload = Some(Upload::new(ctx, w, h)?);
+            }
+            let upload = slot.upload.as_mut().ok_or_else(|| ViewerError::Window("no upload".into()))?;
+            let rgba: Vec<[f32; 4]> = output.image.pixels.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect();
+            upload.staging.write(&rgba)?;
+            present_pass::record_upload(&mut rec, &mut slot.profiler, &upload.staging, &upload.image)?;
+            (None, Some(output.profile), output.dispatches, output.barriers, BLIT_SOURCE_LAYOUT)
+        }
+    };
+    let render_ms = started.elapsed().as_secs_f64() * 1e3;
+    let linear = match (&frame, &slot.upload) {
+        (Some(f), _) => &f.output.image,
+        (None, Some(u)) => &u.image,
+        (None, None) => return Err(ViewerError::Window("no frame to present".into())),
+    };
+    let i = image_index as usize;
+    let target = PresentTarget { image: sc.images[i], view: sc.views[i], extent: sc.extent };
+    present_pass::record(&mut rec, &mut slot.profiler, linear, linear_layout, &target, shot.as_ref(), ui)?;
     // SAFETY: recording began above.
     unsafe { device.end_command_buffer(slot.cb) }.call("vkEndCommandBuffer")?;
     let waits = [vk::SemaphoreSubmitInfo::default().semaphore(slot.image_acquired).stage_mask(ACQUIRE_WAIT_STAGE)];
@@ -429,32 +486,73 @@ fn present(
         device.reset_fences(&[slot.done]).call("vkResetFences")?;
         device.queue_submit2(ctx.queue, &[submit], slot.done).call("vkQueueSubmit2")?;
     }
-    slot.profile_pending = Some(record_index as u64);
+    slot.in_flight = Some(InFlight { record: record_index, frame, write_profile: wants.profile });
     let stale = sc.present(image_index)?;
     let pixels = match &shot {
         Some(buffer) => {
             // SAFETY: the fence belongs to this device; only this frame waits on it.
             unsafe { device.wait_for_fences(&[slot.done], true, u64::MAX) }.call("vkWaitForFences")?;
-            Some(buffer.read::<u8>(sc.extent.width as usize * sc.extent.height as usize * 4)?)
+            Some(buffer.read::<u8>(w as usize * h as usize * 4)?)
         }
         None => None,
     };
-    Ok(Some((suboptimal || stale, pixels)))
+    Ok(Some(Submitted { recreate: suboptimal || stale, pixels, render_ms, dispatches, barriers, uploaded_profile }))
 }
 
-/// Present-pass GPU times of slots whose fences were waited (all, at the end).
-fn resolve_present_profiles(frames: &mut FramesInFlight, report: &mut ViewerReport) -> Result<(), ViewerError> {
-    frames.wait_all()?;
-    for slot in &mut frames.slots {
-        if let Some(i) = slot.profile_pending.take() {
-            let p = slot.profiler.resolve(0)?;
-            if let Some(r) = report.frames.get_mut(i as usize) {
-                r.present_gpu_ms = Some(p.pass_ms("present_blit"));
-                r.ui_gpu_ms = p.passes.iter().any(|s| s.name == "ui").then(|| p.pass_ms("ui"));
-            }
+/// Completes the record of the slot's last frame from its profile (its fence
+/// was waited): the technique's passes and GPU time where it was recorded into
+/// the slot, the present pass and the panel; writes its profile for `P`.
+fn resolve_slot(slot: &mut FrameSlot, log: &mut FrameLog) -> Result<(), ViewerError> {
+    let Some(done) = slot.in_flight.take() else {
+        return Ok(());
+    };
+    let profile = slot.profiler.resolve(0)?;
+    let Some(record) = log.report.frames.get_mut(done.record) else {
+        return Ok(());
+    };
+    let viewer_scope = |name: &str| [UPLOAD_SCOPE, BLIT_SCOPE, UI_SCOPE].contains(&name);
+    if done.frame.is_some() {
+        record.gpu_ms = profile
+            .scopes
+            .iter()
+            .filter(|s| s.parent.is_none() && !viewer_scope(&s.name))
+            .map(|s| s.duration_ns * 1e-6)
+            .sum();
+    }
+    let pass_ms: Vec<(String, f64)> = match done.frame {
+        Some(_) => {
+            profile.passes.iter().filter(|p| !viewer_scope(&p.name)).map(|p| (p.path.clone(), p.gpu_ms)).collect()
         }
+        None => Vec::new(),
+    };
+    record.passes.extend(profile.passes.iter().map(|p| p.path.clone()));
+    record.present_gpu_ms = Some(profile.pass_ms(BLIT_SCOPE));
+    record.ui_gpu_ms = profile.passes.iter().any(|s| s.name == UI_SCOPE).then(|| profile.pass_ms(UI_SCOPE));
+    if !pass_ms.is_empty() {
+        log.history.push(record, &pass_ms);
+    }
+    if done.write_profile {
+        write_profile(&log.out_dir, record.index, &profile)?;
     }
     Ok(())
+}
+
+/// Resolves every slot (once all fences are waited: at the end).
+fn resolve_all(frames: &mut FramesInFlight, log: &mut FrameLog) -> Result<(), ViewerError> {
+    frames.wait_all()?;
+    for slot in &mut frames.slots {
+        resolve_slot(slot, log)?;
+    }
+    Ok(())
+}
+
+/// Waits for the queue when dropped (errors are left to the next call).
+struct QueueIdleOnDrop<'c>(&'c Context);
+
+impl Drop for QueueIdleOnDrop<'_> {
+    fn drop(&mut self) {
+        let _ = queue_idle(self.0);
+    }
 }
 
 fn queue_idle(ctx: &Context) -> Result<(), VkError> {
@@ -471,10 +569,10 @@ fn write_png(path: &Path, bytes: &[u8], w: u32, h: u32, format: vk::Format) -> R
     image.save(path).map_err(|e| ViewerError::Write { path: path.display().to_string(), message: e.to_string() })
 }
 
-fn write_profile(dir: &Path, frame: u64, output: &RenderOutput) -> Result<(), ViewerError> {
+fn write_profile(dir: &Path, frame: u64, profile: &ProfileReport) -> Result<(), ViewerError> {
     for (name, value) in [
-        (format!("sweeplab-view-{frame}-profile.json"), output.profile.to_json()),
-        (format!("sweeplab-view-{frame}-trace.json"), output.profile.chrome_trace()),
+        (format!("sweeplab-view-{frame}-profile.json"), profile.to_json()),
+        (format!("sweeplab-view-{frame}-trace.json"), profile.chrome_trace()),
     ] {
         let path = dir.join(name);
         let text = serde_json::to_string_pretty(&value).unwrap_or_default();

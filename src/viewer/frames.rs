@@ -1,9 +1,12 @@
 //! Frames in flight: each slot has its command buffer, an "image acquired"
 //! semaphore, a fence that says the slot's last submission finished, the
-//! upload buffer and image its frame is blitted from, and a profiler for the
-//! present pass. The loop waits for a slot's own fence before reusing it,
-//! never for the whole device.
+//! profiler of that submission (the technique's frame, the present pass and
+//! the panel), what the submission uses ([`InFlight`]: the recorded frame's
+//! resources), and the upload buffer and image of a technique that cannot
+//! record into the slot's command buffer. The loop waits for a slot's own
+//! fence before reusing it, never for the whole device.
 
+use crate::render::RecordedFrame;
 use crate::vk::error::VkResultExt;
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Profiler, VkError};
@@ -11,6 +14,21 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 pub const FRAMES_IN_FLIGHT: usize = 2;
+
+/// Scopes per frame a slot's profiler holds (the technique's, the present
+/// pass's and the panel's).
+pub const PROFILER_CAPACITY: u32 = 16_384;
+
+/// A submitted frame, until its slot's fence says it finished.
+pub struct InFlight {
+    /// Its record in the report, completed from the profile once resolved.
+    pub record: usize,
+    /// The technique's frame recorded into the slot's command buffer; `None`:
+    /// it was rendered by its own submission and uploaded.
+    pub frame: Option<RecordedFrame>,
+    /// Write its profile and trace once resolved (`P`).
+    pub write_profile: bool,
+}
 
 /// The frame image on its way to the swapchain: RGBA32F, linear.
 pub struct Upload {
@@ -27,8 +45,8 @@ pub struct FrameSlot {
     pub done: vk::Fence,
     pub upload: Option<Upload>,
     pub profiler: Profiler,
-    /// The present profile waits to be read once `done` is signalled.
-    pub profile_pending: Option<u64>,
+    /// The slot's last submission, until it is resolved after `done`.
+    pub in_flight: Option<InFlight>,
 }
 
 pub struct FramesInFlight<'c> {
@@ -71,16 +89,8 @@ impl<'c> FramesInFlight<'c> {
             .call("vkCreateFence")?;
             ctx.set_name(image_acquired, &format!("image acquired {i}"));
             ctx.set_name(done, &format!("frame done {i}"));
-            let profiler = Profiler::new(ctx, 8)?;
-            frames.slots.push(FrameSlot {
-                cb,
-                pool,
-                image_acquired,
-                done,
-                upload: None,
-                profiler,
-                profile_pending: None,
-            });
+            let profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
+            frames.slots.push(FrameSlot { cb, pool, image_acquired, done, upload: None, profiler, in_flight: None });
         }
         Ok(frames)
     }

@@ -1,16 +1,21 @@
-//! The present pass: the technique's linear frame, uploaded into an RGBA32F
-//! image, blitted into the swapchain image (the blit converts linear to the
-//! sRGB format), the control panel drawn over it, optionally copied out for a
+//! The present pass: the technique's linear RGBA32F frame, recorded into the
+//! same command buffer just before ([`record_handoff`]; or, for a technique
+//! that cannot record there, uploaded from the host: [`record_upload`]),
+//! blitted into the swapchain image (the blit converts linear to the sRGB
+//! format), the control panel drawn over it, optionally copied out for a
 //! screenshot, and handed to the presentation engine. Each barrier is named
-//! for what it protects; the blit and the panel have profiler scopes
-//! `present_blit` and `ui`.
+//! for what it protects; the upload, the blit and the panel have profiler
+//! scopes `frame_upload`, `present_blit` and `ui`.
 
 use super::ui::Ui;
+use crate::render::recorded_frame::{FRAME_OUTPUT_LAYOUT, FRAME_OUTPUT_WRITE};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::resources::color_layers;
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
 
+/// The layout the blit reads the frame in.
+pub const BLIT_SOURCE_LAYOUT: vk::ImageLayout = vk::ImageLayout::TRANSFER_SRC_OPTIMAL;
 /// Blits read and write in the BLIT stage (not COPY).
 const BLIT_READ: Access = Access { stage: vk::PipelineStageFlags2::BLIT, access: vk::AccessFlags2::TRANSFER_READ };
 const BLIT_WRITE: Access = Access { stage: vk::PipelineStageFlags2::BLIT, access: vk::AccessFlags2::TRANSFER_WRITE };
@@ -27,24 +32,42 @@ const UI_DRAW: Access = Access {
 /// Presentation waits on a semaphore; the signal covers all earlier work.
 const TO_PRESENT: Access = Access::NONE;
 
-pub struct PresentTarget {
-    pub image: vk::Image,
-    pub view: vk::ImageView,
-    pub extent: vk::Extent2D,
+/// Profiler scopes (and debug labels) of the present pass.
+pub const UPLOAD_SCOPE: &str = "frame_upload";
+pub const BLIT_SCOPE: &str = "present_blit";
+pub const UI_SCOPE: &str = "ui";
+
+/// The technique's frame, just recorded into this command buffer, becomes the
+/// blit's source: its compute writes made visible to the blit's reads, in the
+/// blit's source layout; returns the layout it is in. Without this barrier
+/// (`handoff_barrier` false: only to prove it load-bearing) the blit may read
+/// the frame before it is written.
+pub fn record_handoff(rec: &mut Recorder, output: &Image, handoff_barrier: bool) -> vk::ImageLayout {
+    if !handoff_barrier {
+        return FRAME_OUTPUT_LAYOUT;
+    }
+    rec.barrier(&Barrier::image(
+        "frame_output_write_to_present_read",
+        output,
+        FRAME_OUTPUT_WRITE,
+        BLIT_READ,
+        FRAME_OUTPUT_LAYOUT,
+        BLIT_SOURCE_LAYOUT,
+    ));
+    BLIT_SOURCE_LAYOUT
 }
 
-/// Records the pass; `ui` draws the panel over the frame.
-pub fn record(
+/// A frame rendered by its own submission and read back: `staging` (its
+/// pixels) copied into `linear`, which is left like a recorded frame's output
+/// after [`record_handoff`], in [`BLIT_SOURCE_LAYOUT`].
+pub fn record_upload(
     rec: &mut Recorder,
     profiler: &mut Profiler,
-    linear: &Image,
     staging: &Buffer,
-    target: &PresentTarget,
-    screenshot: Option<&Buffer>,
-    ui: Option<&mut Ui>,
+    linear: &Image,
 ) -> Result<(), VkError> {
-    let scope = profiler.begin(rec, "present_blit")?;
-    let (dst_layout, src_layout) = (vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+    let scope = profiler.begin(rec, UPLOAD_SCOPE)?;
+    let dst_layout = vk::ImageLayout::TRANSFER_DST_OPTIMAL;
     // The slot's previous frame read this image; its fence was waited.
     rec.barrier(&Barrier::image(
         "frame_upload_discard_to_copy_write",
@@ -61,8 +84,31 @@ pub fn record(
         Access::TRANSFER_WRITE,
         BLIT_READ,
         dst_layout,
-        src_layout,
+        BLIT_SOURCE_LAYOUT,
     ));
+    profiler.end(rec, scope)
+}
+
+pub struct PresentTarget {
+    pub image: vk::Image,
+    pub view: vk::ImageView,
+    pub extent: vk::Extent2D,
+}
+
+/// Records the pass from `linear`, readable by the blit in `linear_layout`
+/// ([`record_handoff`] or [`record_upload`] made it so); `ui` draws the panel
+/// over the frame.
+pub fn record(
+    rec: &mut Recorder,
+    profiler: &mut Profiler,
+    linear: &Image,
+    linear_layout: vk::ImageLayout,
+    target: &PresentTarget,
+    screenshot: Option<&Buffer>,
+    ui: Option<&mut Ui>,
+) -> Result<(), VkError> {
+    let scope = profiler.begin(rec, BLIT_SCOPE)?;
+    let (dst_layout, src_layout) = (vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
     // Starts from the acquire semaphore's wait stage, so the layout change
     // happens after the presentation engine let go of the image.
     rec.barrier(&Barrier::raw_image(
@@ -81,14 +127,14 @@ pub fn record(
         .src_offsets([vk::Offset3D::default(), src_end])
         .dst_subresource(color_layers())
         .dst_offsets([vk::Offset3D::default(), dst_end]);
-    // SAFETY: both images are in the layouts named (the barriers above), were
-    // created with TRANSFER usage, and their formats support BLIT_SRC/BLIT_DST
+    // SAFETY: both images are in the layouts named (the caller's barrier and the
+    // one above), were created with TRANSFER usage, and their formats support BLIT_SRC/BLIT_DST
     // (RGBA32F on every Vulkan device; the swapchain format was checked).
     unsafe {
         rec.device().cmd_blit_image(
             rec.cb,
             linear.raw,
-            src_layout,
+            linear_layout,
             target.image,
             dst_layout,
             &[region],
@@ -107,7 +153,7 @@ pub fn record(
             dst_layout,
             attachment,
         ));
-        let ui_scope = profiler.begin(rec, "ui")?;
+        let ui_scope = profiler.begin(rec, UI_SCOPE)?;
         let color = [vk::RenderingAttachmentInfo::default()
             .image_view(target.view)
             .image_layout(attachment)

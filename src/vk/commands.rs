@@ -362,6 +362,17 @@ pub fn submit_and_wait<R>(
     name: &str,
     record: impl FnOnce(&mut Recorder) -> Result<R, VkError>,
 ) -> Result<R, VkError> {
+    submit_and_wait_or(ctx, name, record)
+}
+
+/// [`submit_and_wait`] for a `record` with errors of its own (a technique's
+/// frame, which prepares its resources as it records): on an error nothing is
+/// submitted.
+pub fn submit_and_wait_or<R, E: From<VkError>>(
+    ctx: &Context,
+    name: &str,
+    record: impl FnOnce(&mut Recorder) -> Result<R, E>,
+) -> Result<R, E> {
     let device = &ctx.device;
     let pool_info = vk::CommandPoolCreateInfo::default()
         .queue_family_index(ctx.queue_family)
