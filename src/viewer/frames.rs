@@ -89,7 +89,9 @@ impl<'c> FramesInFlight<'c> {
             .call("vkCreateFence")?;
             ctx.set_name(image_acquired, &format!("image acquired {i}"));
             ctx.set_name(done, &format!("frame done {i}"));
-            let profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
+            let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
+            // The panel draws in the same command buffers (see the setter).
+            profiler.set_flush_after_timestamps(true);
             frames.slots.push(FrameSlot { cb, pool, image_acquired, done, upload: None, profiler, in_flight: None });
         }
         Ok(frames)

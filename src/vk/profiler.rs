@@ -49,6 +49,8 @@ pub struct Profiler {
     valid_mask: u64,
     device: ash::Device,
     device_name: String,
+    /// See [`Profiler::set_flush_after_timestamps`].
+    flush_after_timestamps: bool,
 }
 
 /// One timed scope of the last frame.
@@ -113,6 +115,7 @@ impl Profiler {
             valid_mask,
             device: ctx.device.clone(),
             device_name: ctx.info.name.clone(),
+            flush_after_timestamps: false,
         };
         p.reset();
         Ok(p)
@@ -125,6 +128,16 @@ impl Profiler {
 
     pub fn detail(&self) -> bool {
         self.detail
+    }
+
+    /// An empty pipeline barrier after each timestamp, for command buffers
+    /// that also draw (the viewer's panel). Lavapipe bins a timestamp into the
+    /// rasterizer's tiles while a framebuffer is bound (and the panel's stays
+    /// bound into the next frame), so it is written at the next flush, not
+    /// when the commands before it are done: compute passes then read as
+    /// near zero. A barrier is a flush there, and nothing elsewhere.
+    pub fn set_flush_after_timestamps(&mut self, on: bool) {
+        self.flush_after_timestamps = on;
     }
 
     pub fn timestamps_supported(&self) -> bool {
@@ -159,6 +172,10 @@ impl Profiler {
         // SAFETY: q is a reset query of our pool; cb is recording. ALL_COMMANDS waits
         // for earlier work, so a scope spans exactly the commands inside it.
         unsafe { self.device.cmd_write_timestamp2(rec.cb, vk::PipelineStageFlags2::ALL_COMMANDS, self.pool, q) };
+        if self.flush_after_timestamps {
+            // SAFETY: cb is recording; a dependency with no barriers orders nothing.
+            unsafe { self.device.cmd_pipeline_barrier2(rec.cb, &vk::DependencyInfo::default()) };
+        }
         Ok(Some(q))
     }
 
