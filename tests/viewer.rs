@@ -86,6 +86,13 @@ fn sweeplab(args: &[&str], display: Option<&str>) -> Output {
     cmd.output().expect("run sweeplab")
 }
 
+/// `sweeplab` run in `dir` (where `S` and `P` write) on `display`.
+fn sweeplab_in(dir: &Path, args: &[&str], display: &str) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_sweeplab"));
+    cmd.args(args).current_dir(dir).env("SWEEPLAB_VALIDATE", "1").env("DISPLAY", display);
+    cmd.output().expect("run sweeplab")
+}
+
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("sweeplab-viewer-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -235,10 +242,7 @@ fn the_control_panel_is_drawn_and_timed_and_s_and_p_write_files() {
         if !ui {
             args.push("--no-ui");
         }
-        let mut cmd = Command::new(env!("CARGO_BIN_EXE_sweeplab"));
-        let o = cmd.args(&args).current_dir(&dir).env("SWEEPLAB_VALIDATE", "1").env("DISPLAY", &x.display).output();
-        let o = o.expect("run sweeplab");
-        assert_clean_run(&o);
+        assert_clean_run(&sweeplab_in(&dir, &args, &x.display));
         log(&log_path)
     };
     let plain = run(false, &plain_shot);
@@ -355,33 +359,51 @@ fn pass_ms(profile: &serde_json::Value, name: &str) -> f64 {
 fn with_the_panel_drawn_the_per_pass_times_of_a_dvr_frame_are_the_headless_renders() {
     // Lavapipe writes a timestamp at the next flush while a framebuffer is
     // bound, as the panel's draw leaves one: without the viewer's fix the
-    // DVR pass read as a few microseconds from the second frame on.
+    // DVR pass read as a few microseconds from the second frame on. The
+    // fastest of three frames each side: other tests share the machine.
     let x = xvfb_or_skip!();
     let dir = temp_dir("pass-times");
     let headless = dir.join("render.json");
-    let o = sweeplab(
-        &["render", "--size", "96x96", "--out", dir.join("r.png").to_str().unwrap(), "--profile-json"]
-            .into_iter()
-            .chain([headless.to_str().unwrap()])
-            .collect::<Vec<_>>(),
-        None,
-    );
-    assert_clean_run(&o);
-    let headless_ms = pass_ms(&log(&headless), "dvr");
+    let args = ["render", "--size", "96x96", "--out", "r.png", "--profile-json", headless.to_str().unwrap()];
+    let headless_ms = (0..3)
+        .map(|_| {
+            assert_clean_run(&sweeplab_in(&dir, &args, &x.display));
+            pass_ms(&log(&headless), "dvr")
+        })
+        .fold(f64::MAX, f64::min);
     let script = dir.join("script.txt");
-    std::fs::write(&script, "3 key P\n").unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
-        .args(["view", "--size", "96x96", "--frames", "4", "--script", script.to_str().unwrap()])
-        .current_dir(&dir)
-        .env("SWEEPLAB_VALIDATE", "1")
-        .env("DISPLAY", &x.display)
-        .output()
-        .expect("run sweeplab");
-    assert_clean_run(&o);
-    let viewer = log(&dir.join("sweeplab-view-3-profile.json"));
-    let viewer_ms = pass_ms(&viewer, "dvr");
-    assert!(pass_ms(&viewer, "ui") > 0.0, "the panel was drawn in that frame: {viewer}");
+    std::fs::write(&script, "2 key P\n3 key P\n4 key P\n").unwrap();
+    let args = ["view", "--size", "96x96", "--frames", "5", "--script", script.to_str().unwrap()];
+    assert_clean_run(&sweeplab_in(&dir, &args, &x.display));
+    let mut viewer_ms = f64::MAX;
+    for frame in 2..=4 {
+        let viewer = log(&dir.join(format!("sweeplab-view-{frame}-profile.json")));
+        assert!(pass_ms(&viewer, "ui") > 0.0, "the panel was drawn in that frame: {viewer}");
+        viewer_ms = viewer_ms.min(pass_ms(&viewer, "dvr"));
+    }
     // The same work: equal but for the noise of a shared machine.
     let ratio = viewer_ms / headless_ms;
     assert!((0.25..4.0).contains(&ratio), "dvr pass: viewer {viewer_ms:.3} ms, headless {headless_ms:.3} ms");
+}
+
+#[test]
+fn a_scripted_transfer_point_drag_changes_the_image_and_rebuilds_the_light_volume() {
+    let x = xvfb_or_skip!();
+    let dir = temp_dir("tf-point");
+    let script = dir.join("script.txt");
+    std::fs::write(&script, "1 key S\n2 tf-point 1 0.5 0.05\n").unwrap();
+    let (shot, log_path) = (dir.join("after.png"), dir.join("log.json"));
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/scenes/three-spheres.toml");
+    let mut args = vec!["view", "--scene", scene, "--size", "48x48", "--technique", "lightvolume", "--frames", "4"];
+    args.extend(["--no-ui", "--script", script.to_str().unwrap(), "--screenshot", shot.to_str().unwrap()]);
+    args.extend(["--log-json", log_path.to_str().unwrap()]);
+    assert_clean_run(&sweeplab_in(&dir, &args, &x.display));
+    let before = image::open(dir.join("sweeplab-view-1.png")).unwrap().to_rgb8();
+    let after = image::open(&shot).unwrap().to_rgb8();
+    let differing = before.pixels().zip(after.pixels()).filter(|(p, q)| p != q).count();
+    assert!(differing > 48 * 48 / 20, "the moved point changed the image: {differing} pixels differ");
+    // The medium changed for every light: an entire update, then none.
+    let frames = log(&log_path)["frames"].as_array().unwrap().clone();
+    assert!(passes(&frames[2]).contains(&"lightvolume_entire_update".to_string()), "{}", frames[2]);
+    assert!(!passes(&frames[3]).iter().any(|p| p.ends_with("_update")), "{}", frames[3]);
 }

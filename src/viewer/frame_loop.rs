@@ -14,6 +14,7 @@ use super::present_pass::{
 };
 use super::report::{FrameRecord, ViewerReport};
 use super::script::{Action, Script};
+use super::tf_editor;
 use super::ui::{PanelView, PassHistory, Ui, UiEdit};
 use super::window::{self, WindowEvents};
 use crate::render::{self, FrameSession, GpuScene, Technique, VolumeTexels};
@@ -129,6 +130,8 @@ fn frame_loop<'c>(
     let mut enabled: Vec<bool> = vec![true; live.scene.lights.len()];
     let mut ui_edits: Vec<UiEdit> = Vec::new();
     let mut message: Option<String> = None;
+    // The volume is loaded once and kept across edits.
+    let histogram = live.scene.volume.histogram(tf_editor::HISTOGRAM_BINS);
     'scene: loop {
         enabled.resize(live.scene.lights.len(), true);
         // Switched-off lights are left out of the uploaded scene.
@@ -166,6 +169,17 @@ fn frame_loop<'c>(
                         }
                         Action::Resize(w, h) => resize_window(event_loop, events, *w, *h)?,
                         Action::Key(c) => keys.push(*c),
+                        Action::TfPoint { index, value, alpha } => {
+                            let points = &live.scene.transfer.points;
+                            let moved = tf_editor::move_point(points, *index, *value, *alpha).ok_or_else(|| {
+                                ViewerError::Script(format!(
+                                    "frame {frame_index}: tf-point {index}: the transfer function has {} points",
+                                    points.len()
+                                ))
+                            })?;
+                            live.set(&tf_editor::set_edit(&moved))?;
+                            rebuild = true;
+                        }
                     }
                 }
             }
@@ -268,6 +282,7 @@ fn frame_loop<'c>(
                     ui_cpu_ms: panel.cpu_ms,
                     ui_gpu_ms: frames_so_far.iter().rev().find_map(|f| f.ui_gpu_ms),
                     message: message.as_deref(),
+                    histogram: &histogram,
                 };
                 let (edits, platform) = panel.build(input, &view)?;
                 state.handle_platform_output(window, platform);

@@ -8,7 +8,8 @@
 //! flight ([`frames`]), the present pass ([`present_pass`]), the frame loop
 //! ([`frame_loop`]), the edited scene ([`live_scene`]), mouse camera control
 //! ([`controls`]), scripted runs ([`script`]), the per-frame log ([`report`]),
-//! the control panel and live profiler ([`ui`]).
+//! the control panel and live profiler ([`ui`]), its transfer-function editor
+//! ([`tf_editor`]).
 //! The surface and swapchain wrappers live in `crate::vk`.
 
 pub mod controls;
@@ -19,6 +20,7 @@ pub mod live_scene;
 pub mod present_pass;
 pub mod report;
 pub mod script;
+pub mod tf_editor;
 pub mod ui;
 pub mod window;
 

@@ -5,6 +5,7 @@
 //! 3 set lights.0.direction=[-1, -1, 0.5]   # a scene edit, as --set takes it
 //! 5 resize 96x64                            # ask the window for a new size
 //! 7 key S                                   # as if the key were pressed (S, P)
+//! 8 tf-point 1 0.6 0.9                      # drag transfer point 1 to scalar 0.6, opacity 0.9
 //! ```
 
 use super::error::ViewerError;
@@ -14,6 +15,12 @@ pub enum Action {
     Set(String),
     Resize(u32, u32),
     Key(char),
+    /// The transfer-function editor's drag: point `index` to (`value`, `alpha`).
+    TfPoint {
+        index: usize,
+        value: f32,
+        alpha: f32,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -27,7 +34,7 @@ pub struct Script {
     pub steps: Vec<Step>,
 }
 
-const ACTIONS: [&str; 3] = ["set", "resize", "key"];
+const ACTIONS: [&str; 4] = ["set", "resize", "key", "tf-point"];
 
 impl Script {
     pub fn parse(text: &str, origin: &str) -> Result<Script, ViewerError> {
@@ -59,6 +66,21 @@ impl Script {
                     "P" => Action::Key('P'),
                     _ => return Err(at(format!("key `{rest}` has no action; known: S (screenshot), P (profile)"))),
                 },
+                "tf-point" => {
+                    let words: Vec<&str> = rest.split_whitespace().collect();
+                    let unit = |s: &str| s.parse::<f32>().ok().filter(|v| (0.0..=1.0).contains(v));
+                    match words[..] {
+                        [i, v, a] => match (i.parse::<usize>(), unit(v), unit(a)) {
+                            (Ok(index), Some(value), Some(alpha)) => Action::TfPoint { index, value, alpha },
+                            _ => {
+                                return Err(
+                                    at("tf-point needs a point index, then scalar and opacity in [0, 1]".into()),
+                                )
+                            }
+                        },
+                        _ => return Err(at("tf-point needs INDEX VALUE ALPHA".into())),
+                    }
+                }
                 other => {
                     let near = crate::scene::suggest::nearest(other, ACTIONS)
                         .map(|n| format!(" (did you mean {n}?)"))
@@ -101,5 +123,10 @@ mod tests {
         assert!(Script::parse("1 resize 0x9", "t").is_err());
         assert!(Script::parse("1 set nothing", "t").is_err());
         assert!(Script::parse("1 key Q", "t").is_err());
+        let s = Script::parse("3 tf-point 1 0.6 0.9", "t").unwrap();
+        assert_eq!(s.at(3).next(), Some(&Action::TfPoint { index: 1, value: 0.6, alpha: 0.9 }));
+        assert!(Script::parse("3 tf-point 1 1.6 0.9", "t").is_err());
+        let e = Script::parse("3 tf-piont 1 0.5 0.5", "t").unwrap_err().to_string();
+        assert!(e.contains("did you mean tf-point?"), "{e}");
     }
 }

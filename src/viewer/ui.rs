@@ -6,6 +6,7 @@
 //! applies them through the same checks as `--set`.
 
 use super::report::FrameRecord;
+use super::tf_editor::TfEditor;
 use crate::render::Technique;
 use crate::scene::presets::PRESET_NAMES;
 use crate::scene::{Light, LightKind, Scene};
@@ -65,6 +66,8 @@ pub struct PanelView<'a> {
     pub ui_cpu_ms: f64,
     pub ui_gpu_ms: Option<f64>,
     pub message: Option<&'a str>,
+    /// The volume's histogram (counts per bin), under the transfer function.
+    pub histogram: &'a [u64],
 }
 
 pub struct Ui {
@@ -79,6 +82,7 @@ pub struct Ui {
     pending_free: Vec<egui::TextureId>,
     /// Host time of the last panel (layout and tessellation).
     pub cpu_ms: f64,
+    tf_editor: TfEditor,
 }
 
 impl Ui {
@@ -106,6 +110,7 @@ impl Ui {
             pixels_per_point: 1.0,
             pending_free: Vec::new(),
             cpu_ms: 0.0,
+            tf_editor: TfEditor::default(),
         })
     }
 
@@ -118,7 +123,8 @@ impl Ui {
     ) -> Result<(Vec<UiEdit>, egui::PlatformOutput), VkError> {
         let started = Instant::now();
         let mut edits = Vec::new();
-        let output = self.egui.run(input, |ctx| panel(ctx, view, &mut edits));
+        let tf_editor = &mut self.tf_editor;
+        let output = self.egui.run(input, |ctx| panel(ctx, view, tf_editor, &mut edits));
         self.pixels_per_point = output.pixels_per_point;
         self.primitives = self.egui.tessellate(output.shapes, output.pixels_per_point);
         if !output.textures_delta.set.is_empty() {
@@ -156,10 +162,12 @@ impl Drop for Ui {
     }
 }
 
-fn panel(ctx: &egui::Context, view: &PanelView, edits: &mut Vec<UiEdit>) {
+fn panel(ctx: &egui::Context, view: &PanelView, tf_editor: &mut TfEditor, edits: &mut Vec<UiEdit>) {
     egui::SidePanel::left("controls").default_width(260.0).show(ctx, |ui| {
         egui::ScrollArea::vertical().show(ui, |ui| {
             technique_section(ui, view, edits);
+            ui.separator();
+            transfer_section(ui, view, tf_editor, edits);
             ui.separator();
             lights_section(ui, view, edits);
             ui.separator();
@@ -224,8 +232,14 @@ fn technique_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit
         ),
         _ => {}
     }
+}
+
+fn transfer_section(ui: &mut egui::Ui, view: &PanelView, tf_editor: &mut TfEditor, edits: &mut Vec<UiEdit>) {
+    ui.heading("Transfer function");
+    ui.label("drag a point (scalar, opacity); double-click adds one");
+    tf_editor.show(ui, &view.scene.transfer.points, view.histogram, edits);
     ui.horizontal_wrapped(|ui| {
-        ui.label("transfer preset");
+        ui.label("preset");
         for name in PRESET_NAMES {
             if ui.small_button(name).clicked() {
                 edits.push(UiEdit::Set(format!("transfer={{preset=\"{name}\"}}")));
