@@ -130,6 +130,8 @@ fn frame_loop<'c>(
     let mut enabled: Vec<bool> = vec![true; live.scene.lights.len()];
     let mut ui_edits: Vec<UiEdit> = Vec::new();
     let mut message: Option<String> = None;
+    // The light Ctrl and the left button drag (chosen in the panel).
+    let mut selected_light = 0usize;
     // The volume is loaded once and kept across edits.
     let histogram = live.scene.volume.histogram(tf_editor::HISTOGRAM_BINS);
     'scene: loop {
@@ -180,6 +182,14 @@ fn frame_loop<'c>(
                             live.set(&tf_editor::set_edit(&moved))?;
                             rebuild = true;
                         }
+                        Action::DragLight { index, dx, dy } => {
+                            if !drag_light(live, *index, (*dx, *dy), events.size()?.1) {
+                                let n = live.scene.lights.len();
+                                let m = format!("frame {frame_index}: drag-light {index}: the scene has {n} lights");
+                                return Err(ViewerError::Script(m));
+                            }
+                            rebuild |= !session.follows_lights();
+                        }
                     }
                 }
             }
@@ -205,7 +215,12 @@ fn frame_loop<'c>(
                         rebuild |= !session.follows_lights();
                     }
                     UiEdit::Key(c) => keys.push(c),
+                    UiEdit::SelectLight(i) => selected_light = i,
                 }
+            }
+            let (dx, dy) = std::mem::take(&mut events.light_drag);
+            if (dx, dy) != (0.0, 0.0) && drag_light(live, selected_light, (dx as f32, dy as f32), events.size()?.1) {
+                rebuild |= !session.follows_lights();
             }
             enabled.resize(live.scene.lights.len(), true);
             if let Some(camera) = mouse_camera(live, events) {
@@ -283,6 +298,7 @@ fn frame_loop<'c>(
                     ui_gpu_ms: frames_so_far.iter().rev().find_map(|f| f.ui_gpu_ms),
                     message: message.as_deref(),
                     histogram: &histogram,
+                    selected_light,
                 };
                 let (edits, platform) = panel.build(input, &view)?;
                 state.handle_platform_output(window, platform);
@@ -334,6 +350,18 @@ fn frame_loop<'c>(
         }
     }
     Ok(())
+}
+
+/// Drags light `index` of the live scene by `delta` pixels in a window
+/// `height` pixels high; false if there is no such light.
+fn drag_light(live: &mut LiveScene, index: usize, delta: (f32, f32), height: u32) -> bool {
+    let mut lights = live.scene.lights.clone();
+    let Some(light) = lights.get_mut(index) else {
+        return false;
+    };
+    *light = controls::drag_light(*light, live.scene.camera, delta.0, delta.1, height);
+    live.set_lights(lights);
+    true
 }
 
 /// The camera after the mouse's drags and wheel since the last frame, if any.

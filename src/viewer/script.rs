@@ -6,6 +6,7 @@
 //! 5 resize 96x64                            # ask the window for a new size
 //! 7 key S                                   # as if the key were pressed (S, P)
 //! 8 tf-point 1 0.6 0.9                      # drag transfer point 1 to scalar 0.6, opacity 0.9
+//! 9 drag-light 0 12 -4                      # Ctrl-drag light 0 by 12 pixels right, 4 up
 //! ```
 
 use super::error::ViewerError;
@@ -21,6 +22,12 @@ pub enum Action {
         value: f32,
         alpha: f32,
     },
+    /// Ctrl and the left button dragging light `index` by (`dx`, `dy`) pixels.
+    DragLight {
+        index: usize,
+        dx: f32,
+        dy: f32,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -34,7 +41,7 @@ pub struct Script {
     pub steps: Vec<Step>,
 }
 
-const ACTIONS: [&str; 4] = ["set", "resize", "key", "tf-point"];
+const ACTIONS: [&str; 5] = ["set", "resize", "key", "tf-point", "drag-light"];
 
 impl Script {
     pub fn parse(text: &str, origin: &str) -> Result<Script, ViewerError> {
@@ -66,21 +73,14 @@ impl Script {
                     "P" => Action::Key('P'),
                     _ => return Err(at(format!("key `{rest}` has no action; known: S (screenshot), P (profile)"))),
                 },
-                "tf-point" => {
-                    let words: Vec<&str> = rest.split_whitespace().collect();
-                    let unit = |s: &str| s.parse::<f32>().ok().filter(|v| (0.0..=1.0).contains(v));
-                    match words[..] {
-                        [i, v, a] => match (i.parse::<usize>(), unit(v), unit(a)) {
-                            (Ok(index), Some(value), Some(alpha)) => Action::TfPoint { index, value, alpha },
-                            _ => {
-                                return Err(
-                                    at("tf-point needs a point index, then scalar and opacity in [0, 1]".into()),
-                                )
-                            }
-                        },
-                        _ => return Err(at("tf-point needs INDEX VALUE ALPHA".into())),
-                    }
-                }
+                "tf-point" => match index_and_pair(rest, |v| (0.0..=1.0).contains(&v)) {
+                    Some((index, value, alpha)) => Action::TfPoint { index, value, alpha },
+                    None => return Err(at("tf-point needs INDEX VALUE ALPHA, value and alpha in [0, 1]".into())),
+                },
+                "drag-light" => match index_and_pair(rest, f32::is_finite) {
+                    Some((index, dx, dy)) => Action::DragLight { index, dx, dy },
+                    None => return Err(at("drag-light needs INDEX DX DY (pixels)".into())),
+                },
                 other => {
                     let near = crate::scene::suggest::nearest(other, ACTIONS)
                         .map(|n| format!(" (did you mean {n}?)"))
@@ -102,6 +102,16 @@ impl Script {
     /// The steps of frame `frame`, in file order.
     pub fn at(&self, frame: u64) -> impl Iterator<Item = &Action> {
         self.steps.iter().filter(move |s| s.frame == frame).map(|s| &s.action)
+    }
+}
+
+/// `INDEX X Y`, both numbers passing `ok`.
+fn index_and_pair(rest: &str, ok: impl Fn(f32) -> bool) -> Option<(usize, f32, f32)> {
+    let words: Vec<&str> = rest.split_whitespace().collect();
+    let number = |s: &str| s.parse::<f32>().ok().filter(|&v| ok(v));
+    match words[..] {
+        [i, x, y] => Some((i.parse().ok()?, number(x)?, number(y)?)),
+        _ => None,
     }
 }
 
@@ -128,5 +138,8 @@ mod tests {
         assert!(Script::parse("3 tf-point 1 1.6 0.9", "t").is_err());
         let e = Script::parse("3 tf-piont 1 0.5 0.5", "t").unwrap_err().to_string();
         assert!(e.contains("did you mean tf-point?"), "{e}");
+        let s = Script::parse("4 drag-light 0 12 -4", "t").unwrap();
+        assert_eq!(s.at(4).next(), Some(&Action::DragLight { index: 0, dx: 12.0, dy: -4.0 }));
+        assert!(Script::parse("4 drag-light 0 12", "t").is_err());
     }
 }

@@ -29,6 +29,8 @@ pub enum UiEdit {
     Lights(Vec<Light>),
     Toggle(usize, bool),
     Key(char),
+    /// The light Ctrl and the left button drag in the view.
+    SelectLight(usize),
 }
 
 /// Per-pass GPU times of the last frames, for the plots and the table.
@@ -68,6 +70,8 @@ pub struct PanelView<'a> {
     pub message: Option<&'a str>,
     /// The volume's histogram (counts per bin), under the transfer function.
     pub histogram: &'a [u64],
+    /// The light Ctrl and the left button drag in the view.
+    pub selected_light: usize,
 }
 
 pub struct Ui {
@@ -273,6 +277,7 @@ fn toggle(ui: &mut egui::Ui, label: &str, value: bool, key: &str, edits: &mut Ve
 
 fn lights_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) {
     ui.heading("Lights");
+    ui.label("Ctrl + drag in the view moves the selected light (turns a directional one)");
     let mut lights = view.scene.lights.clone();
     let mut changed = false;
     let mut remove = None;
@@ -280,6 +285,9 @@ fn lights_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) 
         ui.push_id(i, |ui| {
             ui.horizontal(|ui| {
                 let mut on = view.enabled.get(i).copied().unwrap_or(true);
+                if ui.radio(view.selected_light == i, "").on_hover_text("drag this light").clicked() {
+                    edits.push(UiEdit::SelectLight(i));
+                }
                 if ui.checkbox(&mut on, format!("light {i}")).changed() {
                     edits.push(UiEdit::Toggle(i, on));
                 }

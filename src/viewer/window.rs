@@ -41,13 +41,16 @@ pub struct WindowEvents {
     /// Keys pressed (physical keys, so `S` and `P` work on any layout).
     pub keys: Vec<KeyCode>,
     /// Pointer movement with the left button down (orbit), the right button
-    /// down (pan), and wheel lines (zoom), in pixels and lines.
+    /// down (pan), the left button and Ctrl down (drag the selected light),
+    /// and wheel lines (zoom), in pixels and lines.
     pub orbit: (f64, f64),
+    pub light_drag: (f64, f64),
     pub pan: (f64, f64),
     pub zoom: f32,
     cursor: Option<(f64, f64)>,
     left: bool,
     right: bool,
+    ctrl: bool,
 }
 
 impl WindowEvents {
@@ -64,11 +67,13 @@ impl WindowEvents {
             resized: false,
             keys: Vec::new(),
             orbit: (0.0, 0.0),
+            light_drag: (0.0, 0.0),
             pan: (0.0, 0.0),
             zoom: 0.0,
             cursor: None,
             left: false,
             right: false,
+            ctrl: false,
         }
     }
 
@@ -149,7 +154,9 @@ impl ApplicationHandler for WindowEvents {
             WindowEvent::CursorMoved { position, .. } => {
                 if let Some((x, y)) = self.cursor {
                     let d = (position.x - x, position.y - y);
-                    if self.left {
+                    if self.left && self.ctrl {
+                        self.light_drag = (self.light_drag.0 + d.0, self.light_drag.1 + d.1);
+                    } else if self.left {
                         self.orbit = (self.orbit.0 + d.0, self.orbit.1 + d.1);
                     } else if self.right {
                         self.pan = (self.pan.0 + d.0, self.pan.1 + d.1);
@@ -158,6 +165,7 @@ impl ApplicationHandler for WindowEvents {
                 self.cursor = Some((position.x, position.y));
             }
             WindowEvent::CursorLeft { .. } => self.cursor = None,
+            WindowEvent::ModifiersChanged(m) => self.ctrl = m.state().control_key(),
             WindowEvent::MouseWheel { delta, .. } if !consumed => {
                 self.zoom += match delta {
                     MouseScrollDelta::LineDelta(_, y) => y,
