@@ -5,7 +5,6 @@
 
 mod common;
 
-use std::path::Path;
 use std::sync::Mutex;
 
 use common::*;
@@ -16,7 +15,6 @@ use sweeplab::ao::technique::{preprocess_runs, preprocessed};
 use sweeplab::ao::AoMode;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::render::{render, GpuScene, Technique};
-use sweeplab::scene::scene_file::scene_from_toml_str;
 use sweeplab::scene::synthetic::{CORNELL_LEFT_WALL, CORNELL_SHORT_BOX};
 use sweeplab::scene::{Scene, TransferLut};
 use sweeplab::vk::Profiler;
@@ -33,15 +31,7 @@ const SIZE: u32 = 96;
 /// wall share a cluster up to n_c = 256: their histograms differ in a few
 /// small bins only.
 fn cornell(mode: &str) -> Scene {
-    let text = format!(
-        "[volume]\nsynthetic = \"cornell-box\"\nsize = {N}\n[transfer]\npreset = \"cornell\"\n\
-         [camera]\nazimuth = 0.0\nelevation = 0.0\nfov_y = 40.0\n\
-         [[lights]]\ntype = \"spot\"\nposition = [0.0, 0.4, 0.0]\ndirection = [0.0, -1.0, 0.0]\n\
-         inner_cone = 50.0\nouter_cone = 70.0\nfalloff = \"inverse-square\"\nintensity = 0.3\n\
-         [render]\nwidth = {SIZE}\nheight = {SIZE}\n\
-         [ao]\nradius = 8\nclusters = 64\ncache = false\nmode = \"{mode}\"\n"
-    );
-    scene_from_toml_str(&text, Path::new(""), "cornell", &[]).unwrap()
+    cornell_box_scene(N, SIZE, &format!("radius = 8\nclusters = 64\ncache = false\nmode = \"{mode}\""))
 }
 
 /// The scene's LUT with the intensities of `part` (a raw U8 value of the
