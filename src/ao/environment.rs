@@ -1,7 +1,8 @@
 //! Environment colour E_env and occlusion O_env of every codebook cluster
 //! (section 4.1, equations 4-5), recomputed on the GPU from the transfer
-//! function whenever it changes (glsl/ao_env.comp); the codebook is uploaded
-//! once. [`cpu_environment`] is the same sum on the CPU, the reference of the
+//! function whenever it changes: the TF at each bin (glsl/ao_env_bins.comp),
+//! then each cluster's histogram weighted with it (glsl/ao_env.comp); the
+//! codebook is uploaded once. [`cpu_environment`] is the same sum on the CPU, the reference of the
 //! GPU pass and the lookup of the unclustered histograms.
 //!
 //! Normalization: the paper divides by 2/3 pi r^3, the volume of the
@@ -22,14 +23,28 @@ use super::settings::AoSettings;
 use crate::render::{RenderError, ResourceNeed};
 use crate::scene::{TransferLut, Volume};
 use crate::shaders::ao_env as shader;
+use crate::shaders::ao_env_bins as bins_shader;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Context, Profiler};
 
-/// The pass's name: debug label and profiler scope.
+/// The update's name: debug label and profiler scope of both passes.
 pub const PASS: &str = "ao_environment";
+/// Its two passes (per-dispatch detail scopes).
+pub const BINS_PASS: &str = "ao_environment_bins";
+pub const CLUSTERS_PASS: &str = "ao_environment_clusters";
+
+/// The push constants of glsl/ao_env_bins.comp.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct BinParams {
+    pub bins: u32,
+    pub lut_size: f32,
+}
+
+crate::assert_gpu_layout!(BinParams, bins_shader::layout::BIN_PARAMS, [bins, lut_size]);
 
 /// The push constants of glsl/ao_env.comp.
 #[repr(C)]
@@ -37,19 +52,19 @@ pub const PASS: &str = "ao_environment";
 pub struct EnvParams {
     pub clusters: u32,
     pub bins: u32,
-    pub lut_size: f32,
     /// 1 / [`SphereStencil::full_hemisphere_mass`].
     pub inv_mass: f32,
     pub glow_low: f32,
     pub glow_high: f32,
     pub pad0: u32,
     pub pad1: u32,
+    pub pad2: u32,
 }
 
 crate::assert_gpu_layout!(
     EnvParams,
     shader::layout::ENV_PARAMS,
-    [clusters, bins, lut_size, inv_mass, glow_low, glow_high, pad0, pad1]
+    [clusters, bins, inv_mass, glow_low, glow_high, pad0, pad1, pad2]
 );
 
 /// h(j) of section 4.4: `glow_max` for intensities in `glow_range`, else 1.
@@ -126,8 +141,14 @@ pub struct GpuEnvironment {
     pub clusters: u32,
     pub bins: u32,
     codebook: Buffer,
+    /// `(tau_alpha tau_rgb, tau_alpha)` per bin; only the shaders touch it
+    /// (bound in both passes' sets), it lives as long as they do.
+    _bin_weights: Buffer,
     /// `(E_env, O_env)` per cluster, then the glow block in glow mode.
     pub env: Buffer,
+    bins_pipeline: ComputePipeline,
+    bins_set: vk::DescriptorSet,
+    bin_params: BinParams,
     pipeline: ComputePipeline,
     set: vk::DescriptorSet,
     params: EnvParams,
@@ -153,10 +174,26 @@ impl GpuEnvironment {
             vk::BufferUsageFlags::STORAGE_BUFFER,
             MemoryLocation::GpuToCpu,
         )?;
+        let bin_weights = Buffer::new(
+            ctx,
+            "ao bin weights",
+            bins as u64 * 16,
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+            MemoryLocation::GpuOnly,
+        )?;
+        let mut bins_pipeline = ComputePipeline::new(
+            ctx,
+            &ComputePipelineDesc { name: BINS_PASS, shader: &bins_shader::INTERFACE, specialization: &[], max_sets: 1 },
+        )?;
+        let bins_set = bins_pipeline.create_set(&[
+            (bins_shader::BIN_WEIGHTS, Resource::StorageBuffer(&bin_weights)),
+            (bins_shader::TRANSFER_LUT, Resource::StorageBuffer(lut)),
+        ])?;
+        let bin_params = BinParams { bins, lut_size: (lut.size / 16) as f32 };
         let mut pipeline = ComputePipeline::new(
             ctx,
             &ComputePipelineDesc {
-                name: PASS,
+                name: CLUSTERS_PASS,
                 shader: &shader::INTERFACE,
                 specialization: &[(0, glow.is_some() as u32)],
                 max_sets: 1,
@@ -165,33 +202,58 @@ impl GpuEnvironment {
         let set = pipeline.create_set(&[
             (shader::CODEBOOK, Resource::StorageBuffer(&codebook)),
             (shader::ENVIRONMENT, Resource::StorageBuffer(&env)),
-            (shader::TRANSFER_LUT, Resource::StorageBuffer(lut)),
+            (shader::BIN_WEIGHTS, Resource::StorageBuffer(&bin_weights)),
         ])?;
         let g = glow.unwrap_or(GlowMapping { max: 1.0, range: [1.0, 0.0] });
         // h_max itself is the renderer's (it weights the glow colour into E_env).
         let params = EnvParams {
             clusters,
             bins,
-            lut_size: (lut.size / 16) as f32,
             inv_mass: (1.0 / mass) as f32,
             glow_low: g.range[0],
             glow_high: g.range[1],
             pad0: 0,
             pad1: 0,
+            pad2: 0,
         };
-        Ok(GpuEnvironment { clusters, bins, codebook, env, pipeline, set, params })
+        Ok(GpuEnvironment {
+            clusters,
+            bins,
+            codebook,
+            _bin_weights: bin_weights,
+            env,
+            bins_pipeline,
+            bins_set,
+            bin_params,
+            pipeline,
+            set,
+            params,
+        })
     }
 
     /// Recomputes the lookup from the transfer LUT bound at creation (call it
-    /// after the LUT changed): one dispatch, its own submission, followed by
-    /// the barriers that make the lookup visible to the frame's shaders and
-    /// to the host.
+    /// after the LUT changed): two dispatches in their own submission,
+    /// followed by the barriers that make the lookup visible to the frame's
+    /// shaders and to the host.
     pub fn update(&self, ctx: &Context, profiler: &mut Profiler) -> Result<(), RenderError> {
         submit_and_wait(ctx, "ao_environment_update", |rec| {
             let scope = profiler.begin(rec, PASS)?;
+            let detail = profiler.begin_detail(rec, BINS_PASS)?;
+            rec.bind(&self.bins_pipeline, self.bins_set);
+            rec.push(&self.bins_pipeline, &self.bin_params);
+            rec.dispatch(self.bins.div_ceil(64), 1, 1);
+            profiler.end(rec, detail)?;
+            // The clusters' pass weights every histogram with the bins' TF.
+            rec.barrier(&Barrier::memory(
+                "ao_bin_weights_write_to_environment_read",
+                Access::COMPUTE_WRITE,
+                Access::COMPUTE_READ,
+            ));
+            let detail = profiler.begin_detail(rec, CLUSTERS_PASS)?;
             rec.bind(&self.pipeline, self.set);
             rec.push(&self.pipeline, &self.params);
             rec.dispatch(self.clusters.div_ceil(64), 1, 1);
+            profiler.end(rec, detail)?;
             profiler.end(rec, scope)?;
             // The frames that follow read the lookup in their shaders, the
             // host reads it in tests.
@@ -229,6 +291,7 @@ fn env_entries(clusters: u32, glow: bool) -> u64 {
 pub fn resources(clusters: u32, bins: u32, mode: AoMode) -> Vec<ResourceNeed> {
     vec![
         ResourceNeed::of::<f32>("ao codebook", clusters as usize * bins as usize),
+        ResourceNeed::of::<[f32; 4]>("ao bin weights", bins as usize),
         ResourceNeed::buffer("ao environment", env_entries(clusters, mode.has_glow()) * 16),
     ]
 }
