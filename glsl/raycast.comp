@@ -11,6 +11,7 @@ layout(constant_id = 0) const uint SHADING = 0;
 
 #include "volume.glsl"
 #include "lights.glsl"
+#include "phong.glsl"
 #include "view_ray.glsl"
 #include "view_chunk.glsl"
 
@@ -19,31 +20,12 @@ layout(constant_id = 0) const uint SHADING = 0;
 layout(set = 0, binding = 4, rgba32f) writeonly uniform image2D out_image;
 layout(set = 0, binding = 5, rgba32f) readonly uniform image2D state_in;
 
-vec3 gradient(vec3 uvw) {
-    vec3 e = 1.0 / frame.dims;
-    return vec3(
-        textureLod(volume_tex, uvw + vec3(e.x, 0, 0), 0.0).r - textureLod(volume_tex, uvw - vec3(e.x, 0, 0), 0.0).r,
-        textureLod(volume_tex, uvw + vec3(0, e.y, 0), 0.0).r - textureLod(volume_tex, uvw - vec3(0, e.y, 0), 0.0).r,
-        textureLod(volume_tex, uvw + vec3(0, 0, e.z), 0.0).r - textureLod(volume_tex, uvw - vec3(0, 0, e.z), 0.0).r) * 0.5;
-}
-
 vec3 blinn_phong(vec3 p, vec3 rgb, vec3 d) {
-    float ambient = frame.ambient, diffuse = frame.diffuse, specular = frame.specular, shininess = frame.shininess;
     vec3 g = gradient(to_uvw(p));
-    int count = int(frame.light_count);
-    if (length(g) < 1e-6 || count == 0) return rgb * (ambient + diffuse);
+    if (length(g) < 1e-6 || frame.light_count == 0) return rgb * (frame.ambient + frame.diffuse);
     vec3 n = -normalize(g);
     if (dot(n, -d) < 0.0) n = -n;
-    vec3 s = rgb * ambient;
-    for (int i = 0; i < count; ++i) {
-        vec4 w = toward_light(lights[i], p);
-        vec3 lit = lights[i].radiance.rgb * light_shape(lights[i], w);
-        // A light straight behind the view ray has no half vector: no highlight.
-        vec3 hw = w.xyz - d;
-        float spec = length(hw) > 1e-6 ? pow(max(dot(n, normalize(hw)), 0.0), shininess) : 0.0;
-        s += lit * (rgb * diffuse * max(dot(n, w.xyz), 0.0) + specular * spec);
-    }
-    return s;
+    return blinn_phong_lights(rgb * frame.ambient, p, n, rgb, d);
 }
 
 void main() {

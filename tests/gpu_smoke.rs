@@ -110,3 +110,42 @@ fn every_technique_lists_the_memory_its_frame_allocates() {
     }
     assert_validation_clean(&ctx);
 }
+
+/// Technique `ao` lists what its frame allocates in every mode (the glow
+/// block only in glow mode), lit and unlit, against the device memory the
+/// frame held (exactly on lavapipe), validation-clean.
+#[test]
+fn ao_lists_the_memory_its_frame_allocates_in_every_mode() {
+    use sweeplab::ao::AoMode;
+    let ctx = validated_context();
+    let (width, height) = (24, 20);
+    let lit = scene_with(sphere_volume(24, 9.0), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 1.0)], width, height);
+    let unlit = scene_with(sphere_volume(24, 9.0), vec![], width, height);
+    let mut listed_by_mode = Vec::new();
+    for (what, base) in [("lit", &lit), ("unlit", &unlit)] {
+        for mode in AoMode::ALL {
+            let mut scene = base.clone();
+            let ao = &mut scene.settings.ao;
+            (ao.radius, ao.clusters, ao.packed_dim, ao.cache, ao.mode) = (3, 8, 16, false, mode);
+            let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+            let mut profiler = Profiler::new(&ctx, 256).unwrap();
+            let scene_bytes = ctx.memory.device_local_bytes();
+            let needs = Technique::Ao.resources(&scene, width, height);
+            let listed = total_bytes(&needs);
+            let out = render(&gpu, Technique::Ao, width, height, &mut profiler).unwrap();
+            let frame_bytes = out.profile.gpu_memory_bytes - scene_bytes;
+            println!("ao {} ({what}): listed {listed}, frame {frame_bytes}: {needs:?}", mode.name());
+            assert!(listed <= frame_bytes, "ao {} ({what}): lists {listed}, the frame held {frame_bytes}", mode.name());
+            if ctx.info.name.contains("llvmpipe") {
+                let padded: u64 = needs.iter().map(lavapipe_bytes).sum();
+                assert_eq!(frame_bytes, padded, "ao {} ({what}): held {frame_bytes}, {padded} listed", mode.name());
+            }
+            listed_by_mode.push((mode, listed));
+            drop(gpu);
+        }
+    }
+    let bytes = |m: AoMode| listed_by_mode.iter().find(|(n, _)| *n == m).unwrap().1;
+    assert_eq!(bytes(AoMode::Glow), bytes(AoMode::Dvr) + 8 * 16, "the glow block: one vec4 per cluster");
+    assert_eq!(bytes(AoMode::Phase), bytes(AoMode::Dvr), "both hemispheres read the same lookup");
+    assert_validation_clean(&ctx);
+}

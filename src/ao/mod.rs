@@ -11,6 +11,7 @@
 //! ([`cache`]) in front.
 
 pub mod cache;
+pub mod environment;
 pub mod error;
 pub mod gradient;
 pub mod histogram;
@@ -18,13 +19,17 @@ pub mod packing;
 pub mod parallel;
 pub mod progress;
 pub mod quantize;
+pub mod render;
+pub mod render_settings;
 pub mod search;
 pub mod settings;
+pub mod technique;
 pub mod training_set;
 
 pub use cache::{AoCache, CacheKey, CacheMiss};
 pub use error::AoError;
 pub use progress::Progress;
+pub use render_settings::AoMode;
 pub use settings::{AoSettings, Metric, TrainingSet};
 
 use glam::UVec3;

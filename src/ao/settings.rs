@@ -18,6 +18,9 @@
 use serde::Deserialize;
 
 use super::error::AoError;
+use super::render_settings::{
+    validate_render_keys, AoMode, DEFAULT_GLOW_MAX, DEFAULT_GLOW_RANGE, DEFAULT_ISOVALUE, DEFAULT_PHASE_G,
+};
 use crate::scene::suggest::nearest;
 use crate::scene::Scene;
 
@@ -104,6 +107,13 @@ pub struct AoSettings {
     pub cache: bool,
     /// Cache directory; default [`super::cache::default_cache_dir`].
     pub cache_dir: Option<String>,
+    /// Rendering (not part of the cache key): the shading of technique `ao`
+    /// and its parameters ([`super::render_settings`]).
+    pub mode: AoMode,
+    pub isovalue: f32,
+    pub phase_g: f32,
+    pub glow_max: f32,
+    pub glow_range: [f32; 2],
 }
 
 impl Default for AoSettings {
@@ -121,12 +131,17 @@ impl Default for AoSettings {
             lbg_threshold: 1e-3,
             cache: true,
             cache_dir: None,
+            mode: AoMode::default(),
+            isovalue: DEFAULT_ISOVALUE,
+            phase_g: DEFAULT_PHASE_G,
+            glow_max: DEFAULT_GLOW_MAX,
+            glow_range: DEFAULT_GLOW_RANGE,
         }
     }
 }
 
 /// Top-level keys, for the did-you-mean of a misspelt one.
-const KEYS: [&str; 10] = [
+const KEYS: [&str; 15] = [
     "radius",
     "bits",
     "packed_dim",
@@ -137,6 +152,11 @@ const KEYS: [&str; 10] = [
     "lbg_threshold",
     "cache",
     "cache_dir",
+    "mode",
+    "isovalue",
+    "phase_g",
+    "glow_max",
+    "glow_range",
 ];
 const TRAINING_KEYS: [&str; 4] = ["rule", "count", "seed", "eps"];
 
@@ -212,7 +232,7 @@ impl AoSettings {
         if self.cache_dir.as_deref() == Some("") {
             return Err(out("cache_dir", "\"\"", "a directory path (leave it out for the default)"));
         }
-        Ok(())
+        validate_render_keys(self.isovalue, self.phase_g, self.glow_max, self.glow_range)
     }
 
     /// Number of histogram bins, 2^bits.

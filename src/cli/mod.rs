@@ -1,3 +1,4 @@
+mod ao_progress;
 pub mod args;
 mod bench_args;
 mod bench_breakdown;

@@ -10,6 +10,9 @@ pub enum RenderError {
     Settings(#[from] SettingsError),
     #[error("{0}")]
     Invalid(String),
+    /// Ambient occlusion's preprocessing or its settings.
+    #[error(transparent)]
+    Ao(#[from] crate::ao::AoError),
     /// The frame came back with NaN or infinite pixels: never written or compared.
     #[error("{technique} rendered {bad} of {total} pixels as NaN or infinity; the image is not written")]
     NonFinite { technique: &'static str, bad: usize, total: usize },

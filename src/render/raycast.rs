@@ -12,6 +12,7 @@ use crate::reference::gpu::ChunkSync;
 use crate::scene::Scene;
 use crate::shaders::raycast;
 use crate::vk::descriptors::Resource;
+use crate::vk::interface::Binding;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Profiler, Recorder};
 use ash::vk;
@@ -71,30 +72,67 @@ pub fn record_with(
     let chunks = ViewChunks::for_render(gpu.scene, name, iterations_per_sample(gpu.scene, shading))?;
     let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
     let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
-    let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
-    let state = chunks.state_image(ctx, &format!("{name} view chunk state"), width, height)?;
-    let mut pipeline = ComputePipeline::new(
+    let pipeline = ComputePipeline::new(
         ctx,
         &ComputePipelineDesc { name, shader: &raycast::INTERFACE, specialization: &[(0, shading as u32)], max_sets: 2 },
     )?;
-    // Set 0 writes the output and reads the state image, set 1 the opposite.
-    let mut sets = [vk::DescriptorSet::null(); 2];
-    for (i, (write, read)) in [(&output.image, &state), (&state, &output.image)].into_iter().enumerate() {
-        sets[i] = pipeline.create_set(&[
-            (raycast::FRAME, Resource::UniformBuffer(&frame)),
-            (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
-            (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
-            (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
-            (raycast::OUT_IMAGE, Resource::StorageImage(write)),
-            (raycast::STATE_IN, Resource::StorageImage(read)),
-        ])?;
+    let shared = [
+        (raycast::FRAME, Resource::UniformBuffer(&frame)),
+        (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+        (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+        (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+    ];
+    let march = ChunkedMarch { name, chunks, size: (width, height), sync };
+    let mut recorded = march.record(gpu, pipeline, &shared, [raycast::OUT_IMAGE, raycast::STATE_IN], rec, profiler)?;
+    recorded.keep_alive.push(Box::new(frame));
+    Ok(recorded)
+}
+
+/// One frame's view march in chunks ([`ViewChunks`]), ping-ponging between
+/// the output and the state image: what every ray caster of
+/// [`ViewChunks`] records the same way.
+pub struct ChunkedMarch<'a> {
+    /// Pass name: debug label, profiler scope, and the images' names.
+    pub name: &'a str,
+    pub chunks: ViewChunks,
+    pub size: (u32, u32),
+    pub sync: ChunkSync,
+}
+
+impl ChunkedMarch<'_> {
+    /// Creates the output and the state image, binds them with `shared` (the
+    /// bindings besides the two images, named `[output, state]` by
+    /// `image_bindings`) and records the chunks into `rec` in one profiler
+    /// scope. The caller adds what `shared` refers to to the frame's
+    /// `keep_alive`.
+    pub fn record(
+        &self,
+        gpu: &GpuScene,
+        mut pipeline: ComputePipeline,
+        shared: &[(Binding, Resource)],
+        [out_binding, state_binding]: [Binding; 2],
+        rec: &mut Recorder,
+        profiler: &mut Profiler,
+    ) -> Result<RecordedFrame, RenderError> {
+        let ctx = gpu.ctx;
+        let (name, (width, height)) = (self.name, self.size);
+        let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
+        let state = self.chunks.state_image(ctx, &format!("{name} view chunk state"), width, height)?;
+        // Set 0 writes the output and reads the state image, set 1 the opposite.
+        let mut sets = [vk::DescriptorSet::null(); 2];
+        for (i, (write, read)) in [(&output.image, &state), (&state, &output.image)].into_iter().enumerate() {
+            let mut bindings = shared.to_vec();
+            bindings.push((out_binding, Resource::StorageImage(write)));
+            bindings.push((state_binding, Resource::StorageImage(read)));
+            sets[i] = pipeline.create_set(&bindings)?;
+        }
+        output.prepare_for_compute_read_write(rec);
+        rec.discard_for_compute("view_chunk_state_discard_to_compute_access", &[&state]);
+        let scope = profiler.begin(rec, name)?;
+        self.chunks.record(rec, &pipeline, sets, (width, height), self.sync);
+        profiler.end(rec, scope)?;
+        Ok(RecordedFrame::counted(rec, Arc::new(output), vec![Box::new(state), Box::new(pipeline)]))
     }
-    output.prepare_for_compute_read_write(rec);
-    rec.discard_for_compute("view_chunk_state_discard_to_compute_access", &[&state]);
-    let scope = profiler.begin(rec, name)?;
-    chunks.record(rec, &pipeline, sets, (width, height), sync);
-    profiler.end(rec, scope)?;
-    Ok(RecordedFrame::counted(rec, Arc::new(output), vec![Box::new(frame), Box::new(state), Box::new(pipeline)]))
 }
 
 /// A lit technique's frame for a scene without lights: no light, nothing to

@@ -27,8 +27,10 @@ impl Technique {
     pub const Ipsvi: Technique = Technique(&crate::ipsvi::Ipsvi);
     pub const HalfAngle: Technique = Technique(&crate::half_angle::HalfAngle);
     pub const LightVolume: Technique = Technique(&crate::lightvolume::LightVolume);
+    pub const Ao: Technique = Technique(&crate::ao::technique::Ao);
 
-    /// The registry: every technique, in the order help text lists them.
+    /// The techniques that approximate the scene's optical model (compared
+    /// with its ground truth), in the order help text lists them.
     pub const ALL: [Technique; 6] = [
         Technique::Dvr,
         Technique::Phong,
@@ -38,9 +40,21 @@ impl Technique {
         Technique::LightVolume,
     ];
 
+    /// The registry: every technique a user can name, [`Technique::ALL`] and
+    /// ambient occlusion (its ground truth is the AO reference, src/reference/ao*).
+    pub const NAMED: [Technique; 7] = {
+        let mut named = [Technique::Ao; 7];
+        let mut i = 0;
+        while i < Technique::ALL.len() {
+            named[i] = Technique::ALL[i];
+            i += 1;
+        }
+        named
+    };
+
     /// `name: summary` of every technique, one per line (for `--technique` help).
     pub fn help() -> String {
-        Technique::ALL.map(|t| format!("{}: {}", t.name(), t.summary())).join("\n")
+        Technique::NAMED.map(|t| format!("{}: {}", t.name(), t.summary())).join("\n")
     }
 }
 
@@ -74,8 +88,8 @@ impl fmt::Display for Technique {
 impl FromStr for Technique {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Technique::ALL.into_iter().find(|t| t.name() == s).ok_or_else(|| {
-            let names = Technique::ALL.map(|t| t.name());
+        Technique::NAMED.into_iter().find(|t| t.name() == s).ok_or_else(|| {
+            let names = Technique::NAMED.map(|t| t.name());
             let near = crate::scene::suggest::nearest(s, names).map(|n| format!(" (did you mean {n}?)"));
             format!("unknown technique {s:?}{}; known: {}", near.unwrap_or_default(), names.join(", "))
         })
@@ -144,9 +158,9 @@ mod tests {
 
     #[test]
     fn every_technique_is_found_by_its_own_name_only() {
-        for t in Technique::ALL {
+        for t in Technique::NAMED {
             assert_eq!(t.name().parse::<Technique>(), Ok(t));
-            assert_eq!(Technique::ALL.iter().filter(|u| u.name() == t.name()).count(), 1, "{t} twice");
+            assert_eq!(Technique::NAMED.iter().filter(|u| u.name() == t.name()).count(), 1, "{t} twice");
             assert!(Technique::help().contains(&format!("{t}: {}", t.summary())));
         }
         let e = "half_angle".parse::<Technique>().unwrap_err();

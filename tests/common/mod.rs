@@ -76,3 +76,16 @@ pub fn scene_with(volume: Volume, lights: Vec<Light>, width: u32, height: u32) -
 pub fn directional(direction: Vec3, intensity: f32) -> Light {
     Light { kind: LightKind::Directional { direction }, color: Vec3::ONE, intensity, falloff: Falloff::None }
 }
+
+/// tests/scenes/cornell-box.toml at `n`^3, rendered at `size`^2, with the
+/// `[ao]` table `ao` (its keys, one per line).
+pub fn cornell_box_scene(n: u32, size: u32, ao: &str) -> Scene {
+    let text = format!(
+        "[volume]\nsynthetic = \"cornell-box\"\nsize = {n}\n[transfer]\npreset = \"cornell\"\n\
+         [camera]\nazimuth = 0.0\nelevation = 0.0\nfov_y = 40.0\n\
+         [[lights]]\ntype = \"spot\"\nposition = [0.0, 0.4, 0.0]\ndirection = [0.0, -1.0, 0.0]\n\
+         inner_cone = 50.0\nouter_cone = 70.0\nfalloff = \"inverse-square\"\nintensity = 0.3\n\
+         [render]\nwidth = {size}\nheight = {size}\n[ao]\n{ao}\n"
+    );
+    scene_file::scene_from_toml_str(&text, std::path::Path::new(""), "cornell", &[]).unwrap()
+}

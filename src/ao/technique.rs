@@ -1,0 +1,97 @@
+//! Technique `ao` behind [`RenderTechnique`]: the preprocessing (cached on
+//! disk, and the last result kept in memory for the process), the lookup
+//! recomputed on the GPU from the transfer function, and the frame
+//! ([`super::render`]).
+
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex};
+
+use super::render::{self, AoRenderer};
+use super::{preprocess_cached, AoError, AoPreprocessed, AoSettings, CacheKey, Progress};
+use crate::render::view_chunks::check_view_step;
+use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::scene::{OpticalModel, Scene, Volume};
+use crate::vk::Profiler;
+
+pub struct Ao;
+
+/// Calls of [`preprocess_cached`] this process made (a disk-cache hit counts
+/// too: it is the preprocessing step, loaded).
+static PREPROCESS_RUNS: AtomicU64 = AtomicU64::new(0);
+
+/// The last preprocessing result, by its cache key.
+static LAST: Mutex<Option<(CacheKey, Arc<AoPreprocessed>)>> = Mutex::new(None);
+
+/// How many times this process ran (or loaded) the preprocessing.
+pub fn preprocess_runs() -> u64 {
+    PREPROCESS_RUNS.load(Ordering::SeqCst)
+}
+
+/// The preprocessing of `volume` with `settings`: the result kept from the
+/// last call when volume content and parameters are the same, else
+/// [`preprocess_cached`] with `progress`.
+pub fn preprocessed(
+    volume: &Volume,
+    settings: &AoSettings,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<Arc<AoPreprocessed>, AoError> {
+    let key = CacheKey::new(volume, settings);
+    let mut last = LAST.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    if let Some((k, result)) = last.as_ref() {
+        if *k == key {
+            return Ok(result.clone());
+        }
+    }
+    PREPROCESS_RUNS.fetch_add(1, Ordering::SeqCst);
+    let (result, _) = preprocess_cached(volume, settings, progress)?;
+    let result = Arc::new(result);
+    *last = Some((key, result.clone()));
+    Ok(result)
+}
+
+impl RenderTechnique for Ao {
+    fn name(&self) -> &'static str {
+        render::PASS
+    }
+    fn summary(&self) -> &'static str {
+        "ambient occlusion and colour bleeding from clustered local histograms (Ropinski et al. 2008; \
+         preprocessing cached, ao.mode: isosurface, dvr, phase, glow)"
+    }
+    /// Its ground truth is the AO reference (src/reference/ao*), not a model
+    /// of light transport; frames compared with the scene's model use the
+    /// scene's choice.
+    fn reference_model(&self, scene: &Scene) -> OpticalModel {
+        scene.reference.model
+    }
+    fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
+        render::resources(scene, &scene.settings.ao, width, height)
+    }
+    fn check(&self, scene: &Scene) -> Result<(), RenderError> {
+        AoSettings::from_scene(scene)?;
+        check_view_step(scene, self.name())
+    }
+    fn render(
+        &self,
+        gpu: &GpuScene,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<FrameResult, RenderError> {
+        let settings = AoSettings::from_scene(gpu.scene)?;
+        let pre = preprocessed(&gpu.scene.volume, &settings, &mut |_| {})?;
+        let renderer = AoRenderer::new(gpu, &pre, &settings)?;
+        renderer.update_environment(gpu, profiler)?;
+        renderer.frame(gpu, (width, height), profiler)
+    }
+    fn settings_note(&self, scene: &Scene) -> Option<String> {
+        let s = &scene.settings.ao;
+        Some(format!(
+            "ao: mode {}, r = {}, b = {}, n_c = {}, {}",
+            s.mode.name(),
+            s.radius,
+            s.bits,
+            s.clusters,
+            s.metric.name()
+        ))
+    }
+}
