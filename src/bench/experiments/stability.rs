@@ -237,7 +237,7 @@ pub fn run_cell(
                     if let Some(w) = technique_warning {
                         // Beyond the bound by the technique's own account.
                         Verdict::Warned(w)
-                    } else if !(db >= cell.bound_db) {
+                    } else if db.is_nan() || db < cell.bound_db {
                         Verdict::Failed(format!("{db:.1} dB < {} dB", cell.bound_db))
                     } else if let Some(w) = warning {
                         Verdict::Warned(w)
