@@ -224,7 +224,7 @@ fn bench_lights_rejects_bad_parameters_clearly() {
 #[test]
 fn every_bench_refuses_zero_repeats() {
     let dir = temp_dir("bench-repeat-zero");
-    for bench in ["ipsvi", "sync", "table1", "lights"] {
+    for bench in ["ipsvi", "sync", "table1", "lights", "stability"] {
         let out = dir.join(bench);
         let o = sweeplab(&["bench", bench, "--repeat", "0", "--out", out.to_str().unwrap()]);
         assert_user_error(&o, "--repeat");
@@ -323,4 +323,78 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
         // Step b has no barriers between blocks; step c adds one per block.
         assert!(steps[2]["barriers"].as_u64() > steps[1]["barriers"].as_u64(), "{mode}: {steps:?}");
     }
+}
+
+/// `bench stability` (issue 14): its lists are checked before any GPU work,
+/// with a "did you mean"; a small table writes every report, each cell with
+/// its status, and a meaningless or stiff case shows as warned, not ok.
+#[test]
+fn bench_stability_checks_its_lists_first_and_writes_the_table() {
+    let dir = temp_dir("bench-stability");
+    let out = dir.join("stability");
+    let out = out.to_str().unwrap();
+    for (args, mention) in [
+        (vec!["--cases", "baseline,stif"], "did you mean stiff?"),
+        (vec!["--techniques", "dvr,half_angle"], "did you mean half-angle?"),
+        (vec!["--size", "0"], "--size"),
+    ] {
+        let o = sweeplab(&[&["bench", "stability", "--out", out][..], &args].concat());
+        assert_user_error(&o, mention);
+        assert!(!stderr(&o).contains("device:"), "{args:?}: opened the GPU before refusing: {}", stderr(&o));
+        assert_eq!(stderr(&o).matches("error:").count(), 1, "{}", stderr(&o));
+    }
+    #[rustfmt::skip]
+    let o = sweeplab(&[
+        "bench", "stability", "--cases", "baseline,opaque,transparent", "--techniques", "dvr,lightvolume",
+        "--size", "8", "--out", out,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("validation: clean"), "{}", stderr(&o));
+    for file in ["stability.csv", "stability.md", "stability.png", "stability_convergence.csv"] {
+        assert!(dir.join("stability").join(file).is_file(), "{file} missing");
+    }
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("stability").join("stability.json")).unwrap()).unwrap();
+    let status = |case: &str, t: &str| {
+        let row = rows.iter().find(|r| r["case"] == case && r["technique"] == t).unwrap();
+        row["status"].as_str().unwrap().to_string()
+    };
+    assert_eq!(rows.len(), 6, "3 cases x 2 techniques");
+    assert_eq!(status("baseline", "dvr"), "ok");
+    assert_eq!(status("opaque", "dvr"), "ok", "DVR marches the model exactly, opaque or not");
+    assert_eq!(status("opaque", "lightvolume"), "warned", "the light grid cannot resolve it, and says so");
+    assert_eq!(status("transparent", "lightvolume"), "warned", "an empty image comes with its warning");
+    let orders: Vec<serde_json::Value> = serde_json::from_str(
+        &std::fs::read_to_string(dir.join("stability").join("stability_convergence.json")).unwrap(),
+    )
+    .unwrap();
+    let dvr = orders.iter().find(|r| r["technique"] == "dvr").unwrap();
+    assert!(dvr["overall_order"].as_f64().is_some_and(|o| o > 1.5), "DVR's midpoint rule is second order: {dvr}");
+}
+
+/// `--set` names what is wrong: an unknown table or key with a "did you mean",
+/// a bad value as a bad value; a technique that cannot hold a scene to its
+/// bound says so on stderr (issue 14 item 4).
+#[test]
+fn set_errors_name_the_cause_and_technique_warnings_are_printed() {
+    let o = sweeplab(&["render", "--set", "camra.azimuth=3", "--size", "4x4"]);
+    assert_user_error(&o, "did you mean [camera]?");
+    let o = sweeplab(&["render", "--set", "render.step=abc", "--size", "4x4"]);
+    assert_user_error(&o, "\"abc\"");
+    assert!(!stderr(&o).contains("known"), "a bad value is not an unknown key: {}", stderr(&o));
+    let dir = temp_dir("technique-warnings");
+    let scene = dir.join("opaque.toml");
+    std::fs::write(
+        &scene,
+        "[volume]\nsynthetic = \"noise\"\nsize = 8\n[transfer]\npoints = [[0.0, 1, 1, 1, 1], [1.0, 1, 1, 1, 1]]\n\
+         [[lights]]\ntype = \"directional\"\ndirection = [-1.0, -1.0, -0.5]\n",
+    )
+    .unwrap();
+    let png = dir.join("o.png");
+    let (scene, png) = (scene.to_str().unwrap(), png.to_str().unwrap());
+    let o = sweeplab(&["render", "--scene", scene, "--technique", "lightvolume", "--size", "8x8", "--out", png]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("warning: lightvolume: the transfer function gives the volume an optical depth"));
+    let o = sweeplab(&["render", "--scene", scene, "--technique", "dvr", "--size", "8x8", "--out", png]);
+    assert!(!stderr(&o).contains("warning:"), "DVR renders it exactly: {}", stderr(&o));
 }

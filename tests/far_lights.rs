@@ -7,11 +7,13 @@
 mod common;
 
 use common::*;
+use glam::Vec3;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
+use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
 use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
 use sweeplab::scene::scene_file::scene_from_toml_str;
-use sweeplab::scene::{LightKind, Scene};
+use sweeplab::scene::{Falloff, Light, LightKind, Scene};
 use sweeplab::vk::{Context, Profiler};
 
 fn scene(light: &str) -> Scene {
@@ -82,5 +84,36 @@ fn lights_reach_the_far_limit_smoothly_and_far_spots_follow_the_rule() {
     );
     let directional = scene("type = \"directional\"\ndirection = [-1.0, 0.0, 0.0]");
     assert_eq!(spot.lights, directional.lights);
+    assert_validation_clean(&ctx);
+}
+
+#[test]
+fn a_scene_built_in_code_with_a_point_light_at_1e20_gets_the_directional_image_in_every_technique() {
+    // Built from the scene types, not a file: the far-light rule must not
+    // depend on the TOML path (Scene::rendered_lights applies it where the
+    // GPU records, light-space planes and the CPU reference are made).
+    let point = Light {
+        kind: LightKind::Point { position: Vec3::new(1e20, 0.0, 0.0) },
+        color: Vec3::ONE,
+        intensity: 2.0,
+        falloff: Falloff::None,
+    };
+    let far = scene_with(sphere_volume(16, 6.0), vec![point], 16, 16);
+    let mut directional = far.clone();
+    directional.lights = vec![common::directional(Vec3::NEG_X, 2.0)];
+    assert_eq!(far.rendered_lights(), directional.lights);
+    let ctx = validated_context();
+    for technique in Technique::ALL {
+        let (a, b) = (frame(&ctx, &far, technique), frame(&ctx, &directional, technique));
+        let stats = compare(&a, &b).unwrap();
+        assert!(b.max_value() > 0.05, "{technique}: the directional image is lit");
+        // Same inputs on the GPU; IPSVI's view-sample cache writes race in
+        // float rounding only (1e-6 measured), so a hair of slack.
+        assert!(stats.max_abs <= 1e-5, "{technique}: the far point light differs from the directional one: {stats:?}");
+        for kind in [CpuRenderKind::Reference(technique.reference_model(&far)), CpuRenderKind::Phong] {
+            let (a, b) = (render_cpu(&far, kind, 8, 8).unwrap(), render_cpu(&directional, kind, 8, 8).unwrap());
+            assert_eq!(compare(&a, &b).unwrap().max_abs, 0.0, "CPU {kind:?}");
+        }
+    }
     assert_validation_clean(&ctx);
 }

@@ -12,6 +12,7 @@ pub mod experiments;
 pub mod font;
 pub mod frames;
 pub mod harness;
+pub mod heat_map;
 pub mod out_folder;
 pub mod pareto;
 pub mod plot;
@@ -24,6 +25,7 @@ pub use error::BenchError;
 pub use experiments::ExperimentError;
 pub use frames::{ipsvi_frame, technique_frame, ProfiledFrame};
 pub use harness::{Harness, HarnessError, Measurement, Sample};
+pub use heat_map::{plot_heat_map, render_heat_map, HeatCell, HeatLevel, HeatMap};
 pub use out_folder::{OutFolder, OutFolderError};
 pub use pareto::pareto_front;
 pub use plot::{

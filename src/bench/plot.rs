@@ -140,7 +140,7 @@ pub fn plot_lines(path: impl AsRef<Path>, chart: &Chart, series: &[Series]) -> R
     save_png(path.as_ref(), &render_lines(chart, series)?)
 }
 
-fn save_png(path: &Path, image: &RgbImage) -> Result<(), BenchError> {
+pub(super) fn save_png(path: &Path, image: &RgbImage) -> Result<(), BenchError> {
     image.save_with_format(path, ImageFormat::Png).map_err(|source| BenchError::Png { path: path.to_owned(), source })
 }
 

@@ -50,6 +50,34 @@ pub enum BenchCommand {
     /// selective updates of one light (state change, on/off), scaling over 1-40
     /// lights, memory, and error against time.
     Lights(BenchLightsArgs),
+    /// Issue 14's stability table: every technique (IPSVI in both cache
+    /// updates) on every stiff or extreme case, each cell within the
+    /// technique's bound against the reference of its model, refused or
+    /// warned by name, or FAILED; the convergence order of each technique over
+    /// step 1..1/16 voxel; CSV/JSON/Markdown and a heat map PNG. Exit status 1
+    /// if any cell failed.
+    Stability(BenchStabilityArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchStabilityArgs {
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    #[arg(long, default_value = "bench-stability")]
+    pub out: PathBuf,
+    /// Square image size of every cell (the CPU reference renders it too).
+    #[arg(long, default_value_t = 16)]
+    pub size: u32,
+    /// Cases by short name, comma-separated; empty (the default): all. An
+    /// unknown name lists them.
+    #[arg(long, value_delimiter = ',')]
+    pub cases: Vec<String>,
+    /// Techniques, comma-separated; empty (the default): all.
+    #[arg(long, value_delimiter = ',')]
+    pub techniques: Vec<String>,
+    /// Timed frames per cell after one untimed warm-up frame; the median GPU time is reported.
+    #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
 }
 
 #[derive(Args, Debug)]

@@ -199,7 +199,8 @@ fn half_angle_rows(
     progress: &mut Progress,
     table: &mut BenchTable,
 ) -> anyhow::Result<()> {
-    let harness = session::harness(0, args.repeat)?;
+    // A warm-up frame per slice spacing: each compiles its own pipelines.
+    let harness = session::harness(1, args.repeat)?;
     let mut scene = scene.clone();
     scene.reference.model = OpticalModel::SingleScattering;
     progress.start_step(&format!("{size}x{size} ground truth (GPU, model i)"));

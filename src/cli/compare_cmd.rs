@@ -25,6 +25,9 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     scene.reference.chromatic = technique.reference_chromatic(&scene);
     let (w, h) = (scene.render.width, scene.render.height);
     technique.check(&scene).with_context(|| format!("rendering {technique}"))?;
+    for warning in technique.warnings(&scene) {
+        eprintln!("warning: {warning}");
+    }
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;

@@ -4,6 +4,7 @@ mod bench_args;
 mod bench_breakdown;
 mod bench_ipsvi;
 mod bench_lights;
+mod bench_stability;
 mod bench_sync;
 mod bench_table1;
 mod compare_cmd;
@@ -27,5 +28,6 @@ pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
         args::Command::Bench(args::BenchCommand::Sync(a)) => bench_sync::run(&a),
         args::Command::Bench(args::BenchCommand::Table1(a)) => bench_table1::run(&a),
         args::Command::Bench(args::BenchCommand::Lights(a)) => bench_lights::run(&a),
+        args::Command::Bench(args::BenchCommand::Stability(a)) => bench_stability::run(&a),
     }
 }

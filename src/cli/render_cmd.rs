@@ -19,6 +19,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let scene = scene_args::load(&args.scene)?;
     technique.check(&scene).with_context(|| format!("rendering {technique}"))?;
+    for warning in technique.warnings(&scene) {
+        eprintln!("warning: {warning}");
+    }
     super::ao_progress::prepare(&scene, technique)?;
     let ctx = session::open(&args.gpu)?;
     let output = {

@@ -83,7 +83,7 @@ pub fn check(scene: &Scene) -> Result<(), RenderError> {
 pub fn slicing(scene: &Scene, settings: &HalfAngleSettings) -> Result<Slicing, RenderError> {
     let bx = scene.volume_box();
     let view = scene.camera.forward();
-    let light = match scene.lights.first().map(|l| l.kind) {
+    let light = match scene.rendered_lights().first().map(|l| l.kind) {
         Some(LightKind::Directional { direction }) => direction.normalize_or(Vec3::NEG_Y),
         Some(LightKind::Point { position }) | Some(LightKind::Spot { position, .. }) => {
             (-position).normalize_or(Vec3::NEG_Y)
@@ -141,7 +141,7 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
     }
     let ctx = gpu.ctx;
     let bx = scene.volume_box();
-    let geometry = LightSpacePlane::fit(&scene.lights[0].kind, &bx, settings.light_buffer_size);
+    let geometry = LightSpacePlane::fit(&scene.rendered_lights()[0].kind, &bx, settings.light_buffer_size);
     if geometry.projection == LightProjection::Octahedral {
         return Err(RenderError::Invalid(
             "half-angle slicing needs the light outside the volume's bounding sphere".into(),

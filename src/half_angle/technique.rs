@@ -52,6 +52,27 @@ impl RenderTechnique for HalfAngle {
         }
     }
 
+    fn warnings(&self, scene: &Scene) -> Vec<String> {
+        use crate::render::light_grid_limits::{camera_inside, stiff_medium, MIN_HALF_ANGLE_SLICES};
+        let mut out: Vec<String> =
+            [stiff_medium(scene, self.name()), camera_inside(scene, self.name())].into_iter().flatten().collect();
+        let slicing = (scene.lights.len() == 1).then(|| super::slicing(scene, &scene.settings.half_angle).ok());
+        if let Some(slicing) = slicing.flatten() {
+            if slicing.count < MIN_HALF_ANGLE_SLICES {
+                out.push(format!(
+                    "half-angle: {} slices through the volume (slice step {} voxels: render.step or \
+                     half_angle.slice_step) carry its light too coarsely, so its image may be far from the reference; \
+                     use a step below {:.3} voxels",
+                    slicing.count,
+                    scene.settings.half_angle.slice_step_voxels(scene),
+                    scene.settings.half_angle.slice_step_voxels(scene) * slicing.count as f32
+                        / MIN_HALF_ANGLE_SLICES as f32
+                ));
+            }
+        }
+        out
+    }
+
     fn render(
         &self,
         gpu: &GpuScene,

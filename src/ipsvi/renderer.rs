@@ -107,7 +107,7 @@ pub fn scene_plans(scene: &Scene, settings: &IpsviSettings, width: u32, height: 
     let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
     let bbox = space.projected_box(&scene.volume_box());
     scene
-        .lights
+        .rendered_lights()
         .iter()
         .map(|l| {
             let mut p = plan(bbox, space.light_anchor(&l.kind), settings.line_width, settings.zone_blend_px);
@@ -232,9 +232,10 @@ impl<'a> IpsviRenderer<'a> {
         };
         let planes_host = line_planes(&space.basis, width, height);
         let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let lights = scene.rendered_lights();
         let geometries: Vec<LightSpacePlane> =
-            scene.lights.iter().map(|l| LightSpacePlane::fit(&l.kind, &bx, settings.cache_size)).collect();
-        let light_scale = |i: usize| scene.lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
+            lights.iter().map(|l| LightSpacePlane::fit(&l.kind, &bx, settings.cache_size)).collect();
+        let light_scale = |i: usize| lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
         let sweep_records: Vec<SweepParams> = (0..scene.lights.len())
             .map(|i| {
                 sweep_params(&SweepInputs {

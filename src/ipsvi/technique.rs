@@ -100,6 +100,15 @@ impl RenderTechnique for Ipsvi {
         render_with(gpu, settings, width, height, profiler, settings.sync)
     }
 
+    fn warnings(&self, scene: &Scene) -> Vec<String> {
+        use crate::render::light_grid_limits::{camera_inside, stiff_medium};
+        let view_samples = scene.settings.ipsvi.cache_update == CacheUpdate::ViewSamples;
+        // The view-sample cache holds light at the depths of the samples that
+        // wrote it: from inside the volume those lie beside the eye.
+        let inside = camera_inside(scene, "ipsvi (cache_update = \"view-samples\")").filter(|_| view_samples);
+        [stiff_medium(scene, self.name()), inside].into_iter().flatten().collect()
+    }
+
     fn settings_note(&self, scene: &Scene) -> Option<String> {
         let s = &scene.settings.ipsvi;
         let write = match s.cache_update {

@@ -150,6 +150,8 @@ pub fn contributions(lights: &[Option<Light>], box_half: Vec3) -> Vec<Contributi
     let mut out = Vec::new();
     for (index, light) in lights.iter().enumerate() {
         let Some(light) = light else { continue };
+        // A far light propagates as its directional limit (Scene::rendered_lights).
+        let light = &light.far_limit(box_half.length());
         let state = gpu_light(light);
         let position = match light.kind {
             LightKind::Directional { .. } => None,

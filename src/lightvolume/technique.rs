@@ -69,6 +69,10 @@ impl RenderTechnique for LightVolume {
         Ok(Some(Box::new(super::session::LightVolumeSession::new(gpu)?)))
     }
 
+    fn warnings(&self, scene: &Scene) -> Vec<String> {
+        crate::render::light_grid_limits::stiff_medium(scene, self.name()).into_iter().collect()
+    }
+
     fn check(&self, scene: &Scene) -> Result<(), RenderError> {
         crate::render::view_chunks::check_view_step(scene, self.name())
     }

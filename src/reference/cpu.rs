@@ -9,7 +9,7 @@ use super::parallel::render_rows;
 use super::sources::{phong, scattering};
 use super::validate::{check_scene, CpuRenderError};
 use crate::linear_image::LinearImage;
-use crate::scene::{OpticalModel, RayBasis, Scene};
+use crate::scene::{Light, OpticalModel, RayBasis, Scene};
 
 /// DVR and Phong stop a view ray once its transmittance falls below this (the
 /// shaders get the same constant from build.rs).
@@ -36,6 +36,8 @@ impl CpuRenderKind {
 /// A scene prepared for rendering at one size: checked, LUT baked, camera rays set.
 pub struct CpuRenderer<'a> {
     scene: &'a Scene,
+    /// [`Scene::rendered_lights`]: far lights at their directional limit.
+    lights: Vec<Light>,
     kind: CpuRenderKind,
     medium: Medium<'a>,
     basis: RayBasis,
@@ -54,6 +56,7 @@ impl<'a> CpuRenderer<'a> {
         };
         Ok(CpuRenderer {
             scene,
+            lights: scene.rendered_lights(),
             kind,
             medium: Medium::new(&scene.volume, &scene.transfer),
             basis: scene.camera.basis(width, height),
@@ -115,10 +118,10 @@ impl<'a> CpuRenderer<'a> {
         let scene = self.scene;
         match self.kind {
             CpuRenderKind::Dvr => rgb,
-            CpuRenderKind::Phong => phong(&self.medium, &scene.phong, &scene.lights, p, rgb, d),
+            CpuRenderKind::Phong => phong(&self.medium, &scene.phong, &self.lights, p, rgb, d),
             CpuRenderKind::Reference(model) => scattering(
                 &self.medium,
-                &scene.lights,
+                &self.lights,
                 model,
                 scene.reference.chromatic,
                 scene.render.emission as f64,

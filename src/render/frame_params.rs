@@ -139,7 +139,7 @@ pub fn frame_params(scene: &Scene, width: u32, height: u32, lut_size: usize, ste
 }
 
 pub fn gpu_lights(scene: &Scene) -> Vec<GpuLight> {
-    scene.lights.iter().map(gpu_light).collect()
+    scene.rendered_lights().iter().map(gpu_light).collect()
 }
 
 /// One light as the shaders read it (glsl/lights.glsl).

@@ -8,6 +8,7 @@ pub mod frame_params;
 pub mod frame_result;
 pub mod gpu_scene;
 pub mod image_space;
+pub mod light_grid_limits;
 pub mod light_space;
 pub mod output;
 pub mod raycast;

@@ -71,6 +71,13 @@ pub trait RenderTechnique: Sync {
         Ok(())
     }
 
+    /// What of `scene` the technique renders only approximately, beyond its
+    /// stated bound against the reference of its model, each naming the
+    /// cause ([`super::light_grid_limits`]); printed as warnings, never silent.
+    fn warnings(&self, _scene: &Scene) -> Vec<String> {
+        Vec::new()
+    }
+
     /// A line worth printing beside the frame's figures (IPSVI's sync strategy).
     fn settings_note(&self, _scene: &Scene) -> Option<String> {
         None

@@ -91,4 +91,13 @@ impl Scene {
     pub fn volume_box(&self) -> VolumeBox {
         VolumeBox::new(self.volume.dims, self.volume.spacing)
     }
+
+    /// The lights as every technique and the reference render them: a far
+    /// point or spot light becomes the directional light it approaches
+    /// ([`Light::far_limit`]). Read here, not from `lights`, so a scene built
+    /// or changed in code (not from a file) gets the same rule.
+    pub fn rendered_lights(&self) -> Vec<Light> {
+        let radius = self.volume_box().half_extent.length();
+        self.lights.iter().map(|l| l.far_limit(radius)).collect()
+    }
 }

@@ -2,7 +2,7 @@
 //! library returns these, the command line prints them (issue 14: never a
 //! silent black image).
 
-use super::Scene;
+use super::{Scene, TransferFunction, TransferLut};
 
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SceneWarning {
@@ -24,6 +24,11 @@ pub enum SceneWarning {
         "light {index} sends no light: its colour x intensity (x its falloff at the volume, for a far light) is zero"
     )]
     DarkLight { index: usize },
+    #[error(
+        "transfer function point {index} (value {value}, alpha {alpha}) is a peak narrower than the lookup table's \
+         texel spacing (1/{lut_size}): the baked table gives it at most alpha {seen:.3}, so no sample sees it; widen it"
+    )]
+    TransferPeakMissed { index: usize, value: f32, alpha: f32, seen: f32, lut_size: usize },
 }
 
 /// Everything about `scene` that makes its image meaningless, or empty.
@@ -46,12 +51,38 @@ pub fn scene_warnings(scene: &Scene) -> Vec<SceneWarning> {
             });
         }
     }
-    for (index, light) in scene.lights.iter().enumerate() {
+    warnings.extend(missed_peaks(&scene.transfer, TransferLut::DEFAULT_SIZE));
+    for (index, light) in scene.rendered_lights().iter().enumerate() {
         if light.radiance().max_element() <= 0.0 {
             warnings.push(SceneWarning::DarkLight { index });
         }
     }
     warnings
+}
+
+/// Control points whose opacity the baked lookup table of `lut_size` texels
+/// loses: every renderer reads the table, filtered linearly between texel
+/// centres, so near a point's value it sees at most the larger alpha of the
+/// two centres around it. A point shown at less than half its alpha (a spike
+/// between two centres) is missed by every sample.
+fn missed_peaks(tf: &TransferFunction, lut_size: usize) -> Vec<SceneWarning> {
+    let n = lut_size.max(2);
+    let centre = |i: usize| (i as f32 + 0.5) / n as f32;
+    tf.points
+        .iter()
+        .enumerate()
+        .filter_map(|(index, p)| {
+            let below = ((p.value * n as f32 - 0.5).floor().max(0.0) as usize).min(n - 1);
+            let seen = [below, (below + 1).min(n - 1)].iter().map(|&i| tf.eval(centre(i))[3]).fold(0.0, f32::max);
+            (seen < 0.5 * p.rgba[3]).then_some(SceneWarning::TransferPeakMissed {
+                index,
+                value: p.value,
+                alpha: p.rgba[3],
+                seen,
+                lut_size: n,
+            })
+        })
+        .collect()
 }
 
 /// The largest opacity the transfer function gives a value in [lo, hi]: it is
@@ -112,6 +143,28 @@ mod tests {
         s.transfer = crate::scene::presets::transfer_from_histogram(&s.volume);
         let w = scene_warnings(&s);
         assert!(matches!(w[..], [SceneWarning::ConstantVolume { value }] if value == 0.0), "{w:?}");
+    }
+
+    #[test]
+    fn a_peak_between_two_lut_texels_is_named_and_a_step_or_a_ramp_is_not() {
+        let tf = |points: &[(f32, f32)]| TransferFunction {
+            points: points
+                .iter()
+                .map(|&(value, a)| crate::scene::ControlPoint { value, rgba: [1.0, 1.0, 1.0, a] })
+                .collect(),
+        };
+        // Centres of 1024 texels around 0.6: 0.59912 and 0.60010.
+        let needle = tf(&[(0.0, 0.3), (0.5992, 0.3), (0.5996, 1.0), (0.6, 0.3), (1.0, 0.3)]);
+        let w = missed_peaks(&needle, 1024);
+        assert!(matches!(w[..], [SceneWarning::TransferPeakMissed { index: 2, .. }]), "{w:?}");
+        assert!(w[0].to_string().contains("point 2 (value 0.5996, alpha 1)"), "{}", w[0]);
+        // Wide enough to reach a texel centre: seen.
+        let wide = tf(&[(0.0, 0.3), (0.5985, 0.3), (0.5996, 1.0), (0.6015, 0.3), (1.0, 0.3)]);
+        assert_eq!(missed_peaks(&wide, 1024), vec![]);
+        let step = tf(&[(0.0, 0.0), (0.5, 0.0), (0.5, 0.6), (1.0, 0.6)]);
+        assert_eq!(missed_peaks(&step, 1024), vec![]);
+        let ramp = tf(&[(0.0, 0.0), (0.3, 0.9), (1.0, 0.1)]);
+        assert_eq!(missed_peaks(&ramp, 1024), vec![]);
     }
 
     #[test]

@@ -3,5 +3,7 @@
 
 pub mod error;
 pub mod lights;
+pub mod stability;
+pub mod stability_cases;
 
 pub use error::ExperimentError;
