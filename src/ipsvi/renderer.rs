@@ -7,10 +7,8 @@ use super::breakdown::BreakdownStep;
 use super::cache_region::{plane_region, TexelRect};
 use super::cache_update::{CacheUpdate, CacheWrite};
 use super::exit_points::{self, ExitPoints};
-use super::gpu_params::{
-    line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_EARLY_TERMINATION, FLAG_EXIT_POINTS,
-    FLAG_FIRST_LIGHT, FLAG_PIECEWISE,
-};
+use super::gpu_params::{line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_FIRST_LIGHT};
+use super::line_group::{lavapipe_threads, line_group_size, median_pixels};
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync::{
@@ -34,9 +32,6 @@ use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::cell::OnceCell;
-
-/// local_size_x of glsl/ipsvi_line.comp (16 measured no faster on lavapipe).
-const LINE_GROUP: u32 = 64;
 
 /// The ping-pong pair: illumination (E / scale, transmittance) and the position
 /// image (which sweep plane each light ray's front sits on, or with view
@@ -174,6 +169,9 @@ pub struct IpsviRenderer<'a> {
     init_set: vk::DescriptorSet,
     lines: [ComputePipeline; 2],
     line_set: vk::DescriptorSet,
+    /// Invocations per workgroup of the line dispatches (glsl/ipsvi_line.comp's
+    /// local_size_x_id).
+    line_group: u32,
     readback: Buffer,
     /// The sweeps recorded once for `SyncStrategy::Secondary`, on first use.
     secondaries: OnceCell<SecondaryCommands>,
@@ -211,15 +209,6 @@ impl<'a> IpsviRenderer<'a> {
 
         let max_piecewise_steps = super::view_budget::piecewise_steps(scene)?;
 
-        let mut flags = 0;
-        if settings.piecewise {
-            flags |= FLAG_PIECEWISE;
-        }
-        match settings.early_termination {
-            EarlyTermination::Off => {}
-            EarlyTermination::Plain => flags |= FLAG_EARLY_TERMINATION,
-            EarlyTermination::ExitPoints => flags |= FLAG_EXIT_POINTS,
-        }
         let exit_points = match settings.early_termination {
             EarlyTermination::ExitPoints => Some(ExitPoints::new(gpu, &frame, width, height, settings, &plans[0])?),
             _ => None,
@@ -243,7 +232,7 @@ impl<'a> IpsviRenderer<'a> {
                     blend_px: settings.zone_blend_px,
                     light_scale: light_scale(i),
                     light_index: i as u32,
-                    flags: flags | if i == 0 { FLAG_FIRST_LIGHT } else { 0 },
+                    flags: if i == 0 { FLAG_FIRST_LIGHT } else { 0 },
                     max_piecewise_steps,
                     albedo: settings.albedo,
                     cone_angle_deg: settings.cone_angle_deg,
@@ -269,6 +258,16 @@ impl<'a> IpsviRenderer<'a> {
         let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
         let claims = view_samples && settings.cache_write.claims();
         let nearest = settings.cache_write == CacheWrite::Nearest;
+        let termination = match settings.early_termination {
+            EarlyTermination::Off => 0,
+            EarlyTermination::Plain => 1,
+            EarlyTermination::ExitPoints => 2,
+        };
+        let line_group = line_group_size(
+            &ctx.info.device_type,
+            lavapipe_threads(),
+            median_pixels(block_records.iter().map(|r| r.pixel_count)),
+        );
         let specialization = [
             (0, emissive as u32),
             (1, scatter as u32),
@@ -276,6 +275,9 @@ impl<'a> IpsviRenderer<'a> {
             (3, claims as u32),
             (4, nearest as u32),
             (5, settings.breakdown_step.shader_step()),
+            (6, settings.piecewise as u32),
+            (7, termination),
+            (8, line_group),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
@@ -346,6 +348,7 @@ impl<'a> IpsviRenderer<'a> {
             init_set,
             lines,
             line_set,
+            line_group,
             readback,
             secondaries: OnceCell::new(),
         })
@@ -356,8 +359,15 @@ impl<'a> IpsviRenderer<'a> {
         if let Some(recorded) = self.secondaries.get() {
             return Ok(recorded);
         }
-        let recorded =
-            record_sweeps(self.ctx, &self.sweep_records, &self.block_records, &self.lines, self.line_set, line_groups)?;
+        let group = self.line_group;
+        let recorded = record_sweeps(
+            self.ctx,
+            &self.sweep_records,
+            &self.block_records,
+            &self.lines,
+            self.line_set,
+            |r: &BlockParams| line_groups(r, group),
+        )?;
         Ok(self.secondaries.get_or_init(|| recorded))
     }
 
@@ -400,6 +410,7 @@ impl<'a> IpsviRenderer<'a> {
             init_set,
             lines,
             line_set,
+            line_group,
             readback,
             ..
         } = &*self;
@@ -457,7 +468,7 @@ impl<'a> IpsviRenderer<'a> {
                             line_sync.bind_line(rec, line, line_set);
                             let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                             rec.push(line, &(next_block as u32));
-                            rec.dispatch(line_groups(record), 1, 1);
+                            rec.dispatch(line_groups(record, *line_group), 1, 1);
                             profiler.end(rec, line_scope)?;
                             line_sync.after_block(rec, next_block)?;
                             next_block += 1;
@@ -478,9 +489,9 @@ impl<'a> IpsviRenderer<'a> {
 
 /// Workgroups of a block's line dispatch: one invocation per pixel of the
 /// block, then one per texel of the cache region it updates, then (farthest)
-/// one per pixel of the next block it claims texels for.
-fn line_groups(record: &BlockParams) -> u32 {
-    (record.pixel_count + record.region[2] * record.region[3] + record.claim_count).div_ceil(LINE_GROUP)
+/// one per pixel of the next block it claims texels for; `group` invocations each.
+fn line_groups(record: &BlockParams, group: u32) -> u32 {
+    (record.pixel_count + record.region[2] * record.region[3] + record.claim_count).div_ceil(group)
 }
 
 /// A sweep's block records: (first, count).
