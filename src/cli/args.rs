@@ -38,7 +38,7 @@ pub enum BenchCommand {
     /// termination x image size, each run compared with the GPU ground truth.
     Ipsvi(BenchIpsviArgs),
     /// IPSVI sweep synchronization strategies x line width x image size: GPU time,
-    /// per-line overhead against a single dispatch, time inside dispatches and in
+    /// per-line overhead over the same dispatches with no barriers, time inside dispatches and in
     /// the gaps between them, the profiler's own perturbation, Perfetto traces.
     Sync(BenchSyncArgs),
     /// The IPSVI paper's Table 1: frame rates over image size and line width for
