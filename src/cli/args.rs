@@ -158,7 +158,8 @@ pub struct BenchIpsviArgs {
     /// Instead of the grid: the cost of one frame of the scene's settings, step
     /// by step (DVR as one dispatch; the same pixels ray-cast line by line in the
     /// sweep's order without and with the barriers; + cache reads; + piecewise
-    /// integration; + cache writes), in both cache-update modes, at --sizes.
+    /// integration; + cache writes), in both cache-update modes, at --sizes;
+    /// and the whole frame at each of --line-widths (ipsvi_line_widths.*).
     #[arg(long)]
     pub breakdown: bool,
 }
