@@ -180,6 +180,21 @@ pub struct IpsviRenderer<'a> {
 impl<'a> IpsviRenderer<'a> {
     /// For a scene with at least one light.
     pub fn new(gpu: &GpuScene<'a>, settings: &IpsviSettings, width: u32, height: u32) -> Result<Self, RenderError> {
+        Self::with_line_group(gpu, settings, width, height, None)
+    }
+
+    /// [`new`](Self::new) with the line dispatches' workgroup size given
+    /// (a power of two, 1..=64) instead of chosen for the device (`line_group`).
+    pub fn with_line_group(
+        gpu: &GpuScene<'a>,
+        settings: &IpsviSettings,
+        width: u32,
+        height: u32,
+        line_group: Option<u32>,
+    ) -> Result<Self, RenderError> {
+        if let Some(g) = line_group.filter(|g| !g.is_power_of_two() || *g > super::line_group::WIDEST) {
+            return Err(RenderError::Invalid(format!("line workgroup size {g} is not a power of two up to 64")));
+        }
         let scene = gpu.scene;
         if scene.lights.is_empty() {
             return Err(RenderError::Invalid("IPSVI sweeps need a light; render a scene without one with DVR".into()));
@@ -263,11 +278,13 @@ impl<'a> IpsviRenderer<'a> {
             EarlyTermination::Plain => 1,
             EarlyTermination::ExitPoints => 2,
         };
-        let line_group = line_group_size(
-            &ctx.info.device_type,
-            lavapipe_threads(),
-            median_pixels(block_records.iter().map(|r| r.pixel_count)),
-        );
+        let line_group = line_group.unwrap_or_else(|| {
+            line_group_size(
+                &ctx.info.device_type,
+                lavapipe_threads(),
+                median_pixels(block_records.iter().map(|r| r.pixel_count)),
+            )
+        });
         let specialization = [
             (0, emissive as u32),
             (1, scatter as u32),
@@ -352,6 +369,11 @@ impl<'a> IpsviRenderer<'a> {
             readback,
             secondaries: OnceCell::new(),
         })
+    }
+
+    /// Invocations per workgroup of the line dispatches.
+    pub fn line_group(&self) -> u32 {
+        self.line_group
     }
 
     /// The sweeps as secondary command buffers, recorded on first use.
