@@ -36,10 +36,8 @@ SweepParams sweep;
 // One plane per sweep line: rows 0..H-1, then columns 0..W-1: n.x + d = 0.
 layout(std430, set = 0, binding = 5) readonly buffer Planes { vec4 planes[]; };
 
+// Per light; what is fixed per renderer is a specialization constant of ipsvi_line.
 const uint FLAG_FIRST_LIGHT = 1u;   // adds emission and background
-const uint FLAG_PIECEWISE = 2u;     // piecewise integration toward the cache front
-const uint FLAG_EARLY_TERMINATION = 4u;
-const uint FLAG_EXIT_POINTS = 8u;       // rays go on to l_max of the exit-point sweep
 
 // Front codes of the position image: a plane index, or the ray's box entry/exit.
 const uint FRONT_ENTRY = 0xFFFEu;

@@ -14,7 +14,10 @@
 // texel. Reads and writes go to different images, so a block races only where
 // the paper does (cache_write = "racy": many samples, one texel).
 
-layout(local_size_x = 64) in;
+// Invocations per workgroup, chosen per renderer (src/ipsvi/line_group.rs): on
+// lavapipe a workgroup runs on one thread, so a short line in one wide group
+// leaves the other cores idle.
+layout(local_size_x_id = 8) in;
 layout(constant_id = 0) const bool EMISSIVE = true;  // model (ii): light carries emission
 layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-cone scattering
 layout(constant_id = 2) const bool VIEW_SAMPLES = false;  // cache_update = "view-samples"
@@ -23,6 +26,14 @@ layout(constant_id = 4) const bool NEAREST = false;       // "nearest": the samp
 // Cost breakdown (src/ipsvi/breakdown.rs): 0 ray casting only, 1 + cache reads,
 // 2 + piecewise integration, 3 + cache writes = IPSVI.
 layout(constant_id = 5) const uint STEP = 3u;
+// Fixed per renderer, so the compiler drops what a frame never runs.
+layout(constant_id = 6) const bool PIECEWISE = true;  // piecewise integration (section 4.4)
+// When view rays stop: 0 never, 1 once opaque ("plain"), 2 once opaque and past
+// l_max of the exit-point sweep ("exit-points", section 5.1).
+layout(constant_id = 7) const uint TERMINATION = 1u;
+const uint TERMINATION_OFF = 0u;
+const uint TERMINATION_PLAIN = 1u;
+const uint TERMINATION_EXIT_POINTS = 2u;
 
 #include "ipsvi_common.glsl"
 #include "view_ray.glsl"
@@ -149,7 +160,7 @@ vec4 cache_bilinear(vec2 c) {
 vec4 light_at(vec3 p) {
     vec3 c = cache_coord(p);
     vec4 cached = cache_bilinear(c.xy);
-    if ((sweep.flags & FLAG_PIECEWISE) == 0u || STEP < 2u) return vec4(cached.rgb, cached.a);
+    if (!PIECEWISE || STEP < 2u) return vec4(cached.rgb, cached.a);
     uvec2 k = uvec2(clamp(ivec2(floor(c.xy)), ivec2(0), ivec2(sweep.cache_size) - 1));
     Ray r = cache_ray(k);
     vec2 io = ray_in_box(r);
@@ -203,7 +214,7 @@ vec4 light_from_samples(vec3 p, vec3 c) {
     vec2 t = c.xy - 0.5;
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
-    bool piecewise = (sweep.flags & FLAG_PIECEWISE) != 0u && STEP >= 2u;
+    bool piecewise = PIECEWISE && STEP >= 2u;
     vec4 sum = vec4(0.0);
     float front = 0.0;
     for (int j = 0; j < 4; ++j) {
@@ -238,7 +249,7 @@ uint key_index(uint half_index, ivec2 k) {
 // With piecewise integration a run's sample nearest the light writes, without
 // it the run's last sample (the paper's choice): readers then use the value as
 // it is, and it should have come as far along the light as the run did.
-bool run_keeps_nearest() { return (sweep.flags & FLAG_PIECEWISE) != 0u; }
+bool run_keeps_nearest() { return PIECEWISE; }
 
 // A run of samples in texel k ends: its writing sample stores the light leaving it: the light l it received, composited back to front with its
 // own segment along the light (one light step), stored at the segment's far
@@ -274,10 +285,10 @@ uvec2 block_pixel(BlockParams b, uint index) {
 
 // Where the exit-point sweep lets a ray stop (0: wherever it is opaque).
 float stop_distance(uvec2 px) {
-    return (sweep.flags & FLAG_EXIT_POINTS) != 0u ? imageLoad(lmax, ivec2(vec2(px) / sweep.ert_scale)).r : 0.0;
+    return TERMINATION == TERMINATION_EXIT_POINTS ? imageLoad(lmax, ivec2(vec2(px) / sweep.ert_scale)).r : 0.0;
 }
 
-bool may_stop() { return (sweep.flags & (FLAG_EXIT_POINTS | FLAG_EARLY_TERMINATION)) != 0u; }
+bool may_stop() { return TERMINATION != TERMINATION_OFF; }
 
 // cache_write = "farthest"/"nearest", one dispatch ahead: marches pixel `index`
 // of the next block exactly as shade_pixel will (same samples, same stop) and

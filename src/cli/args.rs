@@ -38,7 +38,7 @@ pub enum BenchCommand {
     /// termination x image size, each run compared with the GPU ground truth.
     Ipsvi(BenchIpsviArgs),
     /// IPSVI sweep synchronization strategies x line width x image size: GPU time,
-    /// per-line overhead against a single dispatch, time inside dispatches and in
+    /// per-line overhead over the same dispatches with no barriers, time inside dispatches and in
     /// the gaps between them, the profiler's own perturbation, Perfetto traces.
     Sync(BenchSyncArgs),
     /// The IPSVI paper's Table 1: frame rates over image size and line width for
@@ -186,7 +186,8 @@ pub struct BenchIpsviArgs {
     /// Instead of the grid: the cost of one frame of the scene's settings, step
     /// by step (DVR as one dispatch; the same pixels ray-cast line by line in the
     /// sweep's order without and with the barriers; + cache reads; + piecewise
-    /// integration; + cache writes), in both cache-update modes, at --sizes.
+    /// integration; + cache writes), in both cache-update modes, at --sizes;
+    /// and the whole frame at each of --line-widths (ipsvi_line_widths.*).
     #[arg(long)]
     pub breakdown: bool,
 }

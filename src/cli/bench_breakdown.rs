@@ -41,12 +41,17 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let configs: Vec<IpsviSettings> =
         modes.iter().map(|&cache_update| IpsviSettings { cache_update, ..base.clone() }).collect();
     bench_args::check_ipsvi("the scene's [ipsvi] settings", &configs)?;
+    let widths: Vec<IpsviSettings> =
+        args.line_widths.iter().map(|&line_width| IpsviSettings { line_width, ..base.clone() }).collect();
+    bench_args::check_ipsvi("--line-widths", &widths)?;
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
-    let mut progress = Progress::new(args.sizes.len() * (1 + modes.len() * STEPS.len()));
+    let per_size = 1 + modes.len() * (STEPS.len() + args.line_widths.len());
+    let mut progress = Progress::new(args.sizes.len() * per_size);
     let mut table = BenchTable::new();
+    let mut widths_table = BenchTable::new();
     let mut bars = Vec::new();
     for &size in &args.sizes {
         let dvr = harness.measure_step(&mut progress, &format!("{size}x{size} a: DVR, one dispatch"), || {
@@ -80,6 +85,28 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
                 table.push(row);
             }
             bars.push(bar);
+            // The whole frame (step f) at each line width: what wider blocks save.
+            let mut by_width = Vec::new();
+            for &line_width in &args.line_widths {
+                let settings = IpsviSettings { line_width, ..s.clone() };
+                let mut renderer = IpsviRenderer::new(&gpu, &settings, size, size)?;
+                let m = harness.measure_step(
+                    &mut progress,
+                    &format!("{size}x{size} {mode} line width {line_width}"),
+                    || ipsvi_frame(&ctx, &mut renderer, &mut profiler, SyncStrategy::BarrierGlobal),
+                )?;
+                by_width.push((line_width, m.median(), m.last.frame.dispatches));
+            }
+            let lw1_ms = by_width.iter().find(|w| w.0 == 1).map(|w| w.1);
+            for (line_width, gpu_ms, dispatches) in by_width {
+                let mut row = BenchRow::new();
+                row.set("width", size).set("height", size).set("cache_update", mode).set("line_width", line_width);
+                row.set("gpu_ms", gpu_ms).set("dispatches", dispatches);
+                if let Some(lw1) = lw1_ms {
+                    row.set("speedup_over_lw1", lw1 / gpu_ms);
+                }
+                widths_table.push(row);
+            }
         }
     }
     progress.finish();
@@ -90,9 +117,15 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let chart = Chart::new("One IPSVI frame, step by step", "bars: size, view samples or light rays", "GPU time (ms)")
         .size(960, 600);
     plot_stacked_bars(args.out.join("ipsvi_breakdown.png"), &chart, &bars)?;
+    widths_table.write_csv(args.out.join("ipsvi_line_widths.csv"))?;
+    widths_table.write_json(args.out.join("ipsvi_line_widths.json"))?;
+    std::fs::write(args.out.join("ipsvi_line_widths.md"), widths_table.to_markdown())
+        .context("writing ipsvi_line_widths.md")?;
     println!("{}", table.to_markdown());
+    println!("{}", widths_table.to_markdown());
     println!(
-        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md, ipsvi_breakdown.png",
+        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md, ipsvi_breakdown.png, \
+         ipsvi_line_widths.csv, ipsvi_line_widths.json, ipsvi_line_widths.md",
         args.out.display()
     );
     out_folder.finish()?;

@@ -6,10 +6,9 @@ use crate::scene::RayBasis;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 
+/// The only per-light flag; what is fixed per renderer (piecewise integration,
+/// early termination) is a specialization constant of glsl/ipsvi_line.comp.
 pub const FLAG_FIRST_LIGHT: u32 = 1;
-pub const FLAG_PIECEWISE: u32 = 2;
-pub const FLAG_EARLY_TERMINATION: u32 = 4;
-pub const FLAG_EXIT_POINTS: u32 = 8;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]

@@ -12,6 +12,7 @@ pub mod cache_update;
 pub mod exit_points;
 pub mod gpu_params;
 pub mod light_anchor;
+pub mod line_group;
 pub mod paper_table1;
 pub mod renderer;
 pub mod settings;

@@ -7,10 +7,8 @@ use super::breakdown::BreakdownStep;
 use super::cache_region::{plane_region, TexelRect};
 use super::cache_update::{CacheUpdate, CacheWrite};
 use super::exit_points::{self, ExitPoints};
-use super::gpu_params::{
-    line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_EARLY_TERMINATION, FLAG_EXIT_POINTS,
-    FLAG_FIRST_LIGHT, FLAG_PIECEWISE,
-};
+use super::gpu_params::{line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_FIRST_LIGHT};
+use super::line_group::{lavapipe_threads, line_group_size, median_pixels};
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync::{
@@ -34,9 +32,6 @@ use crate::vk::{Buffer, Image, Profiler};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::cell::OnceCell;
-
-/// local_size_x of glsl/ipsvi_line.comp (16 measured no faster on lavapipe).
-const LINE_GROUP: u32 = 64;
 
 /// The ping-pong pair: illumination (E / scale, transmittance) and the position
 /// image (which sweep plane each light ray's front sits on, or with view
@@ -174,6 +169,9 @@ pub struct IpsviRenderer<'a> {
     init_set: vk::DescriptorSet,
     lines: [ComputePipeline; 2],
     line_set: vk::DescriptorSet,
+    /// Invocations per workgroup of the line dispatches (glsl/ipsvi_line.comp's
+    /// local_size_x_id).
+    line_group: u32,
     readback: Buffer,
     /// The sweeps recorded once for `SyncStrategy::Secondary`, on first use.
     secondaries: OnceCell<SecondaryCommands>,
@@ -182,6 +180,21 @@ pub struct IpsviRenderer<'a> {
 impl<'a> IpsviRenderer<'a> {
     /// For a scene with at least one light.
     pub fn new(gpu: &GpuScene<'a>, settings: &IpsviSettings, width: u32, height: u32) -> Result<Self, RenderError> {
+        Self::with_line_group(gpu, settings, width, height, None)
+    }
+
+    /// [`new`](Self::new) with the line dispatches' workgroup size given
+    /// (a power of two, 1..=64) instead of chosen for the device (`line_group`).
+    pub fn with_line_group(
+        gpu: &GpuScene<'a>,
+        settings: &IpsviSettings,
+        width: u32,
+        height: u32,
+        line_group: Option<u32>,
+    ) -> Result<Self, RenderError> {
+        if let Some(g) = line_group.filter(|g| !g.is_power_of_two() || *g > super::line_group::WIDEST) {
+            return Err(RenderError::Invalid(format!("line workgroup size {g} is not a power of two up to 64")));
+        }
         let scene = gpu.scene;
         if scene.lights.is_empty() {
             return Err(RenderError::Invalid("IPSVI sweeps need a light; render a scene without one with DVR".into()));
@@ -211,15 +224,6 @@ impl<'a> IpsviRenderer<'a> {
 
         let max_piecewise_steps = super::view_budget::piecewise_steps(scene)?;
 
-        let mut flags = 0;
-        if settings.piecewise {
-            flags |= FLAG_PIECEWISE;
-        }
-        match settings.early_termination {
-            EarlyTermination::Off => {}
-            EarlyTermination::Plain => flags |= FLAG_EARLY_TERMINATION,
-            EarlyTermination::ExitPoints => flags |= FLAG_EXIT_POINTS,
-        }
         let exit_points = match settings.early_termination {
             EarlyTermination::ExitPoints => Some(ExitPoints::new(gpu, &frame, width, height, settings, &plans[0])?),
             _ => None,
@@ -244,7 +248,7 @@ impl<'a> IpsviRenderer<'a> {
                     blend_px: settings.zone_blend_px,
                     light_scale: light_scale(i),
                     light_index: i as u32,
-                    flags: flags | if i == 0 { FLAG_FIRST_LIGHT } else { 0 },
+                    flags: if i == 0 { FLAG_FIRST_LIGHT } else { 0 },
                     max_piecewise_steps,
                     albedo: settings.albedo,
                     cone_angle_deg: settings.cone_angle_deg,
@@ -270,6 +274,18 @@ impl<'a> IpsviRenderer<'a> {
         let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
         let claims = view_samples && settings.cache_write.claims();
         let nearest = settings.cache_write == CacheWrite::Nearest;
+        let termination = match settings.early_termination {
+            EarlyTermination::Off => 0,
+            EarlyTermination::Plain => 1,
+            EarlyTermination::ExitPoints => 2,
+        };
+        let line_group = line_group.unwrap_or_else(|| {
+            line_group_size(
+                &ctx.info.device_type,
+                lavapipe_threads(),
+                median_pixels(block_records.iter().map(|r| r.pixel_count)),
+            )
+        });
         let specialization = [
             (0, emissive as u32),
             (1, scatter as u32),
@@ -277,6 +293,9 @@ impl<'a> IpsviRenderer<'a> {
             (3, claims as u32),
             (4, nearest as u32),
             (5, settings.breakdown_step.shader_step()),
+            (6, settings.piecewise as u32),
+            (7, termination),
+            (8, line_group),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
@@ -347,9 +366,15 @@ impl<'a> IpsviRenderer<'a> {
             init_set,
             lines,
             line_set,
+            line_group,
             readback,
             secondaries: OnceCell::new(),
         })
+    }
+
+    /// Invocations per workgroup of the line dispatches.
+    pub fn line_group(&self) -> u32 {
+        self.line_group
     }
 
     /// The sweeps as secondary command buffers, recorded on first use.
@@ -357,8 +382,15 @@ impl<'a> IpsviRenderer<'a> {
         if let Some(recorded) = self.secondaries.get() {
             return Ok(recorded);
         }
-        let recorded =
-            record_sweeps(self.ctx, &self.sweep_records, &self.block_records, &self.lines, self.line_set, line_groups)?;
+        let group = self.line_group;
+        let recorded = record_sweeps(
+            self.ctx,
+            &self.sweep_records,
+            &self.block_records,
+            &self.lines,
+            self.line_set,
+            |r: &BlockParams| line_groups(r, group),
+        )?;
         Ok(self.secondaries.get_or_init(|| recorded))
     }
 
@@ -401,6 +433,7 @@ impl<'a> IpsviRenderer<'a> {
             init_set,
             lines,
             line_set,
+            line_group,
             readback,
             ..
         } = &*self;
@@ -458,7 +491,7 @@ impl<'a> IpsviRenderer<'a> {
                             line_sync.bind_line(rec, line, line_set);
                             let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                             rec.push(line, &(next_block as u32));
-                            rec.dispatch(line_groups(record), 1, 1);
+                            rec.dispatch(line_groups(record, *line_group), 1, 1);
                             profiler.end(rec, line_scope)?;
                             line_sync.after_block(rec, next_block)?;
                             next_block += 1;
@@ -479,9 +512,9 @@ impl<'a> IpsviRenderer<'a> {
 
 /// Workgroups of a block's line dispatch: one invocation per pixel of the
 /// block, then one per texel of the cache region it updates, then (farthest)
-/// one per pixel of the next block it claims texels for.
-fn line_groups(record: &BlockParams) -> u32 {
-    (record.pixel_count + record.region[2] * record.region[3] + record.claim_count).div_ceil(LINE_GROUP)
+/// one per pixel of the next block it claims texels for; `group` invocations each.
+fn line_groups(record: &BlockParams, group: u32) -> u32 {
+    (record.pixel_count + record.region[2] * record.region[3] + record.claim_count).div_ceil(group)
 }
 
 /// A sweep's block records: (first, count).

@@ -1,0 +1,34 @@
+//! `bench ipsvi --breakdown` also times the whole frame at each of
+//! --line-widths, for the LW4/LW1 speed-up of issue 9's goals.
+mod common;
+
+use common::cli::*;
+use std::process::Command;
+
+#[test]
+fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
+    let dir = temp_dir("breakdown-widths");
+    // Without validation: the breakdown's step b has no barriers by design.
+    let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
+        .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--line-widths", "1,4"])
+        .args(["--out", dir.to_str().unwrap()])
+        .env_remove("SWEEPLAB_VALIDATE")
+        .output()
+        .expect("run sweeplab");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("ipsvi_line_widths.json")).unwrap()).unwrap();
+    for mode in ["view-samples", "light-rays"] {
+        let row = |lw: u32| {
+            rows.iter()
+                .find(|r| r["cache_update"] == mode && r["line_width"] == lw)
+                .unwrap_or_else(|| panic!("{mode} line width {lw} missing: {rows:?}"))
+        };
+        let (one, four) = (row(1), row(4));
+        assert_eq!(one["speedup_over_lw1"].as_f64(), Some(1.0), "{one}");
+        let expected = one["gpu_ms"].as_f64().unwrap() / four["gpu_ms"].as_f64().unwrap();
+        assert!((four["speedup_over_lw1"].as_f64().unwrap() - expected).abs() < 1e-9 * expected, "{four}");
+        // Four lines per dispatch: fewer dispatches for the same frame.
+        assert!(four["dispatches"].as_u64() < one["dispatches"].as_u64(), "{one} {four}");
+    }
+}
