@@ -12,6 +12,7 @@
 
 pub mod cache;
 pub mod error;
+pub mod gpu;
 pub mod gradient;
 pub mod histogram;
 pub mod packing;
