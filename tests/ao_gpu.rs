@@ -239,3 +239,110 @@ fn the_gpu_assignment_equals_the_cpu_search_for_every_metric_and_hint() {
     }
     assert_validation_clean(&ctx);
 }
+
+/// The whole preprocessing with `ao.backend = "gpu"` against the CPU
+/// reference on the Cornell box: the same packing and training (both on the
+/// CPU), the same cluster ids except at near ties (the histograms differ in
+/// the last bits), and the final codebook (mean unpacked histogram per
+/// cluster) to the histograms' f32 tolerance.
+#[test]
+fn gpu_preprocessing_equals_the_cpu_reference() {
+    use sweeplab::ao::quantize::{distance, unpack_cluster_ids};
+    use sweeplab::ao::{preprocess_on, AoSettings, Backend, TrainingSet};
+    let ctx = validated_context();
+    let volume = sweeplab::scene::synthetic::cornell_box(14);
+    for metric in [Metric::L2, Metric::Lmax] {
+        let settings = AoSettings {
+            radius: 3,
+            packed_dim: 16,
+            clusters: 32,
+            metric,
+            training: TrainingSet::Random { count: 1024, seed: 5 },
+            cache: false,
+            ..AoSettings::default()
+        };
+        let mut steps = Vec::new();
+        let gpu = preprocess_on(&volume, &settings, Some(&ctx), &mut |p| steps.push(p.step.to_string())).unwrap();
+        assert!(steps.iter().any(|s| s == "ao gpu sweep and assignment"), "{steps:?}");
+        let cpu_settings = AoSettings { backend: Some(Backend::Cpu), ..settings.clone() };
+        let cpu = preprocess_on(&volume, &cpu_settings, Some(&ctx), &mut |_| {}).unwrap();
+        assert_eq!(
+            (gpu.packing_matrix.clone(), gpu.packed_codebook.clone()),
+            (cpu.packing_matrix, cpu.packed_codebook)
+        );
+
+        let h = LocalHistograms::new(&volume, settings.radius, settings.bits);
+        let packing = packing_of(&h, settings.packed_dim as usize);
+        let dim = packing.packed_dim;
+        let word = |c: u32| &gpu.packed_codebook[c as usize * dim..(c as usize + 1) * dim];
+        let (mut f, mut b) = (vec![0f32; h.bins()], vec![0f32; h.bins()]);
+        let (mut packed, mut scratch, mut differing) = (vec![0f32; dim], h.scratch(), 0);
+        for voxel in 0..volume.voxel_count() {
+            if gpu.cluster_ids[voxel] == cpu.cluster_ids[voxel] {
+                continue;
+            }
+            h.voxel_into(voxel, &mut scratch, &mut f, &mut b);
+            let (g, c) = (unpack_cluster_ids(gpu.cluster_ids[voxel]), unpack_cluster_ids(cpu.cluster_ids[voxel]));
+            for (histogram, g, c) in [(&f, g.0, c.0), (&b, g.1, c.1)] {
+                packing.pack(histogram, &mut packed);
+                let (dg, dc) = (distance(metric, &packed, word(g)), distance(metric, &packed, word(c)));
+                assert!((dg - dc).abs() <= 1e-5 * dc.max(1e-12), "voxel {voxel}: no near tie, {dg} vs {dc}");
+            }
+            differing += 1;
+        }
+        assert!(differing * 1000 <= volume.voxel_count(), "{metric:?}: {differing} voxels differ");
+        let tolerance = (h.stencil().voxel_count() as f64 + 6.0) * f64::from(f32::EPSILON) / 2.0;
+        let bins = h.bins();
+        let mut compared = 0;
+        for c in 0..settings.clusters as usize {
+            if gpu.cluster_sizes[c] != cpu.cluster_sizes[c] {
+                assert!(differing > 0, "{metric:?}: cluster {c} differs in size with equal ids");
+                continue;
+            }
+            compared += 1;
+            for k in c * bins..(c + 1) * bins {
+                let (g, r) = (gpu.codebook[k] as f64, cpu.codebook[k] as f64);
+                assert!((g - r).abs() <= tolerance * r, "{metric:?}: cluster {c} bin {}: {g} vs {r}", k - c * bins);
+            }
+        }
+        assert!(compared * 10 >= 9 * settings.clusters as usize, "{metric:?}: {compared} clusters compared");
+        let (dg, dc) = (gpu.stats.assignment_distortion, cpu.stats.assignment_distortion);
+        assert!((dg - dc).abs() <= 1e-5 * dc, "{metric:?}: distortion {dg} vs {dc}");
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// GPU results are cached apart from the CPU's (they may differ in the last
+/// bits); `backend = "gpu"` without a device is an error.
+#[test]
+fn the_backend_is_part_of_the_cache_key_and_gpu_needs_a_device() {
+    use sweeplab::ao::{preprocess_cached_on, AoSettings, Backend, CacheOutcome, TrainingSet};
+    let ctx = validated_context();
+    let volume = test_volume(UVec3::new(8, 7, 6), Vec3::ONE, 9);
+    let dir = std::env::temp_dir().join(format!("sweeplab-ao-gpu-cache-{}", std::process::id()));
+    let settings = AoSettings {
+        radius: 2,
+        packed_dim: 8,
+        clusters: 4,
+        training: TrainingSet::Random { count: 64, seed: 1 },
+        cache_dir: Some(dir.to_string_lossy().into_owned()),
+        ..AoSettings::default()
+    };
+    let stored = |outcome: CacheOutcome| match outcome {
+        CacheOutcome::Stored(path, _) => path,
+        other => panic!("expected a miss and a store, got {other:?}"),
+    };
+    let (gpu, outcome) = preprocess_cached_on(&volume, &settings, Some(&ctx), &mut |_| {}).unwrap();
+    let gpu_file = stored(outcome);
+    let (cpu, outcome) = preprocess_cached_on(&volume, &settings, None, &mut |_| {}).unwrap();
+    assert_ne!(stored(outcome), gpu_file, "the CPU result is not the GPU's file");
+    let (again, outcome) = preprocess_cached_on(&volume, &settings, Some(&ctx), &mut |_| {}).unwrap();
+    assert_eq!(outcome, CacheOutcome::Hit(gpu_file));
+    assert_eq!(again, gpu);
+    assert_eq!(cpu.cluster_ids.len(), gpu.cluster_ids.len());
+    let gpu_only = AoSettings { backend: Some(Backend::Gpu), ..settings };
+    let e = preprocess_cached_on(&volume, &gpu_only, None, &mut |_| {}).unwrap_err().to_string();
+    assert!(e.contains("ao.backend = \"gpu\"") && e.contains("Vulkan device"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+    assert_validation_clean(&ctx);
+}
