@@ -20,9 +20,9 @@ layout(push_constant) uniform Sweep {
     int rows;            // rows in this part
     int first_entry;     // stencil chunk: entries [first_entry, first_entry + entry_count)
     int entry_count;
-    int first_chunk;     // 1: the chunk starts the histograms from zero
     int part_voxel;      // first voxel of this part in the batch's buffers
     int packed_stride;   // floats per packed histogram (packed_dim rounded up to 8)
+    int pad;
 } sweep;
 
 int padded_width() { return sweep.dims.x + 2 * sweep.extent.x; }

@@ -1,10 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // AO space sweep, step 3 of a slice: normalizes the part's unpacked histograms
-// by 1/N_r in place (they are read back for the final codebook) and packs them
-// (section 3.2): packing is linear, the packing matrix applied as its sparse
-// rows (bin k -> (packed bin, share) pairs), in the CPU's order
-// (PackingScheme::pack), into packed histograms zero-padded to a multiple of 8.
+// by 1/N_r (in registers: the CPU, reading them back for the final codebook,
+// applies the same f32 product) and packs them (section 3.2): packing is
+// linear, the packing matrix applied as its sparse rows (bin k -> (packed bin,
+// share) pairs), in the CPU's order (PackingScheme::pack), into packed
+// histograms zero-padded to a multiple of 8.
 
 layout(local_size_x = 64) in;
 
@@ -15,7 +16,7 @@ struct Share {
     float share;
 };
 
-layout(std430, set = 0, binding = 0) buffer Unpacked { float unpacked[]; };
+layout(std430, set = 0, binding = 0) readonly buffer Unpacked { float unpacked[]; };
 // Row k of the packing matrix: shares[share_starts[k] .. share_starts[k + 1]).
 layout(std430, set = 0, binding = 1) readonly buffer ShareStarts { uint share_starts[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Shares { Share shares[]; };
@@ -36,7 +37,6 @@ void main() {
         for (int j = 0; j < sweep.packed_stride; ++j) packed[out_base + j] = 0.0;
         for (int k = 0; k < sweep.bins; ++k) {
             precise float h = unpacked[histogram + k] * NORMALIZATION;
-            unpacked[histogram + k] = h;
             if (h != 0.0) {
                 for (uint s = share_starts[k]; s < share_starts[k + 1]; ++s) {
                     precise float add = h * shares[s].share;

@@ -6,7 +6,7 @@
 // one chunk, r = 32 takes three). Reads the ring of binned slices; adds each
 // stencil voxel's 1/d^2 weight to its bin in the forward or backward
 // hemisphere (half to each on the plane) of the unpacked, not yet normalized
-// histograms. Neighbours come in runs of equal bins (stencil rows are rows of
+// histograms (cleared by a buffer fill before the batch). Neighbours come in runs of equal bins (stencil rows are rows of
 // voxels), summed in registers and added to memory when the bin changes.
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -47,9 +47,6 @@ void main() {
     int voxel = sweep.part_voxel + row * sweep.dims.x + x;
     int forward = voxel * unpacked_stride();
     int backward = forward + sweep.bins + 1;
-    if (sweep.first_chunk != 0) {
-        for (int k = 0; k < unpacked_stride(); ++k) unpacked[forward + k] = 0.0;
-    }
     vec3 g = central_gradient(ivec3(x, y, z));
     // Slice s sits at slot (s + e_z) mod R, so the window's first slice
     // z - e_z at slot z mod R.

@@ -136,15 +136,17 @@ fn compare(
             result.batches += 1;
             for (i, voxel) in batch.voxels.clone().enumerate() {
                 h.voxel_into(voxel, &mut scratch, &mut f, &mut b);
+                let normalized = |h: &[f32]| h.iter().map(|&v| v * batch.normalization).collect::<Vec<f32>>();
                 let (gf, gb) = batch.voxel(i);
-                for (gpu, cpu) in [(gf, &f), (gb, &b)] {
+                let (gf, gb) = (normalized(gf), normalized(gb));
+                for (gpu, cpu) in [(&gf, &f), (&gb, &b)] {
                     for (&g, &c) in gpu.iter().zip(cpu.iter()) {
                         let off = (g as f64 - c as f64).abs() / (relative_tolerance * c as f64);
                         result.worst = result.worst.max(if g == c { 0.0 } else { off });
                     }
                 }
                 for (side, histogram) in [gf, gb].into_iter().enumerate() {
-                    packing.pack(histogram, &mut packed);
+                    packing.pack(&histogram, &mut packed);
                     let state = batch.states[2 * i + side];
                     let cpu = codebook.nearest(metric, &packed, 0);
                     result.search_mismatches += usize::from((state.best as usize, state.best_raw) != cpu);
@@ -345,4 +347,68 @@ fn the_backend_is_part_of_the_cache_key_and_gpu_needs_a_device() {
     assert!(e.contains("ao.backend = \"gpu\"") && e.contains("Vulkan device"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
     assert_validation_clean(&ctx);
+}
+
+/// Timing of the GPU preprocessing, run by hand (docs/ao.md, "Measured"):
+/// `SWEEPLAB_DATA=../shared/data AO_VOLUME=engine AO_RADIUS=8 AO_CLUSTERS=2048
+/// cargo test --release --test ao_gpu timing -- --ignored --nocapture`
+/// (`AO_VOLUME=cornell`: the 64^3 Cornell box). `AO_PASSES=1` runs the sweep
+/// a second time, with the trained codebook, for the GPU time of each pass.
+#[test]
+#[ignore = "a measurement of minutes, not a check"]
+fn gpu_preprocessing_timing() {
+    use std::time::Instant;
+    use sweeplab::ao::gpu::assign_volume;
+    use sweeplab::ao::{preprocess_on, AoSettings};
+    let var = |name: &str| std::env::var(name).ok();
+    let number = |name: &str, default: u32| var(name).and_then(|v| v.parse().ok()).unwrap_or(default);
+    let volume = match var("AO_VOLUME").as_deref() {
+        Some("engine") => {
+            let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
+            sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)")
+        }
+        _ => sweeplab::scene::synthetic::cornell_box(64),
+    };
+    let settings = AoSettings {
+        radius: number("AO_RADIUS", 8),
+        clusters: number("AO_CLUSTERS", 2048),
+        cache: false,
+        ..AoSettings::default()
+    };
+    let ctx = Context::new(&Default::default()).expect("a Vulkan device");
+    let started = Instant::now();
+    let mut last = String::new();
+    let r = preprocess_on(&volume, &settings, Some(&ctx), &mut |p| {
+        if p.step != last || p.fraction >= 1.0 {
+            eprintln!("{}", p.line());
+            last = p.step.to_string();
+        }
+    })
+    .unwrap();
+    let t = &r.stats.timings;
+    let stencil = sweeplab::ao::histogram::SphereStencil::new(settings.radius, volume.spacing).voxel_count();
+    eprintln!(
+        "{} {} r = {} (N_r {stencil}) n_c = {} packed {}: total {:.1} s = packing {:.2} + TS histograms (CPU) {:.2} \
+         + training {:.2} ({} Lloyd iterations) + GPU sweep and assignment {:.2}",
+        volume.name,
+        volume.dims,
+        settings.radius,
+        settings.clusters,
+        settings.packed_dim,
+        started.elapsed().as_secs_f64(),
+        t.packing,
+        t.training_histograms,
+        t.training,
+        r.stats.lloyd_iterations,
+        t.assignment,
+    );
+    if var("AO_PASSES").is_some() {
+        let h = LocalHistograms::new(&volume, settings.radius, settings.bits);
+        let packing = packing_of(&h, settings.packed_dim as usize);
+        let codebook = Codebook { dim: packing.packed_dim, words: r.packed_codebook.clone() };
+        let started = Instant::now();
+        let (again, passes) = assign_volume(&ctx, &h, &packing, &codebook, settings.metric, &mut |_| {}).unwrap();
+        assert_eq!(again.cluster_ids, r.cluster_ids);
+        eprintln!("second sweep {:.2} s; GPU ms per pass: {passes:?}", started.elapsed().as_secs_f64());
+    }
 }

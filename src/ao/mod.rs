@@ -278,9 +278,15 @@ impl ClusterSums {
 
     /// Adds `histogram` (`bins` values) to cluster `id`.
     pub fn add(&mut self, id: usize, histogram: &[f32]) {
+        self.add_scaled(id, histogram, 1.0);
+    }
+
+    /// Adds `histogram` scaled by `scale` (each value an f32 product, as the
+    /// GPU normalizes) to cluster `id`.
+    pub fn add_scaled(&mut self, id: usize, histogram: &[f32], scale: f32) {
         self.sizes[id] += 1;
         let sum = &mut self.sums[id * self.bins..(id + 1) * self.bins];
-        sum.iter_mut().zip(histogram).for_each(|(s, &h)| *s += h as f64);
+        sum.iter_mut().zip(histogram).for_each(|(s, &h)| *s += (h * scale) as f64);
     }
 
     /// Adds another worker's sums.

@@ -64,8 +64,8 @@ pub fn assign_volume(
             |sums, c| {
                 for i in c * per_chunk..((c + 1) * per_chunk).min(voxels) {
                     let (forward, backward) = batch.voxel(i);
-                    sums.add(batch.states[2 * i].best as usize, forward);
-                    sums.add(batch.states[2 * i + 1].best as usize, backward);
+                    sums.add_scaled(batch.states[2 * i].best as usize, forward, batch.normalization);
+                    sums.add_scaled(batch.states[2 * i + 1].best as usize, backward, batch.normalization);
                 }
             },
             |_, (), _| {},

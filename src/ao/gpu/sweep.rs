@@ -65,9 +65,9 @@ struct SweepPush {
     rows: i32,
     first_entry: i32,
     entry_count: i32,
-    first_chunk: i32,
     part_voxel: i32,
     packed_stride: i32,
+    pad: i32,
 }
 
 macro_rules! assert_sweep_push_layout {
@@ -76,7 +76,7 @@ macro_rules! assert_sweep_push_layout {
             SweepPush,
             $shader::layout::SWEEP,
             [spacing, d_min, dims, bins, extent, ring_slices, slice, first_row, rows, first_entry, entry_count,
-             first_chunk, part_voxel, packed_stride]
+             part_voxel, packed_stride, pad]
         );
     )*};
 }
@@ -107,15 +107,19 @@ pub struct BatchOutput<'a> {
     /// Linear indices of the batch's voxels.
     pub voxels: Range<usize>,
     pub bins: usize,
-    /// Per voxel [`unpacked_stride`] floats: the normalized forward histogram,
-    /// a discard slot, the backward histogram, a discard slot.
+    /// Per voxel [`unpacked_stride`] floats: the forward histogram, a discard
+    /// slot, the backward histogram, a discard slot; not normalized.
     pub unpacked: &'a [f32],
+    /// 1 / N_r in f32: `h * normalization` (an f32 product) is the
+    /// normalized histogram value the GPU packed.
+    pub normalization: f32,
     /// Per voxel the forward then the backward search's result.
     pub states: &'a [SearchState],
 }
 
 impl BatchOutput<'_> {
-    /// Forward and backward histogram of the batch's `i`-th voxel.
+    /// Forward and backward histogram of the batch's `i`-th voxel, not
+    /// normalized.
     pub fn voxel(&self, i: usize) -> (&[f32], &[f32]) {
         let base = i * unpacked_stride(self.bins);
         (&self.unpacked[base..base + self.bins], &self.unpacked[base + self.bins + 1..base + 2 * self.bins + 1])
@@ -142,6 +146,7 @@ pub struct GpuSweep<'c> {
     ctx: &'c Context,
     plan: SweepPlan,
     push: SweepPush,
+    normalization: f32,
     bin: ComputePipeline,
     stencil: ComputePipeline,
     pack: ComputePipeline,
@@ -165,6 +170,8 @@ impl<'c> GpuSweep<'c> {
         let volume = inputs.volume;
         let (stencil, bins, packing) = (inputs.stencil, inputs.bins, inputs.packing);
         let dims = volume.dims;
+        // 1 / N_r rounded once, as the CPU's f64 normalization is.
+        let normalization = (1.0 / stencil.voxel_count().max(1) as f64) as f32;
         let plan = SweepPlan::new(
             dims,
             bins,
@@ -196,8 +203,9 @@ impl<'c> GpuSweep<'c> {
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
         let device_buffer =
             |name: &str, bytes: usize| Buffer::new(ctx, name, bytes.max(4) as u64, usage, MemoryLocation::GpuOnly);
-        let readback =
-            |name: &str, bytes: usize| Buffer::new(ctx, name, bytes.max(4) as u64, usage, MemoryLocation::GpuToCpu);
+        let readback = |name: &str, bytes: usize, extra: vk::BufferUsageFlags| {
+            Buffer::new(ctx, name, bytes.max(4) as u64, usage | extra, MemoryLocation::GpuToCpu)
+        };
         let values: Vec<f32> = (0..volume.voxel_count()).map(|i| volume.data.normalized(i)).collect();
         let values = Buffer::with_data(ctx, "ao normalized values", &values, usage)?;
         let ring = device_buffer("ao binned slice ring", 2 * (ring_slices * px * py) as usize * 4)?;
@@ -219,9 +227,10 @@ impl<'c> GpuSweep<'c> {
         let share_starts = Buffer::with_data(ctx, "ao packing row starts", &share_starts, usage)?;
         let shares = Buffer::with_data(ctx, "ao packing shares", &shares, usage)?;
         let batch = plan.batch_voxels;
-        let unpacked = readback("ao unpacked histograms", batch * unpacked_stride(bins) * 4)?;
+        let fill = vk::BufferUsageFlags::TRANSFER_DST;
+        let unpacked = readback("ao unpacked histograms", batch * unpacked_stride(bins) * 4, fill)?;
         let packed = device_buffer("ao packed histograms", batch * 2 * plan.packed_stride * 4)?;
-        let states = readback("ao search states", batch * 2 * size_of::<SearchState>())?;
+        let states = readback("ao search states", batch * 2 * size_of::<SearchState>(), vk::BufferUsageFlags::empty())?;
         let hints = device_buffer("ao search hints", (dims.x * dims.y * 2) as usize * 4)?;
 
         let pipeline = |name: &str, shader, specialization: &[(u32, u32)]| {
@@ -240,8 +249,6 @@ impl<'c> GpuSweep<'c> {
             (ao_histogram_sweep::STENCIL_OFFSETS, Resource::StorageBuffer(&stencil_offsets)),
             (ao_histogram_sweep::UNPACKED, Resource::StorageBuffer(&unpacked)),
         ])?;
-        // 1 / N_r rounded once, as the CPU's f64 normalization is.
-        let normalization = (1.0 / stencil.voxel_count().max(1) as f64) as f32;
         let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &[(0, normalization.to_bits())])?;
         let pack_set = pack.create_set(&[
             (ao_histogram_pack::UNPACKED, Resource::StorageBuffer(&unpacked)),
@@ -257,6 +264,7 @@ impl<'c> GpuSweep<'c> {
             ctx,
             plan,
             push,
+            normalization,
             bin,
             stencil: sweep,
             pack,
@@ -297,6 +305,7 @@ impl<'c> GpuSweep<'c> {
             let voxels = self.plan.batches[b].voxels.clone();
             let output = BatchOutput {
                 bins: self.plan.bins,
+                normalization: self.normalization,
                 unpacked: self.unpacked.mapped(voxels.len() * unpacked_stride(self.plan.bins))?,
                 states: self.states.mapped(2 * voxels.len())?,
                 voxels,
@@ -307,10 +316,18 @@ impl<'c> GpuSweep<'c> {
     }
 
     fn record_batch(&mut self, b: usize, sync: SliceSync) -> Result<(), VkError> {
-        let GpuSweep { ctx, plan, push, bin, stencil, pack, sets, assign, profiler, .. } = self;
+        let GpuSweep { ctx, plan, push, bin, stencil, pack, sets, assign, profiler, unpacked, .. } = self;
         let (nx, e_z, padded) =
             (plan.dims.x, push.extent[2], [push.dims[0] + 2 * push.extent[0], push.dims[1] + 2 * push.extent[1]]);
         submit_and_wait(ctx, "ao histogram sweep", |rec| {
+            // The stencil adds into zeroed histograms (a memset, far cheaper
+            // than a zeroing loop per invocation on llvmpipe).
+            rec.fill_buffer(unpacked, 0);
+            rec.barrier(&Barrier::memory(
+                "unpacked_clear_to_stencil_accumulate",
+                Access::CLEAR_WRITE,
+                Access::COMPUTE_READ_WRITE,
+            ));
             for part in &plan.batches[b].parts {
                 let z = part.z as i32;
                 let mut push = SweepPush {
@@ -349,7 +366,6 @@ impl<'c> GpuSweep<'c> {
                     }
                     push.first_entry = chunk.start as i32;
                     push.entry_count = chunk.len() as i32;
-                    push.first_chunk = (i == 0) as i32;
                     rec.push(stencil, &push);
                     rec.dispatch(nx.div_ceil(8), part.rows.div_ceil(8), 1);
                 }
@@ -357,7 +373,7 @@ impl<'c> GpuSweep<'c> {
                 rec.barrier(&Barrier::memory(
                     "unpacked_write_to_pack_read",
                     Access::COMPUTE_WRITE,
-                    Access::COMPUTE_READ_WRITE,
+                    Access::COMPUTE_READ,
                 ));
                 let scope = profiler.begin(rec, PACK_PASS)?;
                 rec.bind(pack, sets[2]);
