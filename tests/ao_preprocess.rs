@@ -144,6 +144,7 @@ fn small(clusters: u32, metric: Metric) -> AoSettings {
         lbg_threshold: 1e-4,
         cache: false,
         cache_dir: None,
+        backend: None,
         // The rendering keys do not touch the preprocessing.
         ..AoSettings::default()
     }

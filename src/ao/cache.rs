@@ -24,7 +24,7 @@ use std::path::{Path, PathBuf};
 use xxhash_rust::xxh3::{xxh3_128, xxh3_64, Xxh3};
 
 use super::error::AoError;
-use super::settings::{AoSettings, Metric, TrainingSet};
+use super::settings::{AoSettings, Backend, Metric, TrainingSet};
 use super::{AoPreprocessed, PreprocessStats, StepTimings};
 use crate::scene::{Volume, VoxelData};
 
@@ -106,6 +106,16 @@ impl CacheKey {
         w.u32(s.lbg_iterations);
         w.u64(s.lbg_threshold.to_bits());
         CacheKey { block: w.bytes }
+    }
+
+    /// [`Self::new`] for results computed by `backend`: the CPU's key is
+    /// unchanged (its files stay valid), the GPU's carries a tag.
+    pub fn for_backend(volume: &Volume, s: &AoSettings, backend: Backend) -> CacheKey {
+        let mut key = CacheKey::new(volume, s);
+        if backend == Backend::Gpu {
+            key.block.extend_from_slice(b"backend gpu");
+        }
+        key
     }
 
     pub fn file_name(&self) -> String {

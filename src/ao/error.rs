@@ -1,5 +1,5 @@
 //! What can go wrong in AO preprocessing: bad settings, an unusable training
-//! set, and cache file I/O.
+//! set, the GPU backend, and cache file I/O.
 
 use std::path::PathBuf;
 
@@ -12,6 +12,12 @@ pub enum AoError {
     /// The training set rule selects no voxel of this volume.
     #[error("ao training set is empty: {0}")]
     EmptyTrainingSet(String),
+    /// The GPU backend failed (a Vulkan call, an allocation, a shader).
+    #[error("ao on the GPU: {0}")]
+    Gpu(#[from] crate::vk::VkError),
+    /// The GPU backend cannot run these settings on this volume.
+    #[error("ao on the GPU: {0}")]
+    GpuLimit(String),
     #[error("ao cache {path}: {source}")]
     CacheIo {
         path: PathBuf,

@@ -13,6 +13,7 @@
 pub mod cache;
 pub mod environment;
 pub mod error;
+pub mod gpu;
 pub mod gradient;
 pub mod histogram;
 pub mod packing;
@@ -30,7 +31,7 @@ pub use cache::{AoCache, CacheKey, CacheMiss};
 pub use error::AoError;
 pub use progress::Progress;
 pub use render_settings::AoMode;
-pub use settings::{AoSettings, Metric, TrainingSet};
+pub use settings::{AoSettings, Backend, Metric, TrainingSet};
 
 use glam::UVec3;
 
@@ -43,6 +44,7 @@ use search::CodebookSearch;
 use training_set::select_training_voxels;
 
 use crate::scene::Volume;
+use crate::vk::Context;
 
 /// Unpacked histograms a slab of the assignment stream holds at most (per
 /// worker), bytes.
@@ -114,14 +116,26 @@ impl AoPreprocessed {
     }
 }
 
-/// Runs the whole preprocessing of `volume`; `progress` hears from every long
-/// step (on the calling thread).
+/// Runs the whole preprocessing of `volume` on the CPU; `progress` hears from
+/// every long step (on the calling thread).
 pub fn preprocess(
     volume: &Volume,
     settings: &AoSettings,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<AoPreprocessed, AoError> {
+    preprocess_on(volume, settings, None, progress)
+}
+
+/// [`preprocess`] with the per-voxel work (histograms, packing, assignment) on
+/// `gpu` when `ao.backend` says so (by default whenever a context is given).
+pub fn preprocess_on(
+    volume: &Volume,
+    settings: &AoSettings,
+    gpu: Option<&Context>,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<AoPreprocessed, AoError> {
     settings.validate()?;
+    let backend = settings.backend_for(gpu.is_some())?;
     let metric = settings.metric;
     let histograms = LocalHistograms::new(volume, settings.radius, settings.bits);
     let bins = histograms.bins();
@@ -182,32 +196,19 @@ pub fn preprocess(
 
     // Every voxel: histograms, packed, nearest codeword; the unpacked
     // histograms summed per cluster for the final codebook.
-    let clock = StepClock::start("ao assignment");
-    let search = CodebookSearch::new(&codebook, metric);
-    let mut cluster_ids = vec![0u32; volume.voxel_count()];
-    let mut distortion_sum = 0f64;
-    let states = histograms.stream_with(
-        SLAB_BYTES,
-        || ClusterSums { sums: vec![0.0; clusters * bins], sizes: vec![0; clusters] },
-        |sums, slab| assign_slab(slab, &packing, &search, dim, sums),
-        |_, (first, ids, distortion), done, total| {
-            cluster_ids[first..first + ids.len()].copy_from_slice(&ids);
-            distortion_sum += distortion;
-            progress(&clock.report(done as f64 / total as f64));
-        },
-    );
-    let mut sums = vec![0f64; clusters * bins];
-    let mut cluster_sizes = vec![0u64; clusters];
-    for state in states {
-        sums.iter_mut().zip(&state.sums).for_each(|(a, b)| *a += b);
-        cluster_sizes.iter_mut().zip(&state.sizes).for_each(|(a, b)| *a += b);
-    }
-    let codebook_unpacked = (0..clusters * bins)
-        .map(|i| match cluster_sizes[i / bins] {
-            0 => 0.0,
-            n => (sums[i] / n as f64) as f32,
-        })
-        .collect();
+    let clock = StepClock::start(match backend {
+        Backend::Cpu => "ao assignment",
+        Backend::Gpu => "ao gpu sweep and assignment",
+    });
+    let assigned = match gpu.filter(|_| backend == Backend::Gpu) {
+        Some(ctx) => {
+            let report = &mut |f| progress(&clock.report(f));
+            gpu::assign_volume(ctx, &histograms, &packing, &codebook, metric, report)?.0
+        }
+        None => assign_on_cpu(&histograms, &packing, &codebook, metric, &mut |f| progress(&clock.report(f))),
+    };
+    let VolumeAssignment { cluster_ids, sums, distortion_sum } = assigned;
+    let (codebook_unpacked, cluster_sizes) = (sums.codebook(), sums.sizes().to_vec());
     timings.assignment = clock.elapsed().as_secs_f64();
 
     Ok(AoPreprocessed {
@@ -230,10 +231,88 @@ pub fn preprocess(
     })
 }
 
-/// Per-worker sums of the unpacked histograms assigned to each cluster.
-struct ClusterSums {
+/// Every voxel's cluster ids and what the final codebook is made of.
+pub struct VolumeAssignment {
+    /// Per voxel [`quantize::pack_cluster_ids`].
+    pub cluster_ids: Vec<u32>,
+    pub sums: ClusterSums,
+    /// Summed distance of every hemisphere histogram to its codeword.
+    pub distortion_sum: f64,
+}
+
+/// The nearest-codeword assignment of every voxel on all CPU cores (the
+/// reference), streamed slab by slab.
+fn assign_on_cpu(
+    histograms: &LocalHistograms,
+    packing: &PackingScheme,
+    codebook: &quantize::Codebook,
+    metric: Metric,
+    progress: &mut dyn FnMut(f64),
+) -> VolumeAssignment {
+    let (clusters, bins, dim) = (codebook.len(), histograms.bins(), packing.packed_dim);
+    let search = CodebookSearch::new(codebook, metric);
+    let mut cluster_ids = vec![0u32; histograms.volume().voxel_count()];
+    let mut distortion_sum = 0f64;
+    let states = histograms.stream_with(
+        SLAB_BYTES,
+        || ClusterSums::new(clusters, bins),
+        |sums, slab| assign_slab(slab, packing, &search, dim, sums),
+        |_, (first, ids, distortion), done, total| {
+            cluster_ids[first..first + ids.len()].copy_from_slice(&ids);
+            distortion_sum += distortion;
+            progress(done as f64 / total as f64);
+        },
+    );
+    let mut sums = ClusterSums::new(clusters, bins);
+    states.iter().for_each(|part| sums.absorb(part));
+    VolumeAssignment { cluster_ids, sums, distortion_sum }
+}
+
+/// Sums of the unpacked histograms assigned to each cluster (per worker, then
+/// merged), in f64 whatever computed the histograms.
+pub struct ClusterSums {
+    bins: usize,
     sums: Vec<f64>,
     sizes: Vec<u64>,
+}
+
+impl ClusterSums {
+    pub fn new(clusters: usize, bins: usize) -> ClusterSums {
+        ClusterSums { bins, sums: vec![0.0; clusters * bins], sizes: vec![0; clusters] }
+    }
+
+    /// Adds `histogram` (`bins` values) to cluster `id`.
+    pub fn add(&mut self, id: usize, histogram: &[f32]) {
+        self.add_scaled(id, histogram, 1.0);
+    }
+
+    /// Adds `histogram` scaled by `scale` (each value an f32 product, as the
+    /// GPU normalizes) to cluster `id`.
+    pub fn add_scaled(&mut self, id: usize, histogram: &[f32], scale: f32) {
+        self.sizes[id] += 1;
+        let sum = &mut self.sums[id * self.bins..(id + 1) * self.bins];
+        sum.iter_mut().zip(histogram).for_each(|(s, &h)| *s += (h * scale) as f64);
+    }
+
+    /// Adds another worker's sums.
+    pub fn absorb(&mut self, part: &ClusterSums) {
+        self.sums.iter_mut().zip(&part.sums).for_each(|(a, b)| *a += b);
+        self.sizes.iter_mut().zip(&part.sizes).for_each(|(a, b)| *a += b);
+    }
+
+    pub fn sizes(&self) -> &[u64] {
+        &self.sizes
+    }
+
+    /// Each cluster's mean histogram (zero for an empty cluster).
+    pub fn codebook(&self) -> Vec<f32> {
+        (0..self.sums.len())
+            .map(|i| match self.sizes[i / self.bins] {
+                0 => 0.0,
+                n => (self.sums[i] / n as f64) as f32,
+            })
+            .collect()
+    }
 }
 
 /// Packs and assigns a slab's histograms; returns (first voxel, packed ids,
@@ -247,7 +326,6 @@ fn assign_slab(
     dim: usize,
     sums: &mut ClusterSums,
 ) -> (usize, Vec<u32>, f64) {
-    let bins = slab.bins;
     let mut packed = vec![0f32; dim];
     // Per hemisphere: the previous voxel's packed histogram, codeword and
     // distance (forward and backward histograms of one voxel differ a lot, so
@@ -265,11 +343,8 @@ fn assign_slab(
                 (previous_id[side], previous_d[side]) = search.nearest(&packed, previous_id[side]);
                 std::mem::swap(&mut packed, &mut previous[side]);
             }
-            let id = previous_id[side];
             distortion += previous_d[side] as f64;
-            sums.sizes[id] += 1;
-            let sum = &mut sums.sums[id * bins..(id + 1) * bins];
-            sum.iter_mut().zip(histogram).for_each(|(s, &h)| *s += h as f64);
+            sums.add(previous_id[side], histogram);
         }
         ids.push(pack_cluster_ids(previous_id[0] as u32, previous_id[1] as u32));
     }
@@ -295,17 +370,30 @@ pub fn preprocess_cached(
     settings: &AoSettings,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<(AoPreprocessed, CacheOutcome), AoError> {
+    preprocess_cached_on(volume, settings, None, progress)
+}
+
+/// [`preprocess_cached`] with [`preprocess_on`]'s choice of backend. The
+/// backend is part of the cache key: the GPU's f32 histogram sums can differ
+/// from the CPU's in the last bits, and so, at a near tie, a cluster id.
+pub fn preprocess_cached_on(
+    volume: &Volume,
+    settings: &AoSettings,
+    gpu: Option<&Context>,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<(AoPreprocessed, CacheOutcome), AoError> {
     settings.validate()?;
+    let backend = settings.backend_for(gpu.is_some())?;
     if !settings.cache {
-        return Ok((preprocess(volume, settings, progress)?, CacheOutcome::Disabled));
+        return Ok((preprocess_on(volume, settings, gpu, progress)?, CacheOutcome::Disabled));
     }
     let cache = AoCache::for_settings(settings);
-    let key = CacheKey::new(volume, settings);
+    let key = CacheKey::for_backend(volume, settings, backend);
     let miss = match cache.load(&key)? {
         Ok(result) => return Ok((result, CacheOutcome::Hit(cache.path(&key)))),
         Err(miss) => miss,
     };
-    let result = preprocess(volume, settings, progress)?;
+    let result = preprocess_on(volume, settings, gpu, progress)?;
     let path = cache.store(&key, &result)?;
     Ok((result, CacheOutcome::Stored(path, miss)))
 }

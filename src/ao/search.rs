@@ -16,7 +16,7 @@ use super::quantize::{distance, distance_within, Codebook};
 use super::settings::Metric;
 
 /// Relative slack on the pruning bound (float rounding of the distances).
-const SLACK: f32 = 1e-4;
+pub const SLACK: f32 = 1e-4;
 
 pub struct CodebookSearch<'c> {
     codebook: &'c Codebook,
@@ -60,6 +60,17 @@ impl<'c> CodebookSearch<'c> {
             },
         );
         CodebookSearch { codebook, metric, order, distances }
+    }
+
+    /// Row h: all codewords by ascending distance to codeword h (the GPU
+    /// search walks the same lists).
+    pub fn order(&self) -> &[u16] {
+        &self.order
+    }
+
+    /// Row h: the distances of [`Self::order`] (true metric).
+    pub fn order_distances(&self) -> &[f32] {
+        &self.distances
     }
 
     /// As [`Codebook::nearest`] (same index, same distance value), searching

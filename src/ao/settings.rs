@@ -9,6 +9,7 @@
 //! metric = "l2"       # "l2", "l1" or "lmax"
 //! training = { rule = "random", count = 16384, seed = 1 }
 //! # training = { rule = "gradient", eps = 0.05, count = 16384, seed = 1 }
+//! backend = "gpu"     # "gpu" or "cpu"; default: gpu when a Vulkan device is given
 //! ```
 //!
 //! `clusters` accepts 2..=2048: the paper works with 256..=2048; smaller
@@ -41,6 +42,25 @@ impl Metric {
             Metric::L2 => "l2",
             Metric::L1 => "l1",
             Metric::Lmax => "lmax",
+        }
+    }
+}
+
+/// Where the per-voxel work (local histograms, packing, assignment) runs. The
+/// CPU is the reference; the GPU sweep gives the same histograms to f32
+/// rounding (docs/ao.md).
+#[derive(Deserialize, Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[serde(rename_all = "lowercase")]
+pub enum Backend {
+    Gpu,
+    Cpu,
+}
+
+impl Backend {
+    pub fn name(self) -> &'static str {
+        match self {
+            Backend::Gpu => "gpu",
+            Backend::Cpu => "cpu",
         }
     }
 }
@@ -114,6 +134,9 @@ pub struct AoSettings {
     pub phase_g: f32,
     pub glow_max: f32,
     pub glow_range: [f32; 2],
+    /// Where the per-voxel work runs; `None`: the GPU when the caller gives a
+    /// Vulkan context, else the CPU ([`Self::backend_for`]).
+    pub backend: Option<Backend>,
 }
 
 impl Default for AoSettings {
@@ -136,12 +159,13 @@ impl Default for AoSettings {
             phase_g: DEFAULT_PHASE_G,
             glow_max: DEFAULT_GLOW_MAX,
             glow_range: DEFAULT_GLOW_RANGE,
+            backend: None,
         }
     }
 }
 
 /// Top-level keys, for the did-you-mean of a misspelt one.
-const KEYS: [&str; 15] = [
+const KEYS: [&str; 16] = [
     "radius",
     "bits",
     "packed_dim",
@@ -157,6 +181,7 @@ const KEYS: [&str; 15] = [
     "phase_g",
     "glow_max",
     "glow_range",
+    "backend",
 ];
 const TRAINING_KEYS: [&str; 4] = ["rule", "count", "seed", "eps"];
 
@@ -235,6 +260,22 @@ impl AoSettings {
         validate_render_keys(self.isovalue, self.phase_g, self.glow_max, self.glow_range)
     }
 
+    /// The backend that runs with (`has_gpu`) or without a Vulkan context: the
+    /// setting, else the GPU when there is one. `backend = "gpu"` without a
+    /// context is an error, never a silent fall-back.
+    pub fn backend_for(&self, has_gpu: bool) -> Result<Backend, AoError> {
+        match (self.backend, has_gpu) {
+            (Some(Backend::Gpu), false) => Err(AoError::Invalid(
+                "ao.backend = \"gpu\" needs a Vulkan device, and none was given: \
+                 use ao.backend = \"cpu\" or run with a device"
+                    .into(),
+            )),
+            (Some(backend), _) => Ok(backend),
+            (None, true) => Ok(Backend::Gpu),
+            (None, false) => Ok(Backend::Cpu),
+        }
+    }
+
     /// Number of histogram bins, 2^bits.
     pub fn bins(&self) -> usize {
         1 << self.bits
@@ -308,6 +349,22 @@ mod tests {
             let e = parse(text).unwrap_err().to_string();
             assert!(e.contains(needle), "{text}: {e}");
         }
+    }
+
+    #[test]
+    fn the_backend_defaults_to_the_gpu_when_there_is_one() {
+        let s = parse("").unwrap();
+        assert_eq!((s.backend_for(true).unwrap(), s.backend_for(false).unwrap()), (Backend::Gpu, Backend::Cpu));
+        let s = parse("backend = \"cpu\"").unwrap();
+        assert_eq!((s.backend_for(true).unwrap(), s.backend_for(false).unwrap()), (Backend::Cpu, Backend::Cpu));
+        let s = parse("backend = \"gpu\"").unwrap();
+        assert_eq!(s.backend_for(true).unwrap(), Backend::Gpu);
+        let e = s.backend_for(false).unwrap_err().to_string();
+        assert!(e.contains("ao.backend = \"gpu\"") && e.contains("\"cpu\""), "{e}");
+        let e = parse("backend = \"vulkan\"").unwrap_err().to_string();
+        assert!(e.contains("gpu") && e.contains("cpu"), "{e}");
+        let e = parse("backnd = \"cpu\"").unwrap_err().to_string();
+        assert!(e.contains("did you mean ao.backend?"), "{e}");
     }
 
     #[test]

@@ -121,6 +121,22 @@ impl Buffer {
         bytemuck::cast_slice_mut::<T, u8>(&mut out).copy_from_slice(&slice[..bytes]);
         Ok(out)
     }
+    /// The first `count` values of `T` of a host-visible buffer, in place: no
+    /// copy, for large read-backs. No pending GPU work may write the buffer
+    /// while the slice lives (the caller waited for the submission).
+    pub fn mapped<T: Pod>(&self, count: usize) -> Result<&[T], VkError> {
+        let error = |message: String| VkError::Allocation { name: "buffer read".into(), message };
+        let slice = self
+            .allocation
+            .as_ref()
+            .and_then(|a| a.mapped_slice())
+            .ok_or_else(|| error("buffer is not host visible".into()))?;
+        let bytes = count * std::mem::size_of::<T>();
+        if bytes > slice.len() {
+            return Err(error(format!("read of {bytes} bytes past {} bytes", slice.len())));
+        }
+        bytemuck::try_cast_slice(&slice[..bytes]).map_err(|e| error(format!("mapped memory: {e}")))
+    }
 }
 
 impl Drop for Buffer {

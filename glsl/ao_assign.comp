@@ -1,0 +1,129 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// AO nearest-codeword assignment (section 3.2) of one part of a slice's packed
+// hemisphere histograms, one invocation per histogram (2 voxel + side). The
+// same exact search as the CPU (src/ao/search.rs): start at a hint codeword h
+// (the codeword of the same voxel and hemisphere in the previous slice, the
+// sweep's coherence), walk h's list of codewords sorted by distance to h and
+// stop where the triangle inequality says no later one can win; ties to the
+// lowest index. Every float operation in the CPU's order, without contraction,
+// so both searches pick the same codeword for the same vector. The walk is
+// split into chunks of list entries over dispatches (llvmpipe's loop cap),
+// its state carried in `states`.
+
+layout(local_size_x = 64) in;
+
+layout(constant_id = 0) const uint METRIC = 0;  // 0: L2 (squared), 1: L1, 2: Lmax
+// (1 + SLACK) and (1 - SLACK) of search.rs, as the CPU rounds them.
+layout(constant_id = 1) const float SLACK_UP = 1.0;
+layout(constant_id = 2) const float SLACK_DOWN = 1.0;
+
+layout(push_constant) uniform Assign {
+    int first;           // first histogram of the part in the batch buffers
+    int count;           // histograms in the part
+    int hint_first;      // the part's first histogram in `hints` (one slice)
+    int has_hints;       // 0 on the first slice: start at codeword 0
+    int first_entry;     // list entries [first_entry, first_entry + entries) this dispatch
+    int entries;
+    int first_chunk;     // 1: start the search
+    int last_chunk;      // 1: leave the result as the next slice's hint
+    int clusters;        // n_c
+    int packed_stride;   // floats per packed histogram and codeword (multiple of 8)
+} assign;
+
+struct SearchState {
+    uint hint;
+    float to_hint;    // true distance to the hint
+    uint best;
+    float best_raw;   // distance in the metric's raw form (L2 squared)
+    uint done;
+};
+
+layout(std430, set = 0, binding = 0) readonly buffer Packed { float packed[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Codewords { float codewords[]; };
+// Row h: every codeword by ascending distance to codeword h, and those distances.
+layout(std430, set = 0, binding = 2) readonly buffer Order { uint order[]; };
+layout(std430, set = 0, binding = 3) readonly buffer OrderDistances { float order_distances[]; };
+layout(std430, set = 0, binding = 4) buffer States { SearchState states[]; };
+layout(std430, set = 0, binding = 5) buffer Hints { uint hints[]; };
+
+#define MIN_POSITIVE uintBitsToFloat(0x00800000u)  // f32::MIN_POSITIVE
+#define INFINITY uintBitsToFloat(0x7f800000u)
+
+float term(float a, float b) {
+    precise float d = a - b;
+    precise float t = METRIC == 0 ? d * d : abs(d);
+    return t;
+}
+
+// quantize.rs distance_within: per chunk of 8 components, the chunk's terms
+// summed left to right, then added to the total (Lmax: the running maximum);
+// returns early once the total exceeds `bound`.
+float distance_within(int x, int c, float bound) {
+    float sum = 0.0;
+    for (int i = 0; i < assign.packed_stride; i += 8) {
+        if (METRIC == 2) {
+            for (int t = 0; t < 8; ++t) sum = max(sum, abs(packed[x + i + t] - codewords[c + i + t]));
+        } else {
+            precise float part = term(packed[x + i], codewords[c + i]);
+            part += term(packed[x + i + 1], codewords[c + i + 1]);
+            part += term(packed[x + i + 2], codewords[c + i + 2]);
+            part += term(packed[x + i + 3], codewords[c + i + 3]);
+            part += term(packed[x + i + 4], codewords[c + i + 4]);
+            part += term(packed[x + i + 5], codewords[c + i + 5]);
+            part += term(packed[x + i + 6], codewords[c + i + 6]);
+            part += term(packed[x + i + 7], codewords[c + i + 7]);
+            precise float total = sum + part;
+            sum = total;
+        }
+        if (sum > bound) return sum;
+    }
+    return sum;
+}
+
+float true_distance(float raw) {
+    return METRIC == 0 ? sqrt(raw) : raw;
+}
+
+void main() {
+    int i = int(gl_GlobalInvocationID.x);
+    if (i >= assign.count) return;
+    int histogram = assign.first + i;
+    int x = histogram * assign.packed_stride;
+    SearchState s;
+    if (assign.first_chunk != 0) {
+        uint h = assign.has_hints != 0 ? min(hints[assign.hint_first + i], uint(assign.clusters - 1)) : 0u;
+        s.hint = h;
+        s.best = h;
+        s.best_raw = distance_within(x, int(h) * assign.packed_stride, INFINITY);
+        s.to_hint = true_distance(s.best_raw);
+        s.done = 0u;
+    } else {
+        s = states[histogram];
+    }
+    if (s.done == 0u) {
+        int row = int(s.hint) * assign.clusters;
+        int end = min(assign.first_entry + assign.entries, assign.clusters);
+        for (int k = assign.first_entry; k < end; ++k) {
+            float apart = order_distances[row + k];
+            float best_true = true_distance(s.best_raw);
+            // d(x, c_j) >= |d(c_h, c_j) - d(x, c_h)|: only the shell
+            // to_hint - best < apart < to_hint + best can hold a better codeword.
+            precise float upper = (best_true + s.to_hint) * SLACK_UP + MIN_POSITIVE;
+            if (apart > upper) {
+                s.done = 1u;
+                break;
+            }
+            uint j = order[row + k];
+            precise float lower = (s.to_hint - best_true) * SLACK_DOWN - MIN_POSITIVE;
+            if (j == s.best || apart < lower) continue;
+            float d = distance_within(x, int(j) * assign.packed_stride, s.best_raw);
+            if (d < s.best_raw || (d == s.best_raw && j < s.best)) {
+                s.best = j;
+                s.best_raw = d;
+            }
+        }
+    }
+    states[histogram] = s;
+    if (assign.last_chunk != 0) hints[assign.hint_first + i] = s.best;
+}

@@ -1,0 +1,183 @@
+//! How the GPU space sweep cuts the volume into dispatches and submissions.
+//!
+//! - A *part* is a run of whole rows of one slice: a whole slice unless its
+//!   unpacked histograms exceed the batch budget (large b).
+//! - A *batch* is a run of consecutive parts whose unpacked histograms fit in
+//!   the read-back buffer; each batch is one submission, after which the CPU
+//!   sums the unpacked histograms per cluster (the final codebook) and the
+//!   buffers are reused. Only one batch of unpacked histograms ever exists.
+//! - The stencil loop and the codeword walk are split into chunks that stay
+//!   within llvmpipe's loop cap ([`LOOP_BUDGET`] iterations per invocation
+//!   and dispatch).
+
+use std::ops::Range;
+
+use glam::UVec3;
+
+use crate::reference::gpu::LOOP_BUDGET;
+
+/// Floats per packed histogram on the GPU: `packed_dim` rounded up to whole
+/// chunks of 8 (the distance loop's unit, as on the CPU); the padding is zero.
+pub fn packed_stride(packed_dim: usize) -> usize {
+    packed_dim.div_ceil(8) * 8
+}
+
+/// Floats per voxel in the unpacked buffer: 2 x (bins + a discard slot).
+pub fn unpacked_stride(bins: usize) -> usize {
+    2 * (bins + 1)
+}
+
+/// Rows `first_row..first_row + rows` of slice `z`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Part {
+    pub z: u32,
+    pub first_row: u32,
+    pub rows: u32,
+    /// Linear index of the part's first voxel in the volume.
+    pub first_voxel: usize,
+    /// ... and in its batch's buffers.
+    pub batch_voxel: usize,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Batch {
+    pub parts: Vec<Part>,
+    /// The batch's voxels (consecutive linear indices).
+    pub voxels: Range<usize>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepPlan {
+    pub dims: UVec3,
+    pub bins: usize,
+    pub packed_stride: usize,
+    pub batches: Vec<Batch>,
+    /// Most voxels in a batch (sizes the batch buffers).
+    pub batch_voxels: usize,
+    /// Stencil entries per histogram dispatch.
+    pub stencil_chunks: Vec<Range<usize>>,
+    /// Sorted-list entries a codeword-walk dispatch visits, and how many
+    /// dispatches cover the whole list.
+    pub walk_entries: usize,
+    pub walk_chunks: usize,
+}
+
+impl SweepPlan {
+    /// `max_batch_bytes` bounds the unpacked histograms of one batch.
+    pub fn new(
+        dims: UVec3,
+        bins: usize,
+        packed_dim: usize,
+        stencil_entries: usize,
+        clusters: usize,
+        lmax: bool,
+        max_batch_bytes: usize,
+    ) -> Result<SweepPlan, String> {
+        let budget = LOOP_BUDGET as usize;
+        let stride = packed_stride(packed_dim);
+        let voxel_bytes = unpacked_stride(bins) * std::mem::size_of::<f32>();
+        let (nx, ny) = (dims.x as usize, dims.y as usize);
+        let batch_voxels = (max_batch_bytes / voxel_bytes).max(nx);
+        let rows_per_part = (batch_voxels / nx).clamp(1, ny);
+        let mut batches: Vec<Batch> = Vec::new();
+        let mut current = Batch { parts: vec![], voxels: 0..0 };
+        for z in 0..dims.z {
+            for first_row in (0..dims.y).step_by(rows_per_part) {
+                let rows = (rows_per_part as u32).min(dims.y - first_row);
+                let first_voxel = (z as usize * ny + first_row as usize) * nx;
+                let voxels = rows as usize * nx;
+                if current.voxels.len() + voxels > batch_voxels {
+                    batches.push(std::mem::replace(
+                        &mut current,
+                        Batch { parts: vec![], voxels: first_voxel..first_voxel },
+                    ));
+                }
+                if current.parts.is_empty() {
+                    current.voxels = first_voxel..first_voxel;
+                }
+                let batch_voxel = current.voxels.len();
+                current.parts.push(Part { z, first_row, rows, first_voxel, batch_voxel });
+                current.voxels.end = first_voxel + voxels;
+            }
+        }
+        if !current.parts.is_empty() {
+            batches.push(current);
+        }
+        let batch_voxels = batches.iter().map(|b| b.voxels.len()).max().unwrap_or(0);
+
+        // The first stencil chunk also zeroes the voxel's histograms; the
+        // gradient takes 3 iterations.
+        let per_chunk = budget
+            .checked_sub(unpacked_stride(bins) + 8)
+            .filter(|&n| n > 0)
+            .ok_or_else(|| format!("2^b = {bins} bins do not leave room for a stencil chunk in llvmpipe's loop cap"))?;
+        let stencil_chunks =
+            (0..stencil_entries.max(1)).step_by(per_chunk).map(|s| s..(s + per_chunk).min(stencil_entries)).collect();
+        // Packing: zeroing, every bin and its shares (at most bins + packed_dim), twice.
+        let pack_iterations = 2 * (stride + 2 * bins + packed_dim);
+        if pack_iterations > budget {
+            return Err(format!("packing {bins} bins into {packed_dim} takes more than llvmpipe's loop cap"));
+        }
+        // One distance: stride / 8 chunks (Lmax: each with an 8-step inner loop).
+        let distance = (stride / 8) * if lmax { 9 } else { 1 };
+        let walk_entries = (budget - distance - 2) / (distance + 1);
+        if walk_entries == 0 {
+            return Err(format!("a packed dimension of {packed_dim} does not fit llvmpipe's loop cap"));
+        }
+        let walk_chunks = clusters.div_ceil(walk_entries).max(1);
+        Ok(SweepPlan {
+            dims,
+            bins,
+            packed_stride: stride,
+            batches,
+            batch_voxels,
+            stencil_chunks,
+            walk_entries,
+            walk_chunks,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn batches_cover_the_volume_in_order_within_their_budget() {
+        let dims = UVec3::new(5, 7, 4);
+        let bytes = |voxels: usize| voxels * unpacked_stride(16) * 4;
+        for budget_voxels in [1, 5, 12, 35, 36, 70, 1000] {
+            let plan = SweepPlan::new(dims, 16, 8, 100, 8, false, bytes(budget_voxels)).unwrap();
+            let mut next = 0;
+            for batch in &plan.batches {
+                assert_eq!(batch.voxels.start, next);
+                assert!(batch.voxels.len() <= budget_voxels.max(5), "{budget_voxels}: {batch:?}");
+                for part in &batch.parts {
+                    assert_eq!(part.first_voxel, next);
+                    assert_eq!(part.batch_voxel, next - batch.voxels.start);
+                    assert_eq!(part.first_voxel, ((part.z * 7 + part.first_row) * 5) as usize);
+                    next += part.rows as usize * 5;
+                }
+                assert_eq!(batch.voxels.end, next);
+            }
+            assert_eq!(next, 5 * 7 * 4, "budget {budget_voxels}");
+        }
+        // Everything in one batch when it fits: one submission.
+        assert_eq!(SweepPlan::new(dims, 16, 8, 100, 8, false, bytes(140)).unwrap().batches.len(), 1);
+    }
+
+    #[test]
+    fn loops_stay_under_the_cap_and_split_only_past_it() {
+        let dims = UVec3::splat(4);
+        // r = 16: 17,076 stencil voxels, one chunk; r = 32: 137,064, three.
+        let plan = SweepPlan::new(dims, 256, 64, 17_076, 2048, false, 1 << 20).unwrap();
+        assert_eq!(plan.stencil_chunks, vec![0..17_076]);
+        assert_eq!(plan.walk_chunks, 1, "2048 codewords of 64 floats: one walk dispatch");
+        let plan = SweepPlan::new(dims, 256, 64, 137_064, 2048, true, 1 << 20).unwrap();
+        assert_eq!(plan.stencil_chunks.len(), 3);
+        assert_eq!(plan.stencil_chunks.last().unwrap().end, 137_064);
+        assert!(plan.stencil_chunks.iter().all(|c| c.len() + 8 <= LOOP_BUDGET as usize));
+        assert!(plan.walk_chunks * plan.walk_entries >= 2048);
+        assert!(plan.walk_entries * (8 * 9 + 1) + 8 * 9 + 2 <= LOOP_BUDGET as usize);
+    }
+}

@@ -1,0 +1,409 @@
+//! The paper's space sweep of local histograms on the GPU (section 5),
+//! slice by slice along z. What the sweep carries from slice to slice:
+//!
+//! - a ring of the 2 e_z + 1 *binned* slices the stencil's window covers
+//!   (glsl/ao_histogram_common.glsl): each slice is binned once, by the
+//!   dispatch that brings it into the window (`ao_histogram_bin`), and read by
+//!   the stencils of the 2 e_z + 1 centre slices that follow; the barrier
+//!   `binned_slice_write_to_stencil_read` guards that hand-over, and
+//!   `slice_reads_to_next_slice_writes` the slot the next entering slice
+//!   overwrites;
+//! - each voxel's codewords, which start the next slice's searches at the
+//!   same (x, y) (neighbouring histograms are close, so the exact search
+//!   visits few codewords).
+//!
+//! Per centre slice (or part of one): bin the entering slice, the stencil
+//! (`ao_histogram_stencil`, in chunks within llvmpipe's loop cap), normalize
+//! and pack (`ao_histogram_pack`), assign (`ao_assign`); every pass with a
+//! debug label and a profiler scope of its name, every hand-over behind a
+//! named barrier. A batch of parts is one submission; its unpacked histograms
+//! and search results are then read back in place for the final codebook, so
+//! only one batch of unpacked histograms exists at a time.
+
+use std::collections::BTreeMap;
+use std::ops::Range;
+
+use ash::vk;
+use bytemuck::{Pod, Zeroable};
+use gpu_allocator::MemoryLocation;
+
+use super::assign::{AssignPass, AssignRange, SearchState};
+use super::plan::{unpacked_stride, SweepPlan};
+use crate::ao::error::AoError;
+use crate::ao::histogram::SphereStencil;
+use crate::ao::packing::PackingScheme;
+use crate::ao::quantize::Codebook;
+use crate::ao::search::CodebookSearch;
+use crate::ao::settings::Metric;
+use crate::scene::Volume;
+use crate::shaders::{ao_histogram_bin, ao_histogram_pack, ao_histogram_sweep};
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::commands::submit_and_wait;
+use crate::vk::descriptors::Resource;
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::{Buffer, Context, Profiler, VkError};
+
+pub const BIN_PASS: &str = "ao_histogram_bin";
+pub const STENCIL_PASS: &str = "ao_histogram_stencil";
+pub const PACK_PASS: &str = "ao_histogram_pack";
+
+/// Unpacked histograms one batch holds at most, bytes.
+pub const BATCH_BYTES: usize = 192 << 20;
+
+/// Mirrors the `Sweep` push constants (glsl/ao_histogram_common.glsl).
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct SweepPush {
+    spacing: [f32; 3],
+    d_min: f32,
+    dims: [i32; 3],
+    bins: i32,
+    extent: [i32; 3],
+    ring_slices: i32,
+    slice: i32,
+    first_row: i32,
+    rows: i32,
+    first_entry: i32,
+    entry_count: i32,
+    part_voxel: i32,
+    packed_stride: i32,
+    pad: i32,
+}
+
+macro_rules! assert_sweep_push_layout {
+    ($($shader:ident),*) => {$(
+        crate::assert_gpu_layout!(
+            SweepPush,
+            $shader::layout::SWEEP,
+            [spacing, d_min, dims, bins, extent, ring_slices, slice, first_row, rows, first_entry, entry_count,
+             part_voxel, packed_stride, pad]
+        );
+    )*};
+}
+assert_sweep_push_layout!(ao_histogram_bin, ao_histogram_sweep, ao_histogram_pack);
+
+/// Mirrors `Share`: one nonzero entry of a packing-matrix row.
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Share {
+    packed_bin: u32,
+    share: f32,
+}
+
+crate::assert_gpu_layout!(Share, ao_histogram_pack::layout::SHARE, [packed_bin, share]);
+
+/// Whether the entering slice's binning is ordered before the stencil reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SliceSync {
+    Barrier,
+    /// RACY: no `binned_slice_write_to_stencil_read`. Only for proving that
+    /// synchronization validation reports the missing barrier; the histograms
+    /// are undefined.
+    RacyNoSliceBarrier,
+}
+
+/// What one batch leaves for the CPU, read in place from the GPU's buffers.
+pub struct BatchOutput<'a> {
+    /// Linear indices of the batch's voxels.
+    pub voxels: Range<usize>,
+    pub bins: usize,
+    /// Per voxel [`unpacked_stride`] floats: the forward histogram, a discard
+    /// slot, the backward histogram, a discard slot; not normalized.
+    pub unpacked: &'a [f32],
+    /// 1 / N_r in f32: `h * normalization` (an f32 product) is the
+    /// normalized histogram value the GPU packed.
+    pub normalization: f32,
+    /// Per voxel the forward then the backward search's result.
+    pub states: &'a [SearchState],
+}
+
+impl BatchOutput<'_> {
+    /// Forward and backward histogram of the batch's `i`-th voxel, not
+    /// normalized.
+    pub fn voxel(&self, i: usize) -> (&[f32], &[f32]) {
+        let base = i * unpacked_stride(self.bins);
+        (&self.unpacked[base..base + self.bins], &self.unpacked[base + self.bins + 1..base + 2 * self.bins + 1])
+    }
+}
+
+/// The settled inputs of a sweep.
+pub struct SweepInputs<'a> {
+    pub volume: &'a Volume,
+    pub stencil: &'a SphereStencil,
+    pub bins: usize,
+    pub packing: &'a PackingScheme,
+    pub codebook: &'a Codebook,
+    pub search: &'a CodebookSearch<'a>,
+    pub metric: Metric,
+    /// Unpacked histograms one batch may hold, bytes ([`BATCH_BYTES`]).
+    pub max_batch_bytes: usize,
+}
+
+/// GPU time per pass, summed over the sweep's submissions (ms).
+pub type PassTimes = BTreeMap<String, f64>;
+
+pub struct GpuSweep<'c> {
+    ctx: &'c Context,
+    plan: SweepPlan,
+    push: SweepPush,
+    normalization: f32,
+    bin: ComputePipeline,
+    stencil: ComputePipeline,
+    pack: ComputePipeline,
+    sets: [vk::DescriptorSet; 3],
+    assign: AssignPass,
+    profiler: Profiler,
+    unpacked: Buffer,
+    states: Buffer,
+    _values: Buffer,
+    _ring: Buffer,
+    _stencil_directions: Buffer,
+    _stencil_offsets: Buffer,
+    _share_starts: Buffer,
+    _shares: Buffer,
+    _packed: Buffer,
+    _hints: Buffer,
+}
+
+impl<'c> GpuSweep<'c> {
+    pub fn new(ctx: &'c Context, inputs: &SweepInputs) -> Result<GpuSweep<'c>, AoError> {
+        let volume = inputs.volume;
+        let (stencil, bins, packing) = (inputs.stencil, inputs.bins, inputs.packing);
+        let dims = volume.dims;
+        // 1 / N_r rounded once, as the CPU's f64 normalization is.
+        let normalization = (1.0 / stencil.voxel_count().max(1) as f64) as f32;
+        let plan = SweepPlan::new(
+            dims,
+            bins,
+            packing.packed_dim,
+            stencil.voxel_count(),
+            inputs.codebook.len(),
+            inputs.metric == Metric::Lmax,
+            inputs.max_batch_bytes,
+        )
+        .map_err(AoError::GpuLimit)?;
+        if volume.voxel_count() >= i32::MAX as usize / unpacked_stride(bins).max(2 * plan.packed_stride) {
+            return Err(AoError::GpuLimit(format!("{dims} voxels overflow the shaders' 32-bit indices")));
+        }
+        let e = stencil.extent;
+        let ring_slices = 2 * e.z + 1;
+        let (px, py) = (dims.x + 2 * e.x, dims.y + 2 * e.y);
+        let spacing = volume.spacing;
+        let push = SweepPush {
+            spacing: spacing.to_array(),
+            d_min: spacing.min_element(),
+            dims: dims.as_ivec3().to_array(),
+            bins: bins as i32,
+            extent: e.as_ivec3().to_array(),
+            ring_slices: ring_slices as i32,
+            packed_stride: plan.packed_stride as i32,
+            ..SweepPush::zeroed()
+        };
+
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
+        let device_buffer =
+            |name: &str, bytes: usize| Buffer::new(ctx, name, bytes.max(4) as u64, usage, MemoryLocation::GpuOnly);
+        let readback = |name: &str, bytes: usize, extra: vk::BufferUsageFlags| {
+            Buffer::new(ctx, name, bytes.max(4) as u64, usage | extra, MemoryLocation::GpuToCpu)
+        };
+        let values: Vec<f32> = (0..volume.voxel_count()).map(|i| volume.data.normalized(i)).collect();
+        let values = Buffer::with_data(ctx, "ao normalized values", &values, usage)?;
+        let ring = device_buffer("ao binned slice ring", 2 * (ring_slices * px * py) as usize * 4)?;
+        let directions: Vec<[f32; 4]> =
+            stencil.directions.iter().zip(&stencil.weights).map(|(d, &w)| [d.x, d.y, d.z, w as f32]).collect();
+        let offsets: Vec<i32> =
+            stencil.offsets.iter().map(|o| ((o.z + e.z as i32) * py as i32 + o.y) * px as i32 + o.x).collect();
+        let stencil_directions = Buffer::with_data(ctx, "ao stencil directions", &directions, usage)?;
+        let stencil_offsets = Buffer::with_data(ctx, "ao stencil offsets", &offsets, usage)?;
+        let mut share_starts = vec![0u32];
+        let mut shares = Vec::new();
+        for row in &packing.shares {
+            shares.extend(row.iter().map(|&(packed_bin, share)| Share { packed_bin, share }));
+            share_starts.push(shares.len() as u32);
+        }
+        if shares.is_empty() {
+            shares.push(Share::zeroed());
+        }
+        let share_starts = Buffer::with_data(ctx, "ao packing row starts", &share_starts, usage)?;
+        let shares = Buffer::with_data(ctx, "ao packing shares", &shares, usage)?;
+        let batch = plan.batch_voxels;
+        let fill = vk::BufferUsageFlags::TRANSFER_DST;
+        let unpacked = readback("ao unpacked histograms", batch * unpacked_stride(bins) * 4, fill)?;
+        let packed = device_buffer("ao packed histograms", batch * 2 * plan.packed_stride * 4)?;
+        let states = readback("ao search states", batch * 2 * size_of::<SearchState>(), vk::BufferUsageFlags::empty())?;
+        let hints = device_buffer("ao search hints", (dims.x * dims.y * 2) as usize * 4)?;
+
+        let pipeline = |name: &str, shader, specialization: &[(u32, u32)]| {
+            ComputePipeline::new(ctx, &ComputePipelineDesc { name, shader, specialization, max_sets: 1 })
+        };
+        let mut bin = pipeline(BIN_PASS, &ao_histogram_bin::INTERFACE, &[])?;
+        let bin_set = bin.create_set(&[
+            (ao_histogram_bin::VALUES, Resource::StorageBuffer(&values)),
+            (ao_histogram_bin::RING, Resource::StorageBuffer(&ring)),
+        ])?;
+        let mut sweep = pipeline(STENCIL_PASS, &ao_histogram_sweep::INTERFACE, &[])?;
+        let sweep_set = sweep.create_set(&[
+            (ao_histogram_sweep::VALUES, Resource::StorageBuffer(&values)),
+            (ao_histogram_sweep::RING, Resource::StorageBuffer(&ring)),
+            (ao_histogram_sweep::STENCIL_DIRECTIONS, Resource::StorageBuffer(&stencil_directions)),
+            (ao_histogram_sweep::STENCIL_OFFSETS, Resource::StorageBuffer(&stencil_offsets)),
+            (ao_histogram_sweep::UNPACKED, Resource::StorageBuffer(&unpacked)),
+        ])?;
+        let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &[(0, normalization.to_bits())])?;
+        let pack_set = pack.create_set(&[
+            (ao_histogram_pack::UNPACKED, Resource::StorageBuffer(&unpacked)),
+            (ao_histogram_pack::SHARE_STARTS, Resource::StorageBuffer(&share_starts)),
+            (ao_histogram_pack::SHARES, Resource::StorageBuffer(&shares)),
+            (ao_histogram_pack::PACKED, Resource::StorageBuffer(&packed)),
+        ])?;
+        let assign =
+            AssignPass::new(ctx, inputs.codebook, inputs.search, inputs.metric, &plan, [&packed, &states, &hints])?;
+        let most_parts = plan.batches.iter().map(|b| b.parts.len()).max().unwrap_or(1) as u32;
+        let profiler = Profiler::new(ctx, 4 * most_parts + 4)?;
+        Ok(GpuSweep {
+            ctx,
+            plan,
+            push,
+            normalization,
+            bin,
+            stencil: sweep,
+            pack,
+            sets: [bin_set, sweep_set, pack_set],
+            assign,
+            profiler,
+            unpacked,
+            states,
+            _values: values,
+            _ring: ring,
+            _stencil_directions: stencil_directions,
+            _stencil_offsets: stencil_offsets,
+            _share_starts: share_starts,
+            _shares: shares,
+            _packed: packed,
+            _hints: hints,
+        })
+    }
+
+    pub fn plan(&self) -> &SweepPlan {
+        &self.plan
+    }
+
+    /// Sweeps the whole volume; `consume` gets every batch's output, in order.
+    pub fn run(
+        &mut self,
+        sync: SliceSync,
+        mut consume: impl FnMut(&BatchOutput) -> Result<(), AoError>,
+    ) -> Result<PassTimes, AoError> {
+        let mut times = PassTimes::new();
+        for b in 0..self.plan.batches.len() {
+            self.profiler.reset();
+            self.record_batch(b, sync)?;
+            let report = self.profiler.resolve(0)?;
+            for pass in report.passes {
+                *times.entry(pass.name).or_default() += pass.gpu_ms;
+            }
+            let voxels = self.plan.batches[b].voxels.clone();
+            let output = BatchOutput {
+                bins: self.plan.bins,
+                normalization: self.normalization,
+                unpacked: self.unpacked.mapped(voxels.len() * unpacked_stride(self.plan.bins))?,
+                states: self.states.mapped(2 * voxels.len())?,
+                voxels,
+            };
+            consume(&output)?;
+        }
+        Ok(times)
+    }
+
+    fn record_batch(&mut self, b: usize, sync: SliceSync) -> Result<(), VkError> {
+        let GpuSweep { ctx, plan, push, bin, stencil, pack, sets, assign, profiler, unpacked, .. } = self;
+        let (nx, e_z, padded) =
+            (plan.dims.x, push.extent[2], [push.dims[0] + 2 * push.extent[0], push.dims[1] + 2 * push.extent[1]]);
+        submit_and_wait(ctx, "ao histogram sweep", |rec| {
+            // The stencil adds into zeroed histograms (a memset, far cheaper
+            // than a zeroing loop per invocation on llvmpipe).
+            rec.fill_buffer(unpacked, 0);
+            rec.barrier(&Barrier::memory(
+                "unpacked_clear_to_stencil_accumulate",
+                Access::CLEAR_WRITE,
+                Access::COMPUTE_READ_WRITE,
+            ));
+            for part in &plan.batches[b].parts {
+                let z = part.z as i32;
+                let mut push = SweepPush {
+                    slice: z,
+                    first_row: part.first_row as i32,
+                    rows: part.rows as i32,
+                    part_voxel: part.batch_voxel as i32,
+                    ..*push
+                };
+                if part.first_row == 0 {
+                    // The slice entering the window; the first slice primes
+                    // the ring with the whole window.
+                    let (first, count) = if z == 0 { (-e_z, 2 * e_z + 1) } else { (z + e_z, 1) };
+                    let scope = profiler.begin(rec, BIN_PASS)?;
+                    rec.bind(bin, sets[0]);
+                    rec.push(bin, &SweepPush { slice: first, ..push });
+                    rec.dispatch((padded[0] as u32).div_ceil(8), (padded[1] as u32).div_ceil(8), count as u32);
+                    profiler.end(rec, scope)?;
+                    if sync == SliceSync::Barrier {
+                        rec.barrier(&Barrier::memory(
+                            "binned_slice_write_to_stencil_read",
+                            Access::COMPUTE_WRITE,
+                            Access::COMPUTE_READ,
+                        ));
+                    }
+                }
+                let scope = profiler.begin(rec, STENCIL_PASS)?;
+                rec.bind(stencil, sets[1]);
+                for (i, chunk) in plan.stencil_chunks.iter().enumerate() {
+                    if i > 0 {
+                        rec.barrier(&Barrier::memory(
+                            "stencil_chunk_write_to_next_chunk_read",
+                            Access::COMPUTE_WRITE,
+                            Access::COMPUTE_READ_WRITE,
+                        ));
+                    }
+                    push.first_entry = chunk.start as i32;
+                    push.entry_count = chunk.len() as i32;
+                    rec.push(stencil, &push);
+                    rec.dispatch(nx.div_ceil(8), part.rows.div_ceil(8), 1);
+                }
+                profiler.end(rec, scope)?;
+                rec.barrier(&Barrier::memory(
+                    "unpacked_write_to_pack_read",
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ,
+                ));
+                let scope = profiler.begin(rec, PACK_PASS)?;
+                rec.bind(pack, sets[2]);
+                rec.push(pack, &push);
+                rec.dispatch((part.rows * nx).div_ceil(64), 1, 1);
+                profiler.end(rec, scope)?;
+                rec.barrier(&Barrier::memory(
+                    "packed_write_to_assignment_read",
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ,
+                ));
+                let histograms = 2 * part.rows as usize * nx as usize;
+                let range = AssignRange {
+                    first: 2 * part.batch_voxel,
+                    count: histograms,
+                    hint_first: 2 * part.first_row as usize * nx as usize,
+                    has_hints: z > 0,
+                };
+                assign.record(rec, profiler, range)?;
+                // The next entering slice overwrites the ring slot this
+                // stencil read; the next part rewrites the histogram and
+                // search buffers and reads the hints this one wrote.
+                rec.barrier(&Barrier::memory(
+                    "slice_reads_to_next_slice_writes",
+                    Access::COMPUTE_READ_WRITE,
+                    Access::COMPUTE_READ_WRITE,
+                ));
+            }
+            rec.barrier(&Barrier::memory("sweep_write_to_host_read", Access::COMPUTE_WRITE, Access::HOST_READ));
+            Ok(())
+        })
+    }
+}

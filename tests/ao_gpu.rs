@@ -1,0 +1,414 @@
+//! AO preprocessing on the GPU (docs/ao.md, "GPU space sweep"): the space
+//! sweep equals the brute-force CPU histograms, its assignment equals the CPU
+//! search on the same packed vectors, the slice barrier is load-bearing, and
+//! the GPU assignment of given vectors equals the CPU's for every metric.
+//! Validation and synchronization validation on: any message fails.
+
+mod common;
+
+use common::{assert_validation_clean, validated_context};
+use glam::{UVec3, Vec3};
+use sweeplab::ao::gpu::{assign_packed, GpuSweep, SliceSync, SweepInputs, BATCH_BYTES};
+use sweeplab::ao::gradient::central_gradient;
+use sweeplab::ao::histogram::LocalHistograms;
+use sweeplab::ao::packing::PackingScheme;
+use sweeplab::ao::quantize::{train_lbg, Codebook, LbgParams};
+use sweeplab::ao::search::CodebookSearch;
+use sweeplab::ao::Metric;
+use sweeplab::scene::{Volume, VoxelData};
+use sweeplab::vk::Context;
+
+/// `dims` U8 volume: seeded noise, with a constant block (zero gradient
+/// inside it) in the low corner and two plateaus, so both hemispheres, plane
+/// voxels, flat regions and borders all occur.
+fn test_volume(dims: UVec3, spacing: Vec3, seed: u64) -> Volume {
+    let mut state = seed;
+    let mut data = Vec::new();
+    for z in 0..dims.z {
+        for y in 0..dims.y {
+            for x in 0..dims.x {
+                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                let v = if x < 4 && y < 4 && z < 4 {
+                    90
+                } else if x > dims.x / 2 {
+                    200 + ((state >> 60) as u8 & 1)
+                } else {
+                    (state >> 56) as u8
+                };
+                data.push(v);
+            }
+        }
+    }
+    Volume {
+        name: "ao-gpu-test".into(),
+        dims,
+        spacing,
+        data: VoxelData::U8(data),
+        value_range: (0.0, 255.0),
+        non_finite_voxels: 0,
+    }
+}
+
+/// The global histogram's packing scheme, as `preprocess` builds it.
+fn packing_of(h: &LocalHistograms, packed_dim: usize) -> PackingScheme {
+    let mut global = vec![0f64; h.bins()];
+    for &k in h.voxel_bins() {
+        global[k as usize] += 1.0;
+    }
+    PackingScheme::from_histogram(&global, packed_dim)
+}
+
+/// The CPU-packed forward and backward histograms of every `step`-th voxel.
+fn packed_histograms(h: &LocalHistograms, packing: &PackingScheme, step: usize) -> Vec<f32> {
+    let dim = packing.packed_dim;
+    let (mut f, mut b) = (vec![0f32; h.bins()], vec![0f32; h.bins()]);
+    let mut vectors = Vec::new();
+    let mut scratch = h.scratch();
+    for voxel in (0..h.volume().voxel_count()).step_by(step) {
+        h.voxel_into(voxel, &mut scratch, &mut f, &mut b);
+        for side in [&f, &b] {
+            let mut packed = vec![0f32; dim];
+            packing.pack(side, &mut packed);
+            vectors.extend(packed);
+        }
+    }
+    vectors
+}
+
+/// A codebook trained on the packed histograms of every third voxel.
+fn codebook_of(h: &LocalHistograms, packing: &PackingScheme, clusters: usize, metric: Metric) -> Codebook {
+    let params = LbgParams { metric, clusters, max_iterations: 10, threshold: 1e-3 };
+    train_lbg(&packed_histograms(h, packing, 3), packing.packed_dim, params, &mut |_| {}).codebook
+}
+
+/// Largest |gpu - cpu| over all bins of all voxels, in units of the bin's
+/// tolerance, and how many hemisphere searches differ from the CPU search of
+/// the GPU's own (read back and CPU-packed) histograms.
+struct Comparison {
+    worst: f64,
+    search_mismatches: usize,
+    batches: usize,
+    voxels: usize,
+}
+
+/// Sweeps `volume` on the GPU and compares with the brute-force reference.
+///
+/// Tolerance, per bin: the GPU sums a bin's weights in f32 (each weight
+/// rounded to f32 once, then runs of equal bins summed before they are added),
+/// the reference in f64. Every partial sum of positive terms is at most the
+/// bin's value v, and a bin receives at most N_r terms, so with the rounding
+/// of the weights and of the normalization the GPU is off by less than
+/// (N_r + 4) u v, u = 2^-24. A bin the reference leaves empty received no
+/// weight, so the GPU's must be exactly 0.
+fn compare(
+    ctx: &Context,
+    volume: &Volume,
+    radius: u32,
+    bits: u32,
+    metric: Metric,
+    max_batch_bytes: usize,
+    sync: SliceSync,
+) -> Comparison {
+    let h = LocalHistograms::new(volume, radius, bits);
+    let stencil = h.stencil();
+    let packing = packing_of(&h, 8.min(h.bins()));
+    let codebook = codebook_of(&h, &packing, 6, metric);
+    let search = CodebookSearch::new(&codebook, metric);
+    let relative_tolerance = (stencil.voxel_count() as f64 + 4.0) * f64::from(f32::EPSILON) / 2.0;
+    let inputs = SweepInputs {
+        volume,
+        stencil,
+        bins: h.bins(),
+        packing: &packing,
+        codebook: &codebook,
+        search: &search,
+        metric,
+        max_batch_bytes,
+    };
+    let mut sweep = GpuSweep::new(ctx, &inputs).unwrap();
+    let mut result = Comparison { worst: 0.0, search_mismatches: 0, batches: 0, voxels: 0 };
+    let (mut f, mut b) = (vec![0f32; h.bins()], vec![0f32; h.bins()]);
+    let mut scratch = h.scratch();
+    let mut packed = vec![0f32; packing.packed_dim];
+    sweep
+        .run(sync, |batch| {
+            assert_eq!(batch.voxels.start, result.voxels, "batches in order");
+            result.batches += 1;
+            for (i, voxel) in batch.voxels.clone().enumerate() {
+                h.voxel_into(voxel, &mut scratch, &mut f, &mut b);
+                let normalized = |h: &[f32]| h.iter().map(|&v| v * batch.normalization).collect::<Vec<f32>>();
+                let (gf, gb) = batch.voxel(i);
+                let (gf, gb) = (normalized(gf), normalized(gb));
+                for (gpu, cpu) in [(&gf, &f), (&gb, &b)] {
+                    for (&g, &c) in gpu.iter().zip(cpu.iter()) {
+                        let off = (g as f64 - c as f64).abs() / (relative_tolerance * c as f64);
+                        result.worst = result.worst.max(if g == c { 0.0 } else { off });
+                    }
+                }
+                for (side, histogram) in [gf, gb].into_iter().enumerate() {
+                    packing.pack(&histogram, &mut packed);
+                    let state = batch.states[2 * i + side];
+                    let cpu = codebook.nearest(metric, &packed, 0);
+                    result.search_mismatches += usize::from((state.best as usize, state.best_raw) != cpu);
+                }
+            }
+            result.voxels = batch.voxels.end;
+            Ok(())
+        })
+        .unwrap();
+    assert_eq!(result.voxels, volume.voxel_count());
+    result
+}
+
+#[test]
+fn the_space_sweep_equals_brute_force_on_small_volumes() {
+    let ctx = validated_context();
+    // Isotropic and anisotropic, one batch (one submission) and many small
+    // batches of parts of slices, b = 8 and b = 4, every metric.
+    let cases = [
+        (UVec3::new(11, 9, 8), Vec3::ONE, 3, 8, Metric::L2, BATCH_BYTES),
+        (UVec3::new(10, 7, 9), Vec3::new(1.0, 1.5, 0.75), 3, 4, Metric::L1, BATCH_BYTES),
+        (UVec3::new(9, 10, 6), Vec3::new(2.0, 1.0, 1.0), 2, 8, Metric::Lmax, 3 * 9 * 2 * 257 * 4),
+    ];
+    for (i, (dims, spacing, radius, bits, metric, batch_bytes)) in cases.into_iter().enumerate() {
+        let volume = test_volume(dims, spacing, i as u64 + 1);
+        // Inside the constant block: a zero gradient (two equal hemispheres).
+        assert_eq!(central_gradient(&volume, UVec3::ONE), Vec3::ZERO);
+        let c = compare(&ctx, &volume, radius, bits, metric, batch_bytes, SliceSync::Barrier);
+        assert!(c.worst <= 1.0, "case {i}: a bin off by {:.2} tolerances", c.worst);
+        assert_eq!(c.search_mismatches, 0, "case {i}: the GPU search differs from the CPU's");
+        if batch_bytes < BATCH_BYTES {
+            assert!(c.batches > dims.z as usize, "case {i}: parts of slices in several batches: {}", c.batches);
+        } else {
+            assert_eq!(c.batches, 1, "case {i}");
+        }
+    }
+    assert_validation_clean(&ctx);
+}
+
+#[test]
+fn a_stencil_past_the_loop_cap_is_split_and_still_equals_brute_force() {
+    // r = 32: N_r = 137,064 stencil voxels, three dispatches per slice (a
+    // single one would be cut off by llvmpipe after 65,535 iterations).
+    let ctx = validated_context();
+    let volume = test_volume(UVec3::new(6, 5, 4), Vec3::ONE, 7);
+    let h = LocalHistograms::new(&volume, 32, 4);
+    assert_eq!(h.stencil().voxel_count(), 137_064);
+    let c = compare(&ctx, &volume, 32, 4, Metric::L2, BATCH_BYTES, SliceSync::Barrier);
+    assert!(c.worst <= 1.0, "a bin off by {:.2} tolerances", c.worst);
+    assert_eq!(c.search_mismatches, 0);
+    assert_validation_clean(&ctx);
+}
+
+/// The barrier between binning the entering slice and the stencil reading
+/// it is load-bearing: recorded without it, synchronization validation
+/// reports the hazard on the ring (with it, clean: the tests above).
+#[test]
+fn the_sweep_without_its_slice_barrier_is_reported_by_sync_validation() {
+    let ctx = validated_context();
+    let volume = test_volume(UVec3::new(6, 6, 5), Vec3::ONE, 3);
+    compare(&ctx, &volume, 2, 4, Metric::L2, BATCH_BYTES, SliceSync::RacyNoSliceBarrier);
+    let messages = ctx.take_validation_messages();
+    assert!(
+        messages.iter().any(|m| m.contains("SYNC-HAZARD-READ-AFTER-WRITE") && m.contains("ao binned slice ring")),
+        "the racy sweep was not reported: {messages:?}"
+    );
+}
+
+#[test]
+fn the_gpu_assignment_equals_the_cpu_search_for_every_metric_and_hint() {
+    let ctx = validated_context();
+    let volume = test_volume(UVec3::new(8, 8, 6), Vec3::ONE, 5);
+    let h = LocalHistograms::new(&volume, 2, 8);
+    let packing = packing_of(&h, 12);
+    let dim = packing.packed_dim;
+    // The CPU-packed histograms of every voxel (12 floats: not a multiple of 8).
+    let vectors = packed_histograms(&h, &packing, 1);
+    let count = vectors.len() / dim;
+    for metric in Metric::ALL {
+        let codebook = codebook_of(&h, &packing, 24, metric);
+        let search = CodebookSearch::new(&codebook, metric);
+        let hints: Vec<u32> = (0..count as u32).map(|i| (i * 7) % 24).collect();
+        for hints in [None, Some(hints.as_slice())] {
+            let gpu = assign_packed(&ctx, &vectors, &codebook, metric, hints).unwrap();
+            for (i, x) in vectors.chunks(dim).enumerate() {
+                let hint = hints.map_or(0, |h| h[i] as usize);
+                let cpu = search.nearest(x, hint);
+                assert_eq!((gpu[i].0 as usize, gpu[i].1), cpu, "{metric:?} vector {i} hint {hint}");
+                assert_eq!(cpu, codebook.nearest(metric, x, 0), "{metric:?}: the exhaustive search");
+            }
+        }
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// The whole preprocessing with `ao.backend = "gpu"` against the CPU
+/// reference on the Cornell box: the same packing and training (both on the
+/// CPU), the same cluster ids except at near ties (the histograms differ in
+/// the last bits), and the final codebook (mean unpacked histogram per
+/// cluster) to the histograms' f32 tolerance.
+#[test]
+fn gpu_preprocessing_equals_the_cpu_reference() {
+    use sweeplab::ao::quantize::{distance, unpack_cluster_ids};
+    use sweeplab::ao::{preprocess_on, AoSettings, Backend, TrainingSet};
+    let ctx = validated_context();
+    let volume = sweeplab::scene::synthetic::cornell_box(14);
+    for metric in [Metric::L2, Metric::Lmax] {
+        let settings = AoSettings {
+            radius: 3,
+            packed_dim: 16,
+            clusters: 32,
+            metric,
+            training: TrainingSet::Random { count: 1024, seed: 5 },
+            cache: false,
+            ..AoSettings::default()
+        };
+        let mut steps = Vec::new();
+        let gpu = preprocess_on(&volume, &settings, Some(&ctx), &mut |p| steps.push(p.step.to_string())).unwrap();
+        assert!(steps.iter().any(|s| s == "ao gpu sweep and assignment"), "{steps:?}");
+        let cpu_settings = AoSettings { backend: Some(Backend::Cpu), ..settings.clone() };
+        let cpu = preprocess_on(&volume, &cpu_settings, Some(&ctx), &mut |_| {}).unwrap();
+        assert_eq!(
+            (gpu.packing_matrix.clone(), gpu.packed_codebook.clone()),
+            (cpu.packing_matrix, cpu.packed_codebook)
+        );
+
+        let h = LocalHistograms::new(&volume, settings.radius, settings.bits);
+        let packing = packing_of(&h, settings.packed_dim as usize);
+        let dim = packing.packed_dim;
+        let word = |c: u32| &gpu.packed_codebook[c as usize * dim..(c as usize + 1) * dim];
+        let (mut f, mut b) = (vec![0f32; h.bins()], vec![0f32; h.bins()]);
+        let (mut packed, mut scratch, mut differing) = (vec![0f32; dim], h.scratch(), 0);
+        for voxel in 0..volume.voxel_count() {
+            if gpu.cluster_ids[voxel] == cpu.cluster_ids[voxel] {
+                continue;
+            }
+            h.voxel_into(voxel, &mut scratch, &mut f, &mut b);
+            let (g, c) = (unpack_cluster_ids(gpu.cluster_ids[voxel]), unpack_cluster_ids(cpu.cluster_ids[voxel]));
+            for (histogram, g, c) in [(&f, g.0, c.0), (&b, g.1, c.1)] {
+                packing.pack(histogram, &mut packed);
+                let (dg, dc) = (distance(metric, &packed, word(g)), distance(metric, &packed, word(c)));
+                assert!((dg - dc).abs() <= 1e-5 * dc.max(1e-12), "voxel {voxel}: no near tie, {dg} vs {dc}");
+            }
+            differing += 1;
+        }
+        assert!(differing * 1000 <= volume.voxel_count(), "{metric:?}: {differing} voxels differ");
+        let tolerance = (h.stencil().voxel_count() as f64 + 6.0) * f64::from(f32::EPSILON) / 2.0;
+        let bins = h.bins();
+        let mut compared = 0;
+        for c in 0..settings.clusters as usize {
+            if gpu.cluster_sizes[c] != cpu.cluster_sizes[c] {
+                assert!(differing > 0, "{metric:?}: cluster {c} differs in size with equal ids");
+                continue;
+            }
+            compared += 1;
+            for k in c * bins..(c + 1) * bins {
+                let (g, r) = (gpu.codebook[k] as f64, cpu.codebook[k] as f64);
+                assert!((g - r).abs() <= tolerance * r, "{metric:?}: cluster {c} bin {}: {g} vs {r}", k - c * bins);
+            }
+        }
+        assert!(compared * 10 >= 9 * settings.clusters as usize, "{metric:?}: {compared} clusters compared");
+        let (dg, dc) = (gpu.stats.assignment_distortion, cpu.stats.assignment_distortion);
+        assert!((dg - dc).abs() <= 1e-5 * dc, "{metric:?}: distortion {dg} vs {dc}");
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// GPU results are cached apart from the CPU's (they may differ in the last
+/// bits); `backend = "gpu"` without a device is an error.
+#[test]
+fn the_backend_is_part_of_the_cache_key_and_gpu_needs_a_device() {
+    use sweeplab::ao::{preprocess_cached_on, AoSettings, Backend, CacheOutcome, TrainingSet};
+    let ctx = validated_context();
+    let volume = test_volume(UVec3::new(8, 7, 6), Vec3::ONE, 9);
+    let dir = std::env::temp_dir().join(format!("sweeplab-ao-gpu-cache-{}", std::process::id()));
+    let settings = AoSettings {
+        radius: 2,
+        packed_dim: 8,
+        clusters: 4,
+        training: TrainingSet::Random { count: 64, seed: 1 },
+        cache_dir: Some(dir.to_string_lossy().into_owned()),
+        ..AoSettings::default()
+    };
+    let stored = |outcome: CacheOutcome| match outcome {
+        CacheOutcome::Stored(path, _) => path,
+        other => panic!("expected a miss and a store, got {other:?}"),
+    };
+    let (gpu, outcome) = preprocess_cached_on(&volume, &settings, Some(&ctx), &mut |_| {}).unwrap();
+    let gpu_file = stored(outcome);
+    let (cpu, outcome) = preprocess_cached_on(&volume, &settings, None, &mut |_| {}).unwrap();
+    assert_ne!(stored(outcome), gpu_file, "the CPU result is not the GPU's file");
+    let (again, outcome) = preprocess_cached_on(&volume, &settings, Some(&ctx), &mut |_| {}).unwrap();
+    assert_eq!(outcome, CacheOutcome::Hit(gpu_file));
+    assert_eq!(again, gpu);
+    assert_eq!(cpu.cluster_ids.len(), gpu.cluster_ids.len());
+    let gpu_only = AoSettings { backend: Some(Backend::Gpu), ..settings };
+    let e = preprocess_cached_on(&volume, &gpu_only, None, &mut |_| {}).unwrap_err().to_string();
+    assert!(e.contains("ao.backend = \"gpu\"") && e.contains("Vulkan device"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+    assert_validation_clean(&ctx);
+}
+
+/// Timing of the GPU preprocessing, run by hand (docs/ao.md, "Measured"):
+/// `SWEEPLAB_DATA=../shared/data AO_VOLUME=engine AO_RADIUS=8 AO_CLUSTERS=2048
+/// cargo test --release --test ao_gpu timing -- --ignored --nocapture`
+/// (`AO_VOLUME=cornell`: the 64^3 Cornell box). `AO_PASSES=1` runs the sweep
+/// a second time, with the trained codebook, for the GPU time of each pass.
+#[test]
+#[ignore = "a measurement of minutes, not a check"]
+fn gpu_preprocessing_timing() {
+    use std::time::Instant;
+    use sweeplab::ao::gpu::assign_volume;
+    use sweeplab::ao::{preprocess_on, AoSettings};
+    let var = |name: &str| std::env::var(name).ok();
+    let number = |name: &str, default: u32| var(name).and_then(|v| v.parse().ok()).unwrap_or(default);
+    let volume = match var("AO_VOLUME").as_deref() {
+        Some("engine") => {
+            let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
+            sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)")
+        }
+        _ => sweeplab::scene::synthetic::cornell_box(64),
+    };
+    let settings = AoSettings {
+        radius: number("AO_RADIUS", 8),
+        clusters: number("AO_CLUSTERS", 2048),
+        cache: false,
+        ..AoSettings::default()
+    };
+    let ctx = Context::new(&Default::default()).expect("a Vulkan device");
+    let started = Instant::now();
+    let mut last = String::new();
+    let r = preprocess_on(&volume, &settings, Some(&ctx), &mut |p| {
+        if p.step != last || p.fraction >= 1.0 {
+            eprintln!("{}", p.line());
+            last = p.step.to_string();
+        }
+    })
+    .unwrap();
+    let t = &r.stats.timings;
+    let stencil = sweeplab::ao::histogram::SphereStencil::new(settings.radius, volume.spacing).voxel_count();
+    eprintln!(
+        "{} {} r = {} (N_r {stencil}) n_c = {} packed {}: total {:.1} s = packing {:.2} + TS histograms (CPU) {:.2} \
+         + training {:.2} ({} Lloyd iterations) + GPU sweep and assignment {:.2}",
+        volume.name,
+        volume.dims,
+        settings.radius,
+        settings.clusters,
+        settings.packed_dim,
+        started.elapsed().as_secs_f64(),
+        t.packing,
+        t.training_histograms,
+        t.training,
+        r.stats.lloyd_iterations,
+        t.assignment,
+    );
+    if var("AO_PASSES").is_some() {
+        let h = LocalHistograms::new(&volume, settings.radius, settings.bits);
+        let packing = packing_of(&h, settings.packed_dim as usize);
+        let codebook = Codebook { dim: packing.packed_dim, words: r.packed_codebook.clone() };
+        let started = Instant::now();
+        let (again, passes) = assign_volume(&ctx, &h, &packing, &codebook, settings.metric, &mut |_| {}).unwrap();
+        assert_eq!(again.cluster_ids, r.cluster_ids);
+        eprintln!("second sweep {:.2} s; GPU ms per pass: {passes:?}", started.elapsed().as_secs_f64());
+    }
+}
