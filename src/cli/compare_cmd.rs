@@ -29,6 +29,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
         eprintln!("warning: {warning}");
     }
     let ctx = session::open(&args.gpu)?;
+    session::report_long_waits(&ctx);
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let tested = render(&gpu, technique, w, h, &mut profiler).with_context(|| format!("rendering {technique}"))?;

@@ -24,6 +24,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     super::ao_progress::prepare(&scene, technique)?;
     let ctx = session::open(&args.gpu)?;
+    session::report_long_waits(&ctx);
     let output = {
         let gpu =
             GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;

@@ -3,15 +3,39 @@
 use super::args::GpuArgs;
 use anyhow::Context as _;
 use std::process::ExitCode;
+use std::time::Duration;
 use sweeplab::bench::Harness;
 use sweeplab::render::VolumeTexels;
-use sweeplab::vk::{Context, ContextOptions};
+use sweeplab::vk::{Context, ContextOptions, WaitReport, WaitReporter};
 
 pub fn open(gpu: &GpuArgs) -> anyhow::Result<Context> {
     let options = ContextOptions { device: gpu.device.clone(), validate: gpu.validate }.with_env();
     let ctx = Context::new(&options).context("cannot start Vulkan")?;
     eprintln!("{}", ctx.summary());
     Ok(ctx)
+}
+
+/// A submission that runs longer than this prints that it is still running.
+const LONG_WAIT: Duration = Duration::from_secs(2);
+
+/// Long renders show progress: while the host waits for a submission that has
+/// run past [`LONG_WAIT`], a line on stderr every [`LONG_WAIT`] with how long
+/// and what it holds (a frame is one submission, so the device cannot say how
+/// far into it it is without timestamps that would perturb it).
+pub fn report_long_waits(ctx: &Context) {
+    ctx.set_wait_reporter(Some(WaitReporter {
+        after: LONG_WAIT,
+        every: LONG_WAIT,
+        report: Box::new(|r: &WaitReport| {
+            eprintln!(
+                "{}: still running on the device after {:.0} s ({} dispatches, {} barriers)",
+                r.name,
+                r.elapsed.as_secs_f64(),
+                r.dispatches,
+                r.barriers
+            )
+        }),
+    }));
 }
 
 /// Prints the validation messages, if any, and turns them into a failing exit code.

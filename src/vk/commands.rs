@@ -6,9 +6,11 @@ use super::context::Context;
 use super::error::{VkError, VkResultExt};
 use super::pipeline::ComputePipeline;
 use super::resources::{color_layers, Buffer, Image};
+use super::wait_report::{wait_for_fence, WaitReport};
 use ash::vk;
 use bytemuck::Pod;
 use std::ffi::CString;
+use std::time::Duration;
 
 pub struct Recorder<'a> {
     pub ctx: &'a Context,
@@ -401,8 +403,9 @@ pub fn submit_and_wait_or<R, E: From<VkError>>(
         }
     };
     // SAFETY: we wait on the fence before the pool (and its command buffers) is destroyed.
-    let waited =
-        submitted.and_then(|_| unsafe { device.wait_for_fences(&[fence], true, u64::MAX) }.call("vkWaitForFences"));
+    let report =
+        WaitReport { name, elapsed: Duration::ZERO, dispatches: rec.dispatch_count, barriers: rec.barrier_count };
+    let waited = submitted.and_then(|_| wait_for_fence(ctx, fence, report));
     // SAFETY: the fence is signalled or the submission failed; either way it is unused now.
     unsafe { device.destroy_fence(fence, None) };
     waited?;

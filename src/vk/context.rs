@@ -4,9 +4,10 @@ use super::device_info::{self, DeviceInfo};
 use super::error::{VkError, VkResultExt};
 use super::memory::GpuMemory;
 use super::validation::{self, ValidationLog};
+use super::wait_report::WaitReporter;
 use ash::vk;
 use std::ffi::{CStr, CString};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 pub const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
 /// Environment variable that names the device (like `--device`).
@@ -53,6 +54,8 @@ pub struct Context {
     pub memory: Arc<GpuMemory>,
     /// shaderInt64 and shaderBufferInt64Atomics are enabled (the device has them).
     pub int64_atomics: bool,
+    /// Reports on long waits for a submission ([`super::wait_report`]).
+    wait_reporter: Mutex<Option<Arc<WaitReporter>>>,
 }
 
 struct Candidate {
@@ -289,7 +292,18 @@ impl Context {
             queue_family,
             memory,
             int64_atomics,
+            wait_reporter: Mutex::new(None),
         })
+    }
+
+    /// Sets (or with `None` clears) what reports on long waits for a
+    /// submission ([`super::wait_report`]).
+    pub fn set_wait_reporter(&self, reporter: Option<WaitReporter>) {
+        *self.wait_reporter.lock().unwrap_or_else(|p| p.into_inner()) = reporter.map(Arc::new);
+    }
+
+    pub(super) fn wait_reporter(&self) -> Option<Arc<WaitReporter>> {
+        self.wait_reporter.lock().unwrap_or_else(|p| p.into_inner()).clone()
     }
 
     /// Validation messages collected so far (empty when validation is off).

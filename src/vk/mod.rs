@@ -17,6 +17,7 @@ pub mod resources;
 pub mod surface;
 pub mod swapchain;
 pub mod validation;
+pub mod wait_report;
 
 pub use barriers::Barrier;
 pub use commands::Recorder;
@@ -27,3 +28,4 @@ pub use profiler::{ProfileReport, Profiler, ScopeTimeline};
 pub use resources::{Buffer, Image};
 pub use surface::Surface;
 pub use swapchain::Swapchain;
+pub use wait_report::{WaitReport, WaitReporter};

@@ -234,9 +234,9 @@ pub fn stability_cases(dir: &Path, size: u32) -> Vec<StabilityCase> {
         StabilityCase::new("4096x1x1", "4096x1x1 volume", text(&ramp(&rod), LIGHT)).bench_only(),
         StabilityCase::new("spacing-1000", "spacing 1:1:1000", text(&ramp(&flat), LIGHT)),
         StabilityCase::new("nan-voxels", "NaN/Inf voxels", text(&auto(&nan), LIGHT))
-            .warns(|w| matches!(w, SceneWarning::NonFiniteVoxels { .. }))
-            // +inf voxels on the faces read as 1: dense spikes the box cuts.
-            .technique_warns(LIGHT_GRIDS),
+            // +inf voxels on the faces read as 1: dense spikes, too few (1 %)
+            // for a cut medium, and the cells stay within their bounds.
+            .warns(|w| matches!(w, SceneWarning::NonFiniteVoxels { .. })),
         StabilityCase::new("constant", "constant volume, automatic TF", text(&auto(&constant), LIGHT))
             .warns(|w| matches!(w, SceneWarning::ConstantVolume { .. })),
     ]
