@@ -323,9 +323,10 @@ fn view_log(x: &Xvfb, name: &str, technique: &str, size: &str, frames: &str) -> 
 #[test]
 fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
     let x = xvfb_or_skip!();
-    // DVR and the light volume record into the frame slot's command buffer:
-    // their scopes and the present pass's are in one profile, no upload.
-    for technique in ["dvr", "lightvolume"] {
+    // DVR, the ground truth and the light volume record into the frame slot's
+    // command buffer: their scopes and the present pass's are in one profile,
+    // no upload.
+    for technique in ["dvr", "reference", "lightvolume"] {
         for f in view_log(&x, technique, technique, "32x32", "3") {
             let p = passes(&f);
             assert!(p.iter().any(|s| s.starts_with(technique)), "{technique}: {p:?}");
