@@ -10,7 +10,7 @@ use std::process::{Child, Command, Output, Stdio};
 use std::sync::atomic::{AtomicU32, Ordering};
 use std::time::{Duration, Instant};
 
-/// An Xvfb server this test started; killed (by its own pid) on drop.
+/// An Xvfb server this test started; ended (by its own pid) on drop.
 struct Xvfb {
     child: Child,
     display: String,
@@ -18,8 +18,30 @@ struct Xvfb {
 
 impl Drop for Xvfb {
     fn drop(&mut self) {
+        // SIGTERM, so that it removes its socket and lock file (after SIGKILL
+        // they stay, and a hundred runs later no display looked free).
+        let ended = Command::new("kill").args(["-TERM", &self.child.id().to_string()]).status();
+        if ended.is_ok_and(|s| s.success()) {
+            let start = Instant::now();
+            while start.elapsed() < Duration::from_secs(5) {
+                if let Ok(Some(_)) = self.child.try_wait() {
+                    return;
+                }
+                std::thread::sleep(Duration::from_millis(20));
+            }
+        }
         let _ = self.child.kill();
         let _ = self.child.wait();
+    }
+}
+
+/// Whether display `n` belongs to a running X server: its lock file names a
+/// live process (a killed server leaves its lock file and socket behind, and
+/// a new server takes such a display over).
+fn display_in_use(n: u32) -> bool {
+    match std::fs::read_to_string(format!("/tmp/.X{n}-lock")) {
+        Ok(pid) => Path::new(&format!("/proc/{}", pid.trim())).exists(),
+        Err(_) => PathBuf::from(format!("/tmp/.X11-unix/X{n}")).exists(),
     }
 }
 
@@ -34,9 +56,11 @@ fn start_xvfb() -> Result<Xvfb, String> {
             break;
         }
         let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-        if socket.exists() || Path::new(&format!("/tmp/.X{n}-lock")).exists() {
+        if display_in_use(n) {
             continue;
         }
+        // A dead server's socket: ours replaces it once it listens.
+        let stale = socket.exists();
         let child = Command::new("Xvfb")
             .args([format!(":{n}").as_str(), "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
             .stdout(Stdio::null())
@@ -45,8 +69,13 @@ fn start_xvfb() -> Result<Xvfb, String> {
             .map_err(|e| format!("cannot start Xvfb ({e}); tools/setup.sh installs it"))?;
         let mut server = Xvfb { child, display: format!(":{n}") };
         let start = Instant::now();
+        // Over a dead server's files, ours has taken the display once its
+        // lock file names it.
+        let ours = |pid: u32| {
+            !stale || std::fs::read_to_string(format!("/tmp/.X{n}-lock")).is_ok_and(|p| p.trim() == pid.to_string())
+        };
         while start.elapsed() < Duration::from_secs(10) {
-            if socket.exists() {
+            if socket.exists() && ours(server.child.id()) {
                 // Ours only if our server is still running (another process may
                 // have taken the display first, and ours then exits).
                 std::thread::sleep(Duration::from_millis(100));
@@ -323,9 +352,10 @@ fn view_log(x: &Xvfb, name: &str, technique: &str, size: &str, frames: &str) -> 
 #[test]
 fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
     let x = xvfb_or_skip!();
-    // DVR and the light volume record into the frame slot's command buffer:
-    // their scopes and the present pass's are in one profile, no upload.
-    for technique in ["dvr", "lightvolume"] {
+    // DVR, the ground truth and the light volume record into the frame slot's
+    // command buffer: their scopes and the present pass's are in one profile,
+    // no upload.
+    for technique in ["dvr", "reference", "lightvolume"] {
         for f in view_log(&x, technique, technique, "32x32", "3") {
             let p = passes(&f);
             assert!(p.iter().any(|s| s.starts_with(technique)), "{technique}: {p:?}");

@@ -5,16 +5,18 @@
 //! travel between dispatches through a ping-pong pair of images.
 
 use crate::render::frame_params::{frame_params, FrameParams, MarchSteps};
-use crate::render::{FrameResult, GpuScene, OutputImage, RenderError, RenderTechnique, ResourceNeed};
+use crate::render::{
+    render_recorded, FrameResult, GpuScene, OutputImage, RecordedFrame, RenderError, RenderTechnique, ResourceNeed,
+};
 use crate::scene::{OpticalModel, Scene};
 use crate::shaders::reference as shader;
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
-use crate::vk::{Buffer, Profiler};
+use crate::vk::{Buffer, Profiler, Recorder};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
 
 /// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
 pub const LOOP_BUDGET: u64 = 60_000;
@@ -112,6 +114,16 @@ impl RenderTechnique for Reference {
     ) -> Result<FrameResult, RenderError> {
         render_with(gpu, width, height, profiler, ChunkSync::Barrier)
     }
+    fn record(
+        &self,
+        gpu: &GpuScene,
+        rec: &mut Recorder,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<Option<RecordedFrame>, RenderError> {
+        record_with(gpu, (width, height), rec, profiler, ChunkSync::Barrier).map(Some)
+    }
 }
 
 pub fn render_with(
@@ -121,6 +133,18 @@ pub fn render_with(
     profiler: &mut Profiler,
     sync: ChunkSync,
 ) -> Result<FrameResult, RenderError> {
+    render_recorded(gpu, |rec| record_with(gpu, (width, height), rec, profiler, sync))
+}
+
+/// Records the frame into `rec` (see [`RecordedFrame`]): the image the last
+/// chunk wrote is the output.
+pub fn record_with(
+    gpu: &GpuScene,
+    (width, height): (u32, u32),
+    rec: &mut Recorder,
+    profiler: &mut Profiler,
+    sync: ChunkSync,
+) -> Result<RecordedFrame, RenderError> {
     let ctx = gpu.ctx;
     let scene = gpu.scene;
     let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::reference(scene));
@@ -159,40 +183,37 @@ pub fn render_with(
         ])?);
     }
     let plan = plan_for(gpu);
-    let readback = accum[0].readback_buffer(ctx)?;
     let mut last_written = 0;
-    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
-        for a in &accum {
-            a.prepare_for_compute_read_write(rec);
+    for a in &accum {
+        a.prepare_for_compute_read_write(rec);
+    }
+    let scope = profiler.begin(rec, "reference")?;
+    for chunk in 0..plan.chunks {
+        if chunk > 0 && sync == ChunkSync::Barrier {
+            // The next chunk reads what this one wrote, and overwrites what the
+            // one before read: a write->read and read->write dependency.
+            rec.barrier(&Barrier::memory(
+                "accum_write_to_next_chunk_read",
+                Access::COMPUTE_WRITE,
+                Access::COMPUTE_READ_WRITE,
+            ));
         }
-        let scope = profiler.begin(rec, "reference")?;
-        for chunk in 0..plan.chunks {
-            if chunk > 0 && sync == ChunkSync::Barrier {
-                // The next chunk reads what this one wrote, and overwrites what the
-                // one before read: a write->read and read->write dependency.
-                rec.barrier(&Barrier::memory(
-                    "accum_write_to_next_chunk_read",
-                    Access::COMPUTE_WRITE,
-                    Access::COMPUTE_READ_WRITE,
-                ));
-            }
-            let detail = profiler.begin_detail(rec, "reference_chunk")?;
-            let set_index = (chunk % 2) as usize;
-            rec.bind(&pipeline, sets[set_index]);
-            let push = ChunkPush {
-                first_sample: (chunk * plan.samples_per_chunk) as u32,
-                sample_count: plan.samples_per_chunk as u32,
-                is_first: (chunk == 0) as u32,
-                is_last: (chunk + 1 == plan.chunks) as u32,
-            };
-            rec.push(&pipeline, &push);
-            rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
-            profiler.end(rec, detail)?;
-            last_written = 1 - set_index;
-        }
-        profiler.end(rec, scope)?;
-        accum[last_written].record_readback(rec, &readback);
-        Ok((rec.dispatch_count, rec.barrier_count))
-    })?;
-    Ok(FrameResult { image: accum[last_written].read(&readback)?, dispatches, barriers })
+        let detail = profiler.begin_detail(rec, "reference_chunk")?;
+        let set_index = (chunk % 2) as usize;
+        rec.bind(&pipeline, sets[set_index]);
+        let push = ChunkPush {
+            first_sample: (chunk * plan.samples_per_chunk) as u32,
+            sample_count: plan.samples_per_chunk as u32,
+            is_first: (chunk == 0) as u32,
+            is_last: (chunk + 1 == plan.chunks) as u32,
+        };
+        rec.push(&pipeline, &push);
+        rec.dispatch(width.div_ceil(8), height.div_ceil(8), 1);
+        profiler.end(rec, detail)?;
+        last_written = 1 - set_index;
+    }
+    profiler.end(rec, scope)?;
+    let [a, b] = accum;
+    let (output, other) = if last_written == 0 { (a, b) } else { (b, a) };
+    Ok(RecordedFrame::counted(rec, Arc::new(output), vec![Box::new(other), Box::new(frame), Box::new(pipeline)]))
 }

@@ -117,7 +117,8 @@ pub fn render(
 }
 
 /// One frame of `technique` by `frame` (its `render`, or a [`FrameSession`]'s
-/// frame), with the profile of that frame: what `render` and the viewer share.
+/// frame), with the profile of that frame: what `render` and the viewer (for a
+/// technique that cannot record into the viewer's command buffer) share.
 pub fn profiled_frame(
     gpu: &GpuScene,
     technique: Technique,

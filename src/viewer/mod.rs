@@ -9,7 +9,8 @@
 //! ([`frame_loop`]), the edited scene ([`live_scene`]), mouse camera control
 //! ([`controls`]), scripted runs ([`script`]), the per-frame log ([`report`]),
 //! the control panel and live profiler ([`ui`]), its transfer-function editor
-//! ([`tf_editor`]).
+//! ([`tf_editor`]) and its controls for every technique's settings
+//! ([`settings_panel`]).
 //! The surface and swapchain wrappers live in `crate::vk`.
 
 pub mod controls;
@@ -20,6 +21,7 @@ pub mod live_scene;
 pub mod present_pass;
 pub mod report;
 pub mod script;
+pub mod settings_panel;
 pub mod tf_editor;
 pub mod ui;
 pub mod window;

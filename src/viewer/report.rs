@@ -1,6 +1,7 @@
 //! What the viewer measured, frame by frame: the technique's passes and GPU
 //! time, the present pass, the wall-clock frame time, and the light volume's
-//! update decision. Written as JSON by `--log-json`.
+//! update decision. The GPU figures are filled in once the frame's slot
+//! fence was waited. Written as JSON by `--log-json`.
 
 use serde::Serialize;
 
@@ -11,7 +12,8 @@ pub struct FrameRecord {
     pub height: u32,
     /// Wall clock from the previous frame's present to this one's.
     pub frame_ms: f64,
-    /// Wall clock of the technique's frame on the host (record, submit, wait, read).
+    /// Wall clock of the technique's frame on the host: its recording (for a
+    /// technique that renders by its own submission: record, submit, wait, read).
     pub render_ms: f64,
     /// The technique's GPU time (sum of its root scopes).
     pub gpu_ms: f64,
@@ -23,7 +25,8 @@ pub struct FrameRecord {
     pub ui_cpu_ms: f64,
     pub dispatches: u32,
     pub barriers: u32,
-    /// The technique's profile scopes, by path.
+    /// The frame's profile scopes, by path: the technique's, then the
+    /// viewer's (`frame_upload` where the frame was uploaded, `present_blit`, `ui`).
     pub passes: Vec<String>,
     /// The light volume's update and its reason.
     pub decision: Option<String>,

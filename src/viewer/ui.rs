@@ -6,6 +6,7 @@
 //! applies them through the same checks as `--set`.
 
 use super::report::FrameRecord;
+use super::settings_panel::{SettingsPanel, TABLES};
 use super::tf_editor::TfEditor;
 use crate::render::Technique;
 use crate::scene::presets::PRESET_NAMES;
@@ -86,7 +87,14 @@ pub struct Ui {
     pending_free: Vec<egui::TextureId>,
     /// Host time of the last panel (layout and tessellation).
     pub cpu_ms: f64,
+    state: PanelState,
+}
+
+/// What the panel's editors keep between frames.
+#[derive(Default)]
+struct PanelState {
     tf_editor: TfEditor,
+    settings: SettingsPanel,
 }
 
 impl Ui {
@@ -114,7 +122,7 @@ impl Ui {
             pixels_per_point: 1.0,
             pending_free: Vec::new(),
             cpu_ms: 0.0,
-            tf_editor: TfEditor::default(),
+            state: PanelState::default(),
         })
     }
 
@@ -127,8 +135,8 @@ impl Ui {
     ) -> Result<(Vec<UiEdit>, egui::PlatformOutput), VkError> {
         let started = Instant::now();
         let mut edits = Vec::new();
-        let tf_editor = &mut self.tf_editor;
-        let output = self.egui.run(input, |ctx| panel(ctx, view, tf_editor, &mut edits));
+        let state = &mut self.state;
+        let output = self.egui.run(input, |ctx| panel(ctx, view, state, &mut edits));
         self.pixels_per_point = output.pixels_per_point;
         self.primitives = self.egui.tessellate(output.shapes, output.pixels_per_point);
         if !output.textures_delta.set.is_empty() {
@@ -166,12 +174,12 @@ impl Drop for Ui {
     }
 }
 
-fn panel(ctx: &egui::Context, view: &PanelView, tf_editor: &mut TfEditor, edits: &mut Vec<UiEdit>) {
+fn panel(ctx: &egui::Context, view: &PanelView, state: &mut PanelState, edits: &mut Vec<UiEdit>) {
     egui::SidePanel::left("controls").default_width(260.0).show(ctx, |ui| {
         egui::ScrollArea::vertical().show(ui, |ui| {
-            technique_section(ui, view, edits);
+            technique_section(ui, view, &mut state.settings, edits);
             ui.separator();
-            transfer_section(ui, view, tf_editor, edits);
+            transfer_section(ui, view, &mut state.tf_editor, edits);
             ui.separator();
             lights_section(ui, view, edits);
             ui.separator();
@@ -184,7 +192,7 @@ fn panel(ctx: &egui::Context, view: &PanelView, tf_editor: &mut TfEditor, edits:
     });
 }
 
-fn technique_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) {
+fn technique_section(ui: &mut egui::Ui, view: &PanelView, settings: &mut SettingsPanel, edits: &mut Vec<UiEdit>) {
     ui.heading("Technique");
     let mut chosen = view.technique;
     egui::ComboBox::from_label("technique").selected_text(chosen.name()).show_ui(ui, |ui| {
@@ -195,47 +203,11 @@ fn technique_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit
     if chosen != view.technique {
         edits.push(UiEdit::Technique(chosen));
     }
-    let s = &view.scene.settings;
-    match view.technique.name() {
-        "ipsvi" => {
-            let mut sync = s.ipsvi.sync;
-            egui::ComboBox::from_label("sync strategy").selected_text(sync.name()).show_ui(ui, |ui| {
-                for strategy in crate::ipsvi::sync_strategy::SyncStrategy::ALL {
-                    ui.selectable_value(&mut sync, strategy, strategy.name());
-                }
-            });
-            if sync != s.ipsvi.sync {
-                edits.push(UiEdit::Set(format!("ipsvi.sync={}", sync.name())));
-            }
-            slider_u32(ui, "line width", s.ipsvi.line_width, 1..=16, "ipsvi.line_width", edits);
-            slider_u32(ui, "cache size", s.ipsvi.cache_size, 16..=1024, "ipsvi.cache_size", edits);
-            toggle(ui, "piecewise", s.ipsvi.piecewise, "ipsvi.piecewise", edits);
-        }
-        "lightvolume" => {
-            let mut scale = s.lightvolume.scale;
-            ui.horizontal(|ui| {
-                ui.label("scale");
-                for v in [1, 2, 4] {
-                    ui.selectable_value(&mut scale, v, format!("{v}"));
-                }
-            });
-            if scale != s.lightvolume.scale {
-                edits.push(UiEdit::Set(format!("lightvolume.scale={scale}")));
-            }
-            toggle(ui, "coherent", s.lightvolume.coherent, "lightvolume.coherent", edits);
-            toggle(ui, "compensated", s.lightvolume.compensated, "lightvolume.compensated", edits);
-            toggle(ui, "shared medium", s.lightvolume.shared_medium, "lightvolume.shared_medium", edits);
-        }
-        "half-angle" => slider_u32(
-            ui,
-            "light buffer",
-            s.half_angle.light_buffer_size,
-            32..=1024,
-            "half_angle.light_buffer_size",
-            edits,
-        ),
-        _ => {}
-    }
+    let open = match view.technique.name() {
+        "half-angle" => Some("half_angle"),
+        name => TABLES.into_iter().find(|t| *t == name),
+    };
+    settings.show(ui, view.scene, open, edits);
 }
 
 fn transfer_section(ui: &mut egui::Ui, view: &PanelView, tf_editor: &mut TfEditor, edits: &mut Vec<UiEdit>) {
@@ -250,29 +222,6 @@ fn transfer_section(ui: &mut egui::Ui, view: &PanelView, tf_editor: &mut TfEdito
             }
         }
     });
-}
-
-fn slider_u32(
-    ui: &mut egui::Ui,
-    label: &str,
-    value: u32,
-    range: std::ops::RangeInclusive<u32>,
-    key: &str,
-    edits: &mut Vec<UiEdit>,
-) {
-    let mut v = value;
-    let r = ui.add(egui::Slider::new(&mut v, range).text(label));
-    // Applied when the drag ends: each value rebuilds the technique.
-    if v != value && !r.dragged() {
-        edits.push(UiEdit::Set(format!("{key}={v}")));
-    }
-}
-
-fn toggle(ui: &mut egui::Ui, label: &str, value: bool, key: &str, edits: &mut Vec<UiEdit>) {
-    let mut v = value;
-    if ui.checkbox(&mut v, label).changed() {
-        edits.push(UiEdit::Set(format!("{key}={v}")));
-    }
 }
 
 fn lights_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) {
