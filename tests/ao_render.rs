@@ -213,3 +213,49 @@ fn every_mode_renders_validation_clean_and_differs_from_the_others() {
     }
     assert_validation_clean(&ctx);
 }
+
+/// The two goals on tests/scenes/cornell-box.toml (64^3, r = 8,
+/// n_c = 2048, b = 8): the TF-change GPU time and the frame's overhead over
+/// Blinn-Phong at 512x512, medians of alternating runs. A measurement, not a
+/// check: `cargo test --release --test ao_render goals -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn goals_tf_change_time_and_overhead_over_blinn_phong() {
+    let _one_at_a_time = PREPROCESSING.lock().unwrap_or_else(|p| p.into_inner());
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/cornell-box.toml");
+    let mut scene = sweeplab::scene::scene_file::load_scene(&path, &[]).unwrap();
+    (scene.render.width, scene.render.height) = (512, 512);
+    let settings = scene.settings.ao.clone();
+    assert_eq!((settings.clusters, settings.bits), (2048, 8));
+    let started = std::time::Instant::now();
+    let pre = preprocessed(&scene.volume, &settings, &mut |_| {}).unwrap();
+    println!("preprocessing (or its cache): {:.1} s", started.elapsed().as_secs_f64());
+    let ctx = sweeplab::vk::Context::new(&Default::default()).unwrap(); // no validation: timing
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    let renderer = AoRenderer::new(&gpu, &pre, &settings).unwrap();
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let mut updates = Vec::new();
+    for _ in 0..15 {
+        profiler.reset();
+        renderer.update_environment(&gpu, &mut profiler).unwrap();
+        updates.push(profiler.resolve(0).unwrap().pass_ms("ao_environment"));
+    }
+    let (mut ao, mut phong) = (Vec::new(), Vec::new());
+    for _ in 0..5 {
+        profiler.reset();
+        renderer.frame(&gpu, (512, 512), &mut profiler).unwrap();
+        ao.push(profiler.resolve(0).unwrap().pass_ms("ao"));
+        phong.push(render(&gpu, Technique::Phong, 512, 512, &mut profiler).unwrap().profile.pass_ms("phong"));
+    }
+    println!(
+        "TF change (n_c = {}, b = 8): median {:.2} ms GPU of {updates:.2?}",
+        pre.clusters,
+        median(updates.clone())
+    );
+    let (a, p) = (median(ao.clone()), median(phong.clone()));
+    println!("512x512: ao {a:.1} ms, phong {p:.1} ms, overhead {:.2}x (ao {ao:.1?}, phong {phong:.1?})", a / p);
+}

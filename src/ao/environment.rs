@@ -67,16 +67,17 @@ crate::assert_gpu_layout!(
     [clusters, bins, inv_mass, glow_low, glow_high, pad0, pad1, pad2]
 );
 
-/// h(j) of section 4.4: `glow_max` for intensities in `glow_range`, else 1.
+/// h(j) of section 4.4: h_max (`glow_max`, applied by the renderer) for
+/// intensities in `glow_range`, else 1. The lookup's glow block needs only
+/// which intensities glow.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GlowMapping {
-    pub max: f32,
     pub range: [f32; 2],
 }
 
 impl GlowMapping {
     pub fn from_settings(s: &AoSettings) -> Option<GlowMapping> {
-        s.mode.has_glow().then_some(GlowMapping { max: s.glow_max, range: s.glow_range })
+        s.mode.has_glow().then_some(GlowMapping { range: s.glow_range })
     }
 
     /// Whether intensity `s` glows: (h(s) - 1) / (h_max - 1), 1 or 0.
@@ -204,8 +205,8 @@ impl GpuEnvironment {
             (shader::ENVIRONMENT, Resource::StorageBuffer(&env)),
             (shader::BIN_WEIGHTS, Resource::StorageBuffer(&bin_weights)),
         ])?;
-        let g = glow.unwrap_or(GlowMapping { max: 1.0, range: [1.0, 0.0] });
-        // h_max itself is the renderer's (it weights the glow colour into E_env).
+        // No glow: an empty band (the shader does not read it then).
+        let g = glow.unwrap_or(GlowMapping { range: [1.0, 0.0] });
         let params = EnvParams {
             clusters,
             bins,

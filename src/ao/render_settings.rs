@@ -53,11 +53,6 @@ impl AoMode {
         self as u32
     }
 
-    /// Whether the frame reads the backward hemisphere's lookup too.
-    pub fn reads_both_hemispheres(self) -> bool {
-        self == AoMode::Phase
-    }
-
     /// Whether the environment lookup carries the glow table.
     pub fn has_glow(self) -> bool {
         self == AoMode::Glow

@@ -57,6 +57,11 @@ pub enum BenchCommand {
     /// step 1..1/16 voxel; CSV/JSON/Markdown and a heat map PNG. Exit status 1
     /// if any cell failed.
     Stability(BenchStabilityArgs),
+    /// Ambient occlusion from clustered histograms (the 2008 paper): sweeps r,
+    /// bits, packed dimension, n_c and metric with preprocessing time per step,
+    /// codebook error, image RMSE against the unclustered histograms and the
+    /// ground truth, TF-change update and frame time against Blinn-Phong.
+    Ao(BenchAoArgs),
 }
 
 #[derive(Args, Debug)]
@@ -77,6 +82,39 @@ pub struct BenchStabilityArgs {
     pub techniques: Vec<String>,
     /// Timed frames per cell after one untimed warm-up frame; the median GPU time is reported.
     #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
+}
+
+#[derive(Args, Debug)]
+pub struct BenchAoArgs {
+    /// Without --scene/--volume: the Cornell box (tests/scenes/cornell-box.toml). --size sets the
+    /// image (default 256x256).
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+    #[arg(long, default_value = "bench-ao")]
+    pub out: PathBuf,
+    /// Sphere radii r (voxels). Comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![8])]
+    pub radii: Vec<u32>,
+    /// Intensity bits b (2^b bins). Comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![8])]
+    pub bits: Vec<u32>,
+    /// Packed histogram dimensions. Comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![64])]
+    pub packed_dims: Vec<u32>,
+    /// Codebook sizes n_c (the paper's figure 6: 256, 512, 1024). Comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![256, 512, 1024, 2048])]
+    pub clusters: Vec<u32>,
+    /// Metrics of the vector quantization: l2, l1, lmax. Comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec!["l2".to_string(), "l1".to_string(), "lmax".to_string()])]
+    pub metrics: Vec<String>,
+    /// Direction pairs of the ground truth per voxel.
+    #[arg(long, default_value_t = 32)]
+    pub reference_pairs: u32,
+    /// Timed runs per measurement after an untimed warm-up; the median is reported.
+    #[arg(long, default_value_t = 3)]
     pub repeat: u32,
 }
 

@@ -1,5 +1,6 @@
 mod ao_progress;
 pub mod args;
+mod bench_ao;
 mod bench_args;
 mod bench_breakdown;
 mod bench_ipsvi;
@@ -29,5 +30,6 @@ pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
         args::Command::Bench(args::BenchCommand::Table1(a)) => bench_table1::run(&a),
         args::Command::Bench(args::BenchCommand::Lights(a)) => bench_lights::run(&a),
         args::Command::Bench(args::BenchCommand::Stability(a)) => bench_stability::run(&a),
+        args::Command::Bench(args::BenchCommand::Ao(a)) => bench_ao::run(&a),
     }
 }

@@ -15,7 +15,7 @@ pub struct TechniqueSettings {
     pub ipsvi: IpsviSettings,
     pub lightvolume: LightVolumeSettings,
     pub half_angle: HalfAngleSettings,
-    /// Ambient occlusion's preprocessing (`[ao]`); no renderer reads it yet.
+    /// Ambient occlusion (`[ao]`): its preprocessing and technique `ao`.
     pub ao: AoSettings,
 }
 

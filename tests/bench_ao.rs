@@ -1,0 +1,60 @@
+//! `sweeplab bench ao` as a user runs it, at a tiny size: every configuration
+//! a row with its measurements, the reports and charts written; bad list
+//! values refused by name before any GPU work.
+
+mod common;
+
+use common::cli::*;
+use sweeplab::bench::BenchTable;
+
+#[test]
+fn bench_ao_writes_a_row_per_configuration_with_its_figures() {
+    let dir = temp_dir("bench-ao");
+    let out = dir.join("report");
+    let o = sweeplab(&[
+        "bench",
+        "ao",
+        "--set",
+        "volume.size=16",
+        "--set",
+        "ao.cache=false",
+        "--size",
+        "32x32",
+        "--radii",
+        "3",
+        "--packed-dims",
+        "16",
+        "--clusters",
+        "4,16",
+        "--metrics",
+        "l2,l1",
+        "--reference-pairs",
+        "4",
+        "--repeat",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = BenchTable::read_json(out.join("ao.json")).unwrap();
+    assert_eq!(table.rows.len(), 4, "2 n_c x 2 metrics");
+    for key in
+        ["preprocess_s", "assignment_distortion", "update_ms", "ao_ms", "phong_ms", "rmse_unclustered", "rmse_truth"]
+    {
+        let values = table.column_f64(key);
+        assert_eq!(values.len(), 4, "{key}");
+        assert!(values.iter().all(|v| v.is_finite() && *v >= 0.0), "{key}: {values:?}");
+    }
+    for file in ["ao.csv", "ao.md", "ao_error_vs_clusters.png", "ao_error_vs_preprocessing.png"] {
+        assert!(out.join(file).is_file(), "{file} missing");
+    }
+}
+
+#[test]
+fn bench_ao_refuses_bad_lists_by_name() {
+    let o = sweeplab(&["bench", "ao", "--metrics", "l2,l3", "--out", temp_dir("bench-ao-bad").to_str().unwrap()]);
+    assert_user_error(&o, "--metrics");
+    assert!(stderr(&o).contains("did you mean"), "{}", stderr(&o));
+    let o = sweeplab(&["bench", "ao", "--clusters", "4096", "--out", temp_dir("bench-ao-bad2").to_str().unwrap()]);
+    assert_user_error(&o, "ao.clusters = 4096");
+}
