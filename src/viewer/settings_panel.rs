@@ -9,6 +9,7 @@
 //! command line's.
 
 use super::ui::UiEdit;
+use crate::ao::render_settings::{AoMode, MAX_GLOW, MAX_PHASE_G};
 use crate::ao::settings::{Metric, TrainingSet};
 use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite};
 use crate::ipsvi::settings::EarlyTermination;
@@ -149,6 +150,20 @@ pub fn controls() -> Vec<Control> {
         control("ao", "cache", Toggle, |s| Bool(s.settings.ao.cache)),
         control("ao", "cache_dir", Kind::Text, |s| {
             Text(s.settings.ao.cache_dir.as_ref().map_or(String::new(), |d| format!("{d:?}")))
+        }),
+        control("ao", "mode", Choice(names(&AoMode::ALL.map(|m| m.name()))), |s| Name(s.settings.ao.mode.name())),
+        control("ao", "isovalue", Real { lo: 0.0, hi: 1.0 }, |s| Number(s.settings.ao.isovalue as f64)),
+        control("ao", "phase_g", Real { lo: -MAX_PHASE_G as f64, hi: MAX_PHASE_G as f64 }, |s| {
+            Number(s.settings.ao.phase_g as f64)
+        }),
+        control("ao", "glow_max", Real { lo: 1.0, hi: MAX_GLOW as f64 }, |s| Number(s.settings.ao.glow_max as f64)),
+        control("ao", "glow_range", Kind::Text, |s| {
+            let [lo, hi] = s.settings.ao.glow_range;
+            Text(format!("[{lo}, {hi}]"))
+        }),
+        // Unset: the GPU when there is a device, shown as empty.
+        control("ao", "backend", Kind::Text, |s| {
+            Text(s.settings.ao.backend.map_or(String::new(), |b| format!("{:?}", b.name())))
         }),
     ]
 }
