@@ -414,9 +414,12 @@ fn with_the_panel_drawn_the_per_pass_times_of_a_dvr_frame_are_the_headless_rende
         assert!(pass_ms(&viewer, "ui") > 0.0, "the panel was drawn in that frame: {viewer}");
         viewer_ms = viewer_ms.min(pass_ms(&viewer, "dvr"));
     }
-    // The same work: equal but for the noise of a shared machine.
+    // The same work: equal but for the noise of a shared machine, which
+    // between two processes reached 7x (headless 76 ms, viewer 10 ms, with
+    // four builds beside the suite); the bug this guards against read 1/570
+    // (0.046 against 26.3 ms), so a decade either way separates the two.
     let ratio = viewer_ms / headless_ms;
-    assert!((0.25..4.0).contains(&ratio), "dvr pass: viewer {viewer_ms:.3} ms, headless {headless_ms:.3} ms");
+    assert!((0.1..10.0).contains(&ratio), "dvr pass: viewer {viewer_ms:.3} ms, headless {headless_ms:.3} ms");
 }
 
 #[test]
