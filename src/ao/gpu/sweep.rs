@@ -182,7 +182,9 @@ impl<'c> GpuSweep<'c> {
             inputs.max_batch_bytes,
         )
         .map_err(AoError::GpuLimit)?;
-        if volume.voxel_count() >= i32::MAX as usize / unpacked_stride(bins).max(2 * plan.packed_stride) {
+        // Shaders index the volume, and the batch's histograms, in i32.
+        let batch_floats = plan.batch_voxels * unpacked_stride(bins).max(2 * plan.packed_stride);
+        if volume.voxel_count().max(batch_floats) >= i32::MAX as usize {
             return Err(AoError::GpuLimit(format!("{dims} voxels overflow the shaders' 32-bit indices")));
         }
         let e = stencil.extent;
