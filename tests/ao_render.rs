@@ -59,7 +59,7 @@ fn a_tf_change_recomputes_the_lookup_on_the_gpu_without_preprocessing() {
     let ctx = validated_context();
     let scene = cornell("glow");
     let settings = scene.settings.ao.clone();
-    let pre = preprocessed(&scene.volume, &settings, &mut |_| {}).unwrap();
+    let pre = preprocessed(&scene.volume, &settings, None, &mut |_| {}).unwrap();
     let runs = preprocess_runs();
     let mut gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
@@ -228,7 +228,7 @@ fn goals_tf_change_time_and_overhead_over_blinn_phong() {
     let settings = scene.settings.ao.clone();
     assert_eq!((settings.clusters, settings.bits), (2048, 8));
     let started = std::time::Instant::now();
-    let pre = preprocessed(&scene.volume, &settings, &mut |_| {}).unwrap();
+    let pre = preprocessed(&scene.volume, &settings, None, &mut |_| {}).unwrap();
     println!("preprocessing (or its cache): {:.1} s", started.elapsed().as_secs_f64());
     let ctx = sweeplab::vk::Context::new(&Default::default()).unwrap(); // no validation: timing
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();

@@ -139,6 +139,12 @@ pub fn preprocess_on(
     let metric = settings.metric;
     let histograms = LocalHistograms::new(volume, settings.radius, settings.bits);
     let bins = histograms.bins();
+    if backend == Backend::Gpu {
+        // Refuse what the GPU cannot run before any work.
+        let lmax = metric == Metric::Lmax;
+        let (dim, clusters) = (settings.packed_dim as usize, settings.clusters as usize);
+        gpu::sweep::supported_plan(volume, histograms.stencil(), bins, dim, clusters, lmax)?;
+    }
     let mut timings = StepTimings::default();
 
     // Packing scheme from the normalized global histogram H.

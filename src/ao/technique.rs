@@ -7,11 +7,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 use super::render::{self, AoRenderer};
-use super::{preprocess_cached, AoError, AoPreprocessed, AoSettings, CacheKey, Progress};
+use super::{preprocess_cached_on, AoError, AoPreprocessed, AoSettings, Backend, CacheKey, Progress};
 use crate::render::view_chunks::check_view_step;
 use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene, Volume};
-use crate::vk::Profiler;
+use crate::vk::{Context, Profiler};
 
 pub struct Ao;
 
@@ -30,11 +30,17 @@ pub fn preprocess_runs() -> u64 {
 /// The preprocessing of `volume` with `settings`: the result kept from the
 /// last call when volume content and parameters are the same, else
 /// [`preprocess_cached`] with `progress`.
+///
+/// With a device, the per-voxel work runs where `ao.backend` says; unset, on a
+/// GPU, but on the host's cores for a CPU device (lavapipe), where the GPU
+/// path is 3-10x slower than the CPU one on the same cores (docs/ao.md).
 pub fn preprocessed(
     volume: &Volume,
     settings: &AoSettings,
+    device: Option<&Context>,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<Arc<AoPreprocessed>, AoError> {
+    let device = device.filter(|ctx| settings.backend == Some(Backend::Gpu) || !ctx.info.is_cpu());
     let key = CacheKey::new(volume, settings);
     let mut last = LAST.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     if let Some((k, result)) = last.as_ref() {
@@ -43,7 +49,7 @@ pub fn preprocessed(
         }
     }
     PREPROCESS_RUNS.fetch_add(1, Ordering::SeqCst);
-    let (result, _) = preprocess_cached(volume, settings, progress)?;
+    let (result, _) = preprocess_cached_on(volume, settings, device, progress)?;
     let result = Arc::new(result);
     *last = Some((key, result.clone()));
     Ok(result)
@@ -78,7 +84,7 @@ impl RenderTechnique for Ao {
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError> {
         let settings = AoSettings::from_scene(gpu.scene)?;
-        let pre = preprocessed(&gpu.scene.volume, &settings, &mut |_| {})?;
+        let pre = preprocessed(&gpu.scene.volume, &settings, Some(gpu.ctx), &mut |_| {})?;
         let renderer = AoRenderer::new(gpu, &pre, &settings)?;
         renderer.update_environment(gpu, profiler)?;
         renderer.frame(gpu, (width, height), profiler)

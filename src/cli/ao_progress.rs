@@ -10,10 +10,11 @@ use sweeplab::ao::technique::preprocessed;
 use sweeplab::ao::Progress;
 use sweeplab::render::Technique;
 use sweeplab::scene::Scene;
+use sweeplab::vk::Context;
 
 /// Runs (or loads) `scene`'s AO preprocessing when `technique` is `ao`, so the
 /// frame finds it in memory; other techniques need nothing.
-pub fn prepare(scene: &Scene, technique: Technique) -> anyhow::Result<()> {
+pub fn prepare(scene: &Scene, technique: Technique, device: &Context) -> anyhow::Result<()> {
     if technique != Technique::Ao {
         return Ok(());
     }
@@ -32,7 +33,7 @@ pub fn prepare(scene: &Scene, technique: Technique) -> anyhow::Result<()> {
             step = p.step.to_string();
         }
     };
-    preprocessed(&scene.volume, &scene.settings.ao, &mut report).context("ao preprocessing")?;
+    preprocessed(&scene.volume, &scene.settings.ao, Some(device), &mut report).context("ao preprocessing")?;
     if !step.is_empty() {
         let _ = writeln!(stderr);
     }

@@ -127,7 +127,7 @@ pub fn run(args: &BenchAoArgs) -> anyhow::Result<ExitCode> {
         let label =
             format!("r={} bits={} packed={} n_c={} {}", s.radius, s.bits, s.packed_dim, s.clusters, s.metric.name());
         progress.start_step(&label);
-        let pre = preprocessed(&scene.volume, s, &mut |_| {})?;
+        let pre = preprocessed(&scene.volume, s, Some(&ctx), &mut |_| {})?;
         let renderer = AoRenderer::new(&gpu, &pre, s)?;
         let update = harness.measure(|| -> Result<Sample<()>, RenderError> {
             profiler.reset();

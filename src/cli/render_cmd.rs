@@ -22,9 +22,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     for warning in technique.warnings(&scene) {
         eprintln!("warning: {warning}");
     }
-    super::ao_progress::prepare(&scene, technique)?;
     let ctx = session::open(&args.gpu)?;
     session::report_long_waits(&ctx);
+    super::ao_progress::prepare(&scene, technique, &ctx)?;
     let output = {
         let gpu =
             GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;

@@ -16,6 +16,13 @@ pub struct DeviceInfo {
     pub timestamp_valid_bits: u32,
 }
 
+impl DeviceInfo {
+    /// A CPU implementation (lavapipe): shaders run on the host's cores.
+    pub fn is_cpu(&self) -> bool {
+        self.device_type == type_name(vk::PhysicalDeviceType::CPU)
+    }
+}
+
 pub fn version_string(v: u32) -> String {
     format!("{}.{}.{}", vk::api_version_major(v), vk::api_version_minor(v), vk::api_version_patch(v))
 }

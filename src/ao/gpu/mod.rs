@@ -9,7 +9,7 @@ pub mod plan;
 pub mod sweep;
 
 pub use assign::{assign_packed, SearchState};
-pub use sweep::{BatchOutput, GpuSweep, PassTimes, SliceSync, SweepInputs, BATCH_BYTES};
+pub use sweep::{supported_plan, BatchOutput, GpuSweep, PassTimes, SliceSync, SweepInputs, BATCH_BYTES};
 
 use super::histogram::LocalHistograms;
 use super::packing::PackingScheme;

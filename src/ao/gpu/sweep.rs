@@ -142,6 +142,30 @@ pub struct SweepInputs<'a> {
 /// GPU time per pass, summed over the sweep's submissions (ms).
 pub type PassTimes = BTreeMap<String, f64>;
 
+/// The sweep's plan for these settings at the default batch size, or why the
+/// GPU cannot run them (checked before any preprocessing work).
+pub fn supported_plan(
+    volume: &Volume,
+    stencil: &SphereStencil,
+    bins: usize,
+    packed_dim: usize,
+    clusters: usize,
+    lmax: bool,
+) -> Result<SweepPlan, AoError> {
+    let plan = SweepPlan::new(volume.dims, bins, packed_dim, stencil.voxel_count(), clusters, lmax, BATCH_BYTES)
+        .map_err(AoError::GpuLimit)?;
+    check_indices(volume, plan)
+}
+
+/// Shaders index the volume, and the batch's histograms, in i32.
+fn check_indices(volume: &Volume, plan: SweepPlan) -> Result<SweepPlan, AoError> {
+    let batch_floats = plan.batch_voxels * unpacked_stride(plan.bins).max(2 * plan.packed_stride);
+    if volume.voxel_count().max(batch_floats) >= i32::MAX as usize {
+        return Err(AoError::GpuLimit(format!("{} voxels overflow the shaders' 32-bit indices", volume.dims)));
+    }
+    Ok(plan)
+}
+
 pub struct GpuSweep<'c> {
     ctx: &'c Context,
     plan: SweepPlan,
@@ -172,19 +196,18 @@ impl<'c> GpuSweep<'c> {
         let dims = volume.dims;
         // 1 / N_r rounded once, as the CPU's f64 normalization is.
         let normalization = (1.0 / stencil.voxel_count().max(1) as f64) as f32;
+        let lmax = inputs.metric == Metric::Lmax;
         let plan = SweepPlan::new(
             dims,
             bins,
             packing.packed_dim,
             stencil.voxel_count(),
             inputs.codebook.len(),
-            inputs.metric == Metric::Lmax,
+            lmax,
             inputs.max_batch_bytes,
         )
-        .map_err(AoError::GpuLimit)?;
-        if volume.voxel_count() >= i32::MAX as usize / unpacked_stride(bins).max(2 * plan.packed_stride) {
-            return Err(AoError::GpuLimit(format!("{dims} voxels overflow the shaders' 32-bit indices")));
-        }
+        .map_err(AoError::GpuLimit)
+        .and_then(|p| check_indices(volume, p))?;
         let e = stencil.extent;
         let ring_slices = 2 * e.z + 1;
         let (px, py) = (dims.x + 2 * e.x, dims.y + 2 * e.y);
