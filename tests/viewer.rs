@@ -492,3 +492,27 @@ fn a_scripted_transfer_point_drag_changes_the_image_and_rebuilds_the_light_volum
     assert!(passes(&frames[2]).contains(&"lightvolume_entire_update".to_string()), "{}", frames[2]);
     assert!(!passes(&frames[3]).iter().any(|p| p.ends_with("_update")), "{}", frames[3]);
 }
+
+#[test]
+fn half_angle_records_into_the_viewer_both_slice_orders_and_the_view_matches_render() {
+    // Opposite light directions: one is sliced front to back (the last slice
+    // adds the background), the other back to front.
+    let x = xvfb_or_skip!();
+    for (i, direction) in ["[1, -1, -1]", "[-1, 1, 1]"].into_iter().enumerate() {
+        let dir = temp_dir(&format!("half-angle-{i}"));
+        let light = format!("lights.0.direction={direction}");
+        let (shot, log_path, reference) = (dir.join("view.png"), dir.join("log.json"), dir.join("render.png"));
+        let mut args = vec!["view", "--size", "40x32", "--technique", "half-angle", "--set", &light];
+        args.extend(["--frames", "2", "--no-ui", "--screenshot", shot.to_str().unwrap()]);
+        args.extend(["--log-json", log_path.to_str().unwrap()]);
+        assert_clean_run(&sweeplab(&args, Some(&x.display)));
+        for f in log(&log_path)["frames"].as_array().unwrap() {
+            let p = passes(f);
+            assert!(p.contains(&"half_angle".to_string()), "{direction}: {p:?}");
+            assert!(!p.contains(&"frame_upload".to_string()), "{direction}: host round trip: {p:?}");
+        }
+        let args = ["render", "--size", "40x32", "--technique", "half-angle", "--set", &light];
+        assert_clean_run(&sweeplab(&[&args[..], &["--out", reference.to_str().unwrap()]].concat(), None));
+        assert_screenshot_is_render(&shot, &reference);
+    }
+}
