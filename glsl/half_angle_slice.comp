@@ -35,7 +35,7 @@ layout(set = 0, binding = 9, rgba32f) uniform image2D eye;
 
 layout(push_constant) uniform Slice {
     vec4 half_vector;   // xyz h; w plane offset s (points x with dot(x, h) = s)
-    vec4 spacing;       // x slice spacing (world); y 1 = front to back; z first slice; w last slice
+    vec4 spacing;       // x slice spacing (world); y 1 = front to back; z unused; w 1 = add the background (last slice, front to back)
     uvec4 rect;         // pixels x0, y0, w, h
     uint pixel_count;
 } slice;
@@ -54,18 +54,19 @@ float light_bilinear(vec2 c) {
 
 bool inside_box(vec3 p) { return all(lessThanEqual(abs(p), frame.box_half)); }
 
-void shade(uint index) {
-    uvec2 px = slice.rect.xy + uvec2(index % slice.rect.z, index / slice.rect.z);
+// The slice's sample on the view ray through `px`: (source, alpha); alpha 0
+// where the slice misses the ray or the medium is clear.
+vec4 slice_sample(uvec2 px) {
     Ray r = camera_ray(px);
     vec3 h = slice.half_vector.xyz;
     float dh = dot(r.dir, h);
-    if (abs(dh) < 1e-6) return;
+    if (abs(dh) < 1e-6) return vec4(0.0);
     float t = (slice.half_vector.w - dot(r.origin, h)) / dh;
     vec3 p = r.origin + r.dir * t;
-    if (t <= 0.0 || !inside_box(p)) return;
+    if (t <= 0.0 || !inside_box(p)) return vec4(0.0);
     vec4 m = medium(p);
     float alpha = 1.0 - exp(-m.a * (slice.spacing.x / abs(dh)) / frame.voxel_length);
-    if (alpha <= 0.0) return;
+    if (alpha <= 0.0) return vec4(0.0);
     Light l = lights[light_buffer.light];
     vec4 w = toward_light(l, p);
     // The light buffer holds what passed the slices before this one; the sample
@@ -74,14 +75,29 @@ void shade(uint index) {
     float dl = abs(dot(-w.xyz, h));
     float lit = light_bilinear(light_space_coord(light_buffer, p).xy) * exp(-m.a * 0.5 * (slice.spacing.x / max(dl, 1e-6)) / frame.voxel_length);
     vec3 S = m.rgb * (frame.emission + l.radiance.rgb * light_shape(l, w) * lit);
+    return vec4(S, alpha);
+}
+
+void shade(uint index) {
+    uvec2 px = slice.rect.xy + uvec2(index % slice.rect.z, index / slice.rect.z);
+    vec4 s = slice_sample(px);
+    // Front to back, the last slice (its rect the whole image) adds what shows
+    // through the volume: the background times the transmittance left.
+    bool background = slice.spacing.w > 0.5;
+    if (s.a <= 0.0 && !background) return;
     ivec2 ip = ivec2(px);
     vec4 acc = imageLoad(eye, ip);
-    if (slice.spacing.y > 0.5) {
-        acc.rgb += acc.a * alpha * S;
-        acc.a *= 1.0 - alpha;
-    } else {
-        acc.rgb = alpha * S + (1.0 - alpha) * acc.rgb;
+    if (s.a > 0.0) {
+        float alpha = s.a;
+        vec3 S = s.rgb;
+        if (slice.spacing.y > 0.5) {
+            acc.rgb += acc.a * alpha * S;
+            acc.a *= 1.0 - alpha;
+        } else {
+            acc.rgb = alpha * S + (1.0 - alpha) * acc.rgb;
+        }
     }
+    if (background) acc.rgb += acc.a * frame.background;
     imageStore(eye, ip, acc);
 }
 

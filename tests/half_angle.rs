@@ -74,3 +74,28 @@ fn half_angle_refuses_what_it_cannot_do() {
     let mut profiler = Profiler::new(&ctx, 16).unwrap();
     assert!(render(&gpu, Technique::HalfAngle, 8, 8, &mut profiler).is_err(), "two lights");
 }
+
+#[test]
+fn front_to_back_the_last_slice_adds_the_background_on_the_gpu() {
+    // Light from behind the viewer: slices go front to back and the eye buffer
+    // holds colour and transmittance; the last slice adds background x
+    // transmittance (on the host before the frame could record). A bright
+    // background makes a missing or doubled term plain.
+    let ctx = validated_context();
+    let mut scene = slab_scene(Vec3::new(0.3, -1.0, -0.6));
+    scene.render.background = Vec3::new(0.6, 0.3, 0.9);
+    assert!(slicing(&scene, &scene.settings.half_angle).unwrap().front_to_back);
+    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+    let mut profiler = Profiler::new(&ctx, 16).unwrap();
+    let out = render(&gpu, Technique::HalfAngle, SIZE, SIZE, &mut profiler).unwrap();
+    // The corner's ray misses the volume: the background alone.
+    let corner = out.image.pixels[0];
+    for c in 0..3 {
+        assert!((corner[c] - scene.render.background[c]).abs() < 1e-6, "corner {corner:?}");
+    }
+    let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+    let rmse = relative_rmse(&out.image, &reference);
+    println!("bright background, front to back: relative rmse {rmse:.4}");
+    assert!(rmse <= RMSE_TOLERANCE, "relative rmse {rmse:.4}");
+    assert_validation_clean(&ctx);
+}

@@ -152,6 +152,16 @@ fn passes(frame: &serde_json::Value) -> Vec<String> {
 /// may differ by one level, never more.
 const SRGB_LEVELS_TOLERANCE: i32 = 1;
 
+/// The viewer's screenshot `shot` is the headless render `reference` within
+/// [`SRGB_LEVELS_TOLERANCE`].
+fn assert_screenshot_is_render(shot: &Path, reference: &Path) {
+    let a = image::open(shot).unwrap().to_rgb8();
+    let b = image::open(reference).unwrap().to_rgb8();
+    assert_eq!(a.dimensions(), b.dimensions());
+    let worst = a.as_raw().iter().zip(b.as_raw()).map(|(&p, &q)| (p as i32 - q as i32).abs()).max().unwrap();
+    assert!(worst <= SRGB_LEVELS_TOLERANCE, "screenshot differs from render by {worst} levels");
+}
+
 #[test]
 fn scripted_view_matches_headless_render_across_a_resize_validation_clean() {
     let x = xvfb_or_skip!();
@@ -199,11 +209,7 @@ fn scripted_view_matches_headless_render_across_a_resize_validation_clean() {
         None,
     );
     assert_clean_run(&r);
-    let a = image::open(&shot).unwrap().to_rgb8();
-    let b = image::open(&reference).unwrap().to_rgb8();
-    assert_eq!(a.dimensions(), b.dimensions());
-    let worst = a.as_raw().iter().zip(b.as_raw()).map(|(&p, &q)| (p as i32 - q as i32).abs()).max().unwrap();
-    assert!(worst <= SRGB_LEVELS_TOLERANCE, "screenshot differs from render by {worst} levels");
+    assert_screenshot_is_render(&shot, &reference);
     // The state changed on screen: the first frame (before the edits) differs.
     let frames = log(&log_path)["frames"].as_array().unwrap().clone();
     assert_eq!(frames.len(), 8);
@@ -338,12 +344,14 @@ fn viewer_flags_and_script_mistakes_are_errors_with_suggestions() {
     assert!(!o.status.success() && stderr(&o).contains("did you mean resize?"), "{}", stderr(&o));
 }
 
-/// The viewer's log of one run of `technique` (no panel), validation clean.
-fn view_log(x: &Xvfb, name: &str, technique: &str, size: &str, frames: &str) -> Vec<serde_json::Value> {
+/// The viewer's log of one run of `technique` (no panel) with `extra`
+/// arguments, validation clean.
+fn view_log(x: &Xvfb, name: &str, technique: &str, size: &str, frames: &str, extra: &[&str]) -> Vec<serde_json::Value> {
     let log_path = temp_dir(name).join("log.json");
     let args = ["view", "--size", size, "--technique", technique, "--frames", frames, "--no-ui", "--log-json"];
     let mut args: Vec<&str> = args.to_vec();
     args.push(log_path.to_str().unwrap());
+    args.extend(extra);
     let o = sweeplab(&args, Some(&x.display));
     assert_clean_run(&o);
     log(&log_path)["frames"].as_array().unwrap().clone()
@@ -352,11 +360,11 @@ fn view_log(x: &Xvfb, name: &str, technique: &str, size: &str, frames: &str) -> 
 #[test]
 fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
     let x = xvfb_or_skip!();
-    // DVR, the ground truth and the light volume record into the frame slot's
-    // command buffer: their scopes and the present pass's are in one profile,
-    // no upload.
-    for technique in ["dvr", "reference", "lightvolume"] {
-        for f in view_log(&x, technique, technique, "32x32", "3") {
+    // DVR, the ground truth, the light volume and IPSVI record into the frame
+    // slot's command buffer: their scopes and the present pass's are in one
+    // profile, no upload.
+    for technique in ["dvr", "reference", "lightvolume", "ipsvi"] {
+        for f in view_log(&x, technique, technique, "32x32", "3", &[]) {
             let p = passes(&f);
             assert!(p.iter().any(|s| s.starts_with(technique)), "{technique}: {p:?}");
             assert!(p.contains(&"present_blit".to_string()), "{technique}: {p:?}");
@@ -364,22 +372,66 @@ fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
             assert!(f["gpu_ms"].as_f64().unwrap() > 0.0, "{f}");
         }
     }
-    // IPSVI submits several times for some strategies: it is rendered, read
-    // back and uploaded, and its profile says so.
-    for f in view_log(&x, "ipsvi", "ipsvi", "24x24", "2") {
+    // Every IPSVI strategy that fits in one submission records too ...
+    for sync in ["barrier-image", "events", "secondary"] {
+        let set = format!("ipsvi.sync={sync}");
+        for f in view_log(&x, &format!("ipsvi-{sync}"), "ipsvi", "24x24", "2", &["--set", &set]) {
+            let p = passes(&f);
+            assert!(p.iter().any(|s| s.starts_with("ipsvi/ipsvi_sweep_")), "{sync}: {p:?}");
+            assert!(!p.contains(&"frame_upload".to_string()), "{sync}: host round trip: {p:?}");
+        }
+    }
+    // ... but `submits`, one submission per line block: rendered, read back and
+    // uploaded, and its profile says so.
+    for f in view_log(&x, "ipsvi-submits", "ipsvi", "24x24", "2", &["--set", "ipsvi.sync=submits"]) {
         assert!(passes(&f).contains(&"frame_upload".to_string()), "{f}");
     }
 }
 
 #[test]
+fn ipsvi_secondary_sweeps_are_recorded_once_per_camera_not_per_frame_and_the_view_matches_render() {
+    let x = xvfb_or_skip!();
+    let dir = temp_dir("ipsvi-secondary");
+    let script = dir.join("script.txt");
+    std::fs::write(&script, "3 set camera.azimuth=60\n").unwrap();
+    let (shot, log_path, reference) = (dir.join("view.png"), dir.join("log.json"), dir.join("render.png"));
+    let mut args = vec!["view", "--size", "40x32", "--technique", "ipsvi", "--set", "ipsvi.sync=secondary"];
+    args.extend(["--frames", "6", "--no-ui", "--script", script.to_str().unwrap()]);
+    args.extend(["--screenshot", shot.to_str().unwrap(), "--log-json", log_path.to_str().unwrap()]);
+    assert_clean_run(&sweeplab(&args, Some(&x.display)));
+    let frames = log(&log_path)["frames"].as_array().unwrap().clone();
+    assert_eq!(frames.len(), 6);
+    let recorded: Vec<u64> = frames.iter().map(|f| f["secondaries_recorded"].as_u64().unwrap()).collect();
+    // One secondary per sweep, recorded by the first frame of each camera and
+    // replayed by the frames after it.
+    let sweeps = recorded[0];
+    assert!(sweeps > 0, "{recorded:?}");
+    assert!(recorded[3] > 0, "the moved camera's sweeps are recorded anew: {recorded:?}");
+    for i in [1, 2, 4, 5] {
+        assert_eq!(recorded[i], 0, "frame {i} replays: {recorded:?}");
+    }
+    for f in &frames {
+        assert!(!passes(f).contains(&"frame_upload".to_string()), "{f}");
+        assert!(f["dispatches"].as_u64().unwrap() > sweeps, "replayed dispatches are counted: {f}");
+    }
+    let mut args = vec!["render", "--size", "40x32", "--technique", "ipsvi", "--set", "ipsvi.sync=secondary"];
+    args.extend(["--set", "camera.azimuth=60", "--out", reference.to_str().unwrap()]);
+    assert_clean_run(&sweeplab(&args, None));
+    assert_screenshot_is_render(&shot, &reference);
+}
+
+#[test]
 fn without_the_handoff_barrier_synchronization_validation_reports_the_race() {
     let x = xvfb_or_skip!();
-    let args = ["view", "--size", "32x32", "--frames", "2", "--no-ui", "--racy-no-handoff-barrier"];
-    let o = sweeplab(&args, Some(&x.display));
-    let err = stderr(&o);
-    assert!(!o.status.success(), "{err}");
-    assert!(err.contains("SYNC-HAZARD-READ-AFTER-WRITE") && err.contains("vkCmdBlitImage"), "{err}");
-    assert!(err.contains("dvr output") && err.contains("SYNC_COMPUTE_SHADER_SHADER_STORAGE_WRITE"), "{err}");
+    for technique in ["dvr", "ipsvi"] {
+        let args = ["view", "--size", "32x32", "--frames", "2", "--no-ui", "--racy-no-handoff-barrier"];
+        let o = sweeplab(&[&args[..], &["--technique", technique]].concat(), Some(&x.display));
+        let err = stderr(&o);
+        assert!(!o.status.success(), "{technique}: {err}");
+        assert!(err.contains("SYNC-HAZARD-READ-AFTER-WRITE") && err.contains("vkCmdBlitImage"), "{technique}: {err}");
+        let output = format!("{technique} output");
+        assert!(err.contains(&output) && err.contains("SYNC_COMPUTE_SHADER_SHADER_STORAGE_WRITE"), "{err}");
+    }
 }
 
 /// GPU time of pass `name` in a profile JSON (`render --profile-json`, `P`).
@@ -442,4 +494,28 @@ fn a_scripted_transfer_point_drag_changes_the_image_and_rebuilds_the_light_volum
     let frames = log(&log_path)["frames"].as_array().unwrap().clone();
     assert!(passes(&frames[2]).contains(&"lightvolume_entire_update".to_string()), "{}", frames[2]);
     assert!(!passes(&frames[3]).iter().any(|p| p.ends_with("_update")), "{}", frames[3]);
+}
+
+#[test]
+fn half_angle_records_into_the_viewer_both_slice_orders_and_the_view_matches_render() {
+    // Opposite light directions: one is sliced front to back (the last slice
+    // adds the background), the other back to front.
+    let x = xvfb_or_skip!();
+    for (i, direction) in ["[1, -1, -1]", "[-1, 1, 1]"].into_iter().enumerate() {
+        let dir = temp_dir(&format!("half-angle-{i}"));
+        let light = format!("lights.0.direction={direction}");
+        let (shot, log_path, reference) = (dir.join("view.png"), dir.join("log.json"), dir.join("render.png"));
+        let mut args = vec!["view", "--size", "40x32", "--technique", "half-angle", "--set", &light];
+        args.extend(["--frames", "2", "--no-ui", "--screenshot", shot.to_str().unwrap()]);
+        args.extend(["--log-json", log_path.to_str().unwrap()]);
+        assert_clean_run(&sweeplab(&args, Some(&x.display)));
+        for f in log(&log_path)["frames"].as_array().unwrap() {
+            let p = passes(f);
+            assert!(p.contains(&"half_angle".to_string()), "{direction}: {p:?}");
+            assert!(!p.contains(&"frame_upload".to_string()), "{direction}: host round trip: {p:?}");
+        }
+        let args = ["render", "--size", "40x32", "--technique", "half-angle", "--set", &light];
+        assert_clean_run(&sweeplab(&[&args[..], &["--out", reference.to_str().unwrap()]].concat(), None));
+        assert_screenshot_is_render(&shot, &reference);
+    }
 }

@@ -14,22 +14,24 @@ pub mod technique;
 pub use settings::{HalfAngleSettings, SLICE_STEP_RANGE};
 pub use technique::HalfAngle;
 
+use crate::reference::gpu::ChunkSync;
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
 use crate::render::light_space::{LightProjection, LightSpacePlane};
-use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::render::{render_recorded, GpuScene, OutputImage, RecordedFrame, RenderError};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::{LightKind, Scene};
 use crate::shaders::half_angle_slice as shader;
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{parity_pair, ComputePipelineDesc};
-use crate::vk::{Buffer, Image, Profiler};
+use crate::vk::{Buffer, Image, Profiler, Recorder};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
+use std::any::Any;
+use std::sync::Arc;
 
 #[repr(C)]
 #[derive(Clone, Copy, Default, Pod, Zeroable)]
@@ -128,11 +130,37 @@ fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Image, RenderError> {
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
+    if gpu.scene.lights.is_empty() {
+        gpu.scene.settings.half_angle.validate()?;
+        return crate::render::raycast::emission_only(gpu, width, height, profiler);
+    }
+    render_recorded(gpu, |rec| record(gpu, width, height, rec, profiler))
+}
+
+/// Records one frame into `rec` (see [`RecordedFrame`]): what `render` submits
+/// with its read-back and the viewer records into its own command buffer.
+pub fn record(
+    gpu: &GpuScene,
+    width: u32,
+    height: u32,
+    rec: &mut Recorder,
+    profiler: &mut Profiler,
+) -> Result<RecordedFrame, RenderError> {
     let scene = gpu.scene;
     let settings = &scene.settings.half_angle;
     settings.validate()?;
     match scene.lights.len() {
-        0 => return crate::render::raycast::emission_only(gpu, width, height, profiler),
+        0 => {
+            let shading = crate::render::raycast::Shading::EmissionOnly;
+            return crate::render::raycast::record_with(
+                gpu,
+                shading,
+                (width, height),
+                rec,
+                profiler,
+                ChunkSync::Barrier,
+            );
+        }
         1 => {}
         n => return Err(RenderError::Invalid(format!("half-angle slicing takes one light; the scene has {n}"))),
     }
@@ -151,7 +179,8 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
     let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
     let rect = space.projected_box(&bx);
     let rect = [rect.x0, rect.y0, rect.x1 - rect.x0, rect.y1 - rect.y0];
-    let pixel_count = rect[2] * rect[3];
+    // Front to back, the last slice adds the background to every pixel.
+    let whole_image = [0, 0, width, height];
 
     let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::render(scene));
     let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
@@ -187,48 +216,39 @@ pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) 
         (shader::LIGHT_B_WRITE, Resource::StorageImage(&light[1])),
         (shader::EYE, Resource::StorageImage(&eye.image)),
     ])?;
-    let readback = eye.readback_buffer(ctx)?;
     let bg = scene.render.background;
     let start = if sl.front_to_back { [0.0, 0.0, 0.0, 1.0] } else { [bg.x, bg.y, bg.z, 1.0] };
-    let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
-        for (image, value) in [(&light[0], [1.0f32; 4]), (&light[1], [1.0; 4]), (&eye.image, start)] {
-            rec.clear_for_compute(image, value, "slice_buffers_discard_to_clear", "slice_buffers_clear_to_first_slice");
-        }
-        let scope = profiler.begin(rec, "half_angle")?;
-        rec.bind(&pipelines[0], set);
-        for k in 0..sl.count {
-            let detail = profiler.begin_detail(rec, "half_angle_slice")?;
-            let pipeline = &pipelines[(k % 2) as usize];
-            rec.bind_pipeline(pipeline);
-            let push = SlicePush {
-                half_vector: sl.half_vector.extend(sl.first_plane + (k as f32 + 0.5) * sl.spacing).to_array(),
-                spacing: [sl.spacing, if sl.front_to_back { 1.0 } else { 0.0 }, 0.0, 0.0],
-                rect,
-                pixel_count,
-            };
-            rec.push(pipeline, &push);
-            rec.dispatch((pixel_count + n * n).div_ceil(64), 1, 1);
-            profiler.end(rec, detail)?;
-            // This slice's light and eye writes are what the next slice reads.
-            rec.barrier(&Barrier::memory(
-                "slice_write_to_next_slice_read",
-                Access::COMPUTE_WRITE,
-                Access::COMPUTE_READ_WRITE,
-            ));
-        }
-        profiler.end(rec, scope)?;
-        eye.record_readback(rec, &readback);
-        Ok((rec.dispatch_count, rec.barrier_count))
-    })?;
-    let mut image = eye.read(&readback)?;
-    if sl.front_to_back {
-        // What shows through the volume: transmittance (alpha) times the background.
-        let texels: Vec<[f32; 4]> = readback.read(width as usize * height as usize)?;
-        for (p, t) in image.pixels.iter_mut().zip(&texels) {
-            for c in 0..3 {
-                p[c] += t[3] * bg[c];
-            }
-        }
+    for (image, value) in [(&light[0], [1.0f32; 4]), (&light[1], [1.0; 4]), (&eye.image, start)] {
+        rec.clear_for_compute(image, value, "slice_buffers_discard_to_clear", "slice_buffers_clear_to_first_slice");
     }
-    Ok(FrameResult { image, dispatches, barriers })
+    let scope = profiler.begin(rec, "half_angle")?;
+    rec.bind(&pipelines[0], set);
+    for k in 0..sl.count {
+        let detail = profiler.begin_detail(rec, "half_angle_slice")?;
+        let pipeline = &pipelines[(k % 2) as usize];
+        rec.bind_pipeline(pipeline);
+        let background = sl.front_to_back && k + 1 == sl.count;
+        let rect = if background { whole_image } else { rect };
+        let pixel_count = rect[2] * rect[3];
+        let push = SlicePush {
+            half_vector: sl.half_vector.extend(sl.first_plane + (k as f32 + 0.5) * sl.spacing).to_array(),
+            spacing: [sl.spacing, if sl.front_to_back { 1.0 } else { 0.0 }, 0.0, if background { 1.0 } else { 0.0 }],
+            rect,
+            pixel_count,
+        };
+        rec.push(pipeline, &push);
+        rec.dispatch((pixel_count + n * n).div_ceil(64), 1, 1);
+        profiler.end(rec, detail)?;
+        // This slice's light and eye writes are what the next slice reads.
+        rec.barrier(&Barrier::memory(
+            "slice_write_to_next_slice_read",
+            Access::COMPUTE_WRITE,
+            Access::COMPUTE_READ_WRITE,
+        ));
+    }
+    profiler.end(rec, scope)?;
+    let [light_a, light_b] = light;
+    let keep_alive: Vec<Box<dyn Any>> =
+        vec![Box::new(frame), Box::new(light_buffer_params), Box::new(light_a), Box::new(light_b), Box::new(pipelines)];
+    Ok(RecordedFrame::counted(rec, Arc::new(eye), keep_alive))
 }

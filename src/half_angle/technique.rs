@@ -4,9 +4,9 @@
 use super::LightBufferParams;
 use crate::render::frame_params::FrameParams;
 use crate::render::raycast::{self, Shading};
-use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::render::{FrameResult, GpuScene, RecordedFrame, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene};
-use crate::vk::Profiler;
+use crate::vk::{Profiler, Recorder};
 
 /// Half-angle slicing.
 pub struct HalfAngle;
@@ -81,5 +81,18 @@ impl RenderTechnique for HalfAngle {
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError> {
         super::render(gpu, width, height, profiler)
+    }
+
+    /// Front to back, the last slice adds the background: nothing is left to
+    /// the host, so the frame records into the viewer's command buffer too.
+    fn record(
+        &self,
+        gpu: &GpuScene,
+        rec: &mut Recorder,
+        width: u32,
+        height: u32,
+        profiler: &mut Profiler,
+    ) -> Result<Option<RecordedFrame>, RenderError> {
+        super::record(gpu, width, height, rec, profiler).map(Some)
     }
 }

@@ -15,6 +15,7 @@ pub mod light_anchor;
 pub mod line_group;
 pub mod paper_table1;
 pub mod renderer;
+pub mod session;
 pub mod settings;
 pub mod sweep_plan;
 pub mod sync;

@@ -20,18 +20,19 @@ use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
 use crate::render::light_space::LightSpacePlane;
-use crate::render::{GpuScene, OutputImage, RenderError};
+use crate::render::{GpuScene, OutputImage, RecordedFrame, RenderError};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::Scene;
 use crate::shaders::{ipsvi_cache_init, ipsvi_line};
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::commands::{submit_and_wait, SecondaryCommands};
+use crate::vk::commands::{submit_and_wait_or, SecondaryCommands};
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
-use crate::vk::{Buffer, Image, Profiler};
+use crate::vk::{Buffer, Image, Profiler, Recorder};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::cell::OnceCell;
+use std::sync::Arc;
 
 /// The ping-pong pair: illumination (E / scale, transmittance) and the position
 /// image (which sweep plane each light ray's front sits on, or with view
@@ -161,7 +162,7 @@ pub struct IpsviRenderer<'a> {
     _planes: Buffer,
     _sweeps: Buffer,
     _blocks: Buffer,
-    output: OutputImage,
+    output: Arc<OutputImage>,
     cache: Cache,
     exit_points: Option<ExitPoints>,
     placeholder: Option<Image>,
@@ -358,7 +359,7 @@ impl<'a> IpsviRenderer<'a> {
             _planes: planes,
             _sweeps: sweeps,
             _blocks: blocks,
-            output,
+            output: Arc::new(output),
             cache,
             exit_points,
             placeholder,
@@ -375,6 +376,12 @@ impl<'a> IpsviRenderer<'a> {
     /// Invocations per workgroup of the line dispatches.
     pub fn line_group(&self) -> u32 {
         self.line_group
+    }
+
+    /// Secondary command buffers recorded so far (`secondary`: one per sweep,
+    /// on the first frame that replays them; none for the other strategies).
+    pub fn recorded_secondaries(&self) -> usize {
+        self.secondaries.get().map_or(0, |s| s.buffers.len())
     }
 
     /// The sweeps as secondary command buffers, recorded on first use.
@@ -415,11 +422,33 @@ impl<'a> IpsviRenderer<'a> {
         })
     }
 
-    /// Records, submits and waits for one frame with the given synchronization.
+    /// Records, submits and waits for one frame with the given synchronization:
+    /// [`record`](Self::record) and the read-back, in one submission (several
+    /// for `submits`).
     pub fn frame(&mut self, profiler: &mut Profiler, sync: SyncStrategy) -> Result<FrameResult, RenderError> {
+        let this = &*self;
+        // The recorded frame (and what it keeps alive) outlives the submission.
+        let (frame, dispatches, barriers) = submit_and_wait_or(this.ctx, "frame", |rec| {
+            let frame = this.record(rec, profiler, sync)?;
+            frame.output.record_readback(rec, &this.readback);
+            Ok::<_, RenderError>((frame, rec.dispatch_count, rec.barrier_count))
+        })?;
+        Ok(FrameResult { image: frame.output.read(&this.readback)?, dispatches, barriers })
+    }
+
+    /// Records one frame into `rec` (see [`RecordedFrame`]): what `frame` submits
+    /// and the viewer records into its own command buffer. `submits` splits
+    /// `rec`, which only a recorder that owns its submission can. The frame
+    /// reuses the renderer's images and (for `secondary`) its recorded sweeps:
+    /// the previous frame must have finished.
+    pub fn record(
+        &self,
+        rec: &mut Recorder,
+        profiler: &mut Profiler,
+        sync: SyncStrategy,
+    ) -> Result<RecordedFrame, RenderError> {
         let mut line_sync = self.line_sync(sync)?;
         let IpsviRenderer {
-            ctx,
             background,
             settings,
             plans,
@@ -434,79 +463,75 @@ impl<'a> IpsviRenderer<'a> {
             lines,
             line_set,
             line_group,
-            readback,
             ..
-        } = &*self;
-        let (ctx, init_set, line_set) = (*ctx, *init_set, *line_set);
+        } = self;
+        let (init_set, line_set) = (*init_set, *line_set);
         let bg = *background;
-        let (dispatches, barriers) = submit_and_wait(ctx, "frame", |rec| {
-            rec.clear_for_compute(
-                &output.image,
-                [bg.x, bg.y, bg.z, 1.0],
-                "output_discard_to_clear",
-                "output_clear_to_line_accumulate",
-            );
-            rec.discard_for_compute("cache_discard_to_init_write", &cache.images());
-            // Claims carry a frame-wide block number: cleared once per frame.
-            rec.barrier(&Barrier::memory("claim_keys_previous_frame_to_clear", Access::ANY, Access::CLEAR_WRITE));
-            rec.fill_buffer(&cache.claim_keys, 0);
-            rec.barrier(&Barrier::memory(
-                "claim_keys_clear_to_first_claim",
-                Access::CLEAR_WRITE,
-                Access::COMPUTE_READ_WRITE,
-            ));
-            if let Some(p) = &placeholder {
-                rec.discard_for_compute("lmax_placeholder_to_shader_read", &[p]);
-            }
-            let frame_scope = profiler.begin(rec, "ipsvi")?;
-            if let Some(e) = &exit_points {
-                e.record(rec, profiler)?;
-            }
-            let mut next_block = 0usize;
-            let mut next_sweep = 0usize;
-            for (li, plan) in plans.iter().enumerate() {
-                for sweep in &plan.sweeps {
-                    line_sync.before_sweep(rec);
-                    let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
-                    rec.bind(init, init_set);
-                    let n = settings.cache_size.div_ceil(8);
-                    rec.push(init, &(li as u32));
-                    rec.dispatch(n, n, 1);
-                    profiler.end(rec, init_scope)?;
-                    rec.barrier(&Barrier::memory(
-                        "cache_init_write_to_first_line_read",
-                        Access::COMPUTE_WRITE,
-                        Access::COMPUTE_READ_WRITE,
-                    ));
-                    let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
-                    if line_sync.replay_sweep(rec, next_sweep) {
-                        next_block += sweep_records[next_sweep].1;
-                    } else {
-                        // Bound once per sweep: blocks find their parameters by index.
-                        rec.bind(&lines[0], line_set);
-                        for _ in 0..sweep_records[next_sweep].1 {
-                            let record = &block_records[next_block];
-                            line_sync.before_block(rec, next_block);
-                            let line = &lines[record.parity as usize];
-                            line_sync.bind_line(rec, line, line_set);
-                            let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
-                            rec.push(line, &(next_block as u32));
-                            rec.dispatch(line_groups(record, *line_group), 1, 1);
-                            profiler.end(rec, line_scope)?;
-                            line_sync.after_block(rec, next_block)?;
-                            next_block += 1;
-                        }
+        rec.clear_for_compute(
+            &output.image,
+            [bg.x, bg.y, bg.z, 1.0],
+            "output_discard_to_clear",
+            "output_clear_to_line_accumulate",
+        );
+        rec.discard_for_compute("cache_discard_to_init_write", &cache.images());
+        // Claims carry a frame-wide block number: cleared once per frame.
+        rec.barrier(&Barrier::memory("claim_keys_previous_frame_to_clear", Access::ANY, Access::CLEAR_WRITE));
+        rec.fill_buffer(&cache.claim_keys, 0);
+        rec.barrier(&Barrier::memory(
+            "claim_keys_clear_to_first_claim",
+            Access::CLEAR_WRITE,
+            Access::COMPUTE_READ_WRITE,
+        ));
+        if let Some(p) = &placeholder {
+            rec.discard_for_compute("lmax_placeholder_to_shader_read", &[p]);
+        }
+        let frame_scope = profiler.begin(rec, "ipsvi")?;
+        if let Some(e) = &exit_points {
+            e.record(rec, profiler)?;
+        }
+        let mut next_block = 0usize;
+        let mut next_sweep = 0usize;
+        for (li, plan) in plans.iter().enumerate() {
+            for sweep in &plan.sweeps {
+                line_sync.before_sweep(rec);
+                let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
+                rec.bind(init, init_set);
+                let n = settings.cache_size.div_ceil(8);
+                rec.push(init, &(li as u32));
+                rec.dispatch(n, n, 1);
+                profiler.end(rec, init_scope)?;
+                rec.barrier(&Barrier::memory(
+                    "cache_init_write_to_first_line_read",
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ_WRITE,
+                ));
+                let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
+                if line_sync.replay_sweep(rec, next_sweep) {
+                    next_block += sweep_records[next_sweep].1;
+                } else {
+                    // Bound once per sweep: blocks find their parameters by index.
+                    rec.bind(&lines[0], line_set);
+                    for _ in 0..sweep_records[next_sweep].1 {
+                        let record = &block_records[next_block];
+                        line_sync.before_block(rec, next_block);
+                        let line = &lines[record.parity as usize];
+                        line_sync.bind_line(rec, line, line_set);
+                        let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
+                        rec.push(line, &(next_block as u32));
+                        rec.dispatch(line_groups(record, *line_group), 1, 1);
+                        profiler.end(rec, line_scope)?;
+                        line_sync.after_block(rec, next_block)?;
+                        next_block += 1;
                     }
-                    next_sweep += 1;
-                    profiler.end(rec, sweep_scope)?;
                 }
+                next_sweep += 1;
+                profiler.end(rec, sweep_scope)?;
             }
-            line_sync.end_frame(rec);
-            profiler.end(rec, frame_scope)?;
-            output.record_readback(rec, readback);
-            Ok((rec.dispatch_count, rec.barrier_count))
-        })?;
-        Ok(FrameResult { image: output.read(readback)?, dispatches, barriers })
+        }
+        line_sync.end_frame(rec);
+        profiler.end(rec, frame_scope)?;
+        let keep_alive = line_sync.frame_resources();
+        Ok(RecordedFrame::counted(rec, output.clone(), keep_alive))
     }
 }
 

@@ -7,7 +7,7 @@ use super::renderer::{render_with, scene_plans};
 use super::settings::EarlyTermination;
 use crate::render::frame_params::FrameParams;
 use crate::render::raycast::{self, Shading};
-use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::render::{FrameResult, FrameSession, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::{OpticalModel, Scene};
 use crate::vk::Profiler;
@@ -79,6 +79,12 @@ impl RenderTechnique for Ipsvi {
             needs.push(ResourceNeed::image("ipsvi lmax placeholder", [1, 1, 1], 4));
         }
         needs
+    }
+
+    /// The renderer kept across frames, each recorded into the caller's
+    /// command buffer (`submits` excepted: [`super::session`]).
+    fn session<'s>(&self, gpu: &'s GpuScene<'s>) -> Result<Option<Box<dyn FrameSession + 's>>, RenderError> {
+        Ok(Some(Box::new(super::session::IpsviSession::new(gpu)?)))
     }
 
     fn check(&self, scene: &Scene) -> Result<(), RenderError> {

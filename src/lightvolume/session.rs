@@ -55,6 +55,10 @@ impl FrameSession for LightVolumeSession<'_> {
         true
     }
 
+    fn secondaries_recorded(&self) -> usize {
+        self.last.as_ref().map_or(0, |u| u.recorded)
+    }
+
     fn last_decision(&self) -> Option<String> {
         self.last.as_ref().map(|u| format!("{}: {}", u.plan.kind.scope_name(), u.plan.reason))
     }

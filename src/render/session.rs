@@ -47,6 +47,12 @@ pub trait FrameSession {
     /// new session on the re-uploaded scene.
     fn follows_lights(&self) -> bool;
 
+    /// Secondary command buffers the last frame recorded; those it executed
+    /// beyond these were recorded by earlier frames and replayed.
+    fn secondaries_recorded(&self) -> usize {
+        0
+    }
+
     /// What the last frame decided, in words (the light volume's update kind
     /// and its reason).
     fn last_decision(&self) -> Option<String> {

@@ -336,6 +336,7 @@ fn frame_loop<'c>(
                 dispatches: submitted.dispatches,
                 barriers: submitted.barriers,
                 passes: technique_profile.map_or(Vec::new(), |p| p.passes.iter().map(|p| p.path.clone()).collect()),
+                secondaries_recorded: session.secondaries_recorded(),
                 decision: session.last_decision(),
                 swapchain_recreated: recreated,
             });

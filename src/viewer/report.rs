@@ -28,6 +28,10 @@ pub struct FrameRecord {
     /// The frame's profile scopes, by path: the technique's, then the
     /// viewer's (`frame_upload` where the frame was uploaded, `present_blit`, `ui`).
     pub passes: Vec<String>,
+    /// Secondary command buffers recorded for this frame (IPSVI `secondary`:
+    /// its sweeps, once per session and size; the light volume: new passes);
+    /// the frame replayed the others it executed.
+    pub secondaries_recorded: usize,
     /// The light volume's update and its reason.
     pub decision: Option<String>,
     /// The swapchain was recreated before this frame.

@@ -3,6 +3,7 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::Recorder;
 use crate::vk::events::EventPool;
 use crate::vk::{Context, VkError};
+use std::any::Any;
 
 /// `events`: split barriers, one event per block: set after the block, waited
 /// for before whatever comes next (the next block, the next sweep's cache
@@ -53,5 +54,9 @@ impl LineSync for SplitBarriers {
 
     fn end_frame(&mut self, rec: &mut Recorder) {
         self.wait_pending(rec);
+    }
+
+    fn frame_resources(self: Box<Self>) -> Vec<Box<dyn Any>> {
+        vec![Box::new(self.pool)]
     }
 }

@@ -22,6 +22,7 @@ use crate::vk::commands::Recorder;
 use crate::vk::pipeline::ComputePipeline;
 use crate::vk::VkError;
 use ash::vk;
+use std::any::Any;
 
 /// The synchronization between the line blocks of a frame. Blocks and sweeps
 /// are numbered in frame order (the order of the blocks buffer).
@@ -50,4 +51,10 @@ pub trait LineSync {
 
     /// After the last sweep, before the output is read back.
     fn end_frame(&mut self, _rec: &mut Recorder) {}
+
+    /// What the recorded frame uses of this object (the events of `events`):
+    /// kept by the submitter until the submission finished.
+    fn frame_resources(self: Box<Self>) -> Vec<Box<dyn Any>> {
+        Vec::new()
+    }
 }
