@@ -45,9 +45,23 @@ fn bench_ao_writes_a_row_per_configuration_with_its_figures() {
         assert_eq!(values.len(), 4, "{key}");
         assert!(values.iter().all(|v| v.is_finite() && *v >= 0.0), "{key}: {values:?}");
     }
-    for file in ["ao.csv", "ao.md", "ao_error_vs_clusters.png", "ao_error_vs_preprocessing.png"] {
+    for file in ["ao.csv", "ao_table1.csv", "ao.md", "ao_error_vs_clusters.png", "ao_error_vs_preprocessing.png"] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
+    // The paper's Table 1 with our rows beside it: every paper row, then one
+    // of ours per configuration, in the paper's columns.
+    let md = std::fs::read_to_string(out.join("ao.md")).unwrap();
+    assert!(md.contains("## Table 1 shape"), "{md}");
+    let table1 = std::fs::read_to_string(out.join("ao_table1.csv")).unwrap();
+    let rows: Vec<&str> = table1.lines().skip(1).collect();
+    assert_eq!(rows.iter().filter(|r| r.starts_with("paper")).count(), 9, "{table1}");
+    let ours: Vec<&&str> = rows.iter().filter(|r| r.starts_with("ours")).collect();
+    assert_eq!(ours.len(), 4, "{table1}");
+    assert!(ours.iter().all(|r| r.contains("16x16x16") && r.contains(",3.0,")), "size and r of ours: {table1}");
+    assert!(
+        table1.contains("101.6") || table1.contains("6096"),
+        "the paper's head 256 brute force, in seconds: {table1}"
+    );
 }
 
 #[test]

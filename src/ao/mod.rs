@@ -17,6 +17,7 @@ pub mod gpu;
 pub mod gradient;
 pub mod histogram;
 pub mod packing;
+pub mod paper_table1;
 pub mod parallel;
 pub mod progress;
 pub mod quantize;
