@@ -134,3 +134,71 @@ fn the_merged_line_barrier_is_load_bearing_and_every_strategy_agrees() {
         }
     }
 }
+
+/// Merged against unmerged on the engine (docs/ipsvi.md, "Shared dispatches of
+/// independent sweeps"): per scene, both renderers created first (shaders
+/// compiled), one warm-up frame each, then MERGED_REPEAT (default 3)
+/// alternating frames; prints dispatches, barriers and the medians of the
+/// frame's GPU ms and of the process's CPU seconds per frame (lavapipe runs the
+/// shaders on the process's threads, so CPU time counts the work whatever else
+/// loads the machine). Run by hand:
+/// `SWEEPLAB_DATA=../shared/data cargo test --release --test ipsvi_merged_sweeps timing -- --ignored --nocapture`
+/// (`MERGED_SIZE`, default 256; `MERGED_UPDATE=light-rays` for that mode).
+#[test]
+#[ignore = "a measurement, not a check"]
+fn merged_against_unmerged_timing() {
+    use sweeplab::scene::scene_file::load_scene;
+    let var = |name: &str| std::env::var(name).ok();
+    let size: u32 = var("MERGED_SIZE").and_then(|v| v.parse().ok()).unwrap_or(256);
+    let repeat: usize = var("MERGED_REPEAT").and_then(|v| v.parse().ok()).unwrap_or(3);
+    let update = var("MERGED_UPDATE").unwrap_or_else(|| "view-samples".into());
+    let cpu_seconds = || {
+        // utime + stime of the process, fields 14 and 15 of /proc/self/stat, in 1/100 s.
+        let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
+        let fields: Vec<&str> = stat.rsplit(')').next().unwrap().split_whitespace().collect();
+        (fields[11].parse::<f64>().unwrap() + fields[12].parse::<f64>().unwrap()) / 100.0
+    };
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let ctx = Context::new(&Default::default()).unwrap();
+    for scene_name in ["merged-sweeps-point", "merged-sweeps-two-directional"] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join(format!("docs/bench/lavapipe-engine/{scene_name}.toml"));
+        let scene = load_scene(&path, &[format!("ipsvi.cache_update={update}")]).unwrap();
+        let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+        let mut profiler = Profiler::new(&ctx, 8192).unwrap();
+        let mut renderers: Vec<IpsviRenderer> = [false, true]
+            .into_iter()
+            .map(|merge_sweeps| {
+                let s = IpsviSettings { merge_sweeps, ..scene.settings.ipsvi.clone() };
+                IpsviRenderer::new(&gpu, &s, size, size).unwrap()
+            })
+            .collect();
+        let mut rows = vec![(Vec::new(), Vec::new(), 0, 0); 2];
+        for round in 0..=repeat {
+            for (r, row) in renderers.iter_mut().zip(&mut rows) {
+                profiler.reset();
+                let before = cpu_seconds();
+                let f = r.frame(&mut profiler, SyncStrategy::BarrierGlobal).unwrap();
+                let cpu = cpu_seconds() - before;
+                let ms = profiler.resolve(0).unwrap().gpu_ms_total;
+                if round > 0 {
+                    row.0.push(ms);
+                    row.1.push(cpu);
+                }
+                (row.2, row.3) = (f.dispatches, f.barriers);
+            }
+        }
+        for (merged, (ms, cpu, dispatches, barriers)) in rows.into_iter().enumerate() {
+            println!(
+                "{scene_name} {update} {size}x{size} merge_sweeps={}: {dispatches} dispatches, {barriers} barriers, \
+                 GPU {:.1} ms, CPU {:.2} s (medians of {repeat})",
+                merged == 1,
+                median(ms),
+                median(cpu)
+            );
+        }
+    }
+}
