@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Starts a sweep: every light ray of the cache carries the unattenuated light
+// Starts a sweep (or, merged, every sweep at once): every light ray of the cache carries the unattenuated light
 // (transmittance 1, no emission yet) with its front at its box entry. Both
 // images of the ping-pong pair are written, so whichever the first line reads
 // holds the start state; the view-sample stamps are cleared.
@@ -17,12 +17,13 @@ layout(set = 0, binding = 9, r16ui) writeonly uniform uimage2D front_b;
 // stamp 0 is no block's, so the first block reads the history pair.
 layout(set = 0, binding = 10, r32ui) writeonly uniform uimage2D stamps_a;
 layout(set = 0, binding = 11, r32ui) writeonly uniform uimage2D stamps_b;
-layout(push_constant) uniform Push { uint light; } push;
+// `slots` caches stacked in rows (ipsvi.merge_sweeps: one per sweep; else 1).
+layout(push_constant) uniform Push { uint light; uint slots; } push;
 
 void main() {
     sweep = sweeps[push.light];
     uvec2 k = gl_GlobalInvocationID.xy;
-    if (k.x >= sweep.cache_size || k.y >= sweep.cache_size) return;
+    if (k.x >= sweep.cache_size || k.y >= sweep.cache_size * push.slots) return;
     vec4 start = vec4(0.0, 0.0, 0.0, 1.0);
     uvec4 code = uvec4(FRONT_ENTRY);
     imageStore(cache_a, ivec2(k), start);

@@ -31,6 +31,11 @@ layout(constant_id = 6) const bool PIECEWISE = true;  // piecewise integration (
 // When view rays stop: 0 never, 1 once opaque ("plain"), 2 once opaque and past
 // l_max of the exit-point sweep ("exit-points", section 5.1).
 layout(constant_id = 7) const uint TERMINATION = 1u;
+// ipsvi.merge_sweeps (src/ipsvi/merged_steps.rs): a dispatch is step k of every
+// independent sweep, its push constant the step index; each workgroup finds its
+// sweep's block in the step table. Each sweep has its own cache (rows of the
+// cache images) and its own output accumulation (rows of out_image).
+layout(constant_id = 9) const bool MERGED = false;
 const uint TERMINATION_OFF = 0u;
 const uint TERMINATION_PLAIN = 1u;
 const uint TERMINATION_EXIT_POINTS = 2u;
@@ -103,6 +108,9 @@ struct BlockParams {
     uint light;       // index into sweeps[]
     uint stamp;       // view-samples: 1 + the block's index in its sweep (stamps of sample writes)
     uint claim_count; // farthest: pixels of the next block to claim for (0: none)
+    uint cache_row;   // first row of the block's sweep's cache in the cache images (merged; else 0)
+    uint out_row;     // first row of its sweep's accumulation in out_image (merged; else 0)
+    uvec2 pad;        // to the struct's 16-byte std430 size
 };
 
 // Every block of the frame, planned on the host; a dispatch gets its index as
@@ -110,6 +118,14 @@ struct BlockParams {
 // validation layer we test with does not check synchronization of that command.)
 layout(std430, set = 0, binding = 15) readonly buffer Blocks { BlockParams blocks[]; };
 layout(push_constant) uniform Push { uint block_index; } push;
+
+// MERGED: per step, one (block record, first workgroup) per sweep, in sweep
+// order; a sweep with no such step has block NO_BLOCK.
+layout(std430, set = 0, binding = 26) readonly buffer Steps { uint step_sweeps; uint steps_pad; uvec2 step_entries[]; };
+const uint NO_BLOCK = 0xFFFFFFFFu;
+
+// The frame-wide index of this invocation's block (push.block_index unless MERGED).
+uint block_index;
 
 // l_max of the exit-point sweep (section 5.1), at the pre-pass resolution; a 1x1
 // placeholder when that mode is off.
@@ -123,12 +139,15 @@ layout(std430, set = 0, binding = 25) buffer Keys { uint64_t keys[]; };
 
 BlockParams block;
 
-vec4 cache_load(ivec2 k) { return imageLoad(cache_in, k); }
-uint front_load(ivec2 k) { return imageLoad(front_in, k).r; }
+// Texel k of the block's sweep's cache in the cache images.
+ivec2 slot_texel(ivec2 k) { return k + ivec2(0, int(block.cache_row)); }
+
+vec4 cache_load(ivec2 k) { return imageLoad(cache_in, slot_texel(k)); }
+uint front_load(ivec2 k) { return imageLoad(front_in, slot_texel(k)).r; }
 
 void cache_store(ivec2 k, vec4 v, uint code) {
-    imageStore(cache_out, k, v);
-    imageStore(front_out, k, uvec4(code));
+    imageStore(cache_out, slot_texel(k), v);
+    imageStore(front_out, slot_texel(k), uvec4(code));
 }
 
 float zone_weight(BlockParams line_block, vec2 c) {
@@ -195,13 +214,13 @@ uint depth_code(float z, vec2 io) {
 // Texel k as the previous block left it: (value, depth code).
 vec4 state_load(ivec2 k, out uint code) {
     uint previous = block.stamp - 1u;
-    uint stamped = imageLoad(stamps_in, k).r;
+    uint stamped = imageLoad(stamps_in, slot_texel(k)).r;
     if (previous != 0u && (stamped >> 16) == previous) {
         code = stamped & 0xFFFFu;
-        return imageLoad(samples_in, k);
+        return imageLoad(samples_in, slot_texel(k));
     }
-    code = imageLoad(front_in, k).r;
-    return imageLoad(cache_in, k);
+    code = front_load(k);
+    return cache_load(k);
 }
 
 // The texel a sample at cache coordinates c writes.
@@ -241,9 +260,11 @@ uint64_t claim_key(uint record, float depth, uint pixel) {
     return (uint64_t(record + 1u) << 44) | (d << 17) | uint64_t(pixel);
 }
 
+// Keys of the whole cache images (every sweep's cache when merged), per half.
 uint key_index(uint half_index, ivec2 k) {
     uint n = sweep.cache_size;
-    return half_index * n * n + uint(k.y) * n + uint(k.x);
+    uint rows = uint(imageSize(cache_in).y);
+    return half_index * n * rows + uint(slot_texel(k).y) * n + uint(k.x);
 }
 
 // With piecewise integration a run's sample nearest the light writes, without
@@ -265,7 +286,7 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel) {
         // Only the claimed winner stores; compared on record and pixel.
         uint64_t mask = (uint64_t(0xFFFFFu) << 44) | uint64_t(0x1FFFFu);
         uint64_t key = keys[key_index(KEY_HALF_IN, k)];
-        if ((key & mask) != (claim_key(push.block_index, 0.0, pixel) & mask)) return;
+        if ((key & mask) != (claim_key(block_index, 0.0, pixel) & mask)) return;
     }
     float s = frame.shadow_step * frame.voxel_length;
     vec3 back = to_light(p);
@@ -273,8 +294,8 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel) {
     float tr = exp(-seg.a);
     vec2 io = ray_in_box(cache_ray(uvec2(k)));
     uint code = io.x <= io.y ? depth_code(depth + s, io) : FRONT_ENTRY;
-    imageStore(samples_out, k, vec4(l.rgb * tr + seg.rgb, l.a * tr));
-    imageStore(stamps_out, k, uvec4((block.stamp << 16) | code));
+    imageStore(samples_out, slot_texel(k), vec4(l.rgb * tr + seg.rgb, l.a * tr));
+    imageStore(stamps_out, slot_texel(k), uvec4((block.stamp << 16) | code));
 }
 
 uvec2 block_pixel(BlockParams b, uint index) {
@@ -310,14 +331,14 @@ void claim_pixel(BlockParams next, uint index) {
         if (alpha > 0.0) {
             vec3 c = cache_coord(p);
             ivec2 k = sample_texel(c);
-            if (run.x >= 0 && k != run) atomicMax(keys[key_index(KEY_HALF_NEXT, run)], claim_key(push.block_index + 1u, run_depth, index));
+            if (run.x >= 0 && k != run) atomicMax(keys[key_index(KEY_HALF_NEXT, run)], claim_key(block_index + 1u, run_depth, index));
             if (k != run || !run_keeps_nearest() || c.z < run_depth) run_depth = c.z;
             run = k;
             T *= 1.0 - alpha;
         }
         if (ert && view_ray_opaque(T) && v.t_enter + (float(i) + 1.0) * v.h >= keep_going) break;
     }
-    if (run.x >= 0) atomicMax(keys[key_index(KEY_HALF_NEXT, run)], claim_key(push.block_index + 1u, run_depth, index));
+    if (run.x >= 0) atomicMax(keys[key_index(KEY_HALF_NEXT, run)], claim_key(block_index + 1u, run_depth, index));
 }
 
 void shade_pixel(uint index) {
@@ -371,7 +392,7 @@ void shade_pixel(uint index) {
     if (VIEW_SAMPLES && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index);
     // Cleared to the background: the first light replaces it by what shows through.
     if (first_light) C += (T - 1.0) * frame.background;
-    ivec2 ip = ivec2(px);
+    ivec2 ip = ivec2(px) + ivec2(0, int(block.out_row));
     imageStore(out_image, ip, imageLoad(out_image, ip) + vec4(w * C, 0.0));
 }
 
@@ -424,9 +445,26 @@ void advance_texel(uint index) {
 }
 
 void main() {
-    block = blocks[push.block_index];
-    sweep = sweeps[block.light];
     uint id = gl_GlobalInvocationID.x;
+    block_index = push.block_index;
+    if (MERGED) {
+        // The step's sweeps own consecutive workgroup ranges: the last entry
+        // starting at or before this workgroup is this invocation's block.
+        uint group = gl_WorkGroupID.x;
+        uint first_group = 0u;
+        block_index = NO_BLOCK;
+        for (uint s = 0u; s < step_sweeps; ++s) {
+            uvec2 e = step_entries[push.block_index * step_sweeps + s];
+            if (e.x != NO_BLOCK && e.y <= group) {
+                block_index = e.x;
+                first_group = e.y;
+            }
+        }
+        if (block_index == NO_BLOCK) return;
+        id = (group - first_group) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+    }
+    block = blocks[block_index];
+    sweep = sweeps[block.light];
     uint texels = block.region.z * block.region.w;
     if (id < block.pixel_count) {
         shade_pixel(id);
@@ -441,6 +479,6 @@ void main() {
         }
     } else if (CLAIMS) {
         uint claim = id - block.pixel_count - texels;
-        if (claim < block.claim_count) claim_pixel(blocks[push.block_index + 1u], claim);
+        if (claim < block.claim_count) claim_pixel(blocks[block_index + 1u], claim);
     }
 }

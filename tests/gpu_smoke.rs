@@ -89,7 +89,13 @@ fn every_technique_lists_the_memory_its_frame_allocates() {
         ("unlit", &unlit, &Technique::ALL[..]),
         ("tuned", &tuned, &Technique::ALL[..]),
     ];
-    let cases = cases.into_iter().chain([("three lights", &three, &[Technique::Ipsvi, Technique::LightVolume][..])]);
+    // The three lights' sweeps merged: per-sweep caches and colour accumulation.
+    let mut merged = three.clone();
+    merged.settings.ipsvi.merge_sweeps = true;
+    let cases = cases.into_iter().chain([
+        ("three lights", &three, &[Technique::Ipsvi, Technique::LightVolume][..]),
+        ("three lights merged", &merged, &[Technique::Ipsvi][..]),
+    ]);
     for (what, scene, techniques) in cases {
         let gpu = GpuScene::upload(&ctx, scene).unwrap();
         let mut profiler = Profiler::new(&ctx, 256).unwrap();

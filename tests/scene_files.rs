@@ -480,7 +480,7 @@ fn technique_tables_are_read_into_typed_settings() {
     let s = settings_of(
         "[ipsvi]\nline_width = 4\ncache_size = 128\npiecewise = false\nearly_termination = \"exit-points\"\n\
          albedo = 0.5\ncone_angle = 30\nzone_blend = 4.5\nlight_step = 0.125\nert_scale = 2\nsync = \"events\"\n\
-         cache_update = \"light-rays\"\ncache_write = \"racy\"\n\
+         cache_update = \"light-rays\"\ncache_write = \"racy\"\nmerge_sweeps = true\n\
          [lightvolume]\nscale = 4\ncoherent = false\ncompensated = false\ncost_estimate = \"selective\"\n\
          max_passes_per_frame = 3\npass_lights = 8\nrebase_tolerance = 1e-3\nsubstep = 0.5\nshared_medium = false\n\
          chromatic = false\nracy = true\n[half_angle]\nslice_step = 0.25\nlight_buffer_size = 64\n[ao]\nradius = 4\nclusters = 64\n",
@@ -499,6 +499,7 @@ fn technique_tables_are_read_into_typed_settings() {
         cache_update: CacheUpdate::LightRays,
         cache_write: CacheWrite::Racy,
         sync: SyncStrategy::Events,
+        merge_sweeps: true,
         single_dispatch_baseline: false,
         breakdown_step: sweeplab::ipsvi::BreakdownStep::Full,
     };
@@ -596,6 +597,7 @@ fn technique_values_out_of_range_name_key_value_and_range() {
         ("[ipsvi]\nline_width = \"wide\"", &["ipsvi.line_width", "invalid type"]),
         ("[ipsvi]\nearly_termination = \"sometimes\"", &["ipsvi.early_termination", "sometimes", "exit-points"]),
         ("[ipsvi]\nsync = \"fences\"", &["ipsvi.sync", "fences", "barrier-global"]),
+        ("[ipsvi]\nmerge_sweeps = \"yes\"", &["ipsvi.merge_sweeps", "invalid type"]),
         ("[lightvolume]\ncost_estimate = \"cheap\"", &["lightvolume.cost_estimate", "cheap", "passes"]),
         ("[lightvolume]\ncoherent = 1", &["lightvolume.coherent", "invalid type"]),
     ];

@@ -83,6 +83,12 @@ pub struct BlockParams {
     pub stamp: u32,
     /// cache_write = "farthest": pixels of the next block this dispatch claims texels for.
     pub claim_count: u32,
+    /// First row of the block's sweep's cache in the cache images (`merge_sweeps`; else 0).
+    pub cache_row: u32,
+    /// First row of its sweep's colour accumulation in the output binding (`merge_sweeps`; else 0).
+    pub out_row: u32,
+    /// std430 rounds the struct (it holds a uvec4) to 16 bytes.
+    pub pad: [u32; 2],
 }
 
 crate::assert_gpu_layout!(
@@ -101,7 +107,10 @@ crate::assert_gpu_layout!(
         parity,
         light,
         stamp,
-        claim_count
+        claim_count,
+        cache_row,
+        out_row,
+        pad
     ]
 );
 

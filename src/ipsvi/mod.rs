@@ -5,6 +5,8 @@
 //! The host plans the sweep ([`sweep_plan`]); every line block is its own
 //! dispatch, followed by the barrier `cache_write_to_next_line_read` (or, in
 //! the synchronization study, another [`SyncStrategy`]'s object from [`sync`]).
+//! With `merge_sweeps`, step k of every independent sweep shares one dispatch
+//! and one barrier ([`merged_steps`]).
 
 pub mod breakdown;
 pub mod cache_region;
@@ -13,6 +15,7 @@ pub mod exit_points;
 pub mod gpu_params;
 pub mod light_anchor;
 pub mod line_group;
+pub mod merged_steps;
 pub mod paper_table1;
 pub mod renderer;
 pub mod session;

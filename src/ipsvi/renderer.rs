@@ -1,7 +1,9 @@
 //! Records one IPSVI frame: clear the output to the background, then per light
 //! and per sweep zone: initialise the cache, and one dispatch per line block,
 //! with the synchronization of the frame's strategy (`super::sync`) before and
-//! after each.
+//! after each. With `merge_sweeps` (and more than one sweep): every sweep's
+//! cache initialised at once, one dispatch per step of all sweeps
+//! (`super::merged_steps`), then their colour accumulations summed.
 
 use super::breakdown::BreakdownStep;
 use super::cache_region::{plane_region, TexelRect};
@@ -9,6 +11,7 @@ use super::cache_update::{CacheUpdate, CacheWrite};
 use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_FIRST_LIGHT};
 use super::line_group::{lavapipe_threads, line_group_size, median_pixels};
+use super::merged_steps::{self, LineDispatch};
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync::{
@@ -23,12 +26,12 @@ use crate::render::light_space::LightSpacePlane;
 use crate::render::{GpuScene, OutputImage, RecordedFrame, RenderError};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::Scene;
-use crate::shaders::{ipsvi_cache_init, ipsvi_line};
+use crate::shaders::{ipsvi_cache_init, ipsvi_line, ipsvi_sweep_sum};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait_or, SecondaryCommands};
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
-use crate::vk::{Buffer, Image, Profiler, Recorder};
+use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::cell::OnceCell;
@@ -39,7 +42,8 @@ use std::sync::Arc;
 /// samples the depth its value was computed at); with view samples a second
 /// pair that the samples of a block write (value, block stamp | depth), and
 /// the claim keys of `cache_write = "farthest"`. What a mode does not use is
-/// 1x1 (bound, never read).
+/// 1x1 (bound, never read). Merged sweeps stack one cache per sweep in rows
+/// (`slots`); keys likewise.
 struct Cache {
     light: [Image; 2],
     front: [Image; 2],
@@ -49,17 +53,18 @@ struct Cache {
 }
 
 impl Cache {
-    fn new(gpu: &GpuScene, settings: &IpsviSettings) -> Result<Cache, RenderError> {
+    fn new(gpu: &GpuScene, settings: &IpsviSettings, slots: u32) -> Result<Cache, RenderError> {
         let size = settings.cache_size;
         let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
         let claims = view_samples && settings.cache_write.claims();
-        let sized =
-            |name: &str, format, n: u32| Image::storage_2d(gpu.ctx, name, format, n, n, vk::ImageUsageFlags::empty());
+        let sized = |name: &str, format, n: u32| {
+            Image::storage_2d(gpu.ctx, name, format, n, n * slots, vk::ImageUsageFlags::empty())
+        };
         let image = |name: &str, format| sized(name, format, size);
         let sample_size = if view_samples { size } else { 1 };
         let sample = |name: &str, format| sized(name, format, sample_size);
         // Two halves (this block's claims, the next block's) of N x N 64-bit keys.
-        let key_bytes = if claims { 2 * 8 * u64::from(size) * u64::from(size) } else { 16 };
+        let key_bytes = if claims { 2 * 8 * u64::from(size) * u64::from(size) * u64::from(slots) } else { 16 };
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
         Ok(Cache {
             light: [
@@ -155,13 +160,18 @@ pub struct IpsviRenderer<'a> {
     background: glam::Vec3,
     settings: IpsviSettings,
     plans: Vec<SweepPlan>,
-    block_records: Vec<BlockParams>,
-    /// (first record, record count) of every sweep, in frame order.
-    sweep_records: Vec<SweepRecords>,
+    /// The line dispatches of a frame, in order.
+    dispatches: Vec<LineDispatch>,
+    /// (first dispatch, dispatch count) of every sweep, in frame order; one
+    /// sweep of steps when merged.
+    sweep_dispatches: Vec<SweepRecords>,
     _frame: Buffer,
     _planes: Buffer,
     _sweeps: Buffer,
     _blocks: Buffer,
+    _steps: Buffer,
+    /// `merge_sweeps` with more than one sweep: the accumulation and its sum.
+    merged: Option<MergedOutput>,
     output: Arc<OutputImage>,
     cache: Cache,
     exit_points: Option<ExitPoints>,
@@ -176,6 +186,42 @@ pub struct IpsviRenderer<'a> {
     readback: Buffer,
     /// The sweeps recorded once for `SyncStrategy::Secondary`, on first use.
     secondaries: OnceCell<SecondaryCommands>,
+}
+
+/// Merged sweeps: each sweep's colour in its own rows (sweeps of one step may
+/// shade the same pixel in one dispatch), added to the output by `ipsvi_sweep_sum`.
+struct MergedOutput {
+    slots: u32,
+    accumulation: Image,
+    sum: ComputePipeline,
+    sum_set: vk::DescriptorSet,
+}
+
+impl MergedOutput {
+    fn new(gpu: &GpuScene, output: &OutputImage, slots: u32) -> Result<MergedOutput, RenderError> {
+        let accumulation = Image::storage_2d(
+            gpu.ctx,
+            "ipsvi sweep accumulation",
+            vk::Format::R32G32B32A32_SFLOAT,
+            output.width,
+            output.height * slots,
+            vk::ImageUsageFlags::TRANSFER_DST,
+        )?;
+        let mut sum = ComputePipeline::new(
+            gpu.ctx,
+            &ComputePipelineDesc {
+                name: "ipsvi_sweep_sum",
+                shader: &ipsvi_sweep_sum::INTERFACE,
+                specialization: &[],
+                max_sets: 1,
+            },
+        )?;
+        let sum_set = sum.create_set(&[
+            (ipsvi_sweep_sum::ACCUMULATION, Resource::StorageImage(&accumulation)),
+            (ipsvi_sweep_sum::OUT_IMAGE, Resource::StorageImage(&output.image)),
+        ])?;
+        Ok(MergedOutput { slots, accumulation, sum, sum_set })
+    }
 }
 
 impl<'a> IpsviRenderer<'a> {
@@ -221,7 +267,18 @@ impl<'a> IpsviRenderer<'a> {
         let params = frame_params(scene, width, height, gpu.lut_size, steps);
         let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
         let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
-        let cache = Cache::new(gpu, settings)?;
+        let sweep_count = plans.iter().map(|p| p.sweeps.len() as u32).sum::<u32>();
+        // One sweep has nothing to merge with: the unmerged frame, no sum pass.
+        let slots = if settings.merge_sweeps && sweep_count > 1 { sweep_count } else { 1 };
+        let tallest = settings.cache_size.max(height) * slots;
+        if tallest > ctx.limits.max_image_dimension2_d {
+            return Err(RenderError::Invalid(format!(
+                "ipsvi.merge_sweeps stacks {slots} sweeps' caches and colours in images {tallest} texels tall, \
+                 over this device's {}; set ipsvi.merge_sweeps = false",
+                ctx.limits.max_image_dimension2_d
+            )));
+        }
+        let cache = Cache::new(gpu, settings, slots)?;
 
         let max_piecewise_steps = super::view_budget::piecewise_steps(scene)?;
 
@@ -258,7 +315,16 @@ impl<'a> IpsviRenderer<'a> {
             })
             .collect();
         let sweeps = Buffer::with_data(ctx, "ipsvi sweeps", &sweep_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
-        let (block_records, sweep_records) = block_params(&plans, &geometries, &bx, &planes_host, height, settings)?;
+        let (mut block_records, sweep_records) =
+            block_params(&plans, &geometries, &bx, &planes_host, height, settings)?;
+        if slots > 1 {
+            for (slot, &(first, count)) in sweep_records.iter().enumerate() {
+                for r in &mut block_records[first..first + count] {
+                    r.cache_row = slot as u32 * settings.cache_size;
+                    r.out_row = slot as u32 * height;
+                }
+            }
+        }
         let blocks = Buffer::with_data(ctx, "ipsvi blocks", &block_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
 
         let emissive = scene.render.emission > 0.0;
@@ -297,6 +363,7 @@ impl<'a> IpsviRenderer<'a> {
             (6, settings.piecewise as u32),
             (7, termination),
             (8, line_group),
+            (9, (slots > 1) as u32),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
@@ -307,6 +374,16 @@ impl<'a> IpsviRenderer<'a> {
         // Block parity 0 reads cache side a and writes b; parity 1 the opposite. Both
         // pipelines share one descriptor set (identical layouts), bound once per sweep.
         let mut lines = parity_pair(ctx, &line_desc)?;
+        let (dispatches, sweep_dispatches, step_table) = if slots > 1 {
+            let merged = merged_steps::merge(&sweep_records, &block_records, line_group);
+            let all = vec![(0, merged.dispatches.len())];
+            (merged.dispatches, all, merged.table)
+        } else {
+            // Read only by the merged shader; a storage buffer is never empty.
+            (merged_steps::per_block(&block_records, line_group), sweep_records, vec![0; 4])
+        };
+        let steps = Buffer::with_data(ctx, "ipsvi steps", &step_table, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let merged = if slots > 1 { Some(MergedOutput::new(gpu, &output, slots)?) } else { None };
         let [a, b] = [&cache.light[0], &cache.light[1]];
         let [fa, fb] = [&cache.front[0], &cache.front[1]];
         let init_set = init.create_set(&[
@@ -333,7 +410,7 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_line::FRONT_A_WRITE, Resource::StorageImage(fa)),
             (ipsvi_line::CACHE_B_WRITE, Resource::StorageImage(b)),
             (ipsvi_line::FRONT_B_WRITE, Resource::StorageImage(fb)),
-            (ipsvi_line::OUT_IMAGE, Resource::StorageImage(&output.image)),
+            (ipsvi_line::OUT_IMAGE, Resource::StorageImage(merged.as_ref().map_or(&output.image, |m| &m.accumulation))),
             (ipsvi_line::BLOCKS, Resource::StorageBuffer(&blocks)),
             (ipsvi_line::LMAX, Resource::StorageImage(lmax)),
             (ipsvi_line::SAMPLES_A_READ, Resource::StorageImage(&cache.samples[0])),
@@ -345,6 +422,7 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_line::SAMPLES_B_WRITE, Resource::StorageImage(&cache.samples[1])),
             (ipsvi_line::STAMPS_B_WRITE, Resource::StorageImage(&cache.stamps[1])),
             (ipsvi_line::KEYS, Resource::StorageBuffer(&cache.claim_keys)),
+            (ipsvi_line::STEPS, Resource::StorageBuffer(&steps)),
         ])?;
 
         let readback = output.readback_buffer(ctx)?;
@@ -353,12 +431,14 @@ impl<'a> IpsviRenderer<'a> {
             background: scene.render.background,
             settings: settings.clone(),
             plans,
-            block_records,
-            sweep_records,
+            dispatches,
+            sweep_dispatches,
             _frame: frame,
             _planes: planes,
             _sweeps: sweeps,
             _blocks: blocks,
+            _steps: steps,
+            merged,
             output: Arc::new(output),
             cache,
             exit_points,
@@ -389,15 +469,7 @@ impl<'a> IpsviRenderer<'a> {
         if let Some(recorded) = self.secondaries.get() {
             return Ok(recorded);
         }
-        let group = self.line_group;
-        let recorded = record_sweeps(
-            self.ctx,
-            &self.sweep_records,
-            &self.block_records,
-            &self.lines,
-            self.line_set,
-            |r: &BlockParams| line_groups(r, group),
-        )?;
+        let recorded = record_sweeps(self.ctx, &self.sweep_dispatches, &self.dispatches, &self.lines, self.line_set)?;
         Ok(self.secondaries.get_or_init(|| recorded))
     }
 
@@ -410,12 +482,11 @@ impl<'a> IpsviRenderer<'a> {
                 let [l0, l1, f0, f1, s0, s1, t0, t1] = cache.images();
                 let claims =
                     self.settings.cache_update == CacheUpdate::ViewSamples && self.settings.cache_write.claims();
-                Box::new(ImageBarriers::new(
-                    &[l0, l1, f0, f1, s0, s1, t0, t1, &self.output.image],
-                    claims.then_some(&cache.claim_keys),
-                ))
+                let mut images = vec![l0, l1, f0, f1, s0, s1, t0, t1, &self.output.image];
+                images.extend(self.merged.as_ref().map(|m| &m.accumulation));
+                Box::new(ImageBarriers::new(&images, claims.then_some(&cache.claim_keys)))
             }
-            SyncStrategy::Events => Box::new(SplitBarriers::new(self.ctx, self.block_records.len())?),
+            SyncStrategy::Events => Box::new(SplitBarriers::new(self.ctx, self.dispatches.len())?),
             SyncStrategy::Secondary => Box::new(ReplayedSweeps::new(self.recorded_sweeps()?)),
             SyncStrategy::Submits => Box::new(SubmissionPerBlock),
             SyncStrategy::Racy => Box::new(Unsynchronized),
@@ -452,27 +523,74 @@ impl<'a> IpsviRenderer<'a> {
             background,
             settings,
             plans,
-            block_records,
-            sweep_records,
+            dispatches,
+            sweep_dispatches,
             output,
             cache,
             exit_points,
             placeholder,
+            merged,
             init,
             init_set,
             lines,
             line_set,
-            line_group,
             ..
         } = self;
         let (init_set, line_set) = (*init_set, *line_set);
         let bg = *background;
+        // Records the line dispatches of one sweep (or, merged, of all steps).
+        let record_lines = |rec: &mut Recorder,
+                            profiler: &mut Profiler,
+                            line_sync: &mut dyn LineSync,
+                            sweep: usize|
+         -> Result<(), VkError> {
+            if line_sync.replay_sweep(rec, sweep) {
+                return Ok(());
+            }
+            // Bound once per sweep: dispatches find their parameters by index.
+            rec.bind(&lines[0], line_set);
+            let (first, count) = sweep_dispatches[sweep];
+            for (n, d) in dispatches.iter().enumerate().skip(first).take(count) {
+                line_sync.before_block(rec, n);
+                let line = &lines[d.parity as usize];
+                line_sync.bind_line(rec, line, line_set);
+                let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
+                rec.push(line, &d.index);
+                rec.dispatch(d.groups, 1, 1);
+                profiler.end(rec, line_scope)?;
+                line_sync.after_block(rec, n)?;
+            }
+            Ok(())
+        };
+        let init_caches = |rec: &mut Recorder, profiler: &mut Profiler, light: u32, slots: u32| {
+            let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
+            rec.bind(init, init_set);
+            let n = settings.cache_size.div_ceil(8);
+            rec.push(init, &[light, slots]);
+            rec.dispatch(n, (settings.cache_size * slots).div_ceil(8), 1);
+            profiler.end(rec, init_scope)?;
+            rec.barrier(&Barrier::memory(
+                "cache_init_write_to_first_line_read",
+                Access::COMPUTE_WRITE,
+                Access::COMPUTE_READ_WRITE,
+            ));
+            Ok::<(), VkError>(())
+        };
         rec.clear_for_compute(
             &output.image,
             [bg.x, bg.y, bg.z, 1.0],
             "output_discard_to_clear",
             "output_clear_to_line_accumulate",
         );
+        if let Some(m) = merged {
+            // Each sweep adds its weighted colour to its own rows, from zero.
+            rec.clear_for_compute(
+                &m.accumulation,
+                [0.0; 4],
+                "accumulation_discard_to_clear",
+                "accumulation_clear_to_line_accumulate",
+            );
+        }
         rec.discard_for_compute("cache_discard_to_init_write", &cache.images());
         // Claims carry a frame-wide block number: cleared once per frame.
         rec.barrier(&Barrier::memory("claim_keys_previous_frame_to_clear", Access::ANY, Access::CLEAR_WRITE));
@@ -489,43 +607,34 @@ impl<'a> IpsviRenderer<'a> {
         if let Some(e) = &exit_points {
             e.record(rec, profiler)?;
         }
-        let mut next_block = 0usize;
-        let mut next_sweep = 0usize;
-        for (li, plan) in plans.iter().enumerate() {
-            for sweep in &plan.sweeps {
-                line_sync.before_sweep(rec);
-                let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
-                rec.bind(init, init_set);
-                let n = settings.cache_size.div_ceil(8);
-                rec.push(init, &(li as u32));
-                rec.dispatch(n, n, 1);
-                profiler.end(rec, init_scope)?;
-                rec.barrier(&Barrier::memory(
-                    "cache_init_write_to_first_line_read",
-                    Access::COMPUTE_WRITE,
-                    Access::COMPUTE_READ_WRITE,
-                ));
-                let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
-                if line_sync.replay_sweep(rec, next_sweep) {
-                    next_block += sweep_records[next_sweep].1;
-                } else {
-                    // Bound once per sweep: blocks find their parameters by index.
-                    rec.bind(&lines[0], line_set);
-                    for _ in 0..sweep_records[next_sweep].1 {
-                        let record = &block_records[next_block];
-                        line_sync.before_block(rec, next_block);
-                        let line = &lines[record.parity as usize];
-                        line_sync.bind_line(rec, line, line_set);
-                        let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
-                        rec.push(line, &(next_block as u32));
-                        rec.dispatch(line_groups(record, *line_group), 1, 1);
-                        profiler.end(rec, line_scope)?;
-                        line_sync.after_block(rec, next_block)?;
-                        next_block += 1;
-                    }
+        if let Some(m) = merged {
+            line_sync.before_sweep(rec);
+            init_caches(rec, profiler, 0, m.slots)?;
+            let sweeps_scope = profiler.begin(rec, "ipsvi_sweeps_merged")?;
+            record_lines(rec, profiler, &mut *line_sync, 0)?;
+            profiler.end(rec, sweeps_scope)?;
+            // The last step's writes, whatever the strategy put after it.
+            line_sync.before_sweep(rec);
+            rec.barrier(&Barrier::memory(
+                "sweep_accumulation_to_sum_read",
+                Access::COMPUTE_WRITE,
+                Access::COMPUTE_READ_WRITE,
+            ));
+            let sum_scope = profiler.begin(rec, "ipsvi_sweep_sum")?;
+            rec.bind(&m.sum, m.sum_set);
+            rec.dispatch(output.width.div_ceil(8), output.height.div_ceil(8), 1);
+            profiler.end(rec, sum_scope)?;
+        } else {
+            let mut next_sweep = 0usize;
+            for (li, plan) in plans.iter().enumerate() {
+                for sweep in &plan.sweeps {
+                    line_sync.before_sweep(rec);
+                    init_caches(rec, profiler, li as u32, 1)?;
+                    let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
+                    record_lines(rec, profiler, &mut *line_sync, next_sweep)?;
+                    next_sweep += 1;
+                    profiler.end(rec, sweep_scope)?;
                 }
-                next_sweep += 1;
-                profiler.end(rec, sweep_scope)?;
             }
         }
         line_sync.end_frame(rec);
@@ -533,13 +642,6 @@ impl<'a> IpsviRenderer<'a> {
         let keep_alive = line_sync.frame_resources();
         Ok(RecordedFrame::counted(rec, output.clone(), keep_alive))
     }
-}
-
-/// Workgroups of a block's line dispatch: one invocation per pixel of the
-/// block, then one per texel of the cache region it updates, then (farthest)
-/// one per pixel of the next block it claims texels for; `group` invocations each.
-fn line_groups(record: &BlockParams, group: u32) -> u32 {
-    (record.pixel_count + record.region[2] * record.region[3] + record.claim_count).div_ceil(group)
 }
 
 /// A sweep's block records: (first, count).
@@ -602,6 +704,7 @@ fn block_params(
                     light: li as u32,
                     stamp: index as u32 + 1,
                     claim_count: 0,
+                    ..BlockParams::default()
                 });
             }
             let count = out.len() - first_record;

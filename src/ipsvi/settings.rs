@@ -41,6 +41,11 @@ pub struct IpsviSettings {
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
+    /// Step k of every independent sweep (the zones of a point or spot light,
+    /// the sweeps of several lights) as one dispatch and one line barrier,
+    /// each sweep with its own cache and colour accumulation (`merged_steps.rs`);
+    /// false: the sweeps one after the other (what the sync study measures).
+    pub merge_sweeps: bool,
     /// Study baseline, not an illumination result: every sweep is one dispatch
     /// over all its lines (the same shader and pixels with no sweep to sync).
     /// Set in code only, never from a file.
@@ -93,6 +98,7 @@ impl Default for IpsviSettings {
             cache_update: CacheUpdate::ViewSamples,
             cache_write: CacheWrite::Farthest,
             sync: SyncStrategy::BarrierGlobal,
+            merge_sweeps: false,
             single_dispatch_baseline: false,
             breakdown_step: BreakdownStep::Full,
         }

@@ -46,11 +46,16 @@ impl RenderTechnique for Ipsvi {
         let claims = view_samples && s.cache_write.claims();
         // A claim-only record ahead of each sweep's first block.
         let records = if claims { blocks + sweeps } else { blocks };
-        let cache = [s.cache_size, s.cache_size, 1];
+        // merge_sweeps: one cache (and claim keys, colour accumulation) per sweep, stacked in rows.
+        let slots = if s.merge_sweeps && sweeps > 1 { sweeps as u32 } else { 1 };
+        let cache = [s.cache_size, s.cache_size * slots, 1];
         // The view-sample pair; 1x1 and bound only in light-rays mode.
-        let sample = if view_samples { cache } else { [1, 1, 1] };
+        let sample = if view_samples { cache } else { [1, slots, 1] };
         let n = u64::from(s.cache_size);
-        let key_bytes = if claims { 2 * 8 * n * n } else { 16 };
+        let key_bytes = if claims { 2 * 8 * n * n * u64::from(slots) } else { 16 };
+        // The step table: per step and sweep (block, first workgroup) after a header; a placeholder unmerged.
+        let steps = plans.iter().flat_map(|p| &p.sweeps).map(|sweep| sweep.blocks.len() + claims as usize).max();
+        let step_words = if slots > 1 { 2 + 2 * steps.unwrap_or(0) * sweeps } else { 4 };
         let mut needs = vec![
             ResourceNeed::output_image("ipsvi output", width, height),
             // Illumination: RGBA16F; front: R16_UINT.
@@ -67,7 +72,11 @@ impl RenderTechnique for Ipsvi {
             ResourceNeed::of::<[f32; 4]>("ipsvi line planes", (width + height) as usize),
             ResourceNeed::of::<SweepParams>("ipsvi sweeps", scene.lights.len()),
             ResourceNeed::of::<BlockParams>("ipsvi blocks", records),
+            ResourceNeed::of::<u32>("ipsvi steps", step_words),
         ];
+        if slots > 1 {
+            needs.push(ResourceNeed::image("ipsvi sweep accumulation", [width, height * slots, 1], 16));
+        }
         if s.early_termination == EarlyTermination::ExitPoints {
             // The pre-pass resolution: RG32F depths, R32F l_max.
             let low = [width.div_ceil(s.ert_scale), height.div_ceil(s.ert_scale), 1];

@@ -1,5 +1,5 @@
 use super::LineSync;
-use crate::ipsvi::gpu_params::BlockParams;
+use crate::ipsvi::merged_steps::LineDispatch;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{Recorder, SecondaryCommands};
 use crate::vk::pipeline::ComputePipeline;
@@ -32,25 +32,25 @@ impl LineSync for ReplayedSweeps<'_> {
 }
 
 /// One secondary command buffer per sweep (in frame order, `sweeps` as
-/// (first block record, record count)): its blocks and the
-/// barrier after each, parameters read from the blocks buffer by block index.
+/// (first dispatch, dispatch count) of `dispatches`; merged, the frame is one
+/// sweep of steps): its dispatches and the barrier after each, parameters read
+/// from buffers by the pushed index.
 /// A secondary inherits nothing: it binds the line pipelines and `line_set`.
 pub fn record_sweeps(
     ctx: &Context,
     sweeps: &[(usize, usize)],
-    block_records: &[BlockParams],
+    dispatches: &[LineDispatch],
     lines: &[ComputePipeline; 2],
     line_set: vk::DescriptorSet,
-    workgroups: impl Fn(&BlockParams) -> u32,
 ) -> Result<SecondaryCommands, VkError> {
     SecondaryCommands::record(ctx, "ipsvi sweep", sweeps.len(), |i, rec| {
         let (first, count) = sweeps[i];
         rec.bind(&lines[0], line_set);
-        for (k, record) in block_records.iter().enumerate().skip(first).take(count) {
-            let line = &lines[record.parity as usize];
+        for d in &dispatches[first..first + count] {
+            let line = &lines[d.parity as usize];
             rec.bind_pipeline(line);
-            rec.push(line, &(k as u32));
-            rec.dispatch(workgroups(record), 1, 1);
+            rec.push(line, &d.index);
+            rec.dispatch(d.groups, 1, 1);
             rec.barrier(&Barrier::memory(
                 "cache_write_to_next_line_read",
                 Access::COMPUTE_WRITE,
