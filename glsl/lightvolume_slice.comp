@@ -114,6 +114,34 @@ vec3 optical_depth(vec3 p, vec3 dir, float len) {
     return tau * g / vl;
 }
 
+// Optical depth of the cell's column between p and the previous slice (`len`
+// world units back along the axis), shared by every light of the pass: the
+// sub-steps are spread over the cell's lateral cross-section (a 2D
+// low-discrepancy pattern, one lateral point per sub-step) instead of all on
+// the axis line through the centre. An oblique light crosses the cell up to
+// half a cell beside that line, through medium the line never sees; at scale 4
+// (a cell four data voxels wide) the line alone misjudged thin structures most.
+// Same number of samples as the line.
+vec3 cell_column_depth(vec3 p, int a, int u, int v, float back, float len) {
+    if (len <= 0.0) return vec3(0.0);
+    float vl = frame.voxel_length;
+    int n = int(clamp(ceil(len / (SUBSTEP_VOXELS * vl)), 1.0, float(MAX_SUBSTEPS)));
+    float g = len / float(n);
+    vec2 cell = vec2(2.0 * frame.box_half[u] / float(pass.grid[u]), 2.0 * frame.box_half[v] / float(pass.grid[v]));
+    // R2 sequence (plastic number): evenly spread for every n.
+    const vec2 R2 = vec2(0.7548776662, 0.5698402910);
+    vec3 tau = vec3(0.0);
+    for (int j = 0; j < n; ++j) {
+        vec2 o = (fract(vec2(0.5) + R2 * float(j + 1)) - 0.5) * cell;
+        vec3 q = p;
+        q[a] += back * ((float(j) + 0.5) * g);
+        q[u] += o.x;
+        q[v] += o.y;
+        tau += extinction(medium(q));
+    }
+    return tau * g / vl;
+}
+
 // Transmittance stored in the previous slice at lateral texel position c
 // (continuous, texel centres at i + 0.5; callers only ask for points inside the
 // volume), bilinear between texel centres. Between the outermost texel centre
@@ -174,10 +202,8 @@ void main() {
     float dstep = 2.0 * frame.box_half[a] / float(pass.grid[a]);
     // The first slice takes the light at the volume face, half a slice away.
     float segment = (k == 0 ? 0.5 : 1.0) * dstep;
-    vec3 back_along_axis = vec3(0.0);
-    back_along_axis[a] = -travel;
     // Shared medium: sampled once per voxel for every light of the pass.
-    vec3 axis_depth = SHARED_MEDIUM ? optical_depth(p, back_along_axis, segment) : vec3(0.0);
+    vec3 axis_depth = SHARED_MEDIUM ? cell_column_depth(p, a, u, v, -travel, segment) : vec3(0.0);
     // This pass's light at the voxel, summed in registers (two-float when
     // compensated) and added into the volume once below.
     vec3 sum_hi = vec3(0.0);
