@@ -287,3 +287,39 @@ impl Propagation {
         })?)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn light(kind: f32, position: [f32; 3]) -> GpuLight {
+        GpuLight { pos_type: [position[0], position[1], position[2], kind], ..GpuLight::default() }
+    }
+
+    /// A -y group (light travelling down) on a 32-slice grid of half extent 0.5
+    /// along y: slices 1/32 apart, the first centre at y = 0.5 - 1/64.
+    fn down() -> PropagationGroup {
+        PropagationGroup { axis: 1, travel: -1, members: Vec::new() }
+    }
+
+    #[test]
+    fn only_point_and_spot_lights_within_reach_of_the_first_slices_take_the_near_build() {
+        let (half, grid) = ([0.5; 3], UVec3::new(32, 32, 32));
+        let dstep = 1.0 / 32.0;
+        let first = 0.5 - 0.5 * dstep;
+        let near = |kind: f32, y: f32| may_come_near(&light(kind, [0.0, y, 0.0]), &down(), half, grid);
+        // Directional lights are never near, wherever pos_type points.
+        assert!(!near(0.0, first + dstep));
+        for kind in [1.0, 2.0] {
+            assert!(near(kind, 0.0), "inside the box");
+            assert!(near(kind, first + 4.0 * dstep), "4 slices before the first: the shader integrates");
+            assert!(near(kind, first + 4.9 * dstep), "within the one-slice margin");
+            assert!(!near(kind, first + 5.1 * dstep), "beyond the margin");
+            assert!(!near(kind, 3.0), "far above");
+        }
+        // A +y group (travelling up): a point light 3 slices below the first centre is near.
+        let up = PropagationGroup { axis: 1, travel: 1, members: Vec::new() };
+        assert!(may_come_near(&light(1.0, [0.0, -first - 3.0 * dstep, 0.0]), &up, half, grid));
+        assert!(!may_come_near(&light(1.0, [0.0, -3.0, 0.0]), &up, half, grid));
+    }
+}
