@@ -129,6 +129,9 @@ vec3 optical_depth(vec3 p, vec3 dir, float len) {
 // the axis line through the centre. An oblique light crosses the cell up to
 // half a cell beside that line, through medium the line never sees; at scale 4
 // (a cell four data voxels wide) the line alone misjudged thin structures most.
+// The points spread over the data voxel centres the cell covers (the
+// trilinear filter already spans one data voxel): none at scale 1, where a
+// spread over the whole cell blurred the medium (DR*1 error 1.4x the line's).
 // Same number of samples as the line.
 vec3 cell_column_depth(vec3 p, int a, int u, int v, float back, float len) {
     if (len <= 0.0) return vec3(0.0);
@@ -136,11 +139,12 @@ vec3 cell_column_depth(vec3 p, int a, int u, int v, float back, float len) {
     int n = int(clamp(ceil(len / (SUBSTEP_VOXELS * vl)), 1.0, float(MAX_SUBSTEPS)));
     float g = len / float(n);
     vec2 cell = vec2(2.0 * frame.box_half[u] / float(pass.grid[u]), 2.0 * frame.box_half[v] / float(pass.grid[v]));
+    vec2 spread = max(cell - vl, vec2(0.0));
     // R2 sequence (plastic number): evenly spread for every n.
     const vec2 R2 = vec2(0.7548776662, 0.5698402910);
     vec3 tau = vec3(0.0);
     for (int j = 0; j < n; ++j) {
-        vec2 o = (fract(vec2(0.5) + R2 * float(j + 1)) - 0.5) * cell;
+        vec2 o = (fract(vec2(0.5) + R2 * float(j + 1)) - 0.5) * spread;
         vec3 q = p;
         q[a] += back * ((float(j) + 0.5) * g);
         q[u] += o.x;
