@@ -57,6 +57,26 @@ struct SlicePush {
 crate::assert_gpu_layout!(SlicePush, shader::layout::PASS, [axis, travel, slice, entry_count, grid, first_entry]);
 
 const GROUP_SIZE: u32 = 8;
+/// `NEAR_LIGHT_SLICES` in glsl/lightvolume_slice.comp: within this many slices
+/// of a point or spot light the shader integrates the path to the light.
+const NEAR_LIGHT_SLICES: f32 = 4.0;
+
+/// Whether a light in `state` can come within `NEAR_LIGHT_SLICES` of a slice
+/// centre of `group` (what the shader's near-light integration handles): a
+/// point or spot light less than that (plus one slice of margin against
+/// rounding) before the first slice centre along the travel direction, or
+/// inside the box. Depends only on the light's state and the group, and a
+/// pass without such a light runs the build without that integration.
+fn may_come_near(state: &GpuLight, group: &PropagationGroup, box_half: [f32; 3], grid: UVec3) -> bool {
+    if state.pos_type[3] == 0.0 {
+        return false; // directional: infinitely far
+    }
+    let a = group.axis;
+    let dstep = 2.0 * box_half[a] / grid[a] as f32;
+    let first_centre = -box_half[a] + 0.5 * dstep;
+    let before_first = first_centre - state.pos_type[a] * group.travel as f32;
+    before_first <= (NEAR_LIGHT_SLICES + 1.0) * dstep
+}
 
 /// How much a [`Propagation`] holds: slice layers (lights per pass), light
 /// slots and pass entries.
@@ -120,7 +140,9 @@ impl Capacity {
 pub struct Propagation {
     pub capacity: Capacity,
     grid: UVec3,
-    pipelines: [ComputePipeline; 2],
+    /// Indexed by [near lights in the pass][slice parity].
+    pipelines: [[ComputePipeline; 2]; 2],
+    box_half: [f32; 3],
     set: vk::DescriptorSet,
     /// Slice buffer sides a and b: x, y a slice texel, z the light's layer in
     /// its pass (a 3D image stands in for a 2D array: one layer per light).
@@ -165,20 +187,25 @@ impl Propagation {
         };
         let slices = [slice_image("lightvolume slice a")?, slice_image("lightvolume slice b")?];
         let compensated = illumination.compensated as u32;
-        let desc = ComputePipelineDesc {
-            name: "lightvolume_slice",
-            shader: &shader::INTERFACE,
-            specialization: &[
-                (0, compensated),
-                (1, settings.substep_data_voxels().to_bits()),
-                (2, settings.shared_medium as u32),
-                (3, settings.chromatic as u32),
-            ],
-            max_sets: 1,
+        let build = |near_lights: bool| {
+            let desc = ComputePipelineDesc {
+                name: "lightvolume_slice",
+                shader: &shader::INTERFACE,
+                specialization: &[
+                    (0, compensated),
+                    (1, settings.substep_data_voxels().to_bits()),
+                    (2, settings.shared_medium as u32),
+                    (3, settings.chromatic as u32),
+                    (4, near_lights as u32),
+                ],
+                max_sets: 1,
+            };
+            // Slice parity 0 reads side a and writes b; parity 1 the opposite.
+            parity_pair(ctx, &desc)
         };
-        // Slice parity 0 reads side a and writes b; parity 1 the opposite.
-        let mut pipelines = parity_pair(ctx, &desc)?;
-        let set = pipelines[0].create_set(&[
+        let mut pipelines = [build(false)?, build(true)?];
+        // All four share one layout: one set serves them all.
+        let set = pipelines[0][0].create_set(&[
             (shader::FRAME, Resource::UniformBuffer(&frame)),
             (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
@@ -192,7 +219,8 @@ impl Propagation {
             (shader::ILLUMINATION, Resource::StorageImage(&illumination.image)),
             (shader::ILLUMINATION_LOW, Resource::StorageImage(&illumination.low)),
         ])?;
-        Ok(Propagation { capacity, grid, pipelines, set, slices, slots, entries, _frame: frame })
+        let box_half = params.box_half;
+        Ok(Propagation { capacity, grid, pipelines, box_half, set, slices, slots, entries, _frame: frame })
     }
 
     /// Writes light states into the slot buffer from slot `first` on (between
@@ -231,11 +259,13 @@ impl Propagation {
         let grid = self.grid.as_ivec3();
         let name = group.scope_name();
         let slices = self.slice_count(group);
+        let near = group.members.iter().any(|m| may_come_near(&m.state, group, self.box_half, self.grid));
+        let pipelines = &self.pipelines[near as usize];
         Ok(SecondaryCommands::record(ctx, &name, 1, |_, rec| {
             let (u, v) = ((group.axis + 1) % 3, (group.axis + 2) % 3);
-            rec.bind(&self.pipelines[0], self.set);
+            rec.bind(&pipelines[0], self.set);
             for k in 0..slices {
-                let pipeline = &self.pipelines[(k % 2) as usize];
+                let pipeline = &pipelines[(k % 2) as usize];
                 rec.bind_pipeline(pipeline);
                 let push = SlicePush {
                     axis: group.axis as i32,
@@ -255,5 +285,41 @@ impl Propagation {
             }
             Ok(())
         })?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn light(kind: f32, position: [f32; 3]) -> GpuLight {
+        GpuLight { pos_type: [position[0], position[1], position[2], kind], ..GpuLight::default() }
+    }
+
+    /// A -y group (light travelling down) on a 32-slice grid of half extent 0.5
+    /// along y: slices 1/32 apart, the first centre at y = 0.5 - 1/64.
+    fn down() -> PropagationGroup {
+        PropagationGroup { axis: 1, travel: -1, members: Vec::new() }
+    }
+
+    #[test]
+    fn only_point_and_spot_lights_within_reach_of_the_first_slices_take_the_near_build() {
+        let (half, grid) = ([0.5; 3], UVec3::new(32, 32, 32));
+        let dstep = 1.0 / 32.0;
+        let first = 0.5 - 0.5 * dstep;
+        let near = |kind: f32, y: f32| may_come_near(&light(kind, [0.0, y, 0.0]), &down(), half, grid);
+        // Directional lights are never near, wherever pos_type points.
+        assert!(!near(0.0, first + dstep));
+        for kind in [1.0, 2.0] {
+            assert!(near(kind, 0.0), "inside the box");
+            assert!(near(kind, first + 4.0 * dstep), "4 slices before the first: the shader integrates");
+            assert!(near(kind, first + 4.9 * dstep), "within the one-slice margin");
+            assert!(!near(kind, first + 5.1 * dstep), "beyond the margin");
+            assert!(!near(kind, 3.0), "far above");
+        }
+        // A +y group (travelling up): a point light 3 slices below the first centre is near.
+        let up = PropagationGroup { axis: 1, travel: 1, members: Vec::new() };
+        assert!(may_come_near(&light(1.0, [0.0, -first - 3.0 * dstep, 0.0]), &up, half, grid));
+        assert!(!may_come_near(&light(1.0, [0.0, -3.0, 0.0]), &up, half, grid));
     }
 }
