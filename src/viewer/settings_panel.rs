@@ -104,6 +104,7 @@ pub fn controls() -> Vec<Control> {
         control("ipsvi", "sync", Choice(names(&SyncStrategy::ALL.map(|c| c.name()))), |s| {
             Name(s.settings.ipsvi.sync.name())
         }),
+        control("ipsvi", "merge_sweeps", Toggle, |s| Bool(s.settings.ipsvi.merge_sweeps)),
         control("lightvolume", "scale", Numbers(&[1, 2, 4]), |s| Number(s.settings.lightvolume.scale as f64)),
         control("lightvolume", "coherent", Toggle, |s| Bool(s.settings.lightvolume.coherent)),
         control("lightvolume", "compensated", Toggle, |s| Bool(s.settings.lightvolume.compensated)),
