@@ -164,16 +164,7 @@ fn sweep_without_line_barriers_is_reported_by_synchronization_validation() {
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     let s = IpsviSettings { cache_size: 32, ..IpsviSettings::default() };
-    profiler.reset();
-    render_with(&gpu, &s, 16, 16, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
-    assert_validation_clean(&ctx);
-    profiler.reset();
-    render_with(&gpu, &s, 16, 16, &mut profiler, SyncStrategy::Racy).unwrap();
-    let messages = ctx.take_validation_messages();
-    assert!(
-        messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
-        "missing line barrier not reported: {messages:?}"
-    );
+    assert_ipsvi_line_barrier_load_bearing(&ctx, &gpu, &s, &mut profiler, "default settings");
 }
 
 #[test]

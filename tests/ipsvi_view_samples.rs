@@ -240,15 +240,12 @@ fn line_barrier_is_reported_missing_in_both_modes() {
     ];
     for (cache_update, cache_write) in modes {
         let s = IpsviSettings { cache_size: 32, cache_update, cache_write, ..IpsviSettings::default() };
-        profiler.reset();
-        render_with(&gpu, &s, 16, 16, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
-        assert_validation_clean(&ctx);
-        profiler.reset();
-        render_with(&gpu, &s, 16, 16, &mut profiler, SyncStrategy::Racy).unwrap();
-        let messages = ctx.take_validation_messages();
-        assert!(
-            messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
-            "{cache_update:?}/{cache_write:?}: missing line barrier not reported: {messages:?}"
+        assert_ipsvi_line_barrier_load_bearing(
+            &ctx,
+            &gpu,
+            &s,
+            &mut profiler,
+            &format!("{cache_update:?}/{cache_write:?}"),
         );
     }
 }

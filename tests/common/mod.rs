@@ -89,3 +89,27 @@ pub fn cornell_box_scene(n: u32, size: u32, ao: &str) -> Scene {
     );
     scene_file::scene_from_toml_str(&text, std::path::Path::new(""), "cornell", &[]).unwrap()
 }
+
+/// IPSVI's line barrier, load-bearing: `s` renders validation-clean with the
+/// barrier between line blocks, and without it (`racy`) synchronization
+/// validation reports a hazard on the cache. `what` names the case in the
+/// failure message.
+pub fn assert_ipsvi_line_barrier_load_bearing(
+    ctx: &Context,
+    gpu: &sweeplab::render::GpuScene,
+    s: &sweeplab::ipsvi::IpsviSettings,
+    profiler: &mut sweeplab::vk::Profiler,
+    what: &str,
+) {
+    use sweeplab::ipsvi::{render_with, SyncStrategy};
+    profiler.reset();
+    render_with(gpu, s, 16, 16, profiler, SyncStrategy::BarrierGlobal).unwrap();
+    assert_validation_clean(ctx);
+    profiler.reset();
+    render_with(gpu, s, 16, 16, profiler, SyncStrategy::Racy).unwrap();
+    let messages = ctx.take_validation_messages();
+    assert!(
+        messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
+        "{what}: missing line barrier not reported: {messages:?}"
+    );
+}
