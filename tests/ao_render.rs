@@ -259,3 +259,27 @@ fn goals_tf_change_time_and_overhead_over_blinn_phong() {
     let (a, p) = (median(ao.clone()), median(phong.clone()));
     println!("512x512: ao {a:.1} ms, phong {p:.1} ms, overhead {:.2}x (ao {ao:.1?}, phong {phong:.1?})", a / p);
 }
+
+/// Across viewer frames the codebook is uploaded and the lookup computed once
+/// per session: the first frame runs the lookup pass, later frames only the
+/// ray cast, with the image of the headless render.
+#[test]
+fn a_session_computes_the_lookup_once_and_renders_the_headless_image() {
+    let ctx = validated_context();
+    let scene = cornell("dvr");
+    let headless = frame(&ctx, &scene, Technique::Ao, None);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut session = sweeplab::render::session(&gpu, Technique::Ao).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    let lights: Vec<_> = scene.lights.iter().cloned().map(Some).collect();
+    let mut lookup_passes = Vec::new();
+    for _ in 0..3 {
+        profiler.reset();
+        let image = session.frame(&lights, SIZE, SIZE, &mut profiler).unwrap().image;
+        assert_eq!(image.pixels, headless.pixels, "a session frame differs from the headless render");
+        let profile = profiler.resolve(0).unwrap();
+        lookup_passes.push(profile.passes.iter().filter(|p| p.name == "ao_environment").count());
+    }
+    assert_eq!(lookup_passes, vec![1, 0, 0], "the lookup is computed on the first frame only");
+    assert_validation_clean(&ctx);
+}

@@ -24,6 +24,7 @@ pub mod quantize;
 pub mod render;
 pub mod render_settings;
 pub mod search;
+pub mod session;
 pub mod settings;
 pub mod technique;
 pub mod training_set;

@@ -14,14 +14,14 @@ use super::AoPreprocessed;
 use crate::reference::gpu::ChunkSync;
 use crate::render::frame_params::{frame_params, FrameParams, MarchSteps};
 use crate::render::raycast::ChunkedMarch;
-use crate::render::recorded_frame::render_recorded;
+use crate::render::recorded_frame::{render_recorded, RecordedFrame};
 use crate::render::view_chunks::ViewChunks;
 use crate::render::{FrameResult, GpuScene, RenderError, ResourceNeed};
 use crate::scene::Scene;
 use crate::shaders::ao_render as shader;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
-use crate::vk::{Buffer, Profiler};
+use crate::vk::{Buffer, Profiler, Recorder};
 
 /// The pass's name: debug label, profiler scope and technique name.
 pub const PASS: &str = "ao";
@@ -119,13 +119,21 @@ impl AoRenderer {
         }
     }
 
-    /// Renders one frame of `gpu` (the scene it was created for).
-    pub fn frame(
+    /// Renders one frame of `gpu` (the scene it was created for): [`Self::record`]
+    /// and the read-back.
+    pub fn frame(&self, gpu: &GpuScene, size: (u32, u32), profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
+        render_recorded(gpu, |rec| self.record(gpu, size, rec, profiler))
+    }
+
+    /// Records one frame into `rec` (see [`RecordedFrame`]); the renderer's
+    /// cluster ids, codebook and lookup are only read, and must outlive it.
+    pub fn record(
         &self,
         gpu: &GpuScene,
         (width, height): (u32, u32),
+        rec: &mut Recorder,
         profiler: &mut Profiler,
-    ) -> Result<FrameResult, RenderError> {
+    ) -> Result<RecordedFrame, RenderError> {
         let ctx = gpu.ctx;
         let scene = gpu.scene;
         let chunks = ViewChunks::for_render(scene, PASS, iterations_per_sample(scene))?;
@@ -155,9 +163,11 @@ impl AoRenderer {
             (shader::AO, Resource::UniformBuffer(&ao)),
         ];
         let march = ChunkedMarch { name: PASS, chunks, size: (width, height), sync: ChunkSync::Barrier };
-        render_recorded(gpu, |rec| {
-            march.record(gpu, pipeline, &shared, [shader::OUT_IMAGE, shader::STATE_IN], rec, profiler)
-        })
+        let mut recorded =
+            march.record(gpu, pipeline, &shared, [shader::OUT_IMAGE, shader::STATE_IN], rec, profiler)?;
+        recorded.keep_alive.push(Box::new(frame));
+        recorded.keep_alive.push(Box::new(ao));
+        Ok(recorded)
     }
 }
 

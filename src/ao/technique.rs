@@ -7,9 +7,10 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 use super::render::{self, AoRenderer};
+use super::session::AoSession;
 use super::{preprocess_cached_on, AoError, AoPreprocessed, AoSettings, Backend, CacheKey, Progress};
 use crate::render::view_chunks::check_view_step;
-use crate::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
+use crate::render::{FrameResult, FrameSession, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene, Volume};
 use crate::vk::{Context, Profiler};
 
@@ -88,6 +89,10 @@ impl RenderTechnique for Ao {
         let renderer = AoRenderer::new(gpu, &pre, &settings)?;
         renderer.update_environment(gpu, profiler)?;
         renderer.frame(gpu, (width, height), profiler)
+    }
+    /// Keeps the uploaded codebook and the lookup across viewer frames.
+    fn session<'s>(&self, gpu: &'s GpuScene<'s>) -> Result<Option<Box<dyn FrameSession + 's>>, RenderError> {
+        Ok(Some(Box::new(AoSession::new(gpu)?)))
     }
     fn settings_note(&self, scene: &Scene) -> Option<String> {
         let s = &scene.settings.ao;
