@@ -159,34 +159,49 @@ float zone_weight(BlockParams line_block, vec2 c) {
     return w[line_block.zone - 1u] / max(w.x + w.y + w.z + w.w, 1e-6);
 }
 
-// Cache value (E / scale: rgb, transmittance: a) interpolated at continuous
-// coordinates c, and the front parameter of the nearest texel's ray.
-vec4 cache_bilinear(vec2 c) {
+// The four cache texels around continuous coordinates c and their bilinear weights.
+struct Footprint {
+    ivec2 texel[4];
+    float weight[4];
+};
+
+Footprint bilinear_footprint(vec2 c) {
     ivec2 n = ivec2(sweep.cache_size);
     vec2 t = c - 0.5;
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
-    ivec2 a = clamp(i0, ivec2(0), n - 1);
-    ivec2 b = clamp(i0 + 1, ivec2(0), n - 1);
-    vec4 v00 = cache_load(ivec2(a.x, a.y));
-    vec4 v10 = cache_load(ivec2(b.x, a.y));
-    vec4 v01 = cache_load(ivec2(a.x, b.y));
-    vec4 v11 = cache_load(ivec2(b.x, b.y));
-    return mix(mix(v00, v10, f.x), mix(v01, v11, f.x), f.y);
+    Footprint fp;
+    for (int j = 0; j < 4; ++j) {
+        ivec2 o = ivec2(j & 1, j >> 1);
+        fp.texel[j] = clamp(i0 + o, ivec2(0), n - 1);
+        fp.weight[j] = (o.x != 0 ? f.x : 1.0 - f.x) * (o.y != 0 ? f.y : 1.0 - f.y);
+    }
+    return fp;
 }
 
-// Light at sample p: (direct transmittance, emission arriving / scale).
+// Light at sample p: (direct transmittance, emission arriving / scale): the
+// four texels bilinearly (E / scale: rgb, transmittance: a), and with piecewise
+// integration the path from p back to their fronts, weighted as their values.
+// (Each texel's front lies on its own light ray; the nearest texel's front
+// alone is off by the front plane's tilt across a texel, which a stiff medium
+// turns into stripes: docs/stability.md.)
 vec4 light_at(vec3 p) {
     vec3 c = cache_coord(p);
-    vec4 cached = cache_bilinear(c.xy);
-    if (!PIECEWISE || STEP < 2u) return vec4(cached.rgb, cached.a);
-    uvec2 k = uvec2(clamp(ivec2(floor(c.xy)), ivec2(0), ivec2(sweep.cache_size) - 1));
-    Ray r = cache_ray(k);
-    vec2 io = ray_in_box(r);
-    if (io.x > io.y) return cached;
-    float front = front_param(r, front_load(ivec2(k)), io);
+    Footprint fp = bilinear_footprint(c.xy);
+    bool piecewise = PIECEWISE && STEP >= 2u;
+    vec4 cached = vec4(0.0);
+    float front = 0.0;
+    for (int j = 0; j < 4; ++j) {
+        cached += fp.weight[j] * cache_load(fp.texel[j]);
+        if (piecewise) {
+            Ray r = cache_ray(uvec2(fp.texel[j]));
+            vec2 io = ray_in_box(r);
+            front += fp.weight[j] * (io.x <= io.y ? front_param(r, front_load(fp.texel[j]), io) : c.z);
+        }
+    }
+    if (!piecewise) return cached;
     // Piecewise integration: march from p toward the light back to the cache front.
-    vec4 seg = light_segment(p, to_light(p), c.z - front, sweep.max_piecewise_steps, EMISSIVE);
+    vec4 seg = light_segment(p, to_light(p), max(c.z - front, 0.0), sweep.max_piecewise_steps, EMISSIVE);
     float tr = exp(-seg.a);
     return vec4(cached.rgb * tr + seg.rgb, cached.a * tr);
 }
@@ -229,22 +244,16 @@ ivec2 sample_texel(vec3 c) { return clamp(ivec2(floor(c.xy)), ivec2(0), ivec2(sw
 // Light at p from the view-sample cache: the four texels bilinearly, and with
 // piecewise integration the path from p back to their (equally weighted) depth.
 vec4 light_from_samples(vec3 p, vec3 c) {
-    ivec2 n = ivec2(sweep.cache_size);
-    vec2 t = c.xy - 0.5;
-    ivec2 i0 = ivec2(floor(t));
-    vec2 f = t - vec2(i0);
+    Footprint fp = bilinear_footprint(c.xy);
     bool piecewise = PIECEWISE && STEP >= 2u;
     vec4 sum = vec4(0.0);
     float front = 0.0;
     for (int j = 0; j < 4; ++j) {
-        ivec2 o = ivec2(j & 1, j >> 1);
-        ivec2 k = clamp(i0 + o, ivec2(0), n - 1);
-        float w = (o.x != 0 ? f.x : 1.0 - f.x) * (o.y != 0 ? f.y : 1.0 - f.y);
         uint code;
-        sum += w * state_load(k, code);
+        sum += fp.weight[j] * state_load(fp.texel[j], code);
         if (piecewise) {
-            vec2 io = ray_in_box(cache_ray(uvec2(k)));
-            front += w * (io.x <= io.y ? depth_of(code, io) : c.z);
+            vec2 io = ray_in_box(cache_ray(uvec2(fp.texel[j])));
+            front += fp.weight[j] * (io.x <= io.y ? depth_of(code, io) : c.z);
         }
     }
     if (!piecewise) return sum;

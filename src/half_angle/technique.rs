@@ -53,9 +53,12 @@ impl RenderTechnique for HalfAngle {
     }
 
     fn warnings(&self, scene: &Scene) -> Vec<String> {
-        use crate::render::light_grid_limits::{camera_inside, stiff_medium, MIN_HALF_ANGLE_SLICES};
+        use crate::render::light_grid_limits::{camera_inside, stiff_medium, StiffLimit, MIN_HALF_ANGLE_SLICES};
         let mut out: Vec<String> =
-            [stiff_medium(scene, self.name()), camera_inside(scene, self.name())].into_iter().flatten().collect();
+            [stiff_medium(scene, self.name(), StiffLimit::LightGrid), camera_inside(scene, self.name())]
+                .into_iter()
+                .flatten()
+                .collect();
         let slicing = (scene.lights.len() == 1).then(|| super::slicing(scene, &scene.settings.half_angle).ok());
         if let Some(slicing) = slicing.flatten() {
             if slicing.count < MIN_HALF_ANGLE_SLICES {

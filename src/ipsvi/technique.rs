@@ -116,12 +116,12 @@ impl RenderTechnique for Ipsvi {
     }
 
     fn warnings(&self, scene: &Scene) -> Vec<String> {
-        use crate::render::light_grid_limits::{camera_inside, stiff_medium};
+        use crate::render::light_grid_limits::{camera_inside, stiff_medium, StiffLimit};
         let view_samples = scene.settings.ipsvi.cache_update == CacheUpdate::ViewSamples;
         // The view-sample cache holds light at the depths of the samples that
         // wrote it: from inside the volume those lie beside the eye.
         let inside = camera_inside(scene, "ipsvi (cache_update = \"view-samples\")").filter(|_| view_samples);
-        [stiff_medium(scene, self.name()), inside].into_iter().flatten().collect()
+        [stiff_medium(scene, self.name(), StiffLimit::ViewStep), inside].into_iter().flatten().collect()
     }
 
     fn settings_note(&self, scene: &Scene) -> Option<String> {

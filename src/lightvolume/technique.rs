@@ -70,7 +70,8 @@ impl RenderTechnique for LightVolume {
     }
 
     fn warnings(&self, scene: &Scene) -> Vec<String> {
-        crate::render::light_grid_limits::stiff_medium(scene, self.name()).into_iter().collect()
+        use crate::render::light_grid_limits::{stiff_medium, StiffLimit};
+        stiff_medium(scene, self.name(), StiffLimit::LightGrid).into_iter().collect()
     }
 
     fn check(&self, scene: &Scene) -> Result<(), RenderError> {

@@ -76,16 +76,39 @@ pub fn face_optical_depth(scene: &Scene) -> (f32, f64) {
     (most, dense as f64 / count.max(1) as f64)
 }
 
+/// What stops a technique from resolving light that falls within a voxel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StiffLimit {
+    /// Its light grid (half-angle's light buffer, the light volume's cells).
+    LightGrid,
+    /// Its view step: the light is exact along each sample's light ray, but a
+    /// view sample stands for a step over which the light changes (IPSVI; the
+    /// reference alike, at its own step). Measured at equal view steps IPSVI
+    /// keeps its bound on the table's stiff cases (docs/stability.md).
+    ViewStep,
+}
+
 /// A stiff medium, or a dense one cut by the volume's faces: light falls
-/// faster, or more abruptly, than `technique`'s light grid resolves.
-pub fn stiff_medium(scene: &Scene, technique: &str) -> Option<String> {
+/// faster, or more abruptly, than `technique` resolves.
+pub fn stiff_medium(scene: &Scene, technique: &str, limit: StiffLimit) -> Option<String> {
     let opacity = |sigma: f32| 1.0 - (-sigma).exp();
     let sigma = steepest_optical_depth(scene);
     if sigma > STIFF_OPTICAL_DEPTH {
+        let why = match limit {
+            StiffLimit::LightGrid => {
+                format!("faster than {technique}'s light grid resolves, so its image may be far from the reference")
+            }
+            StiffLimit::ViewStep => format!(
+                "within one view step (render.step = {} voxel): its image, as the reference's, depends on the step \
+                 until render.step is well below 1/{sigma:.1} = {:.3} voxel, so it may be far from a reference at \
+                 another reference.step",
+                scene.render.step_voxels,
+                1.0 / sigma
+            ),
+        };
         return Some(format!(
             "{technique}: the transfer function gives the volume an optical depth of up to {sigma:.2} per voxel \
-             (opacity {:.3}): light falls by more than 95 % within one voxel, faster than {technique}'s light grid \
-             resolves, so its image may be far from the reference (docs/stability.md)",
+             (opacity {:.3}): light falls by more than 95 % within one voxel, {why} (docs/stability.md)",
             opacity(sigma)
         ));
     }
@@ -127,20 +150,28 @@ mod tests {
     fn a_stiff_medium_is_named_and_an_ordinary_one_is_not() {
         let ramp = scene("preset = \"grayscale-ramp\"", "");
         assert!((steepest_optical_depth(&ramp) - 0.105).abs() < 0.01, "{}", steepest_optical_depth(&ramp));
-        assert_eq!(stiff_medium(&ramp, "ipsvi"), None);
+        assert_eq!(stiff_medium(&ramp, "ipsvi", StiffLimit::ViewStep), None);
         let opaque = scene("points = [[0.0, 1, 1, 1, 1], [1.0, 1, 1, 1, 1]]", "");
-        let w = stiff_medium(&opaque, "ipsvi").unwrap();
+        let w = stiff_medium(&opaque, "ipsvi", StiffLimit::ViewStep).unwrap();
         assert!(w.contains("ipsvi") && w.contains("13.8") && w.contains("optical depth"), "{w}");
+        assert!(w.contains("render.step = 0.5") && w.contains("0.072 voxel"), "{w}");
+        let w = stiff_medium(&opaque, "half-angle", StiffLimit::LightGrid).unwrap();
+        assert!(w.contains("half-angle's light grid"), "{w}");
         // Opacity 0.5 everywhere: not stiff, but the faces cut it.
         let half = scene("points = [[0.0, 1, 1, 1, 0.5], [1.0, 1, 1, 1, 0.5]]", "");
-        assert!(stiff_medium(&half, "lightvolume").unwrap().contains("faces hold a dense medium"));
+        assert!(stiff_medium(&half, "lightvolume", StiffLimit::LightGrid)
+            .unwrap()
+            .contains("faces hold a dense medium"));
         // Opaque only above every value of the volume: not stiff where it is.
         let mut outside = scene("points = [[0.0, 1, 1, 1, 0], [0.6, 1, 1, 1, 0], [0.7, 1, 1, 1, 1]]", "");
         let count = outside.volume.voxel_count();
         outside.volume.data = crate::scene::VoxelData::F32((0..count).map(|i| 0.2 + 0.3 * (i % 2) as f32).collect());
-        assert_eq!(stiff_medium(&outside, "ipsvi"), None);
+        assert_eq!(stiff_medium(&outside, "ipsvi", StiffLimit::ViewStep), None);
         outside.volume.data = crate::scene::VoxelData::F32((0..count).map(|i| 0.2 + 0.5 * (i % 2) as f32).collect());
-        assert!(stiff_medium(&outside, "ipsvi").is_some_and(|w| w.contains("13.8")), "0.7 reaches the opaque end");
+        assert!(
+            stiff_medium(&outside, "ipsvi", StiffLimit::ViewStep).is_some_and(|w| w.contains("13.8")),
+            "0.7 reaches the opaque end"
+        );
     }
 
     #[test]
