@@ -6,7 +6,9 @@ mod common;
 
 use common::*;
 use glam::{UVec3, Vec3};
-use sweeplab::ipsvi::{render_with, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy};
+use sweeplab::ipsvi::{
+    render_with, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WriteValue,
+};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
@@ -168,18 +170,31 @@ fn view_samples_match_the_reference_on_the_ipsvi_scenes() {
             POINT_TOLERANCE,
         ),
     ];
+    // write_value = "texel-ray" (the default) against the paper's "sample".
+    let (mut texel_ray_sum, mut sample_sum) = (0.0, 0.0);
     for (what, scene, tolerance) in &cases {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
         let truth = reference(&ctx, &gpu);
         let light_rays =
             IpsviSettings { cache_update: CacheUpdate::LightRays, ..view_samples(FED_CACHE, CacheWrite::Racy) };
         let lr = relative_rmse(&ipsvi(&ctx, &gpu, &light_rays, SyncStrategy::BarrierGlobal), &truth);
-        let vs_image = ipsvi(&ctx, &gpu, &view_samples(FED_CACHE, CacheWrite::Farthest), SyncStrategy::BarrierGlobal);
+        let vs_settings = view_samples(FED_CACHE, CacheWrite::Farthest);
+        assert_eq!(vs_settings.write_value, WriteValue::TexelRay);
+        let vs_image = ipsvi(&ctx, &gpu, &vs_settings, SyncStrategy::BarrierGlobal);
         assert!(vs_image.all_finite(), "{what}: non-finite pixels");
         let vs = relative_rmse(&vs_image, &truth);
-        println!("{what}: relative rmse view-samples {vs:.4}, light-rays {lr:.4}");
+        let sample = IpsviSettings { write_value: WriteValue::Sample, ..vs_settings };
+        let vs_sample = relative_rmse(&ipsvi(&ctx, &gpu, &sample, SyncStrategy::BarrierGlobal), &truth);
+        println!("{what}: relative rmse view-samples {vs:.4} (sample writes {vs_sample:.4}), light-rays {lr:.4}");
         assert!(vs <= *tolerance, "{what}: view-samples relative rmse {vs:.4} > {tolerance}");
+        texel_ray_sum += vs;
+        sample_sum += vs_sample;
     }
+    println!("sum of relative rmse: texel-ray writes {texel_ray_sum:.4}, sample writes {sample_sum:.4}");
+    assert!(
+        texel_ray_sum < 0.9 * sample_sum,
+        "texel-ray writes should not blur the light at every line: {texel_ray_sum:.4} vs {sample_sum:.4}"
+    );
     assert_validation_clean(&ctx);
 }
 

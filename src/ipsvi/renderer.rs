@@ -7,7 +7,7 @@
 
 use super::breakdown::BreakdownStep;
 use super::cache_region::{plane_region, TexelRect};
-use super::cache_update::{CacheUpdate, CacheWrite};
+use super::cache_update::{CacheUpdate, CacheWrite, WriteValue};
 use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_FIRST_LIGHT};
 use super::line_group::{lavapipe_threads, line_group_size, median_pixels};
@@ -364,6 +364,7 @@ impl<'a> IpsviRenderer<'a> {
             (7, termination),
             (8, line_group),
             (9, (slots > 1) as u32),
+            (10, (view_samples && settings.write_value == WriteValue::TexelRay) as u32),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",

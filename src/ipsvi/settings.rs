@@ -2,7 +2,7 @@
 //! read when the scene is read ([`crate::scene::settings_table`]).
 
 use super::breakdown::BreakdownStep;
-use super::cache_update::{CacheUpdate, CacheWrite};
+use super::cache_update::{CacheUpdate, CacheWrite, WriteValue};
 use super::sync_strategy::SyncStrategy;
 use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
 use serde::Deserialize;
@@ -38,6 +38,10 @@ pub struct IpsviSettings {
     /// view-samples only: which of the samples ending in one texel is stored.
     #[serde(deserialize_with = "from_name")]
     pub cache_write: CacheWrite,
+    /// view-samples with piecewise integration: what a write stores, the light
+    /// on the texel's own ray (default) or the sample's own light (the paper's).
+    #[serde(deserialize_with = "from_name")]
+    pub write_value: WriteValue,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
@@ -97,6 +101,7 @@ impl Default for IpsviSettings {
             ert_scale: 4,
             cache_update: CacheUpdate::ViewSamples,
             cache_write: CacheWrite::Farthest,
+            write_value: WriteValue::TexelRay,
             sync: SyncStrategy::BarrierGlobal,
             merge_sweeps: false,
             single_dispatch_baseline: false,

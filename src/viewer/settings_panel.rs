@@ -11,7 +11,7 @@
 use super::ui::UiEdit;
 use crate::ao::render_settings::{AoMode, MAX_GLOW, MAX_PHASE_G};
 use crate::ao::settings::{Metric, TrainingSet};
-use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite};
+use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite, WriteValue};
 use crate::ipsvi::settings::EarlyTermination;
 use crate::ipsvi::sync_strategy::SyncStrategy;
 use crate::lightvolume::CostEstimate;
@@ -100,6 +100,9 @@ pub fn controls() -> Vec<Control> {
         }),
         control("ipsvi", "cache_write", Choice(names(&CacheWrite::ALL.map(|c| c.name()))), |s| {
             Name(s.settings.ipsvi.cache_write.name())
+        }),
+        control("ipsvi", "write_value", Choice(names(&WriteValue::ALL.map(|c| c.name()))), |s| {
+            Name(s.settings.ipsvi.write_value.name())
         }),
         control("ipsvi", "sync", Choice(names(&SyncStrategy::ALL.map(|c| c.name()))), |s| {
             Name(s.settings.ipsvi.sync.name())
