@@ -15,9 +15,14 @@ const float LIGHT_DIRECTIONAL = 0.0;
 const float LIGHT_POINT = 1.0;
 const float LIGHT_SPOT = 2.0;
 
+// toward_light for a directional light (the same everywhere).
+vec4 toward_directional_light(Light l) {
+    return vec4(-normalize(l.pos_type.xyz), 3.0e38);
+}
+
 // Unit vector toward the light and the distance to it (3e38 for directional).
 vec4 toward_light(Light l, vec3 p) {
-    if (l.pos_type.w == LIGHT_DIRECTIONAL) return vec4(-normalize(l.pos_type.xyz), 3.0e38);
+    if (l.pos_type.w == LIGHT_DIRECTIONAL) return toward_directional_light(l);
     vec3 d = l.pos_type.xyz - p;
     float len = length(d);
     return vec4(len > 0.0 ? d / len : vec3(0.0, 1.0, 0.0), len);

@@ -90,6 +90,13 @@ const int MAX_SUBSTEPS = 64;
 // near. The far lights' arithmetic is the same in both builds (bit-equal
 // values: selective updates rely on it, tests/lightvolume_updates.rs).
 layout(constant_id = 4) const bool NEAR_LIGHTS = true;
+// Whether every light of the pass is directional (chosen per pass by
+// propagation.rs): the direction toward the light is the same at every voxel
+// and the falloff and cone are 1, so their per-voxel code is compiled out
+// (llvmpipe runs every branch under a mask, so the point and spot paths cost
+// every light of every voxel: about two fifths of a directional light's cost).
+// A directional light's arithmetic is the same in every build (bit-equal).
+layout(constant_id = 5) const bool DIRECTIONAL_ONLY = false;
 // Lights whose travel direction is this close to perpendicular to the axis (a
 // cosine, not a transmittance) do not propagate along it: 1/c would blow up.
 const float MIN_AXIS_COSINE = 1e-4;
@@ -176,6 +183,22 @@ vec3 previous_transmittance(vec2 c, ivec2 size, int slot, ivec2 enters) {
     return mix(T, vec3(1.0), clamp(max(excess.x, excess.y), 0.0, 1.0));
 }
 
+// Distance from p (inside the box) along the unit vector w to where it leaves
+// the box: intersect_box(p, w).y with the same arithmetic per axis (the face
+// ahead, times 1/w; axes w does not move along skipped), so bit-equal to it,
+// without the entry side and the outside tests that a point inside never
+// needs (a fifth of a light's cost per voxel on llvmpipe, which runs them all).
+float box_exit(vec3 p, vec3 w) {
+    vec3 h = frame.box_half;
+    float t1 = 3.0e38;
+    for (int a = 0; a < 3; ++a) {
+        float face = w[a] > 0.0 ? h[a] : -h[a];
+        float t = (face - p[a]) * (1.0 / w[a]);
+        t1 = abs(w[a]) < 1e-30 ? t1 : min(t1, t);
+    }
+    return t1;
+}
+
 // (s, e) with s + e == a + b exactly (TwoSum; `precise` keeps the compiler
 // from reassociating the error terms away).
 void two_sum(vec3 a, vec3 b, out vec3 s, out vec3 e) {
@@ -223,7 +246,7 @@ void main() {
     for (int e = 0; e < pass.entry_count; ++e) {
         GroupEntry entry = entries[pass.first_entry + e];
         Light l = lights[entry.light];
-        vec4 w = toward_light(l, p);
+        vec4 w = DIRECTIONAL_ONLY ? toward_directional_light(l) : toward_light(l, p);
         // Cosine between the light's travel direction and the propagation axis.
         float c = -w[a] * travel;
         vec4 result = vec4(0.0);
@@ -242,7 +265,7 @@ void main() {
             // intersected where the path may leave it before the previous slice
             // (q outside the box laterally, or near the light).
             bool inside = abs(q[u]) <= frame.box_half[u] && abs(q[v]) <= frame.box_half[v];
-            precise float reach = inside && !near_light ? w.w : min(intersect_box(p, w.xyz).y, w.w);
+            precise float reach = inside && !near_light ? w.w : min(box_exit(p, w.xyz), w.w);
             precise float len = near_light ? reach : min(along, reach);
             precise vec3 T = vec3(1.0);
             if (k > 0 && along < reach && !near_light) {
@@ -258,7 +281,8 @@ void main() {
             T *= exp(-depth);
             result = vec4(T, 0.0);
             precise float weight = entry.factor * (entry.per_voxel != 0u ? c * c : 1.0);
-            precise vec3 x = weight * l.radiance.rgb * light_shape(l, w) * T;
+            float shape = DIRECTIONAL_ONLY ? 1.0 : light_shape(l, w);
+            precise vec3 x = weight * l.radiance.rgb * shape * T;
             if (COMPENSATED) {
                 compensated_add(sum_hi, sum_lo, x);
             } else {

@@ -61,6 +61,11 @@ const GROUP_SIZE: u32 = 8;
 /// of a point or spot light the shader integrates the path to the light.
 const NEAR_LIGHT_SLICES: f32 = 4.0;
 
+/// `pos_type.w` of a directional light (`LIGHT_DIRECTIONAL` in glsl/lights.glsl).
+fn is_directional(state: &GpuLight) -> bool {
+    state.pos_type[3] == 0.0
+}
+
 /// Whether a light in `state` can come within `NEAR_LIGHT_SLICES` of a slice
 /// centre of `group` (what the shader's near-light integration handles): a
 /// point or spot light less than that (plus one slice of margin against
@@ -68,14 +73,38 @@ const NEAR_LIGHT_SLICES: f32 = 4.0;
 /// inside the box. Depends only on the light's state and the group, and a
 /// pass without such a light runs the build without that integration.
 fn may_come_near(state: &GpuLight, group: &PropagationGroup, box_half: [f32; 3], grid: UVec3) -> bool {
-    if state.pos_type[3] == 0.0 {
-        return false; // directional: infinitely far
+    if is_directional(state) {
+        return false; // infinitely far
     }
     let a = group.axis;
     let dstep = 2.0 * box_half[a] / grid[a] as f32;
     let first_centre = -box_half[a] + 0.5 * dstep;
     let before_first = first_centre - state.pos_type[a] * group.travel as f32;
     before_first <= (NEAR_LIGHT_SLICES + 1.0) * dstep
+}
+
+/// Which build of the slice shader a pass runs, by its lights: each leaves out
+/// code its lights never need (llvmpipe runs both sides of every branch).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LightMix {
+    /// Directional lights only: no per-voxel direction, falloff or cone.
+    Directional = 0,
+    /// No light within reach of the near-light integration.
+    Far = 1,
+    /// A point or spot light that may come near a slice (`may_come_near`).
+    Near = 2,
+}
+
+impl LightMix {
+    fn of(group: &PropagationGroup, box_half: [f32; 3], grid: UVec3) -> LightMix {
+        if group.members.iter().any(|m| may_come_near(&m.state, group, box_half, grid)) {
+            LightMix::Near
+        } else if group.members.iter().all(|m| is_directional(&m.state)) {
+            LightMix::Directional
+        } else {
+            LightMix::Far
+        }
+    }
 }
 
 /// How much a [`Propagation`] holds: slice layers (lights per pass), light
@@ -140,8 +169,8 @@ impl Capacity {
 pub struct Propagation {
     pub capacity: Capacity,
     grid: UVec3,
-    /// Indexed by [near lights in the pass][slice parity].
-    pipelines: [[ComputePipeline; 2]; 2],
+    /// Indexed by [`LightMix`][slice parity].
+    pipelines: [[ComputePipeline; 2]; 3],
     box_half: [f32; 3],
     set: vk::DescriptorSet,
     /// Slice buffer sides a and b: x, y a slice texel, z the light's layer in
@@ -187,7 +216,7 @@ impl Propagation {
         };
         let slices = [slice_image("lightvolume slice a")?, slice_image("lightvolume slice b")?];
         let compensated = illumination.compensated as u32;
-        let build = |near_lights: bool| {
+        let build = |mix: LightMix| {
             let desc = ComputePipelineDesc {
                 name: "lightvolume_slice",
                 shader: &shader::INTERFACE,
@@ -196,15 +225,16 @@ impl Propagation {
                     (1, settings.substep_data_voxels().to_bits()),
                     (2, settings.shared_medium as u32),
                     (3, settings.chromatic as u32),
-                    (4, near_lights as u32),
+                    (4, (mix == LightMix::Near) as u32),
+                    (5, (mix == LightMix::Directional) as u32),
                 ],
                 max_sets: 1,
             };
             // Slice parity 0 reads side a and writes b; parity 1 the opposite.
             parity_pair(ctx, &desc)
         };
-        let mut pipelines = [build(false)?, build(true)?];
-        // All four share one layout: one set serves them all.
+        let mut pipelines = [build(LightMix::Directional)?, build(LightMix::Far)?, build(LightMix::Near)?];
+        // All six share one layout: one set serves them all.
         let set = pipelines[0][0].create_set(&[
             (shader::FRAME, Resource::UniformBuffer(&frame)),
             (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
@@ -259,8 +289,7 @@ impl Propagation {
         let grid = self.grid.as_ivec3();
         let name = group.scope_name();
         let slices = self.slice_count(group);
-        let near = group.members.iter().any(|m| may_come_near(&m.state, group, self.box_half, self.grid));
-        let pipelines = &self.pipelines[near as usize];
+        let pipelines = &self.pipelines[LightMix::of(group, self.box_half, self.grid) as usize];
         Ok(SecondaryCommands::record(ctx, &name, 1, |_, rec| {
             let (u, v) = ((group.axis + 1) % 3, (group.axis + 2) % 3);
             rec.bind(&pipelines[0], self.set);
@@ -291,6 +320,7 @@ impl Propagation {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lightvolume::groups::GroupMember;
 
     fn light(kind: f32, position: [f32; 3]) -> GpuLight {
         GpuLight { pos_type: [position[0], position[1], position[2], kind], ..GpuLight::default() }
@@ -321,5 +351,25 @@ mod tests {
         let up = PropagationGroup { axis: 1, travel: 1, members: Vec::new() };
         assert!(may_come_near(&light(1.0, [0.0, -first - 3.0 * dstep, 0.0]), &up, half, grid));
         assert!(!may_come_near(&light(1.0, [0.0, -3.0, 0.0]), &up, half, grid));
+    }
+
+    #[test]
+    fn a_pass_takes_the_directional_build_only_when_every_light_is_directional() {
+        let (half, grid) = ([0.5; 3], UVec3::new(32, 32, 32));
+        let pass = |lights: &[GpuLight]| {
+            let members = lights
+                .iter()
+                .enumerate()
+                .map(|(i, &state)| GroupMember { light: i, factor: 1.0, state, per_voxel: false })
+                .collect();
+            LightMix::of(&PropagationGroup { members, ..down() }, half, grid)
+        };
+        let directional = light(0.0, [0.3, -1.0, 0.1]);
+        let (far_point, far_spot, near_point) =
+            (light(1.0, [0.0, 3.0, 0.0]), light(2.0, [0.0, 3.0, 0.0]), light(1.0, [0.0, 0.0, 0.0]));
+        assert_eq!(pass(&[directional, directional]), LightMix::Directional);
+        assert_eq!(pass(&[directional, far_point]), LightMix::Far);
+        assert_eq!(pass(&[far_spot]), LightMix::Far);
+        assert_eq!(pass(&[directional, far_point, near_point]), LightMix::Near);
     }
 }

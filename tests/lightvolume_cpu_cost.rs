@@ -1,0 +1,77 @@
+//! Figure 10's cost per added light in CPU time, run by hand (ignored):
+//! lavapipe runs the shaders on the CPU, so the process's CPU time per entire
+//! update is what the pass costs, and unlike GPU (wall) time it does not grow
+//! when other processes share the cores. Engine DR*1/4, directional lights of
+//! one direction (`scaling_lights`), coherent and sequential, no validation.
+//!
+//! SWEEPLAB_DATA=$(pwd)/../shared/data cargo test --release --test lightvolume_cpu_cost -- --ignored --nocapture
+use sweeplab::bench::experiments::lights::{lightvolume_scene, scaling_lights};
+use sweeplab::lightvolume::{CostEstimate, LightVolumeRenderer};
+use sweeplab::render::GpuScene;
+use sweeplab::scene::default_scene::scene_for_volume_file;
+use sweeplab::scene::loaders::data_dir;
+use sweeplab::scene::Light;
+use sweeplab::vk::{Context, ContextOptions, Profiler};
+
+/// Entire updates per measurement; the least of `ROUNDS` measurements counts.
+const UPDATES: usize = 6;
+const ROUNDS: usize = 5;
+const FEW: u32 = 1;
+const MANY: u32 = 16;
+
+/// User + system CPU seconds of this process (all threads, lavapipe's included).
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
+    // Fields after the command name (which ends at the last ')'): utime is 14th, stime 15th overall.
+    let fields: Vec<&str> = stat[stat.rfind(')').unwrap() + 2..].split(' ').collect();
+    let ticks: f64 = fields[11].parse::<f64>().unwrap() + fields[12].parse::<f64>().unwrap();
+    ticks / 100.0
+}
+
+/// CPU ms per entire update of `lights` (least of the rounds).
+fn cpu_ms_per_update(ctx: &Context, scene: &sweeplab::scene::Scene, lights: &[Light], coherent: bool) -> f64 {
+    let scene = lightvolume_scene(scene, 4, coherent, CostEstimate::Entire, |_| {});
+    let gpu = GpuScene::upload(ctx, &scene).unwrap();
+    let mut renderer = LightVolumeRenderer::new(&gpu).unwrap();
+    let mut profiler = Profiler::new(ctx, 1024).unwrap();
+    let state: Vec<Option<Light>> = lights.iter().copied().map(Some).collect();
+    let mut update = |renderer: &mut LightVolumeRenderer| {
+        renderer.invalidate();
+        profiler.reset();
+        renderer.update(&state, &mut profiler).unwrap();
+    };
+    update(&mut renderer); // records the passes, compiles the shaders
+    (0..ROUNDS)
+        .map(|_| {
+            let start = cpu_seconds();
+            for _ in 0..UPDATES {
+                update(&mut renderer);
+            }
+            (cpu_seconds() - start) * 1e3 / UPDATES as f64
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+#[ignore = "measurement, run by hand"]
+fn cpu_time_per_added_light_coherent_and_sequential() {
+    let path = data_dir().join("engine.vti");
+    let scene = scene_for_volume_file(&path, &[]).unwrap();
+    let ctx = Context::new(&ContextOptions { device: std::env::var("SWEEPLAB_DEVICE").ok(), validate: false }).unwrap();
+    let mut slopes = Vec::new();
+    // LV_COST_COHERENT_ONLY=1: the coherent slope alone (quicker, for comparing builds).
+    let modes: &[bool] = if std::env::var("LV_COST_COHERENT_ONLY").is_ok() { &[true] } else { &[true, false] };
+    for &coherent in modes {
+        let few = cpu_ms_per_update(&ctx, &scene, &scaling_lights(FEW), coherent);
+        let many = cpu_ms_per_update(&ctx, &scene, &scaling_lights(MANY), coherent);
+        let slope = (many - few) / (MANY - FEW) as f64;
+        println!(
+            "{}: {FEW} light {few:.1} CPU ms, {MANY} lights {many:.1}: {slope:.2} CPU ms per added light",
+            if coherent { "coherent" } else { "sequential" }
+        );
+        slopes.push(slope);
+    }
+    if let [coherent, sequential] = slopes[..] {
+        println!("sequential / coherent per added light: {:.2}x", sequential / coherent);
+    }
+}
