@@ -92,4 +92,12 @@ vec4 light_segment(vec3 x, vec3 dir, float len, uint max_steps, bool gather_emis
     return vec4(path.rgb * (frame.emission / sweep.light_scale), path.a);
 }
 
+// `light` (emission / scale: rgb, transmittance: a) after it crossed a
+// segment `seg` of light_segment: attenuated by it, the segment's own
+// emission added in front.
+vec4 through_segment(vec4 light, vec4 seg) {
+    float tr = exp(-seg.a);
+    return vec4(light.rgb * tr + seg.rgb, light.a * tr);
+}
+
 #endif

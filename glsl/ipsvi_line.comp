@@ -205,9 +205,7 @@ vec4 light_at(vec3 p) {
     }
     if (!piecewise) return cached;
     // Piecewise integration: march from p toward the light back to the cache front.
-    vec4 seg = light_segment(p, to_light(p), max(c.z - front, 0.0), sweep.max_piecewise_steps, EMISSIVE);
-    float tr = exp(-seg.a);
-    return vec4(cached.rgb * tr + seg.rgb, cached.a * tr);
+    return through_segment(cached, light_segment(p, to_light(p), max(c.z - front, 0.0), sweep.max_piecewise_steps, EMISSIVE));
 }
 
 // ---- cache_update = "view-samples" -------------------------------------------
@@ -261,9 +259,7 @@ vec4 light_from_samples(vec3 p, vec3 c) {
         }
     }
     if (!piecewise) return sum;
-    vec4 seg = light_segment(p, to_light(p), max(c.z - front, 0.0), sweep.max_piecewise_steps, EMISSIVE);
-    float tr = exp(-seg.a);
-    return vec4(sum.rgb * tr + seg.rgb, sum.a * tr);
+    return through_segment(sum, light_segment(p, to_light(p), max(c.z - front, 0.0), sweep.max_piecewise_steps, EMISSIVE));
 }
 
 // The claim key of a sample write (see Keys); `record` is the block's index in the frame.
@@ -299,9 +295,7 @@ vec4 texel_ray_light(ivec2 k, float z, out vec3 q) {
     float at = clamp(z, io.x, io.y);
     q = r.origin + r.dir * at;
     if (io.x > io.y) return v;
-    vec4 seg = light_segment(q, -r.dir, max(at - depth_of(code, io), 0.0), sweep.max_piecewise_steps, EMISSIVE);
-    float tr = exp(-seg.a);
-    return vec4(v.rgb * tr + seg.rgb, v.a * tr);
+    return through_segment(v, light_segment(q, -r.dir, max(at - depth_of(code, io), 0.0), sweep.max_piecewise_steps, EMISSIVE));
 }
 
 // A run of samples in texel k ends: its writing sample stores the light
@@ -326,10 +320,9 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel) {
     float s = frame.shadow_step * frame.voxel_length;
     vec3 back = to_light(p);
     vec4 seg = light_segment(p - back * s, back, s, 4u, EMISSIVE);
-    float tr = exp(-seg.a);
     vec2 io = ray_in_box(cache_ray(uvec2(k)));
     uint code = io.x <= io.y ? depth_code(depth + s, io) : FRONT_ENTRY;
-    imageStore(samples_out, slot_texel(k), vec4(l.rgb * tr + seg.rgb, l.a * tr));
+    imageStore(samples_out, slot_texel(k), through_segment(l, seg));
     imageStore(stamps_out, slot_texel(k), uvec4((block.stamp << 16) | code));
 }
 
@@ -465,14 +458,13 @@ void advance_texel(uint index) {
             // The segment from the old front to the new one, integrated from its far
             // end toward the light, composited behind what the cache carried.
             vec4 seg = light_segment(x, -r.dir, new_front - old_front, 4096u, EMISSIVE);
-            float tr = exp(-seg.a);
             if (SCATTER) {
                 // Forward-cone scattering: the albedo share of the light arrives
                 // from a cone around the ray, i.e. from neighbouring texels.
                 float radius = sweep.cone_tan * (new_front - old_front) / max(sweep.cache_axis.w, 1e-9);
                 cached = mix(cached, cone_average(k, radius), sweep.albedo);
             }
-            cached = vec4(cached.rgb * tr + seg.rgb, cached.a * tr);
+            cached = through_segment(cached, seg);
             code = new_front >= io.y ? FRONT_EXIT : block.plane;
         }
     }

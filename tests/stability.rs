@@ -13,7 +13,7 @@ use common::*;
 use sweeplab::bench::experiments::stability::{
     convergence, convergence_scene, load_case, run_cell, Variant, Verdict, CONVERGENCE_STEPS,
 };
-use sweeplab::bench::experiments::stability_cases::{stability_cases, EQUAL_STEP_CASES};
+use sweeplab::bench::experiments::stability_cases::stability_cases;
 use sweeplab::bench::Harness;
 
 const SIZE: u32 = 16;
@@ -83,9 +83,18 @@ fn ipsvi_keeps_its_bound_on_stiff_media_at_the_references_view_step() {
     let dir = temp_dir("stability-stiff");
     let ctx = validated_context();
     let mut failures = Vec::new();
-    for case in stability_cases(&dir, SIZE).into_iter().filter(|c| c.ci && EQUAL_STEP_CASES.contains(&c.id)) {
+    let mut stiff_cases = 0;
+    // The stiff cases: IPSVI must warn of the optical depth; those whose
+    // reference marches at the view step (stiff, stiff step 4, all-opaque).
+    for case in stability_cases(&dir, SIZE)
+        .into_iter()
+        .filter(|c| c.ci && c.technique_warns.iter().any(|&(t, word)| t == "ipsvi" && word == "optical depth"))
+    {
         let (scene, warnings) = load_case(&case, &dir).unwrap_or_else(|e| panic!("{}: {e}", case.name));
-        assert_eq!(scene.reference.step_voxels, scene.render.step_voxels, "{}", case.name);
+        if scene.reference.step_voxels != scene.render.step_voxels {
+            continue;
+        }
+        stiff_cases += 1;
         for variant in Variant::all().into_iter().filter(|v| v.technique.name() == "ipsvi") {
             let cell = run_cell(&ctx, &case, &scene, &warnings, variant, SIZE, Harness::once_after(0));
             println!("{:<34} {:>22}: {:?} {:?}", case.name, variant.label(), cell.psnr_db, cell.verdict.name());
@@ -95,6 +104,7 @@ fn ipsvi_keeps_its_bound_on_stiff_media_at_the_references_view_step() {
             }
         }
     }
+    assert_eq!(stiff_cases, 3, "stiff, stiff step 4 and all-opaque compare at equal view steps");
     assert_validation_clean(&ctx);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -130,10 +130,7 @@ fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Image, RenderError> {
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
-    if gpu.scene.lights.is_empty() {
-        gpu.scene.settings.half_angle.validate()?;
-        return crate::render::raycast::emission_only(gpu, width, height, profiler);
-    }
+    // With no light, `record` draws the emission-only ray cast.
     render_recorded(gpu, |rec| record(gpu, width, height, rec, profiler))
 }
 

@@ -257,9 +257,6 @@ pub fn stability_cases(dir: &Path, size: u32) -> Vec<StabilityCase> {
 /// The stiff cases' reference step: the techniques' view step (`render.step`'s default).
 const STIFF_REFERENCE_STEP: &str = "reference.step=0.5";
 
-/// The cases whose reference marches at the techniques' view step.
-pub const EQUAL_STEP_CASES: [&str; 3] = ["stiff", "stiff-step-4", "opaque"];
-
 const LIGHT_GRIDS: &[(&str, &str)] =
     &[("ipsvi", "optical depth"), ("half-angle", "optical depth"), ("lightvolume", "optical depth")];
 
