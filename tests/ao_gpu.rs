@@ -15,38 +15,22 @@ use sweeplab::ao::packing::PackingScheme;
 use sweeplab::ao::quantize::{train_lbg, Codebook, LbgParams};
 use sweeplab::ao::search::CodebookSearch;
 use sweeplab::ao::Metric;
-use sweeplab::scene::{Volume, VoxelData};
+use sweeplab::scene::Volume;
 use sweeplab::vk::Context;
 
 /// `dims` U8 volume: seeded noise, with a constant block (zero gradient
 /// inside it) in the low corner and two plateaus, so both hemispheres, plane
 /// voxels, flat regions and borders all occur.
 fn test_volume(dims: UVec3, spacing: Vec3, seed: u64) -> Volume {
-    let mut state = seed;
-    let mut data = Vec::new();
-    for z in 0..dims.z {
-        for y in 0..dims.y {
-            for x in 0..dims.x {
-                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-                let v = if x < 4 && y < 4 && z < 4 {
-                    90
-                } else if x > dims.x / 2 {
-                    200 + ((state >> 60) as u8 & 1)
-                } else {
-                    (state >> 56) as u8
-                };
-                data.push(v);
-            }
+    common::seeded_volume("ao-gpu-test", dims, spacing, seed, |p, random| {
+        if p.x < 4 && p.y < 4 && p.z < 4 {
+            90
+        } else if p.x > dims.x / 2 {
+            200 + ((random >> 60) as u8 & 1)
+        } else {
+            (random >> 56) as u8
         }
-    }
-    Volume {
-        name: "ao-gpu-test".into(),
-        dims,
-        spacing,
-        data: VoxelData::U8(data),
-        value_range: (0.0, 255.0),
-        non_finite_voxels: 0,
-    }
+    })
 }
 
 /// The global histogram's packing scheme, as `preprocess` builds it.

@@ -2,6 +2,8 @@
 //! computations, the streamed preprocessing against a recomputation, VQ
 //! behaviour on real histograms, the disk cache, and the Cornell box timing.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -436,4 +438,56 @@ fn engine_preprocessing_timing() {
         r.stats.training_distortion,
         r.stats.assignment_distortion,
     );
+}
+
+/// `dims` U8 volume: seeded noise of `levels` intensities (few levels: long
+/// runs and many gradients with exact zeros along a row), a flat block (zero
+/// gradient) and a plateau, so forward, backward and on-plane pieces, flat
+/// regions and borders all occur.
+fn noise_volume(dims: UVec3, spacing: Vec3, levels: u8, seed: u64) -> Volume {
+    common::seeded_volume("row-runs-test", dims, spacing, seed, |p, random| {
+        if p.x < 4 && p.y < 5 && p.z < 3 {
+            90
+        } else if p.y > dims.y / 2 {
+            200
+        } else {
+            ((random >> 33) % levels as u64) as u8 * (255 / levels.max(2) - 1)
+        }
+    })
+}
+
+/// The preprocessing's histograms (by stencil rows and runs of equal bin)
+/// equal the brute force's, voxel by voxel and bin by bin.
+#[test]
+fn histograms_by_rows_and_runs_equal_the_brute_force() {
+    let cases = [
+        (UVec3::new(14, 12, 11), Vec3::ONE, 3u8, 4u32, 8u32),
+        (UVec3::new(14, 12, 11), Vec3::ONE, 40, 5, 4),
+        (UVec3::new(13, 11, 12), Vec3::new(1.0, 1.5, 2.5), 3, 6, 8),
+        (UVec3::new(12, 13, 10), Vec3::new(0.7, 1.0, 1.0), 7, 4, 8),
+        (UVec3::new(9, 9, 9), Vec3::ONE, 2, 1, 8),
+    ];
+    for (c, &(dims, spacing, levels, radius, bits)) in cases.iter().enumerate() {
+        let v = noise_volume(dims, spacing, levels, 7 + c as u64);
+        let h = LocalHistograms::new(&v, radius, bits);
+        let mut scratch = h.scratch();
+        let n = h.bins();
+        let (mut f, mut b, mut rf, mut rb) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let (mut differing, mut worst) = (0usize, 0f32);
+        for voxel in 0..v.voxel_count() {
+            h.voxel_into(voxel, &mut scratch, &mut f, &mut b);
+            h.voxel_into_by_rows(voxel, &mut scratch, &mut rf, &mut rb);
+            for k in 0..n {
+                for (brute, rows) in [(f[k], rf[k]), (b[k], rb[k])] {
+                    if brute != rows {
+                        differing += 1;
+                        worst = worst.max((brute - rows).abs() / brute.abs().max(f32::MIN_POSITIVE));
+                    }
+                }
+            }
+        }
+        eprintln!("case {c}: {differing} bins differ, worst relative {worst:e}");
+        // Only the order of the f64 sums differs: at most one f32 rounding step.
+        assert!(worst <= f32::EPSILON, "case {c}: {differing} bins differ, worst relative {worst:e}");
+    }
 }

@@ -35,6 +35,7 @@ use std::ops::Range;
 use glam::{IVec3, UVec3, Vec3};
 
 use super::gradient::central_gradient;
+use super::row_runs::{run_lengths, StencilRows};
 use crate::scene::Volume;
 
 /// The voxels of S_r around a centre, as offsets with their weights.
@@ -137,6 +138,10 @@ pub struct LocalHistograms<'v> {
     padded_dims: UVec3,
     /// Stencil offsets as index differences in `padded_bins`.
     linear_offsets: Vec<isize>,
+    /// The stencil as rows along x, and the runs of equal bin in
+    /// `padded_bins` ([`run_cells`]): what [`Self::voxel_into_by_rows`] walks.
+    rows: StencilRows,
+    run_lengths: Vec<u8>,
     normalization: f64,
 }
 
@@ -165,7 +170,20 @@ impl<'v> LocalHistograms<'v> {
             .map(|o| (o.z as isize * py as isize + o.y as isize) * px as isize + o.x as isize)
             .collect();
         let normalization = 1.0 / stencil.voxel_count().max(1) as f64;
-        LocalHistograms { volume, bins, voxel_bins, padded_bins, padded_dims, stencil, linear_offsets, normalization }
+        let rows = StencilRows::new(&stencil, px as isize, (px * py) as isize);
+        let run_lengths = run_lengths(&padded_bins, px);
+        LocalHistograms {
+            volume,
+            bins,
+            voxel_bins,
+            padded_bins,
+            padded_dims,
+            stencil,
+            linear_offsets,
+            rows,
+            run_lengths,
+            normalization,
+        }
     }
 
     pub fn bins(&self) -> usize {
@@ -196,8 +214,37 @@ impl<'v> LocalHistograms<'v> {
         UVec3::new((index % nx) as u32, ((index / nx) % ny) as u32, (index / (nx * ny)) as u32)
     }
 
+    /// Padded index of voxel `p`.
+    fn padded_index(&self, p: UVec3) -> usize {
+        let q = p + self.stencil.extent;
+        let (px, py) = (self.padded_dims.x as usize, self.padded_dims.y as usize);
+        (q.z as usize * py + q.y as usize) * px + q.x as usize
+    }
+
+    /// The two normalized histograms of voxel `index`, as [`Self::voxel_into`]
+    /// gives them, by stencil rows and runs of equal bin ([`super::row_runs`]):
+    /// what the preprocessing uses.
+    pub fn voxel_into_by_rows(&self, index: usize, scratch: &mut Scratch, forward: &mut [f32], backward: &mut [f32]) {
+        let p = self.position(index);
+        let g = central_gradient(self.volume, p);
+        if !g.is_finite() {
+            // The row split needs an ordered test; the brute force's rule for a
+            // test that is not a number (half and half) is kept there.
+            return self.voxel_into(index, scratch, forward, backward);
+        }
+        let (fw, bw) = (&mut scratch.forward, &mut scratch.backward);
+        fw.fill(0.0);
+        bw.fill(0.0);
+        self.rows.accumulate(self.padded_index(p), g, &self.padded_bins, &self.run_lengths, fw, bw);
+        for k in 0..self.bins {
+            forward[k] = (fw[k] * self.normalization) as f32;
+            backward[k] = (bw[k] * self.normalization) as f32;
+        }
+    }
+
     /// The two normalized histograms of voxel `index` into `forward` and
-    /// `backward` (`bins` values each).
+    /// `backward` (`bins` values each): the brute-force reference, one stencil
+    /// voxel after the other.
     pub fn voxel_into(&self, index: usize, scratch: &mut Scratch, forward: &mut [f32], backward: &mut [f32]) {
         let p = self.position(index);
         let g = central_gradient(self.volume, p);
@@ -206,9 +253,7 @@ impl<'v> LocalHistograms<'v> {
         bw.fill(0.0);
         let s = &self.stencil;
         let bins = &self.padded_bins;
-        let q = p + s.extent;
-        let (px, py) = (self.padded_dims.x as usize, self.padded_dims.y as usize);
-        let centre = (q.z as usize * py + q.y as usize) * px + q.x as usize;
+        let centre = self.padded_index(p);
         // Neighbours come in runs of equal intensity (stencil rows are rows of
         // voxels): sum a run in registers and add it to its bin when the bin
         // changes, instead of one dependent memory update per neighbour.
@@ -248,7 +293,7 @@ impl<'v> LocalHistograms<'v> {
             HistogramSlab { voxels: voxels.clone(), bins: self.bins, forward: vec![0.0; n], backward: vec![0.0; n] };
         for (i, index) in voxels.enumerate() {
             let r = i * self.bins..(i + 1) * self.bins;
-            self.voxel_into(index, scratch, &mut slab.forward[r.clone()], &mut slab.backward[r]);
+            self.voxel_into_by_rows(index, scratch, &mut slab.forward[r.clone()], &mut slab.backward[r]);
         }
         slab
     }

@@ -23,6 +23,7 @@ pub mod progress;
 pub mod quantize;
 pub mod render;
 pub mod render_settings;
+pub mod row_runs;
 pub mod search;
 pub mod session;
 pub mod settings;
@@ -174,7 +175,7 @@ pub fn preprocess_on(
             let part = &chosen[c * TRAINING_CHUNK..((c + 1) * TRAINING_CHUNK).min(chosen.len())];
             let mut packed = vec![0f32; part.len() * 2 * dim];
             for (i, &voxel) in part.iter().enumerate() {
-                histograms.voxel_into(voxel, scratch, forward, backward);
+                histograms.voxel_into_by_rows(voxel, scratch, forward, backward);
                 packing.pack(forward, &mut packed[2 * i * dim..(2 * i + 1) * dim]);
                 packing.pack(backward, &mut packed[(2 * i + 1) * dim..(2 * i + 2) * dim]);
             }

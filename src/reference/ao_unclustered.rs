@@ -29,7 +29,7 @@ pub fn unclustered_lookup(volume: &Volume, settings: &AoSettings, lut: &Transfer
         let count = BATCH.min(voxels - first);
         for i in 0..count {
             let (forward, backward) = batch[2 * i * bins..(2 * i + 2) * bins].split_at_mut(bins);
-            histograms.voxel_into(first + i, &mut scratch, forward, backward);
+            histograms.voxel_into_by_rows(first + i, &mut scratch, forward, backward);
         }
         let env = cpu_environment(&batch[..2 * count * bins], bins, lut, mass, glow);
         lookup[2 * first..2 * (first + count)].copy_from_slice(&env[..2 * count]);

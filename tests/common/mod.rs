@@ -20,6 +20,35 @@ pub fn assert_validation_clean(ctx: &Context) {
     assert!(messages.is_empty(), "validation reported {} message(s):\n{}", messages.len(), messages.join("\n"));
 }
 
+/// A `dims` U8 volume whose voxel (x, y, z) is `value(position, random)`,
+/// `random` a seeded 64-bit LCG state drawn anew for every voxel (x fastest).
+pub fn seeded_volume(
+    name: &str,
+    dims: UVec3,
+    spacing: Vec3,
+    seed: u64,
+    mut value: impl FnMut(UVec3, u64) -> u8,
+) -> Volume {
+    let mut state = seed;
+    let mut data = Vec::with_capacity((dims.x * dims.y * dims.z) as usize);
+    for z in 0..dims.z {
+        for y in 0..dims.y {
+            for x in 0..dims.x {
+                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                data.push(value(UVec3::new(x, y, z), state));
+            }
+        }
+    }
+    Volume {
+        name: name.into(),
+        dims,
+        spacing,
+        data: VoxelData::U8(data),
+        value_range: (0.0, 255.0),
+        non_finite_voxels: 0,
+    }
+}
+
 /// A sphere of radius `r` (in voxels) in an n^3 U8 volume, with a soft edge.
 pub fn sphere_volume(n: u32, r: f32) -> Volume {
     let c = (n as f32 - 1.0) * 0.5;

@@ -1,0 +1,284 @@
+//! Local histograms by stencil rows and intensity runs: the same numbers as the
+//! brute-force loop of [`super::histogram::LocalHistograms::voxel_into`], at a
+//! cost per voxel of the stencil's rows and the runs of equal intensity bin
+//! they cross instead of its voxels (docs/ao.md, "Row runs").
+//!
+//! Why it is exact: along one stencil row (fixed y and z offsets) the
+//! hemisphere test `g.x*o.x + g.y*o.y + g.z*o.z`, taken in f32 in that order, is
+//! monotonic in o.x (each rounding step is), so the row splits into at most
+//! three contiguous pieces: forward, on the plane, backward. Within a piece, a
+//! run of voxels of one bin adds the sum of its weights, which a prefix sum of
+//! the row's 1/d^2 weights gives in one subtraction (f64, as the brute force
+//! sums). Only the order of the f64 additions differs, far below the f32 the
+//! histograms are stored in (the test finds them bit-equal).
+//!
+//! Rows come in antipodal pairs (o and -o): the test is odd, so one split
+//! serves both, and a pair of rows that are each one run of the same bin gives
+//! both hemispheres its whole weight with no split at all (in homogeneous
+//! surroundings, most of them).
+
+use glam::Vec3;
+
+use super::histogram::SphereStencil;
+
+/// One row of the stencil: the offsets with equal y and z, as a contiguous
+/// range of x (the centre, if the row holds it, with weight 0).
+#[derive(Clone, Debug)]
+struct StencilRow {
+    /// Linear offset, in the padded bin volume, of the row's first voxel.
+    start: isize,
+    /// Voxels in the row.
+    len: usize,
+    /// Index of the row's first x direction in [`StencilRows::directions_x`]
+    /// and of its first prefix sum in [`StencilRows::prefix`] (which has one
+    /// more entry per row).
+    first: usize,
+    prefix_first: usize,
+    /// The row's y and z directions (units of d_min), shared by its voxels.
+    direction_y: f32,
+    direction_z: f32,
+    /// Largest |x offset| in the row.
+    half: i32,
+}
+
+/// The stencil grouped into rows along x, with prefix sums of the weights.
+#[derive(Clone, Debug)]
+pub struct StencilRows {
+    rows: Vec<StencilRow>,
+    /// x direction of every voxel of every row, row after row.
+    directions_x: Vec<f32>,
+    /// Per row: 0, w_0, w_0 + w_1, ... (len + 1 values).
+    prefix: Vec<f64>,
+    /// x spacing in units of d_min (the x direction per voxel of offset).
+    scale_x: f32,
+}
+
+impl StencilRows {
+    /// `padded_row` and `padded_slice`: index steps of y and z in the padded
+    /// bin volume the rows will read.
+    pub fn new(stencil: &SphereStencil, padded_row: isize, padded_slice: isize) -> StencilRows {
+        let mut rows: Vec<StencilRow> = vec![];
+        let (mut directions_x, mut prefix) = (vec![], vec![]);
+        let mut i = 0;
+        let n = stencil.offsets.len();
+        while i < n {
+            let o = stencil.offsets[i];
+            let mut end = i + 1;
+            while end < n && stencil.offsets[end].y == o.y && stencil.offsets[end].z == o.z {
+                end += 1;
+            }
+            // Offsets run from -half to +half in x (the sphere's row is an
+            // interval); the centre row misses x = 0, which enters with weight 0.
+            let half = -o.x;
+            let len = (2 * half + 1) as usize;
+            let (first, prefix_first) = (directions_x.len(), prefix.len());
+            let mut sum = 0f64;
+            prefix.push(0.0);
+            let mut next = i;
+            for x in -half..=half {
+                let (direction_x, weight) = if next < end && stencil.offsets[next].x == x {
+                    next += 1;
+                    (stencil.directions[next - 1].x, stencil.weights[next - 1])
+                } else {
+                    debug_assert!(x == 0 && o.y == 0 && o.z == 0, "a stencil row has a gap off the centre");
+                    (0.0, 0.0)
+                };
+                directions_x.push(direction_x);
+                sum += weight;
+                prefix.push(sum);
+            }
+            let d = stencil.directions[i];
+            rows.push(StencilRow {
+                start: o.z as isize * padded_slice + o.y as isize * padded_row - half as isize,
+                len,
+                first,
+                prefix_first,
+                direction_y: d.y,
+                direction_z: d.z,
+                half,
+            });
+            i = end;
+        }
+        let scale_x =
+            rows.iter().find(|r| r.half > 0).map_or(1.0, |r| directions_x[r.first + r.len - 1] / r.half as f32);
+        StencilRows { rows, directions_x, prefix, scale_x }
+    }
+
+    /// Adds the weights of the stencil around padded index `centre` into
+    /// `forward` and `backward` (indexed by bin; `bins[i]` the bin at padded
+    /// index i, `run_lengths[i]` how many voxels from i on in its padded row hold
+    /// the same bin, at most 255). `g`: the gradient, finite.
+    pub fn accumulate(
+        &self,
+        centre: usize,
+        g: Vec3,
+        bins: &[u16],
+        run_lengths: &[u8],
+        forward: &mut [f64],
+        backward: &mut [f64],
+    ) {
+        let voxels = Voxels { centre, bins, run_lengths };
+        if g.x > 0.0 {
+            // The test rises along a row: forward (< 0) comes first.
+            self.accumulate_pairs::<false>(&voxels, g, forward, backward);
+        } else if g.x < 0.0 {
+            // It falls: on the negated test backward comes first.
+            self.accumulate_pairs::<true>(&voxels, g, backward, forward);
+        } else {
+            // Constant along every row; either order is right.
+            self.accumulate_pairs::<false>(&voxels, g, forward, backward);
+        }
+    }
+
+    /// Walks the rows in antipodal pairs (row i and row n-1-i hold o and -o;
+    /// the middle row, through the centre, is its own). The test is odd,
+    /// side(-o) = -side(o) exactly (negation commutes with rounding), so one
+    /// split serves both rows of a pair, and a pair whose two rows are one run
+    /// of the same bin gives each hemisphere the row's whole weight without a
+    /// split at all: what one row gives one side, the other row gives the
+    /// other.
+    fn accumulate_pairs<const NEGATE: bool>(&self, voxels: &Voxels, g: Vec3, below: &mut [f64], above: &mut [f64]) {
+        // Where the plane cuts a row, as a fractional index from its first
+        // voxel: a first guess, settled by the exact test.
+        let inverse = if g.x != 0.0 { 1.0 / (g.x * self.scale_x) } else { 0.0 };
+        let n = self.rows.len();
+        for i in 0..n.div_ceil(2) {
+            let (row, mirror) = (&self.rows[i], &self.rows[n - 1 - i]);
+            let prefix = &self.prefix[row.prefix_first..row.prefix_first + row.len + 1];
+            if i != n - 1 - i {
+                let (a, b) = (voxels.base(row), voxels.base(mirror));
+                let k = voxels.bins[a];
+                if k == voxels.bins[b]
+                    && voxels.run_lengths[a] as usize >= row.len
+                    && voxels.run_lengths[b] as usize >= row.len
+                {
+                    let whole = prefix[row.len];
+                    below[k as usize] += whole;
+                    above[k as usize] += whole;
+                    continue;
+                }
+            }
+            let (cut, plane_end) = self.split::<NEGATE>(row, g, inverse);
+            voxels.add_row(row, prefix, cut, plane_end, below, above);
+            if i != n - 1 - i {
+                // The mirror's voxel j is -o of the row's voxel len-1-j.
+                let mirror_prefix = &self.prefix[mirror.prefix_first..mirror.prefix_first + mirror.len + 1];
+                voxels.add_row(mirror, mirror_prefix, row.len - plane_end, row.len - cut, below, above);
+            }
+        }
+    }
+
+    /// Where the (for `NEGATE`, negated) test turns from negative to zero
+    /// (`cut`) and from zero to positive (`plane_end`) along `row`.
+    #[inline]
+    fn split<const NEGATE: bool>(&self, row: &StencilRow, g: Vec3, inverse: f32) -> (usize, usize) {
+        let xs = &self.directions_x[row.first..row.first + row.len];
+        let (y_term, z_term) = (g.y * row.direction_y, g.z * row.direction_z);
+        // The brute force's test, term for term, in the same order.
+        let key = |j: usize| {
+            let side = g.x * xs[j] + y_term + z_term;
+            if NEGATE {
+                -side
+            } else {
+                side
+            }
+        };
+        if g.x == 0.0 {
+            // The test does not change along the row: one piece (a walk
+            // from the guess would cross the whole row).
+            let side = key(0);
+            return if side < 0.0 {
+                (row.len, row.len)
+            } else if side > 0.0 {
+                (0, 0)
+            } else {
+                (0, row.len)
+            };
+        }
+        let guess = -(y_term + z_term) * inverse + row.half as f32;
+        let mut cut = if guess <= 0.0 {
+            0
+        } else if guess >= row.len as f32 {
+            row.len
+        } else {
+            guess as usize + 1
+        };
+        while cut > 0 && key(cut - 1) >= 0.0 {
+            cut -= 1;
+        }
+        while cut < row.len && key(cut) < 0.0 {
+            cut += 1;
+        }
+        let mut plane_end = cut;
+        while plane_end < row.len && key(plane_end) == 0.0 {
+            plane_end += 1;
+        }
+        (cut, plane_end)
+    }
+}
+
+/// The bin volume around one centre.
+struct Voxels<'a> {
+    centre: usize,
+    bins: &'a [u16],
+    run_lengths: &'a [u8],
+}
+
+impl Voxels<'_> {
+    /// Padded index of `row`'s first voxel.
+    #[inline]
+    fn base(&self, row: &StencilRow) -> usize {
+        (self.centre as isize + row.start) as usize
+    }
+
+    /// Adds a row run by run: its voxels `..cut` to `below`, `cut..plane_end`
+    /// half to each, `plane_end..` to `above`.
+    #[inline]
+    fn add_row(
+        &self,
+        row: &StencilRow,
+        prefix: &[f64],
+        cut: usize,
+        plane_end: usize,
+        below: &mut [f64],
+        above: &mut [f64],
+    ) {
+        let base = self.base(row);
+        // Sliced to the row, so the compiler sees every index in range.
+        let len = row.len;
+        let (bins, runs, prefix) = (&self.bins[base..base + len], &self.run_lengths[base..base + len], &prefix[..=len]);
+        let (cut, plane_end) = (cut.min(len), plane_end.min(len));
+        let mut j = 0;
+        while j < len {
+            let k = bins[j] as usize;
+            let end = (j + runs[j] as usize).min(len);
+            if j < cut {
+                below[k] += prefix[end.min(cut)] - prefix[j];
+            }
+            if end > plane_end {
+                above[k] += prefix[end] - prefix[j.max(plane_end)];
+            }
+            if j < plane_end && end > cut && plane_end > cut {
+                let half = 0.5 * (prefix[end.min(plane_end)] - prefix[j.max(cut)]);
+                below[k] += half;
+                above[k] += half;
+            }
+            j = end;
+        }
+    }
+}
+
+/// For every index of a padded bin volume, how many voxels from it on in its
+/// row (`row` voxels long) hold the same bin, at most 255 (a longer run is
+/// walked in steps).
+pub fn run_lengths(bins: &[u16], row: usize) -> Vec<u8> {
+    let mut lengths = vec![0u8; bins.len()];
+    for (bins, lengths) in bins.chunks(row).zip(lengths.chunks_mut(row)) {
+        let mut run = 0u8;
+        for x in (0..bins.len()).rev() {
+            run = if x + 1 < bins.len() && bins[x + 1] == bins[x] { run.saturating_add(1) } else { 1 };
+            lengths[x] = run;
+        }
+    }
+    lengths
+}
