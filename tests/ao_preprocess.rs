@@ -491,3 +491,47 @@ fn histograms_by_rows_and_runs_equal_the_brute_force() {
         assert!(worst <= f32::EPSILON, "case {c}: {differing} bins differ, worst relative {worst:e}");
     }
 }
+
+/// CPU time of this thread, seconds (Linux: utime + stime of
+/// /proc/thread-self/stat, in clock ticks of 10 ms).
+fn thread_cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/thread-self/stat").expect("/proc/thread-self/stat (Linux)");
+    let fields: Vec<&str> = stat.rsplit(')').next().unwrap_or_default().split_whitespace().collect();
+    let ticks = |i: usize| fields[i].parse::<f64>().expect("a clock-tick count");
+    (ticks(11) + ticks(12)) / 100.0
+}
+
+/// The histogram step's cost per voxel on engine.vti, rows and runs against
+/// the brute force, in thread CPU time (steady on a shared machine), on 64
+/// whole x-rows spread over the volume, run by hand:
+/// `SWEEPLAB_DATA=../shared/data AO_RADIUS=16 AO_BITS=4 cargo test --release
+/// --test ao_preprocess histogram_cost -- --ignored --nocapture`
+#[test]
+#[ignore = "a measurement, not a check"]
+fn histogram_cost_per_voxel_rows_against_brute_force() {
+    let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
+    let volume = sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)");
+    let var = |name: &str, default: u32| std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default);
+    let (radius, bits) = (var("AO_RADIUS", 16), var("AO_BITS", 4));
+    let h = LocalHistograms::new(&volume, radius, bits);
+    let (nx, rows) = (volume.dims.x as usize, (volume.dims.y * volume.dims.z) as usize);
+    let voxels: Vec<usize> = (0..64).flat_map(|i| (i * 7919 % rows) * nx..(i * 7919 % rows + 1) * nx).collect();
+    let mut scratch = h.scratch();
+    let (mut f, mut b) = (vec![0.0; h.bins()], vec![0.0; h.bins()]);
+    let mut per_voxel = |by_rows: bool| {
+        let start = thread_cpu_seconds();
+        for &voxel in &voxels {
+            match by_rows {
+                true => h.voxel_into_by_rows(voxel, &mut scratch, &mut f, &mut b),
+                false => h.voxel_into(voxel, &mut scratch, &mut f, &mut b),
+            }
+        }
+        (thread_cpu_seconds() - start) / voxels.len() as f64 * 1e6
+    };
+    let (rows_us, brute_us, rows_again) = (per_voxel(true), per_voxel(false), per_voxel(true));
+    eprintln!(
+        "engine r = {radius} b = {bits}, {} voxels: rows and runs {rows_us:.2} / {rows_again:.2} us per voxel, brute force {brute_us:.2} us ({:.1}x)",
+        voxels.len(),
+        brute_us / rows_us.max(rows_again)
+    );
+}
