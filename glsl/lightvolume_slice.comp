@@ -32,11 +32,22 @@ layout(constant_id = 3) const bool CHROMATIC = true;
 // and 5b), its layer of the slice buffers, and whether the factor is further
 // weighted per voxel by the squared cosine between the light's travel and the
 // axis (a light inside the volume: six groups whose weights sum to one).
+// A directional light's step is the same at every voxel of a slice, so the
+// host computes it once (src/lightvolume/directional_step.rs) and the shader
+// does no per-voxel direction, path length, box exit or lookup position
+// arithmetic for it (llvmpipe runs that arithmetic on every voxel).
 struct GroupEntry {
     uint light;
     float factor;
     uint slot;
     uint per_voxel;
+    // Directional lights: rgb factor * radiance (times cos^2 when per_voxel);
+    // w the path length per unit of axis length (1 / cos), 0: not carried.
+    vec4 radiance_path;
+    // Directional lights: xy how far the previous-slice lookup lies beside the
+    // voxel's texel over one slice, in texels (u, v); zw their reciprocals
+    // (infinite where zero).
+    vec4 lateral_step;
 };
 layout(std430, set = 0, binding = 4) readonly buffer GroupEntries { GroupEntry entries[]; };
 
@@ -91,11 +102,12 @@ const int MAX_SUBSTEPS = 64;
 // values: selective updates rely on it, tests/lightvolume_updates.rs).
 layout(constant_id = 4) const bool NEAR_LIGHTS = true;
 // Whether every light of the pass is directional (chosen per pass by
-// propagation.rs): the direction toward the light is the same at every voxel
-// and the falloff and cone are 1, so their per-voxel code is compiled out
-// (llvmpipe runs every branch under a mask, so the point and spot paths cost
-// every light of every voxel: about two fifths of a directional light's cost).
-// A directional light's arithmetic is the same in every build (bit-equal).
+// propagation.rs): with the shared medium the per-voxel path
+// (`light_from_voxel`) is compiled out (llvmpipe runs every branch under a
+// mask, so it would cost every light of every voxel) and the lights are not
+// read: a directional light's step comes with its entry. Without it, the
+// per-voxel direction, falloff and cone are. A directional light's arithmetic
+// is the same in every build (bit-equal).
 layout(constant_id = 5) const bool DIRECTIONAL_ONLY = false;
 // Lights whose travel direction is this close to perpendicular to the axis (a
 // cosine, not a transmittance) do not propagate along it: 1/c would blow up.
@@ -219,6 +231,91 @@ void compensated_add(inout vec3 hi, inout vec3 lo, vec3 x) {
     lo = l;
 }
 
+// A directional light's transmittance to the voxel at slice texel t of slice
+// k (`result`, for its slice buffer) and its contribution `x` with the shared
+// medium, from the entry's host-computed step: the lookup point in the previous slice is the
+// texel centre shifted by lateral_step, and where that point lies beyond a
+// lateral face the path ends at the face (the share of the slice's path that
+// lies inside), with transmittance 1 beyond. The same arithmetic in every
+// build (bit-equal values: selective updates rely on it).
+bool light_from_host_step(GroupEntry entry, ivec2 t, ivec2 size, int k, vec3 axis_depth, out vec4 result, out vec3 x) {
+    // The first slice takes the light at the volume face, half a slice away.
+    float part = k == 0 ? 0.5 : 1.0;
+    precise vec2 shift = entry.lateral_step.xy * part;
+    precise vec2 inverse_shift = entry.lateral_step.zw * (1.0 / part);
+    precise vec2 from = vec2(t) + 0.5;
+    precise vec2 cq = from + shift;
+    // The lateral face the path leaves through toward the light, per axis
+    // (the high one where it does not move: its distance is then infinite).
+    vec2 face = vec2(shift.x < 0.0 ? 0.0 : float(size.x), shift.y < 0.0 ? 0.0 : float(size.y));
+    precise vec2 to_face = (face - from) * inverse_shift;
+    precise float share = min(min(to_face.x, to_face.y), 1.0);
+    precise vec3 T = vec3(1.0);
+    if (k > 0 && share >= 1.0) {
+        // The light enters through a lateral face where it travels inward.
+        ivec2 enters = ivec2(sign(entry.lateral_step.xy));
+        T = previous_transmittance(cq, size, int(entry.slot), enters);
+    }
+    precise vec3 depth = axis_depth * (entry.radiance_path.w * share);
+    T *= exp(-depth);
+    bool carried = entry.radiance_path.w > 0.0;
+    result = carried ? vec4(T, 0.0) : vec4(0.0);
+    x = entry.radiance_path.rgb * T;
+    return carried;
+}
+
+// A light's transmittance to the voxel p and its contribution, its direction,
+// path and lookup computed at the voxel: a point or spot light's differ from
+// voxel to voxel, and without the shared medium a directional light too is
+// integrated along its own direction here.
+bool light_from_voxel(GroupEntry entry, Light l, vec3 p, ivec2 t, ivec2 size, int k, float segment, float dstep,
+                      vec3 axis_depth, out vec4 result, out vec3 x) {
+    int a = pass.axis;
+    int u = (a + 1) % 3;
+    int v = (a + 2) % 3;
+    float travel = float(pass.travel);
+    vec4 w = DIRECTIONAL_ONLY ? toward_directional_light(l) : toward_light(l, p);
+    // Cosine between the light's travel direction and the propagation axis.
+    float c = -w[a] * travel;
+    result = vec4(0.0);
+    x = vec3(0.0);
+    // Light travelling against this group's direction is carried by the
+    // group of the opposite direction (lights inside or beside the volume
+    // have both), so it adds nothing here.
+    if (!(c > MIN_AXIS_COSINE)) return false;
+    // `precise` (no fusing or reassociation) from here to the contribution:
+    // both NEAR_LIGHTS builds must give a far light bit-equal values.
+    precise float along = segment / c;
+    precise vec3 q = p + w.xyz * along;
+    bool near_light = NEAR_LIGHTS && w.w * c <= NEAR_LIGHT_SLICES * dstep;
+    // Where the light enters the volume (through any face) or leaves the
+    // light itself before the previous slice, nothing attenuates it
+    // beyond: the path ends there with transmittance 1. The box is only
+    // intersected where the path may leave it before the previous slice
+    // (q outside the box laterally, or near the light).
+    bool inside = abs(q[u]) <= frame.box_half[u] && abs(q[v]) <= frame.box_half[v];
+    precise float reach = inside && !near_light ? w.w : min(box_exit(p, w.xyz), w.w);
+    precise float len = near_light ? reach : min(along, reach);
+    precise vec3 T = vec3(1.0);
+    if (k > 0 && along < reach && !near_light) {
+        precise vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
+                       (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
+        // The light enters through a lateral face where it travels inward:
+        // toward the light (w) points out of the face.
+        ivec2 enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
+        T = previous_transmittance(cq, size, int(entry.slot), enters);
+    }
+    bool shared_path = SHARED_MEDIUM && !near_light;
+    precise vec3 depth = shared_path ? axis_depth * (len / segment) : optical_depth(p, w.xyz, len);
+    T *= exp(-depth);
+    result = vec4(T, 0.0);
+    precise float weight = entry.factor * (entry.per_voxel != 0u ? c * c : 1.0);
+    float shape = DIRECTIONAL_ONLY ? 1.0 : light_shape(l, w);
+    precise vec3 xx = weight * l.radiance.rgb * shape * T;
+    x = xx;
+    return true;
+}
+
 void main() {
     int a = pass.axis;
     int u = (a + 1) % 3;
@@ -245,44 +342,18 @@ void main() {
     vec3 sum_lo = vec3(0.0);
     for (int e = 0; e < pass.entry_count; ++e) {
         GroupEntry entry = entries[pass.first_entry + e];
-        Light l = lights[entry.light];
-        vec4 w = DIRECTIONAL_ONLY ? toward_directional_light(l) : toward_light(l, p);
-        // Cosine between the light's travel direction and the propagation axis.
-        float c = -w[a] * travel;
-        vec4 result = vec4(0.0);
-        // Light travelling against this group's direction is carried by the
-        // group of the opposite direction (lights inside or beside the volume
-        // have both), so it adds nothing here.
-        if (c > MIN_AXIS_COSINE) {
-            // `precise` (no fusing or reassociation) from here to the contribution:
-            // both NEAR_LIGHTS builds must give a far light bit-equal values.
-            precise float along = segment / c;
-            precise vec3 q = p + w.xyz * along;
-            bool near_light = NEAR_LIGHTS && w.w * c <= NEAR_LIGHT_SLICES * dstep;
-            // Where the light enters the volume (through any face) or leaves the
-            // light itself before the previous slice, nothing attenuates it
-            // beyond: the path ends there with transmittance 1. The box is only
-            // intersected where the path may leave it before the previous slice
-            // (q outside the box laterally, or near the light).
-            bool inside = abs(q[u]) <= frame.box_half[u] && abs(q[v]) <= frame.box_half[v];
-            precise float reach = inside && !near_light ? w.w : min(box_exit(p, w.xyz), w.w);
-            precise float len = near_light ? reach : min(along, reach);
-            precise vec3 T = vec3(1.0);
-            if (k > 0 && along < reach && !near_light) {
-                precise vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
-                               (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
-                // The light enters through a lateral face where it travels inward:
-                // toward the light (w) points out of the face.
-                ivec2 enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
-                T = previous_transmittance(cq, size, int(entry.slot), enters);
-            }
-            bool shared_path = SHARED_MEDIUM && !near_light;
-            precise vec3 depth = shared_path ? axis_depth * (len / segment) : optical_depth(p, w.xyz, len);
-            T *= exp(-depth);
-            result = vec4(T, 0.0);
-            precise float weight = entry.factor * (entry.per_voxel != 0u ? c * c : 1.0);
-            float shape = DIRECTIONAL_ONLY ? 1.0 : light_shape(l, w);
-            precise vec3 x = weight * l.radiance.rgb * shape * T;
+        vec4 result;
+        vec3 x;
+        bool carried;
+        // With the shared medium the directional build never reads the light itself.
+        Light l;
+        if (!(DIRECTIONAL_ONLY && SHARED_MEDIUM)) l = lights[entry.light];
+        if (SHARED_MEDIUM && (DIRECTIONAL_ONLY || l.pos_type.w == LIGHT_DIRECTIONAL)) {
+            carried = light_from_host_step(entry, t, size, k, axis_depth, result, x);
+        } else {
+            carried = light_from_voxel(entry, l, p, t, size, k, segment, dstep, axis_depth, result, x);
+        }
+        if (carried) {
             if (COMPENSATED) {
                 compensated_add(sum_hi, sum_lo, x);
             } else {

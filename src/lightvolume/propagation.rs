@@ -8,7 +8,8 @@
 //! so a recorded pass stays valid as long as its slots and region keep their
 //! contents.
 
-use super::groups::PropagationGroup;
+use super::directional_step::DirectionalStep;
+use super::groups::{GroupMember, PropagationGroup};
 use super::illumination::IlluminationVolume;
 use super::settings::LightVolumeSettings;
 use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
@@ -38,9 +39,16 @@ pub struct GroupEntry {
     /// 1: the factor is weighted per voxel by cos^2 between the light's travel
     /// and the axis (a light inside the volume, in all six groups).
     pub per_voxel: u32,
+    /// A directional light's step ([`DirectionalStep`]), unused otherwise.
+    pub radiance_path: [f32; 4],
+    pub lateral_step: [f32; 4],
 }
 
-crate::assert_gpu_layout!(GroupEntry, shader::layout::GROUP_ENTRY, [light, factor, slot, per_voxel]);
+crate::assert_gpu_layout!(
+    GroupEntry,
+    shader::layout::GROUP_ENTRY,
+    [light, factor, slot, per_voxel, radiance_path, lateral_step]
+);
 
 /// Mirrors the `Pass` push constants.
 #[repr(C)]
@@ -269,6 +277,25 @@ impl Propagation {
         rec.discard_for_compute("slice_buffers_discard_to_propagation", &[&self.slices[0], &self.slices[1]]);
     }
 
+    /// The entry of `member` of `group`: its light state at `light_slot` of
+    /// the slot buffer, its slice buffer layer `layer`, and for a directional
+    /// light its step, computed here once for every voxel.
+    pub fn entry(&self, group: &PropagationGroup, member: &GroupMember, light_slot: u32, layer: u32) -> GroupEntry {
+        let step = if is_directional(&member.state) {
+            DirectionalStep::of(member, group, self.box_half, self.grid)
+        } else {
+            DirectionalStep::NONE
+        };
+        GroupEntry {
+            light: light_slot,
+            factor: member.factor,
+            slot: layer,
+            per_voxel: member.per_voxel as u32,
+            radiance_path: step.radiance_path,
+            lateral_step: step.lateral_step,
+        }
+    }
+
     /// Slices of `group`: the illumination volume's size along its axis.
     pub fn slice_count(&self, group: &PropagationGroup) -> u32 {
         self.grid[group.axis]
@@ -320,7 +347,6 @@ impl Propagation {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lightvolume::groups::GroupMember;
 
     fn light(kind: f32, position: [f32; 3]) -> GpuLight {
         GpuLight { pos_type: [position[0], position[1], position[2], kind], ..GpuLight::default() }

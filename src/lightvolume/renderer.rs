@@ -348,12 +348,7 @@ impl<'s> LightVolumeRenderer<'s> {
                 .iter()
                 .zip(pass_slots)
                 .enumerate()
-                .map(|(layer, (m, &slot))| GroupEntry {
-                    light: slot,
-                    factor: m.factor,
-                    slot: layer as u32,
-                    per_voxel: m.per_voxel as u32,
-                })
+                .map(|(layer, (m, &slot))| propagation.entry(pass, m, slot, layer as u32))
                 .collect();
             propagation.write_entries(first, &entries)?;
             let commands = propagation.record_pass(self.gpu.ctx, pass, first as u32, self.settings.racy)?;
