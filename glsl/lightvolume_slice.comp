@@ -49,7 +49,12 @@ struct GroupEntry {
     // (infinite where zero).
     vec4 lateral_step;
 };
-layout(std430, set = 0, binding = 4) readonly buffer GroupEntries { GroupEntry entries[]; };
+// A uniform block, not a storage buffer: llvmpipe loads a uniform block at a
+// dynamically uniform index once for all lanes, but a storage buffer inside
+// control flow (the loop over the entries) once per lane. Its size bounds the
+// entries of one update (propagation.rs, MAX_ENTRIES; 48 KiB, within the 64 KiB
+// maxUniformBufferRange of lavapipe and most GPUs).
+layout(std140, set = 0, binding = 4) uniform GroupEntries { GroupEntry entries[1024]; };
 
 // Slice buffers: x, y = texel of the slice, z = slot of the light in its group;
 // rgb = the light's transmittance to the voxel centre, per channel.
