@@ -108,7 +108,7 @@ const int MAX_SUBSTEPS = 64;
 layout(constant_id = 4) const bool NEAR_LIGHTS = true;
 // Whether every light of the pass is directional (chosen per pass by
 // propagation.rs): with the shared medium the per-voxel path
-// (`light_from_voxel`) is compiled out (llvmpipe runs every branch under a
+// (`step_at_voxel`) is compiled out (llvmpipe runs every branch under a
 // mask, so it would cost every light of every voxel) and the lights are not
 // read: a directional light's step comes with its entry. Without it, the
 // per-voxel direction, falloff and cone are. A directional light's arithmetic
@@ -236,14 +236,29 @@ void compensated_add(inout vec3 hi, inout vec3 lo, vec3 x) {
     lo = l;
 }
 
-// A directional light's transmittance to the voxel at slice texel t of slice
-// k (`result`, for its slice buffer) and its contribution `x` with the shared
-// medium, from the entry's host-computed step: the lookup point in the previous slice is the
-// texel centre shifted by lateral_step, and where that point lies beyond a
+// One light's step at one voxel, what the shared part below needs: where to
+// read the previous slice (if at all), the optical depth of the path to it,
+// and what scales the transmittance into the contribution. Two ways to get
+// it (from the host, or computed at the voxel) and one way to use it, so
+// llvmpipe, which runs both sides of a branch, runs the taps, the exp and
+// the sum once per light in a pass that mixes directional and other lights.
+struct LightStep {
+    bool carried;  // false: travelling against the group, adds nothing here
+    bool lookup;   // read the previous slice at cq (else transmittance 1)
+    vec2 cq;       // lateral texel position in the previous slice
+    ivec2 enters;  // per lateral axis, the face the light enters through
+    vec3 depth;    // optical depth from there to the voxel, per channel
+    vec3 scale;    // factor * radiance (* falloff, cone and cos^2)
+};
+
+// A directional light's step with the shared medium, from the entry's
+// host-computed constants: the lookup point in the previous slice is the
+// texel centre t shifted by lateral_step, and where that point lies beyond a
 // lateral face the path ends at the face (the share of the slice's path that
 // lies inside), with transmittance 1 beyond. The same arithmetic in every
 // build (bit-equal values: selective updates rely on it).
-bool light_from_host_step(GroupEntry entry, ivec2 t, ivec2 size, int k, vec3 axis_depth, out vec4 result, out vec3 x) {
+LightStep step_from_host(GroupEntry entry, ivec2 t, ivec2 size, int k, vec3 axis_depth) {
+    LightStep s;
     // The first slice takes the light at the volume face, half a slice away.
     float part = k == 0 ? 0.5 : 1.0;
     precise vec2 shift = entry.lateral_step.xy * part;
@@ -255,26 +270,23 @@ bool light_from_host_step(GroupEntry entry, ivec2 t, ivec2 size, int k, vec3 axi
     vec2 face = vec2(shift.x < 0.0 ? 0.0 : float(size.x), shift.y < 0.0 ? 0.0 : float(size.y));
     precise vec2 to_face = (face - from) * inverse_shift;
     precise float share = min(min(to_face.x, to_face.y), 1.0);
-    precise vec3 T = vec3(1.0);
-    if (k > 0 && share >= 1.0) {
-        // The light enters through a lateral face where it travels inward.
-        ivec2 enters = ivec2(sign(entry.lateral_step.xy));
-        T = previous_transmittance(cq, size, int(entry.slot), enters);
-    }
     precise vec3 depth = axis_depth * (entry.radiance_path.w * share);
-    T *= exp(-depth);
-    bool carried = entry.radiance_path.w > 0.0;
-    result = carried ? vec4(T, 0.0) : vec4(0.0);
-    x = entry.radiance_path.rgb * T;
-    return carried;
+    s.carried = entry.radiance_path.w > 0.0;
+    s.lookup = k > 0 && share >= 1.0;
+    s.cq = cq;
+    // The light enters through a lateral face where it travels inward.
+    s.enters = ivec2(sign(entry.lateral_step.xy));
+    s.depth = depth;
+    s.scale = entry.radiance_path.rgb;
+    return s;
 }
 
-// A light's transmittance to the voxel p and its contribution, its direction,
-// path and lookup computed at the voxel: a point or spot light's differ from
-// voxel to voxel, and without the shared medium a directional light too is
-// integrated along its own direction here.
-bool light_from_voxel(GroupEntry entry, Light l, vec3 p, ivec2 t, ivec2 size, int k, float segment, float dstep,
-                      vec3 axis_depth, out vec4 result, out vec3 x) {
+// A light's step computed at the voxel p: a point or spot light's direction,
+// path, falloff and cone differ from voxel to voxel, and without the shared
+// medium a directional light too is integrated along its own direction here.
+LightStep step_at_voxel(GroupEntry entry, Light l, vec3 p, ivec2 size, int k, float segment, float dstep,
+                        vec3 axis_depth) {
+    LightStep s = LightStep(false, false, vec2(0.0), ivec2(0), vec3(0.0), vec3(0.0));
     int a = pass.axis;
     int u = (a + 1) % 3;
     int v = (a + 2) % 3;
@@ -282,12 +294,11 @@ bool light_from_voxel(GroupEntry entry, Light l, vec3 p, ivec2 t, ivec2 size, in
     vec4 w = DIRECTIONAL_ONLY ? toward_directional_light(l) : toward_light(l, p);
     // Cosine between the light's travel direction and the propagation axis.
     float c = -w[a] * travel;
-    result = vec4(0.0);
-    x = vec3(0.0);
     // Light travelling against this group's direction is carried by the
     // group of the opposite direction (lights inside or beside the volume
     // have both), so it adds nothing here.
-    if (!(c > MIN_AXIS_COSINE)) return false;
+    s.carried = c > MIN_AXIS_COSINE;
+    if (!s.carried) return s;
     // `precise` (no fusing or reassociation) from here to the contribution:
     // both NEAR_LIGHTS builds must give a far light bit-equal values.
     precise float along = segment / c;
@@ -301,24 +312,21 @@ bool light_from_voxel(GroupEntry entry, Light l, vec3 p, ivec2 t, ivec2 size, in
     bool inside = abs(q[u]) <= frame.box_half[u] && abs(q[v]) <= frame.box_half[v];
     precise float reach = inside && !near_light ? w.w : min(box_exit(p, w.xyz), w.w);
     precise float len = near_light ? reach : min(along, reach);
-    precise vec3 T = vec3(1.0);
-    if (k > 0 && along < reach && !near_light) {
-        precise vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
-                       (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
-        // The light enters through a lateral face where it travels inward:
-        // toward the light (w) points out of the face.
-        ivec2 enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
-        T = previous_transmittance(cq, size, int(entry.slot), enters);
-    }
+    s.lookup = k > 0 && along < reach && !near_light;
+    precise vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
+                           (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
+    s.cq = cq;
+    // The light enters through a lateral face where it travels inward:
+    // toward the light (w) points out of the face.
+    s.enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
     bool shared_path = SHARED_MEDIUM && !near_light;
     precise vec3 depth = shared_path ? axis_depth * (len / segment) : optical_depth(p, w.xyz, len);
-    T *= exp(-depth);
-    result = vec4(T, 0.0);
+    s.depth = depth;
     precise float weight = entry.factor * (entry.per_voxel != 0u ? c * c : 1.0);
     float shape = DIRECTIONAL_ONLY ? 1.0 : light_shape(l, w);
-    precise vec3 xx = weight * l.radiance.rgb * shape * T;
-    x = xx;
-    return true;
+    precise vec3 scale = weight * l.radiance.rgb * shape;
+    s.scale = scale;
+    return s;
 }
 
 void main() {
@@ -347,18 +355,22 @@ void main() {
     vec3 sum_lo = vec3(0.0);
     for (int e = 0; e < pass.entry_count; ++e) {
         GroupEntry entry = entries[pass.first_entry + e];
-        vec4 result;
-        vec3 x;
-        bool carried;
         // With the shared medium the directional build never reads the light itself.
         Light l;
         if (!(DIRECTIONAL_ONLY && SHARED_MEDIUM)) l = lights[entry.light];
+        LightStep s;
         if (SHARED_MEDIUM && (DIRECTIONAL_ONLY || l.pos_type.w == LIGHT_DIRECTIONAL)) {
-            carried = light_from_host_step(entry, t, size, k, axis_depth, result, x);
+            s = step_from_host(entry, t, size, k, axis_depth);
         } else {
-            carried = light_from_voxel(entry, l, p, t, size, k, segment, dstep, axis_depth, result, x);
+            s = step_at_voxel(entry, l, p, size, k, segment, dstep, axis_depth);
         }
-        if (carried) {
+        vec4 result = vec4(0.0);
+        if (s.carried) {
+            precise vec3 T = vec3(1.0);
+            if (s.lookup) T = previous_transmittance(s.cq, size, int(entry.slot), s.enters);
+            T *= exp(-s.depth);
+            result = vec4(T, 0.0);
+            precise vec3 x = s.scale * T;
             if (COMPENSATED) {
                 compensated_add(sum_hi, sum_lo, x);
             } else {

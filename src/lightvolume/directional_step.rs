@@ -1,7 +1,7 @@
 //! A directional light's step from slice to slice of a propagation group,
 //! computed once on the host: its direction, path length per slice and the
 //! lateral shift of its previous-slice lookup are the same at every voxel, so
-//! the slice shader (glsl/lightvolume_slice.comp, `light_from_host_step`, with
+//! the slice shader (glsl/lightvolume_slice.comp, `step_from_host`, with
 //! the shared medium) reads
 //! them from the light's pass entry instead of computing them per voxel
 //! (llvmpipe runs that arithmetic on every voxel of every slice).
