@@ -32,13 +32,29 @@ layout(constant_id = 3) const bool CHROMATIC = true;
 // and 5b), its layer of the slice buffers, and whether the factor is further
 // weighted per voxel by the squared cosine between the light's travel and the
 // axis (a light inside the volume: six groups whose weights sum to one).
+// A directional light's step is the same at every voxel of a slice, so the
+// host computes it once (src/lightvolume/directional_step.rs) and the shader
+// does no per-voxel direction, path length, box exit or lookup position
+// arithmetic for it (llvmpipe runs that arithmetic on every voxel).
 struct GroupEntry {
     uint light;
     float factor;
     uint slot;
     uint per_voxel;
+    // Directional lights: rgb factor * radiance (times cos^2 when per_voxel);
+    // w the path length per unit of axis length (1 / cos), 0: not carried.
+    vec4 radiance_path;
+    // Directional lights: xy how far the previous-slice lookup lies beside the
+    // voxel's texel over one slice, in texels (u, v); zw their reciprocals
+    // (infinite where zero).
+    vec4 lateral_step;
 };
-layout(std430, set = 0, binding = 4) readonly buffer GroupEntries { GroupEntry entries[]; };
+// A uniform block, not a storage buffer: llvmpipe loads a uniform block at a
+// dynamically uniform index once for all lanes, but a storage buffer inside
+// control flow (the loop over the entries) once per lane. Its size bounds the
+// entries of one update (propagation.rs, MAX_ENTRIES; 48 KiB, within the 64 KiB
+// maxUniformBufferRange of lavapipe and most GPUs).
+layout(std140, set = 0, binding = 4) uniform GroupEntries { GroupEntry entries[1024]; };
 
 // Slice buffers: x, y = texel of the slice, z = slot of the light in its group;
 // rgb = the light's transmittance to the voxel centre, per channel.
@@ -91,11 +107,12 @@ const int MAX_SUBSTEPS = 64;
 // values: selective updates rely on it, tests/lightvolume_updates.rs).
 layout(constant_id = 4) const bool NEAR_LIGHTS = true;
 // Whether every light of the pass is directional (chosen per pass by
-// propagation.rs): the direction toward the light is the same at every voxel
-// and the falloff and cone are 1, so their per-voxel code is compiled out
-// (llvmpipe runs every branch under a mask, so the point and spot paths cost
-// every light of every voxel: about two fifths of a directional light's cost).
-// A directional light's arithmetic is the same in every build (bit-equal).
+// propagation.rs): with the shared medium the per-voxel path
+// (`step_at_voxel`) is compiled out (llvmpipe runs every branch under a
+// mask, so it would cost every light of every voxel) and the lights are not
+// read: a directional light's step comes with its entry. Without it, the
+// per-voxel direction, falloff and cone are. A directional light's arithmetic
+// is the same in every build (bit-equal).
 layout(constant_id = 5) const bool DIRECTIONAL_ONLY = false;
 // Lights whose travel direction is this close to perpendicular to the axis (a
 // cosine, not a transmittance) do not propagate along it: 1/c would blow up.
@@ -219,6 +236,99 @@ void compensated_add(inout vec3 hi, inout vec3 lo, vec3 x) {
     lo = l;
 }
 
+// One light's step at one voxel, what the shared part below needs: where to
+// read the previous slice (if at all), the optical depth of the path to it,
+// and what scales the transmittance into the contribution. Two ways to get
+// it (from the host, or computed at the voxel) and one way to use it, so
+// llvmpipe, which runs both sides of a branch, runs the taps, the exp and
+// the sum once per light in a pass that mixes directional and other lights.
+struct LightStep {
+    bool carried;  // false: travelling against the group, adds nothing here
+    bool lookup;   // read the previous slice at cq (else transmittance 1)
+    vec2 cq;       // lateral texel position in the previous slice
+    ivec2 enters;  // per lateral axis, the face the light enters through
+    vec3 depth;    // optical depth from there to the voxel, per channel
+    vec3 scale;    // factor * radiance (* falloff, cone and cos^2)
+};
+
+// A directional light's step with the shared medium, from the entry's
+// host-computed constants: the lookup point in the previous slice is the
+// texel centre t shifted by lateral_step, and where that point lies beyond a
+// lateral face the path ends at the face (the share of the slice's path that
+// lies inside), with transmittance 1 beyond. The same arithmetic in every
+// build (bit-equal values: selective updates rely on it).
+LightStep step_from_host(GroupEntry entry, ivec2 t, ivec2 size, int k, vec3 axis_depth) {
+    LightStep s;
+    // The first slice takes the light at the volume face, half a slice away.
+    float part = k == 0 ? 0.5 : 1.0;
+    precise vec2 shift = entry.lateral_step.xy * part;
+    precise vec2 inverse_shift = entry.lateral_step.zw * (1.0 / part);
+    precise vec2 from = vec2(t) + 0.5;
+    precise vec2 cq = from + shift;
+    // The lateral face the path leaves through toward the light, per axis
+    // (the high one where it does not move: its distance is then infinite).
+    vec2 face = vec2(shift.x < 0.0 ? 0.0 : float(size.x), shift.y < 0.0 ? 0.0 : float(size.y));
+    precise vec2 to_face = (face - from) * inverse_shift;
+    precise float share = min(min(to_face.x, to_face.y), 1.0);
+    precise vec3 depth = axis_depth * (entry.radiance_path.w * share);
+    s.carried = entry.radiance_path.w > 0.0;
+    s.lookup = k > 0 && share >= 1.0;
+    s.cq = cq;
+    // The light enters through a lateral face where it travels inward.
+    s.enters = ivec2(sign(entry.lateral_step.xy));
+    s.depth = depth;
+    s.scale = entry.radiance_path.rgb;
+    return s;
+}
+
+// A light's step computed at the voxel p: a point or spot light's direction,
+// path, falloff and cone differ from voxel to voxel, and without the shared
+// medium a directional light too is integrated along its own direction here.
+LightStep step_at_voxel(GroupEntry entry, Light l, vec3 p, ivec2 size, int k, float segment, float dstep,
+                        vec3 axis_depth) {
+    LightStep s = LightStep(false, false, vec2(0.0), ivec2(0), vec3(0.0), vec3(0.0));
+    int a = pass.axis;
+    int u = (a + 1) % 3;
+    int v = (a + 2) % 3;
+    float travel = float(pass.travel);
+    vec4 w = DIRECTIONAL_ONLY ? toward_directional_light(l) : toward_light(l, p);
+    // Cosine between the light's travel direction and the propagation axis.
+    float c = -w[a] * travel;
+    // Light travelling against this group's direction is carried by the
+    // group of the opposite direction (lights inside or beside the volume
+    // have both), so it adds nothing here.
+    s.carried = c > MIN_AXIS_COSINE;
+    if (!s.carried) return s;
+    // `precise` (no fusing or reassociation) from here to the contribution:
+    // both NEAR_LIGHTS builds must give a far light bit-equal values.
+    precise float along = segment / c;
+    precise vec3 q = p + w.xyz * along;
+    bool near_light = NEAR_LIGHTS && w.w * c <= NEAR_LIGHT_SLICES * dstep;
+    // Where the light enters the volume (through any face) or leaves the
+    // light itself before the previous slice, nothing attenuates it
+    // beyond: the path ends there with transmittance 1. The box is only
+    // intersected where the path may leave it before the previous slice
+    // (q outside the box laterally, or near the light).
+    bool inside = abs(q[u]) <= frame.box_half[u] && abs(q[v]) <= frame.box_half[v];
+    precise float reach = inside && !near_light ? w.w : min(box_exit(p, w.xyz), w.w);
+    precise float len = near_light ? reach : min(along, reach);
+    s.lookup = k > 0 && along < reach && !near_light;
+    precise vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
+                           (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
+    s.cq = cq;
+    // The light enters through a lateral face where it travels inward:
+    // toward the light (w) points out of the face.
+    s.enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
+    bool shared_path = SHARED_MEDIUM && !near_light;
+    precise vec3 depth = shared_path ? axis_depth * (len / segment) : optical_depth(p, w.xyz, len);
+    s.depth = depth;
+    precise float weight = entry.factor * (entry.per_voxel != 0u ? c * c : 1.0);
+    float shape = DIRECTIONAL_ONLY ? 1.0 : light_shape(l, w);
+    precise vec3 scale = weight * l.radiance.rgb * shape;
+    s.scale = scale;
+    return s;
+}
+
 void main() {
     int a = pass.axis;
     int u = (a + 1) % 3;
@@ -245,44 +355,22 @@ void main() {
     vec3 sum_lo = vec3(0.0);
     for (int e = 0; e < pass.entry_count; ++e) {
         GroupEntry entry = entries[pass.first_entry + e];
-        Light l = lights[entry.light];
-        vec4 w = DIRECTIONAL_ONLY ? toward_directional_light(l) : toward_light(l, p);
-        // Cosine between the light's travel direction and the propagation axis.
-        float c = -w[a] * travel;
+        // With the shared medium the directional build never reads the light itself.
+        Light l;
+        if (!(DIRECTIONAL_ONLY && SHARED_MEDIUM)) l = lights[entry.light];
+        LightStep s;
+        if (SHARED_MEDIUM && (DIRECTIONAL_ONLY || l.pos_type.w == LIGHT_DIRECTIONAL)) {
+            s = step_from_host(entry, t, size, k, axis_depth);
+        } else {
+            s = step_at_voxel(entry, l, p, size, k, segment, dstep, axis_depth);
+        }
         vec4 result = vec4(0.0);
-        // Light travelling against this group's direction is carried by the
-        // group of the opposite direction (lights inside or beside the volume
-        // have both), so it adds nothing here.
-        if (c > MIN_AXIS_COSINE) {
-            // `precise` (no fusing or reassociation) from here to the contribution:
-            // both NEAR_LIGHTS builds must give a far light bit-equal values.
-            precise float along = segment / c;
-            precise vec3 q = p + w.xyz * along;
-            bool near_light = NEAR_LIGHTS && w.w * c <= NEAR_LIGHT_SLICES * dstep;
-            // Where the light enters the volume (through any face) or leaves the
-            // light itself before the previous slice, nothing attenuates it
-            // beyond: the path ends there with transmittance 1. The box is only
-            // intersected where the path may leave it before the previous slice
-            // (q outside the box laterally, or near the light).
-            bool inside = abs(q[u]) <= frame.box_half[u] && abs(q[v]) <= frame.box_half[v];
-            precise float reach = inside && !near_light ? w.w : min(box_exit(p, w.xyz), w.w);
-            precise float len = near_light ? reach : min(along, reach);
+        if (s.carried) {
             precise vec3 T = vec3(1.0);
-            if (k > 0 && along < reach && !near_light) {
-                precise vec2 cq = vec2((q[u] / (2.0 * frame.box_half[u]) + 0.5) * float(size.x),
-                               (q[v] / (2.0 * frame.box_half[v]) + 0.5) * float(size.y));
-                // The light enters through a lateral face where it travels inward:
-                // toward the light (w) points out of the face.
-                ivec2 enters = ivec2(w[u] > 0.0 ? 1 : (w[u] < 0.0 ? -1 : 0), w[v] > 0.0 ? 1 : (w[v] < 0.0 ? -1 : 0));
-                T = previous_transmittance(cq, size, int(entry.slot), enters);
-            }
-            bool shared_path = SHARED_MEDIUM && !near_light;
-            precise vec3 depth = shared_path ? axis_depth * (len / segment) : optical_depth(p, w.xyz, len);
-            T *= exp(-depth);
+            if (s.lookup) T = previous_transmittance(s.cq, size, int(entry.slot), s.enters);
+            T *= exp(-s.depth);
             result = vec4(T, 0.0);
-            precise float weight = entry.factor * (entry.per_voxel != 0u ? c * c : 1.0);
-            float shape = DIRECTIONAL_ONLY ? 1.0 : light_shape(l, w);
-            precise vec3 x = weight * l.radiance.rgb * shape * T;
+            precise vec3 x = s.scale * T;
             if (COMPENSATED) {
                 compensated_add(sum_hi, sum_lo, x);
             } else {

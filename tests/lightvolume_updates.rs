@@ -553,3 +553,27 @@ fn moving_a_point_light_inside_the_volume_and_back_is_a_selective_update() {
         }
     });
 }
+
+#[test]
+fn an_update_with_more_contributions_than_the_entry_block_holds_is_an_error() {
+    use sweeplab::lightvolume::propagation::MAX_ENTRIES;
+    on_renderer(scene(defaults), |_, _, r, run| {
+        // Point lights inside the box take all six groups: one more light than fits.
+        let inside = |i: usize| {
+            let x = -0.4 + 0.8 * (i as f32 / (MAX_ENTRIES / 6) as f32);
+            Some(Light {
+                kind: LightKind::Point { position: Vec3::new(x, 0.1, -0.05) },
+                color: Vec3::ONE,
+                intensity: 1.0,
+                falloff: Falloff::None,
+            })
+        };
+        let lights: Vec<Option<Light>> = (0..MAX_ENTRIES / 6 + 1).map(inside).collect();
+        run.profiler.reset();
+        let error = r.update(&lights, &mut run.profiler).err().expect("too many contributions");
+        assert!(error.to_string().contains("light contributions"), "{error}");
+        // Within the bound the same renderer still updates.
+        let (out, _) = run.update(r, &lights[..4]);
+        assert_eq!(out.update.plan.kind, UpdateKind::Entire);
+    });
+}

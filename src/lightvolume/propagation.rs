@@ -8,7 +8,8 @@
 //! so a recorded pass stays valid as long as its slots and region keep their
 //! contents.
 
-use super::groups::PropagationGroup;
+use super::directional_step::DirectionalStep;
+use super::groups::{GroupMember, PropagationGroup};
 use super::illumination::IlluminationVolume;
 use super::settings::LightVolumeSettings;
 use crate::render::frame_params::{frame_params, GpuLight, MarchSteps};
@@ -38,9 +39,16 @@ pub struct GroupEntry {
     /// 1: the factor is weighted per voxel by cos^2 between the light's travel
     /// and the axis (a light inside the volume, in all six groups).
     pub per_voxel: u32,
+    /// A directional light's step ([`DirectionalStep`]), unused otherwise.
+    pub radiance_path: [f32; 4],
+    pub lateral_step: [f32; 4],
 }
 
-crate::assert_gpu_layout!(GroupEntry, shader::layout::GROUP_ENTRY, [light, factor, slot, per_voxel]);
+crate::assert_gpu_layout!(
+    GroupEntry,
+    shader::layout::GROUP_ENTRY,
+    [light, factor, slot, per_voxel, radiance_path, lateral_step]
+);
 
 /// Mirrors the `Pass` push constants.
 #[repr(C)]
@@ -55,6 +63,13 @@ struct SlicePush {
 }
 
 crate::assert_gpu_layout!(SlicePush, shader::layout::PASS, [axis, travel, slice, entry_count, grid, first_entry]);
+
+/// Entries the shader's uniform block `GroupEntries` holds: the most
+/// contributions one update can propagate (a light has at most six, twice in
+/// a selective update: 64 lights, the scene limit, need at most 768).
+pub const MAX_ENTRIES: usize = (shader::layout::GROUP_ENTRIES.size / shader::layout::GROUP_ENTRY.size) as usize;
+
+const _: () = assert!(12 * crate::scene::scene_schema::MAX_LIGHTS <= MAX_ENTRIES);
 
 const GROUP_SIZE: u32 = 8;
 /// `NEAR_LIGHT_SLICES` in glsl/lightvolume_slice.comp: within this many slices
@@ -145,7 +160,8 @@ impl Capacity {
                 .min(pass_lights as usize)
                 .max(self.layers as usize) as u32,
             slots: grow(old.map(|c| c.slots), self.slots, 8),
-            entries: grow(old.map(|c| c.entries), 4 * self.entries, 64),
+            // The uniform block is allocated whole.
+            entries: MAX_ENTRIES,
         }
     }
 
@@ -194,11 +210,24 @@ impl Propagation {
         let params = frame_params(scene, 1, 1, gpu.lut_size, MarchSteps::render(scene));
         let frame =
             Buffer::with_data(ctx, "lightvolume frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
-        let host_buffer = |name: &str, bytes: usize| {
-            Buffer::new(ctx, name, bytes as u64, vk::BufferUsageFlags::STORAGE_BUFFER, MemoryLocation::CpuToGpu)
+        let host_buffer = |name: &str, bytes: usize, usage: vk::BufferUsageFlags| {
+            Buffer::new(ctx, name, bytes as u64, usage, MemoryLocation::CpuToGpu)
         };
-        let slots = host_buffer("lightvolume light slots", capacity.slots * std::mem::size_of::<GpuLight>())?;
-        let entries = host_buffer("lightvolume pass entries", capacity.entries * std::mem::size_of::<GroupEntry>())?;
+        let slots = host_buffer(
+            "lightvolume light slots",
+            capacity.slots * std::mem::size_of::<GpuLight>(),
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+        )?;
+        let entries_bytes = shader::layout::GROUP_ENTRIES.size as usize;
+        if entries_bytes > ctx.limits.max_uniform_buffer_range as usize {
+            return Err(RenderError::Invalid(format!(
+                "lightvolume: the pass entries' uniform block ({entries_bytes} bytes) exceeds this device's \
+                 maxUniformBufferRange ({})",
+                ctx.limits.max_uniform_buffer_range
+            )));
+        }
+        // The whole block, whatever the capacity: the shader declares it so.
+        let entries = host_buffer("lightvolume pass entries", entries_bytes, vk::BufferUsageFlags::UNIFORM_BUFFER)?;
         let grid = illumination.size;
         // Every slice of every group fits: lateral sizes are at most the largest axis.
         let side = grid.max_element();
@@ -241,7 +270,7 @@ impl Propagation {
             (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             // The lights a pass propagates: current states and, for subtractions, old ones.
             (shader::LIGHTS, Resource::StorageBuffer(&slots)),
-            (shader::GROUP_ENTRIES, Resource::StorageBuffer(&entries)),
+            (shader::GROUP_ENTRIES, Resource::UniformBuffer(&entries)),
             (shader::SLICE_A_READ, Resource::StorageImage(&slices[0])),
             (shader::SLICE_B_READ, Resource::StorageImage(&slices[1])),
             (shader::SLICE_A_WRITE, Resource::StorageImage(&slices[0])),
@@ -267,6 +296,25 @@ impl Propagation {
     /// discarded (the first slice of every pass writes before anything reads).
     pub fn record_prepare(&self, rec: &mut Recorder) {
         rec.discard_for_compute("slice_buffers_discard_to_propagation", &[&self.slices[0], &self.slices[1]]);
+    }
+
+    /// The entry of `member` of `group`: its light state at `light_slot` of
+    /// the slot buffer, its slice buffer layer `layer`, and for a directional
+    /// light its step, computed here once for every voxel.
+    pub fn entry(&self, group: &PropagationGroup, member: &GroupMember, light_slot: u32, layer: u32) -> GroupEntry {
+        let step = if is_directional(&member.state) {
+            DirectionalStep::of(member, group, self.box_half, self.grid)
+        } else {
+            DirectionalStep::NONE
+        };
+        GroupEntry {
+            light: light_slot,
+            factor: member.factor,
+            slot: layer,
+            per_voxel: member.per_voxel as u32,
+            radiance_path: step.radiance_path,
+            lateral_step: step.lateral_step,
+        }
     }
 
     /// Slices of `group`: the illumination volume's size along its axis.
@@ -320,7 +368,6 @@ impl Propagation {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lightvolume::groups::GroupMember;
 
     fn light(kind: f32, position: [f32; 3]) -> GpuLight {
         GpuLight { pos_type: [position[0], position[1], position[2], kind], ..GpuLight::default() }

@@ -7,7 +7,7 @@ use super::groups::{contributions, Contribution, PropagationGroup};
 use super::illumination::{IlluminationReadback, IlluminationVolume};
 use super::pass_cache::{PassCache, PassKey, RecordedPass};
 use super::plan::{apply, drift_after, plan_update, PeakGeometry, PlanState, UpdateKind, UpdatePlan};
-use super::propagation::{Capacity, GroupEntry, Propagation};
+use super::propagation::{Capacity, GroupEntry, Propagation, MAX_ENTRIES};
 use super::raycast::RayCast;
 use super::settings::LightVolumeSettings;
 use crate::linear_image::LinearImage;
@@ -300,6 +300,15 @@ impl<'s> LightVolumeRenderer<'s> {
             return Ok((Vec::new(), 0));
         }
         let need = Capacity::needed(passes);
+        if need.entries > MAX_ENTRIES {
+            return Err(RenderError::Invalid(format!(
+                "lightvolume: this update propagates {} light contributions, at most {MAX_ENTRIES} fit one update \
+                 (the scene's limit of {} lights needs at most {})",
+                need.entries,
+                crate::scene::scene_schema::MAX_LIGHTS,
+                12 * crate::scene::scene_schema::MAX_LIGHTS
+            )));
+        }
         let fits = self.propagation.as_ref().is_some_and(|p| p.capacity.holds(&need));
         if !fits {
             let old = self.propagation.as_ref().map(|p| p.capacity);
@@ -348,12 +357,7 @@ impl<'s> LightVolumeRenderer<'s> {
                 .iter()
                 .zip(pass_slots)
                 .enumerate()
-                .map(|(layer, (m, &slot))| GroupEntry {
-                    light: slot,
-                    factor: m.factor,
-                    slot: layer as u32,
-                    per_voxel: m.per_voxel as u32,
-                })
+                .map(|(layer, (m, &slot))| propagation.entry(pass, m, slot, layer as u32))
                 .collect();
             propagation.write_entries(first, &entries)?;
             let commands = propagation.record_pass(self.gpu.ctx, pass, first as u32, self.settings.racy)?;
