@@ -452,7 +452,7 @@ fn technique_defaults_are_the_documented_ones() {
     assert_eq!((ipsvi.cache_update, ipsvi.cache_write), (CacheUpdate::ViewSamples, CacheWrite::Farthest));
     let lv = LightVolumeSettings::default();
     assert_eq!((lv.scale, lv.coherent, lv.compensated, lv.cost_estimate), (2, true, true, CostEstimate::Passes));
-    assert_eq!((lv.max_passes_per_frame, lv.pass_lights, lv.rebase_tolerance), (0, 16, 1e-6));
+    assert_eq!((lv.max_passes_per_frame, lv.pass_lights, lv.rebase_tolerance), (0, 64, 1e-6));
     assert_eq!((lv.substep, lv.shared_medium, lv.chromatic, lv.racy), (0.25, true, true, false));
     assert_eq!(HalfAngleSettings::default(), HalfAngleSettings { slice_step: None, light_buffer_size: 256 });
     // The slice step follows render.step unless given.

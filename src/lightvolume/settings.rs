@@ -80,7 +80,9 @@ impl Default for LightVolumeSettings {
             compensated: true,
             cost_estimate: CostEstimate::Passes,
             max_passes_per_frame: 0,
-            pass_lights: 16,
+            // One pass per group for any scene (a scene holds at most 64
+            // lights): the slice buffers grow only to the lights a group has.
+            pass_lights: 64,
             rebase_tolerance: 1e-6,
             substep: 0.25,
             // The paper's propagation: the pass shares the medium's sampling.
