@@ -99,6 +99,12 @@ impl StencilRows {
             });
             i = end;
         }
+        // The stencil is symmetric under o -> -o and ordered by (z, y), so row i
+        // and row n-1-i are mirrors: what `accumulate_pairs` relies on.
+        debug_assert!((0..rows.len()).all(|i| {
+            let (a, b) = (&rows[i], &rows[rows.len() - 1 - i]);
+            a.len == b.len && a.direction_y == -b.direction_y && a.direction_z == -b.direction_z
+        }));
         let scale_x =
             rows.iter().find(|r| r.half > 0).map_or(1.0, |r| directions_x[r.first + r.len - 1] / r.half as f32);
         StencilRows { rows, directions_x, prefix, scale_x }
