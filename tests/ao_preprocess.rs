@@ -396,18 +396,27 @@ fn the_cornell_scene_reads_its_ao_table_and_preprocesses_in_seconds() {
     assert!(seconds < 60.0, "{seconds} s");
 }
 
+/// engine.vti (256 x 256 x 128) from `SWEEPLAB_DATA`, for the hand-run measurements.
+fn engine_volume() -> Volume {
+    let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
+    sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)")
+}
+
+/// A whole number from the environment variable `name`, else `default`.
+fn env_u32(name: &str, default: u32) -> u32 {
+    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
+}
+
 /// Timing of engine.vti (256 x 256 x 128), run by hand:
 /// `SWEEPLAB_DATA=../shared/data AO_RADIUS=8 AO_CLUSTERS=2048 cargo test --release
 /// --test ao_preprocess engine -- --ignored --nocapture`
 #[test]
 #[ignore = "a measurement of minutes, not a check"]
 fn engine_preprocessing_timing() {
-    let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
-    let volume = sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)");
-    let var = |name: &str, default: u32| std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default);
+    let volume = engine_volume();
     let s = AoSettings {
-        radius: var("AO_RADIUS", 8),
-        clusters: var("AO_CLUSTERS", 2048),
+        radius: env_u32("AO_RADIUS", 8),
+        clusters: env_u32("AO_CLUSTERS", 2048),
         cache: false,
         ..AoSettings::default()
     };
@@ -492,15 +501,6 @@ fn histograms_by_rows_and_runs_equal_the_brute_force() {
     }
 }
 
-/// CPU time of this thread, seconds (Linux: utime + stime of
-/// /proc/thread-self/stat, in clock ticks of 10 ms).
-fn thread_cpu_seconds() -> f64 {
-    let stat = std::fs::read_to_string("/proc/thread-self/stat").expect("/proc/thread-self/stat (Linux)");
-    let fields: Vec<&str> = stat.rsplit(')').next().unwrap_or_default().split_whitespace().collect();
-    let ticks = |i: usize| fields[i].parse::<f64>().expect("a clock-tick count");
-    (ticks(11) + ticks(12)) / 100.0
-}
-
 /// The histogram step's cost per voxel on engine.vti, rows and runs against
 /// the brute force, in thread CPU time (steady on a shared machine), on 64
 /// whole x-rows spread over the volume, run by hand:
@@ -509,24 +509,22 @@ fn thread_cpu_seconds() -> f64 {
 #[test]
 #[ignore = "a measurement, not a check"]
 fn histogram_cost_per_voxel_rows_against_brute_force() {
-    let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
-    let volume = sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)");
-    let var = |name: &str, default: u32| std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default);
-    let (radius, bits) = (var("AO_RADIUS", 16), var("AO_BITS", 4));
+    let volume = engine_volume();
+    let (radius, bits) = (env_u32("AO_RADIUS", 16), env_u32("AO_BITS", 4));
     let h = LocalHistograms::new(&volume, radius, bits);
     let (nx, rows) = (volume.dims.x as usize, (volume.dims.y * volume.dims.z) as usize);
     let voxels: Vec<usize> = (0..64).flat_map(|i| (i * 7919 % rows) * nx..(i * 7919 % rows + 1) * nx).collect();
     let mut scratch = h.scratch();
     let (mut f, mut b) = (vec![0.0; h.bins()], vec![0.0; h.bins()]);
     let mut per_voxel = |by_rows: bool| {
-        let start = thread_cpu_seconds();
+        let start = common::cpu_seconds("/proc/thread-self/stat");
         for &voxel in &voxels {
             match by_rows {
                 true => h.voxel_into_by_rows(voxel, &mut scratch, &mut f, &mut b),
                 false => h.voxel_into(voxel, &mut scratch, &mut f, &mut b),
             }
         }
-        (thread_cpu_seconds() - start) / voxels.len() as f64 * 1e6
+        (common::cpu_seconds("/proc/thread-self/stat") - start) / voxels.len() as f64 * 1e6
     };
     let (rows_us, brute_us, rows_again) = (per_voxel(true), per_voxel(false), per_voxel(true));
     eprintln!(

@@ -5,6 +5,8 @@
 //! one direction (`scaling_lights`), coherent and sequential, no validation.
 //!
 //! SWEEPLAB_DATA=$(pwd)/../shared/data cargo test --release --test lightvolume_cpu_cost -- --ignored --nocapture
+mod common;
+
 use sweeplab::bench::experiments::lights::{lightvolume_scene, scaling_lights};
 use sweeplab::lightvolume::{CostEstimate, LightVolumeRenderer};
 use sweeplab::render::GpuScene;
@@ -19,13 +21,8 @@ const ROUNDS: usize = 5;
 const FEW: u32 = 1;
 const MANY: u32 = 16;
 
-/// User + system CPU seconds of this process (all threads, lavapipe's included).
 fn cpu_seconds() -> f64 {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap();
-    // Fields after the command name (which ends at the last ')'): utime is 14th, stime 15th overall.
-    let fields: Vec<&str> = stat[stat.rfind(')').unwrap() + 2..].split(' ').collect();
-    let ticks: f64 = fields[11].parse::<f64>().unwrap() + fields[12].parse::<f64>().unwrap();
-    ticks / 100.0
+    common::cpu_seconds("/proc/self/stat")
 }
 
 /// CPU ms per entire update of `lights` (least of the rounds).

@@ -1,7 +1,8 @@
 //! Local histograms by stencil rows and intensity runs: the same numbers as the
 //! brute-force loop of [`super::histogram::LocalHistograms::voxel_into`], at a
 //! cost per voxel of the stencil's rows and the runs of equal intensity bin
-//! they cross instead of its voxels (docs/ao.md, "Row runs").
+//! they cross instead of its voxels (docs/ao.md, "CPU histograms by rows and
+//! runs").
 //!
 //! Why it is exact: along one stencil row (fixed y and z offsets) the
 //! hemisphere test `g.x*o.x + g.y*o.y + g.z*o.z`, taken in f32 in that order, is

@@ -65,11 +65,14 @@ struct SlicePush {
 crate::assert_gpu_layout!(SlicePush, shader::layout::PASS, [axis, travel, slice, entry_count, grid, first_entry]);
 
 /// Entries the shader's uniform block `GroupEntries` holds: the most
-/// contributions one update can propagate (a light has at most six, twice in
-/// a selective update: 64 lights, the scene limit, need at most 768).
+/// contributions one update can propagate (at least [`SCENE_MAX_ENTRIES`]).
 pub const MAX_ENTRIES: usize = (shader::layout::GROUP_ENTRIES.size / shader::layout::GROUP_ENTRY.size) as usize;
 
-const _: () = assert!(12 * crate::scene::scene_schema::MAX_LIGHTS <= MAX_ENTRIES);
+/// The most contributions a scene's update can need: six groups per light,
+/// twice in a selective update (subtracted and added).
+pub const SCENE_MAX_ENTRIES: usize = 12 * crate::scene::scene_schema::MAX_LIGHTS;
+
+const _: () = assert!(SCENE_MAX_ENTRIES <= MAX_ENTRIES);
 
 const GROUP_SIZE: u32 = 8;
 /// `NEAR_LIGHT_SLICES` in glsl/lightvolume_slice.comp: within this many slices

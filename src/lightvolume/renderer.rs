@@ -7,7 +7,7 @@ use super::groups::{contributions, Contribution, PropagationGroup};
 use super::illumination::{IlluminationReadback, IlluminationVolume};
 use super::pass_cache::{PassCache, PassKey, RecordedPass};
 use super::plan::{apply, drift_after, plan_update, PeakGeometry, PlanState, UpdateKind, UpdatePlan};
-use super::propagation::{Capacity, GroupEntry, Propagation, MAX_ENTRIES};
+use super::propagation::{Capacity, GroupEntry, Propagation, MAX_ENTRIES, SCENE_MAX_ENTRIES};
 use super::raycast::RayCast;
 use super::settings::LightVolumeSettings;
 use crate::linear_image::LinearImage;
@@ -303,10 +303,9 @@ impl<'s> LightVolumeRenderer<'s> {
         if need.entries > MAX_ENTRIES {
             return Err(RenderError::Invalid(format!(
                 "lightvolume: this update propagates {} light contributions, at most {MAX_ENTRIES} fit one update \
-                 (the scene's limit of {} lights needs at most {})",
+                 (the scene's limit of {} lights needs at most {SCENE_MAX_ENTRIES})",
                 need.entries,
                 crate::scene::scene_schema::MAX_LIGHTS,
-                12 * crate::scene::scene_schema::MAX_LIGHTS
             )));
         }
         let fits = self.propagation.as_ref().is_some_and(|p| p.capacity.holds(&need));

@@ -20,6 +20,19 @@ pub fn assert_validation_clean(ctx: &Context) {
     assert!(messages.is_empty(), "validation reported {} message(s):\n{}", messages.len(), messages.join("\n"));
 }
 
+/// User + system CPU seconds from a Linux `stat` file: `/proc/self/stat` for
+/// the process (all threads, lavapipe's included), `/proc/thread-self/stat`
+/// for the calling thread. Unlike wall time it does not grow when other
+/// processes share the cores (clock ticks of 10 ms).
+pub fn cpu_seconds(stat_file: &str) -> f64 {
+    let stat = std::fs::read_to_string(stat_file).unwrap_or_else(|e| panic!("{stat_file} (Linux): {e}"));
+    // Fields after the command name (which ends at the last ')'): utime is the
+    // 14th overall, stime the 15th.
+    let fields: Vec<&str> = stat.rsplit(')').next().unwrap_or_default().split_whitespace().collect();
+    let ticks = |i: usize| fields[i].parse::<f64>().expect("a clock-tick count");
+    (ticks(11) + ticks(12)) / 100.0
+}
+
 /// A `dims` U8 volume whose voxel (x, y, z) is `value(position, random)`,
 /// `random` a seeded 64-bit LCG state drawn anew for every voxel (x fastest).
 pub fn seeded_volume(
