@@ -34,8 +34,9 @@ use std::ops::Range;
 
 use glam::{IVec3, UVec3, Vec3};
 
+use super::bin_runs::BinRuns;
 use super::gradient::central_gradient;
-use super::row_runs::{run_lengths, StencilRows};
+use super::row_runs::StencilRows;
 use crate::scene::Volume;
 
 /// The voxels of S_r around a centre, as offsets with their weights.
@@ -139,9 +140,9 @@ pub struct LocalHistograms<'v> {
     /// Stencil offsets as index differences in `padded_bins`.
     linear_offsets: Vec<isize>,
     /// The stencil as rows along x, and the runs of equal bin in
-    /// `padded_bins` ([`run_cells`]): what [`Self::voxel_into_by_rows`] walks.
+    /// `padded_bins` ([`BinRuns`]): what [`Self::voxel_into_by_rows`] walks.
     rows: StencilRows,
-    run_lengths: Vec<u8>,
+    runs: BinRuns,
     normalization: f64,
 }
 
@@ -171,7 +172,7 @@ impl<'v> LocalHistograms<'v> {
             .collect();
         let normalization = 1.0 / stencil.voxel_count().max(1) as f64;
         let rows = StencilRows::new(&stencil, px as isize, (px * py) as isize);
-        let run_lengths = run_lengths(&padded_bins, px);
+        let runs = BinRuns::new(&padded_bins, px);
         LocalHistograms {
             volume,
             bins,
@@ -181,7 +182,7 @@ impl<'v> LocalHistograms<'v> {
             stencil,
             linear_offsets,
             rows,
-            run_lengths,
+            runs,
             normalization,
         }
     }
@@ -235,7 +236,7 @@ impl<'v> LocalHistograms<'v> {
         let (fw, bw) = (&mut scratch.forward, &mut scratch.backward);
         fw.fill(0.0);
         bw.fill(0.0);
-        self.rows.accumulate(self.padded_index(p), g, &self.padded_bins, &self.run_lengths, fw, bw);
+        self.rows.accumulate(self.padded_index(p), g, &self.runs, fw, bw);
         for k in 0..self.bins {
             forward[k] = (fw[k] * self.normalization) as f32;
             backward[k] = (bw[k] * self.normalization) as f32;

@@ -10,6 +10,7 @@
 //! else lives one slab at a time. [`preprocess_cached`] puts the disk cache
 //! ([`cache`]) in front.
 
+pub mod bin_runs;
 pub mod cache;
 pub mod environment;
 pub mod error;

@@ -20,6 +20,7 @@
 
 use glam::Vec3;
 
+use super::bin_runs::BinRuns;
 use super::histogram::SphereStencil;
 
 /// One row of the stencil: the offsets with equal y and z, as a contiguous
@@ -28,6 +29,8 @@ use super::histogram::SphereStencil;
 struct StencilRow {
     /// Linear offset, in the padded bin volume, of the row's first voxel.
     start: isize,
+    /// Offset in padded x rows (z * rows per slice + y).
+    row_offset: isize,
     /// Voxels in the row.
     len: usize,
     /// Index of the row's first x direction in [`StencilRows::directions_x`]
@@ -91,6 +94,7 @@ impl StencilRows {
             let d = stencil.directions[i];
             rows.push(StencilRow {
                 start: o.z as isize * padded_slice + o.y as isize * padded_row - half as isize,
+                row_offset: o.z as isize * (padded_slice / padded_row) + o.y as isize,
                 len,
                 first,
                 prefix_first,
@@ -112,19 +116,10 @@ impl StencilRows {
     }
 
     /// Adds the weights of the stencil around padded index `centre` into
-    /// `forward` and `backward` (indexed by bin; `bins[i]` the bin at padded
-    /// index i, `run_lengths[i]` how many voxels from i on in its padded row hold
-    /// the same bin, at most 255). `g`: the gradient, finite.
-    pub fn accumulate(
-        &self,
-        centre: usize,
-        g: Vec3,
-        bins: &[u16],
-        run_lengths: &[u8],
-        forward: &mut [f64],
-        backward: &mut [f64],
-    ) {
-        let voxels = Voxels { centre, bins, run_lengths };
+    /// `forward` and `backward` (indexed by bin; `runs` the padded bin volume's
+    /// runs). `g`: the gradient, finite.
+    pub fn accumulate(&self, centre: usize, g: Vec3, runs: &BinRuns, forward: &mut [f64], backward: &mut [f64]) {
+        let voxels = Voxels { centre, centre_row: runs.row_of(centre), runs };
         if g.x > 0.0 {
             // The test rises along a row: forward (< 0) comes first.
             self.accumulate_pairs::<false>(&voxels, g, forward, backward);
@@ -153,16 +148,15 @@ impl StencilRows {
             let (row, mirror) = (&self.rows[i], &self.rows[n - 1 - i]);
             let prefix = &self.prefix[row.prefix_first..row.prefix_first + row.len + 1];
             if i != n - 1 - i {
-                let (a, b) = (voxels.base(row), voxels.base(mirror));
-                let k = voxels.bins[a];
-                if k == voxels.bins[b]
-                    && voxels.run_lengths[a] as usize >= row.len
-                    && voxels.run_lengths[b] as usize >= row.len
-                {
-                    let whole = prefix[row.len];
-                    below[k as usize] += whole;
-                    above[k as usize] += whole;
-                    continue;
+                let (run, mirror_run) = (voxels.single_run(row), voxels.single_run(mirror));
+                if let (Some(run), Some(mirror_run)) = (run, mirror_run) {
+                    let k = voxels.runs.bin(run);
+                    if k == voxels.runs.bin(mirror_run) {
+                        let whole = prefix[row.len];
+                        below[k as usize] += whole;
+                        above[k as usize] += whole;
+                        continue;
+                    }
                 }
             }
             let (cut, plane_end) = self.split::<NEGATE>(row, g, inverse);
@@ -227,8 +221,9 @@ impl StencilRows {
 /// The bin volume around one centre.
 struct Voxels<'a> {
     centre: usize,
-    bins: &'a [u16],
-    run_lengths: &'a [u8],
+    /// The padded x row holding the centre.
+    centre_row: usize,
+    runs: &'a BinRuns,
 }
 
 impl Voxels<'_> {
@@ -236,6 +231,20 @@ impl Voxels<'_> {
     #[inline]
     fn base(&self, row: &StencilRow) -> usize {
         (self.centre as isize + row.start) as usize
+    }
+
+    /// The padded x row `row` lies in.
+    #[inline]
+    fn padded_row(&self, row: &StencilRow) -> usize {
+        (self.centre_row as isize + row.row_offset) as usize
+    }
+
+    /// The run holding all of `row`, if one does.
+    #[inline]
+    fn single_run(&self, row: &StencilRow) -> Option<usize> {
+        let (base, padded_row) = (self.base(row), self.padded_row(row));
+        let first = self.runs.run_in(padded_row, base);
+        (first == self.runs.run_in(padded_row, base + row.len - 1)).then_some(first)
     }
 
     /// Adds a row run by run: its voxels `..cut` to `below`, `cut..plane_end`
@@ -250,42 +259,50 @@ impl Voxels<'_> {
         below: &mut [f64],
         above: &mut [f64],
     ) {
-        let base = self.base(row);
-        // Sliced to the row, so the compiler sees every index in range.
         let len = row.len;
-        let (bins, runs, prefix) = (&self.bins[base..base + len], &self.run_lengths[base..base + len], &prefix[..=len]);
         let (cut, plane_end) = (cut.min(len), plane_end.min(len));
-        let mut j = 0;
-        while j < len {
-            let k = bins[j] as usize;
-            let end = (j + runs[j] as usize).min(len);
-            if j < cut {
-                below[k] += prefix[end.min(cut)] - prefix[j];
-            }
-            if end > plane_end {
-                above[k] += prefix[end] - prefix[j.max(plane_end)];
-            }
-            if j < plane_end && end > cut && plane_end > cut {
-                let half = 0.5 * (prefix[end.min(plane_end)] - prefix[j.max(cut)]);
-                below[k] += half;
-                above[k] += half;
-            }
-            j = end;
+        let walk = RowWalk { runs: self.runs, padded_row: self.padded_row(row), base: self.base(row), prefix };
+        if cut > 0 {
+            walk.add(0, cut, |k, w| below[k] += w);
+        }
+        if plane_end > cut {
+            walk.add(cut, plane_end, |k, w| {
+                below[k] += 0.5 * w;
+                above[k] += 0.5 * w;
+            });
+        }
+        if plane_end < len {
+            walk.add(plane_end, len, |k, w| above[k] += w);
         }
     }
 }
 
-/// For every index of a padded bin volume, how many voxels from it on in its
-/// row (`row` voxels long) hold the same bin, at most 255 (a longer run is
-/// walked in steps).
-pub fn run_lengths(bins: &[u16], row: usize) -> Vec<u8> {
-    let mut lengths = vec![0u8; bins.len()];
-    for (bins, lengths) in bins.chunks(row).zip(lengths.chunks_mut(row)) {
-        let mut run = 0u8;
-        for x in (0..bins.len()).rev() {
-            run = if x + 1 < bins.len() && bins[x + 1] == bins[x] { run.saturating_add(1) } else { 1 };
-            lengths[x] = run;
+/// One stencil row's voxels in the padded volume, walked by runs.
+struct RowWalk<'a> {
+    runs: &'a BinRuns,
+    padded_row: usize,
+    /// Padded index of the row's first voxel.
+    base: usize,
+    /// The row's prefix sums of weights (len + 1 values).
+    prefix: &'a [f64],
+}
+
+impl RowWalk<'_> {
+    /// Gives `add(bin, weight)` the summed weight of every run piece of the
+    /// row's voxels `from..to` (non-empty), in order.
+    #[inline]
+    fn add(&self, from: usize, to: usize, mut add: impl FnMut(usize, f64)) {
+        let runs = self.runs;
+        let (first, last) =
+            (runs.run_in(self.padded_row, self.base + from), runs.run_in(self.padded_row, self.base + to - 1));
+        // x of the row's first voxel: run ends are x positions in the row.
+        let x0 = self.base - self.padded_row * runs.row_length();
+        let mut start = from;
+        for run in first..last {
+            let end = runs.end_x(run) - x0;
+            add(runs.bin(run) as usize, self.prefix[end] - self.prefix[start]);
+            start = end;
         }
+        add(runs.bin(last) as usize, self.prefix[to] - self.prefix[start]);
     }
-    lengths
 }
