@@ -532,4 +532,52 @@ fn histogram_cost_per_voxel_rows_against_brute_force() {
         voxels.len(),
         brute_us / rows_us.max(rows_again)
     );
+    // What the walk's cost is made of: runs of equal bin the stencil's rows
+    // cross per voxel (what each adds to a bin), along x as walked and along y
+    // and z for comparison, counted here from the bins, independently of the
+    // walk.
+    let dims = volume.dims.as_ivec3();
+    let bin_at = |p: glam::IVec3| -> usize {
+        if p.cmplt(glam::IVec3::ZERO).any() || p.cmpge(dims).any() {
+            return h.bins(); // outside: a bin of its own, as the padding
+        }
+        h.voxel_bins()[((p.z * dims.y + p.y) * dims.x + p.x) as usize] as usize
+    };
+    let sorted_offsets: Vec<Vec<glam::IVec3>> = (0..3)
+        .map(|axis| {
+            let mut o = h.stencil().offsets.clone();
+            o.sort_by_key(|v| {
+                let mut key = [v.x, v.y, v.z];
+                key.rotate_left(axis);
+                [key[2], key[1], key[0]]
+            });
+            o
+        })
+        .collect();
+    let runs_per_voxel = |axis: usize| {
+        let mut runs = 0usize;
+        for &voxel in &voxels {
+            let c = h.position(voxel).as_ivec3();
+            let mut previous: Option<(glam::IVec3, usize)> = None;
+            // Stencil offsets sorted so that rows along `axis` are consecutive.
+            for o in &sorted_offsets[axis] {
+                let (p, k) = (c + *o, bin_at(c + *o));
+                let mut along = *o;
+                along[axis] -= 1;
+                let continues = previous.is_some_and(|(q, j)| q == c + along && j == k);
+                runs += usize::from(!continues);
+                previous = Some((p, k));
+            }
+        }
+        runs as f64 / voxels.len() as f64
+    };
+    let runs = [runs_per_voxel(0), runs_per_voxel(1), runs_per_voxel(2)];
+    eprintln!(
+        "stencil of {} voxels crosses runs of one bin per voxel: {:.0} along x (walked; {:.1} ns each), {:.0} along y, {:.0} along z",
+        h.stencil().offsets.len(),
+        runs[0],
+        rows_us.min(rows_again) * 1e3 / runs[0],
+        runs[1],
+        runs[2]
+    );
 }
