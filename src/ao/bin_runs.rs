@@ -24,35 +24,32 @@ impl BinRuns {
     /// Largest row length the table holds (x positions and run indices are
     /// u16): loaded volumes stop at 32,768 voxels per axis and the padding at
     /// twice the largest AO radius, far below it.
-    pub const MAX_ROW_LENGTH: usize = u16::MAX as usize;
+    const MAX_ROW_LENGTH: usize = u16::MAX as usize;
 
     /// `bins`: the padded volume, `row_length` voxels per x row.
     pub fn new(bins: &[u16], row_length: usize) -> BinRuns {
         assert!(
-            row_length <= Self::MAX_ROW_LENGTH && row_length > 0 && bins.len().is_multiple_of(row_length),
+            (1..=Self::MAX_ROW_LENGTH).contains(&row_length) && bins.len().is_multiple_of(row_length),
             "a padded bin volume has rows of 1..={} voxels",
             Self::MAX_ROW_LENGTH
         );
-        let rows = bins.len() / row_length;
         let mut table = BinRuns {
             row_length,
-            first_run: Vec::with_capacity(rows),
+            first_run: Vec::with_capacity(bins.len() / row_length),
             run_in_row: vec![0; bins.len()],
             end_x: vec![],
             bin: vec![],
         };
-        for (row, (bins, runs)) in bins.chunks(row_length).zip(table.run_in_row.chunks_mut(row_length)).enumerate() {
+        for (bins, runs) in bins.chunks(row_length).zip(table.run_in_row.chunks_mut(row_length)) {
             let first = u32::try_from(table.bin.len()).expect("fewer runs than u32 counts: the volume is bounded");
             table.first_run.push(first);
-            debug_assert_eq!(table.first_run.len(), row + 1);
+            table.bin.push(bins[0]);
             let mut run = 0u16;
-            for x in 0..row_length {
-                if x > 0 && bins[x] != bins[x - 1] {
+            for x in 1..row_length {
+                if bins[x] != bins[x - 1] {
                     table.end_x.push(x as u16);
-                    run += 1;
-                }
-                if x == 0 || bins[x] != bins[x - 1] {
                     table.bin.push(bins[x]);
+                    run += 1;
                 }
                 runs[x] = run;
             }
@@ -73,23 +70,8 @@ impl BinRuns {
         index / self.row_length
     }
 
-    /// Runs in the table.
-    pub fn len(&self) -> usize {
-        self.bin.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.bin.is_empty()
-    }
-
-    /// Index of the run holding padded voxel `index`.
-    #[inline]
-    pub fn run_of(&self, index: usize) -> usize {
-        self.run_in(self.row_of(index), index)
-    }
-
-    /// Index of the run holding padded voxel `index` of row `row`: as
-    /// [`Self::run_of`] without the division, for a walk that knows its row.
+    /// Index of the run holding padded voxel `index`, which lies in x row
+    /// `row` (a walk knows its row: no division).
     #[inline]
     pub fn run_in(&self, row: usize, index: usize) -> usize {
         debug_assert_eq!(index / self.row_length, row);
@@ -118,14 +100,15 @@ mod tests {
         // continue (row 0 ends in 3, row 1 starts with 3).
         let bins = [1u16, 1, 2, 2, 2, 3, 3, 3, 0, 1, 1, 1];
         let runs = BinRuns::new(&bins, 6);
-        assert_eq!(runs.len(), 6);
-        let ends: Vec<usize> = (0..runs.len()).map(|r| runs.end_x(r)).collect();
-        assert_eq!(ends, [2, 5, 6, 2, 3, 6]);
+        assert_eq!(runs.end_x, [2, 5, 6, 2, 3, 6]);
+        assert_eq!(runs.bin, [1, 2, 3, 3, 0, 1]);
         for (i, &k) in bins.iter().enumerate() {
-            let r = runs.run_of(i);
+            let r = runs.run_in(runs.row_of(i), i);
             assert_eq!(runs.bin(r), k, "voxel {i}");
-            assert_eq!(runs.run_in(i / 6, i), r);
-            assert!(i % 6 < runs.end_x(r));
+            // The voxel lies in its run: before its end, and at or after the
+            // end of the run before it in its row.
+            assert!(i % 6 < runs.end_x(r), "voxel {i}");
+            assert!(r == runs.first_run[i / 6] as usize || runs.end_x(r - 1) <= i % 6, "voxel {i}");
         }
     }
 }

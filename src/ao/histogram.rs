@@ -237,9 +237,15 @@ impl<'v> LocalHistograms<'v> {
         fw.fill(0.0);
         bw.fill(0.0);
         self.rows.accumulate(self.padded_index(p), g, &self.runs, fw, bw);
+        self.normalized_into(scratch, forward, backward);
+    }
+
+    /// The scratch sums, normalized by the sphere's voxel count, into
+    /// `forward` and `backward` (the "outside" bin dropped).
+    fn normalized_into(&self, scratch: &Scratch, forward: &mut [f32], backward: &mut [f32]) {
         for k in 0..self.bins {
-            forward[k] = (fw[k] * self.normalization) as f32;
-            backward[k] = (bw[k] * self.normalization) as f32;
+            forward[k] = (scratch.forward[k] * self.normalization) as f32;
+            backward[k] = (scratch.backward[k] * self.normalization) as f32;
         }
     }
 
@@ -281,10 +287,7 @@ impl<'v> LocalHistograms<'v> {
         }
         fw[run_bin] += run_forward;
         bw[run_bin] += run_backward;
-        for k in 0..self.bins {
-            forward[k] = (fw[k] * self.normalization) as f32;
-            backward[k] = (bw[k] * self.normalization) as f32;
-        }
+        self.normalized_into(scratch, forward, backward);
     }
 
     /// Histograms of the voxels `voxels` (linear indices).

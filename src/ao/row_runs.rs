@@ -260,7 +260,7 @@ impl Voxels<'_> {
         above: &mut [f64],
     ) {
         let len = row.len;
-        let (cut, plane_end) = (cut.min(len), plane_end.min(len));
+        debug_assert!(cut <= plane_end && plane_end <= len);
         let walk = RowWalk { runs: self.runs, padded_row: self.padded_row(row), base: self.base(row), prefix };
         if cut > 0 {
             walk.add(0, cut, |k, w| below[k] += w);
