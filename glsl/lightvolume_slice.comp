@@ -116,13 +116,15 @@ layout(constant_id = 4) const bool NEAR_LIGHTS = true;
 layout(constant_id = 5) const bool DIRECTIONAL_ONLY = false;
 // Lights whose travel direction is this close to perpendicular to the axis (a
 // cosine, not a transmittance) do not propagate along it: 1/c would blow up.
-const float MIN_AXIS_COSINE = 1e-4;
+// Set from propagation.rs, whose host-computed directional step uses it too.
+layout(constant_id = 6) const float MIN_AXIS_COSINE = 1e-4;
 // Within this many slices of a point or spot light (along the axis) the path is
 // integrated all the way to the light instead of read from the previous slice:
 // the distance to a light has a cusp there that bilinear resampling between
 // texel centres cannot follow (it lengthened the path by a third of a voxel next
-// to the light, a deficit every slice beyond then carried on).
-const float NEAR_LIGHT_SLICES = 4.0;
+// to the light, a deficit every slice beyond then carried on). Set from
+// propagation.rs, which also chooses the pass's build by it.
+layout(constant_id = 7) const float NEAR_LIGHT_SLICES = 4.0;
 
 vec3 voxel_centre(ivec3 g) {
     return ((vec3(g) + 0.5) / vec3(pass.grid) * 2.0 - 1.0) * frame.box_half;

@@ -7,12 +7,9 @@
 //! (llvmpipe runs that arithmetic on every voxel of every slice).
 
 use super::groups::{GroupMember, PropagationGroup};
+use super::propagation::MIN_AXIS_COSINE;
 use crate::render::frame_params::GpuLight;
 use glam::{DVec3, UVec3};
-
-/// `MIN_AXIS_COSINE` in glsl/lightvolume_slice.comp: light travelling this
-/// close to perpendicular to the axis is not carried along it.
-const MIN_AXIS_COSINE: f64 = 1e-4;
 
 /// The `radiance_path` and `lateral_step` of a directional light's entry.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,7 +38,7 @@ impl DirectionalStep {
         let travel_direction = travel_direction.normalize_or_zero();
         // Cosine between the light's travel and the group's direction.
         let c = travel_direction[a] * group.travel as f64;
-        if c.is_nan() || c <= MIN_AXIS_COSINE {
+        if c.is_nan() || c <= f64::from(MIN_AXIS_COSINE) {
             return DirectionalStep::NONE;
         }
         // Toward the light, over one slice (the axis step dstep): w * dstep / c.

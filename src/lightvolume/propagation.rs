@@ -75,9 +75,13 @@ pub const SCENE_MAX_ENTRIES: usize = 12 * crate::scene::scene_schema::MAX_LIGHTS
 const _: () = assert!(SCENE_MAX_ENTRIES <= MAX_ENTRIES);
 
 const GROUP_SIZE: u32 = 8;
-/// `NEAR_LIGHT_SLICES` in glsl/lightvolume_slice.comp: within this many slices
-/// of a point or spot light the shader integrates the path to the light.
+/// Within this many slices of a point or spot light the slice shader
+/// integrates the path to the light (its `NEAR_LIGHT_SLICES`, set from here).
 const NEAR_LIGHT_SLICES: f32 = 4.0;
+/// Light travelling this close to perpendicular to a group's axis (a cosine)
+/// is not carried along it (the slice shader's `MIN_AXIS_COSINE`, set from
+/// here; the host-computed directional step uses the same value).
+pub(super) const MIN_AXIS_COSINE: f32 = 1e-4;
 
 /// `pos_type.w` of a directional light (`LIGHT_DIRECTIONAL` in glsl/lights.glsl).
 fn is_directional(state: &GpuLight) -> bool {
@@ -259,6 +263,8 @@ impl Propagation {
                     (3, settings.chromatic as u32),
                     (4, (mix == LightMix::Near) as u32),
                     (5, (mix == LightMix::Directional) as u32),
+                    (6, MIN_AXIS_COSINE.to_bits()),
+                    (7, NEAR_LIGHT_SLICES.to_bits()),
                 ],
                 max_sets: 1,
             };
