@@ -495,14 +495,39 @@ fn histograms_by_rows_and_runs_equal_the_brute_force() {
                 }
             }
         }
-        eprintln!("case {c}: {differing} bins differ, worst relative {worst:e}");
+        // Centres in lanes: whole x rows (groups and a remainder) and a piece
+        // of a row starting off a group boundary.
+        let nx = dims.x as usize;
+        let (mut lanes_differing, mut lanes_worst) = (0usize, 0f32);
+        let pieces: Vec<(usize, usize)> =
+            (0..v.voxel_count() / nx).map(|row| (row * nx, nx)).chain([(3 * nx + 1, nx - 2)]).collect();
+        for (first, count) in pieces {
+            let (mut lf, mut lb) = (vec![0.0; count * n], vec![0.0; count * n]);
+            h.x_run_into(first, count, &mut scratch, &mut lf, &mut lb);
+            for i in 0..count {
+                h.voxel_into(first + i, &mut scratch, &mut f, &mut b);
+                for k in 0..n {
+                    for (brute, lanes) in [(f[k], lf[i * n + k]), (b[k], lb[i * n + k])] {
+                        if brute != lanes {
+                            lanes_differing += 1;
+                            lanes_worst = lanes_worst.max((brute - lanes).abs() / brute.abs().max(f32::MIN_POSITIVE));
+                        }
+                    }
+                }
+            }
+        }
+        eprintln!(
+            "case {c}: {differing} bins differ by rows, worst relative {worst:e}; {lanes_differing} in lanes, worst {lanes_worst:e}"
+        );
         // Only the order of the f64 sums differs: at most one f32 rounding step.
         assert!(worst <= f32::EPSILON, "case {c}: {differing} bins differ, worst relative {worst:e}");
+        assert!(lanes_worst <= f32::EPSILON, "case {c}: {lanes_differing} bins differ in lanes, worst {lanes_worst:e}");
     }
 }
 
 /// The histogram step's cost per voxel on engine.vti, rows and runs against
-/// the brute force, in thread CPU time (steady on a shared machine), on 64
+/// the brute force and centres in lanes against rows and runs, in thread CPU
+/// time (steady on a shared machine), on 64
 /// whole x-rows spread over the volume, run by hand:
 /// `SWEEPLAB_DATA=../shared/data AO_RADIUS=16 AO_BITS=4 cargo test --release
 /// --test ao_preprocess histogram_cost -- --ignored --nocapture`
@@ -527,10 +552,24 @@ fn histogram_cost_per_voxel_rows_against_brute_force() {
         (common::cpu_seconds("/proc/thread-self/stat") - start) / voxels.len() as f64 * 1e6
     };
     let (rows_us, brute_us, rows_again) = (per_voxel(true), per_voxel(false), per_voxel(true));
+    // Centres in lanes, as the preprocessing runs: whole x rows, four times
+    // over (the clock ticks in 10 ms).
+    let (mut lf, mut lb) = (vec![0.0; nx * h.bins()], vec![0.0; nx * h.bins()]);
+    let mut lanes_per_voxel = || {
+        let start = common::cpu_seconds("/proc/thread-self/stat");
+        for _ in 0..4 {
+            for row in voxels.chunks(nx) {
+                h.x_run_into(row[0], nx, &mut scratch, &mut lf, &mut lb);
+            }
+        }
+        (common::cpu_seconds("/proc/thread-self/stat") - start) / (4 * voxels.len()) as f64 * 1e6
+    };
+    let (lanes_us, lanes_again) = (lanes_per_voxel(), lanes_per_voxel());
     eprintln!(
-        "engine r = {radius} b = {bits}, {} voxels: rows and runs {rows_us:.2} / {rows_again:.2} us per voxel, brute force {brute_us:.2} us ({:.1}x)",
+        "engine r = {radius} b = {bits}, {} voxels: rows and runs {rows_us:.2} / {rows_again:.2} us per voxel, brute force {brute_us:.2} us ({:.1}x), centres in lanes {lanes_us:.2} / {lanes_again:.2} us ({:.1}x over rows)",
         voxels.len(),
-        brute_us / rows_us.max(rows_again)
+        brute_us / rows_us.max(rows_again),
+        rows_us.min(rows_again) / lanes_us.max(lanes_again)
     );
     // What the walk's cost is made of: runs of equal bin the stencil's rows
     // cross per voxel (what each adds to a bin), along x as walked and along y

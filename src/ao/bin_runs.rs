@@ -88,6 +88,12 @@ impl BinRuns {
     pub fn bin(&self, run: usize) -> u16 {
         self.bin[run]
     }
+
+    /// Ends (one past the last x) and bins of the runs `runs`.
+    #[inline]
+    pub fn ends_and_bins(&self, runs: std::ops::Range<usize>) -> (&[u16], &[u16]) {
+        (&self.end_x[runs.clone()], &self.bin[runs])
+    }
 }
 
 #[cfg(test)]

@@ -36,6 +36,7 @@ use glam::{IVec3, UVec3, Vec3};
 
 use super::bin_runs::BinRuns;
 use super::gradient::central_gradient;
+use super::lane_rows::{LaneRows, LaneScratch, LANES};
 use super::row_runs::StencilRows;
 use crate::scene::Volume;
 
@@ -123,6 +124,7 @@ impl HistogramSlab {
 pub struct Scratch {
     forward: Vec<f64>,
     backward: Vec<f64>,
+    lanes: LaneScratch,
 }
 
 /// Brute-force local histograms of one volume.
@@ -140,9 +142,13 @@ pub struct LocalHistograms<'v> {
     /// Stencil offsets as index differences in `padded_bins`.
     linear_offsets: Vec<isize>,
     /// The stencil as rows along x, and the runs of equal bin in
-    /// `padded_bins` ([`BinRuns`]): what [`Self::voxel_into_by_rows`] walks.
+    /// `padded_bins` ([`BinRuns`]): what [`Self::voxel_into_by_rows`] walks
+    /// one centre at a time and [`Self::x_run_into`] [`LANES`] at a time.
     rows: StencilRows,
     runs: BinRuns,
+    /// The same rows laid out for [`LANES`] centres at once
+    /// ([`Self::x_run_into`]).
+    lanes: LaneRows,
     normalization: f64,
 }
 
@@ -173,6 +179,7 @@ impl<'v> LocalHistograms<'v> {
         let normalization = 1.0 / stencil.voxel_count().max(1) as f64;
         let rows = StencilRows::new(&stencil, px as isize, (px * py) as isize);
         let runs = BinRuns::new(&padded_bins, px);
+        let lanes = LaneRows::new(&rows);
         LocalHistograms {
             volume,
             bins,
@@ -183,6 +190,7 @@ impl<'v> LocalHistograms<'v> {
             linear_offsets,
             rows,
             runs,
+            lanes,
             normalization,
         }
     }
@@ -205,7 +213,11 @@ impl<'v> LocalHistograms<'v> {
     }
 
     pub fn scratch(&self) -> Scratch {
-        Scratch { forward: vec![0.0; self.bins + 1], backward: vec![0.0; self.bins + 1] }
+        Scratch {
+            forward: vec![0.0; self.bins + 1],
+            backward: vec![0.0; self.bins + 1],
+            lanes: self.lanes.scratch(self.bins + 1),
+        }
     }
 
     /// Position of the voxel with linear index `index`.
@@ -224,7 +236,8 @@ impl<'v> LocalHistograms<'v> {
 
     /// The two normalized histograms of voxel `index`, as [`Self::voxel_into`]
     /// gives them, by stencil rows and runs of equal bin ([`super::row_runs`]):
-    /// what the preprocessing uses.
+    /// what the training set uses, and the preprocessing for the voxels of an
+    /// x row that do not fill a group of [`LANES`].
     pub fn voxel_into_by_rows(&self, index: usize, scratch: &mut Scratch, forward: &mut [f32], backward: &mut [f32]) {
         let p = self.position(index);
         let g = central_gradient(self.volume, p);
@@ -238,6 +251,45 @@ impl<'v> LocalHistograms<'v> {
         bw.fill(0.0);
         self.rows.accumulate(self.padded_index(p), g, &self.runs, fw, bw);
         self.normalized_into(scratch, forward, backward);
+    }
+
+    /// The normalized histograms of the voxels `first .. first + count` of one
+    /// x row (linear indices), voxel after voxel into `forward` and `backward`
+    /// (`count * bins` values each), as [`Self::voxel_into`] gives them: groups
+    /// of [`LANES`] centres at once ([`super::lane_rows`]), the rest by rows.
+    pub fn x_run_into(
+        &self,
+        first: usize,
+        count: usize,
+        scratch: &mut Scratch,
+        forward: &mut [f32],
+        backward: &mut [f32],
+    ) {
+        let nx = self.volume.dims.x as usize;
+        assert!(
+            first % nx + count <= nx && forward.len() == count * self.bins && backward.len() == count * self.bins,
+            "x_run_into takes voxels of one x row and room for their histograms"
+        );
+        let bins = self.bins;
+        let groups = count / LANES;
+        for group in 0..groups {
+            let index = first + group * LANES;
+            let p = self.position(index);
+            let g: [Vec3; LANES] = std::array::from_fn(|j| central_gradient(self.volume, p + UVec3::X * j as u32));
+            self.lanes.accumulate(self.padded_index(p), &g, &self.runs, &mut scratch.lanes);
+            for j in 0..LANES {
+                let at = (group * LANES + j) * bins;
+                for k in 0..bins {
+                    let (f, b) = scratch.lanes.lane(k, j);
+                    forward[at + k] = (f * self.normalization) as f32;
+                    backward[at + k] = (b * self.normalization) as f32;
+                }
+            }
+        }
+        for i in groups * LANES..count {
+            let r = i * bins..(i + 1) * bins;
+            self.voxel_into_by_rows(first + i, scratch, &mut forward[r.clone()], &mut backward[r]);
+        }
     }
 
     /// The scratch sums, normalized by the sphere's voxel count, into
@@ -295,9 +347,14 @@ impl<'v> LocalHistograms<'v> {
         let n = voxels.len() * self.bins;
         let mut slab =
             HistogramSlab { voxels: voxels.clone(), bins: self.bins, forward: vec![0.0; n], backward: vec![0.0; n] };
-        for (i, index) in voxels.enumerate() {
-            let r = i * self.bins..(i + 1) * self.bins;
-            self.voxel_into_by_rows(index, scratch, &mut slab.forward[r.clone()], &mut slab.backward[r]);
+        let nx = self.volume.dims.x as usize;
+        let mut index = voxels.start;
+        while index < voxels.end {
+            // Up to the end of this x row.
+            let count = (nx - index % nx).min(voxels.end - index);
+            let r = (index - voxels.start) * self.bins..(index - voxels.start + count) * self.bins;
+            self.x_run_into(index, count, scratch, &mut slab.forward[r.clone()], &mut slab.backward[r]);
+            index += count;
         }
         slab
     }
@@ -343,5 +400,73 @@ impl<'v> LocalHistograms<'v> {
             |i, r, done| consume(i, r, done, ranges.len()),
         );
         states.into_iter().map(|(state, _)| state).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{UVec3, Vec3};
+
+    use super::super::lane_rows::LANES;
+    use super::LocalHistograms;
+    use crate::scene::{Volume, VoxelData};
+
+    /// The lane sums of every path this CPU can run (AVX-512, AVX2) equal the
+    /// portable path's bit for bit: the same additions in the same order.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn every_lane_path_gives_the_portable_sums() {
+        let dims = UVec3::new(19, 9, 8);
+        let mut state = 3u64;
+        let data = (0..dims.x * dims.y * dims.z)
+            .map(|i| {
+                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                // Few levels, so that runs, flat rows and zero gradients occur.
+                if i % 23 < 9 {
+                    40
+                } else {
+                    ((state >> 33) % 4) as u8 * 60
+                }
+            })
+            .collect();
+        let volume = Volume {
+            name: "lanes".into(),
+            dims,
+            spacing: Vec3::new(1.0, 1.25, 0.8),
+            data: VoxelData::U8(data),
+            value_range: (0.0, 255.0),
+            non_finite_voxels: 0,
+        };
+        let h = LocalHistograms::new(&volume, 3, 6);
+        let (mut fast, mut portable) = (h.scratch().lanes, h.scratch().lanes);
+        let mut groups = [0; 2];
+        for (path, groups) in ["avx512", "avx2"].into_iter().zip(&mut groups) {
+            for z in 0..dims.z {
+                for y in 0..dims.y {
+                    for x in (0..dims.x - LANES as u32 + 1).step_by(3) {
+                        let p = UVec3::new(x, y, z);
+                        let g = std::array::from_fn(|j| super::central_gradient(&volume, p + UVec3::X * j as u32));
+                        let centre = h.padded_index(p);
+                        if !h.lanes.accumulate_by(path, centre, &g, &h.runs, &mut fast) {
+                            eprintln!("this CPU has no {path} path");
+                            continue;
+                        }
+                        assert!(h.lanes.accumulate_by("portable", centre, &g, &h.runs, &mut portable));
+                        for k in 0..=h.bins {
+                            for j in 0..LANES {
+                                let (a, b) = (fast.lane(k, j), portable.lane(k, j));
+                                assert!(
+                                    a.0.to_bits() == b.0.to_bits() && a.1.to_bits() == b.1.to_bits(),
+                                    "{path}, {p} lane {j} bin {k}: {a:?} against portable {b:?}"
+                                );
+                            }
+                        }
+                        *groups += 1;
+                    }
+                }
+            }
+        }
+        // A CPU runs at least one of them (x86_64 CI machines have AVX2).
+        assert!(groups.iter().any(|&n| n > 100), "groups checked per path: {groups:?}");
     }
 }

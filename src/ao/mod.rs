@@ -17,6 +17,7 @@ pub mod error;
 pub mod gpu;
 pub mod gradient;
 pub mod histogram;
+pub mod lane_rows;
 pub mod packing;
 pub mod paper_table1;
 pub mod parallel;

@@ -45,12 +45,27 @@ struct StencilRow {
     half: i32,
 }
 
+/// One stencil row as other walks read it.
+pub struct RowView<'a> {
+    /// Linear offset, in the padded bin volume, of the row's first voxel.
+    pub start: isize,
+    /// Offset in padded x rows.
+    pub row_offset: isize,
+    pub direction_y: f32,
+    pub direction_z: f32,
+    /// Per voxel of the row, first to last: x direction and weight.
+    pub directions_x: &'a [f32],
+    pub weights: &'a [f64],
+}
+
 /// The stencil grouped into rows along x, with prefix sums of the weights.
 #[derive(Clone, Debug)]
 pub struct StencilRows {
     rows: Vec<StencilRow>,
     /// x direction of every voxel of every row, row after row.
     directions_x: Vec<f32>,
+    /// Weight of every voxel of every row, indexed as `directions_x`.
+    weights: Vec<f64>,
     /// Per row: 0, w_0, w_0 + w_1, ... (len + 1 values).
     prefix: Vec<f64>,
     /// x spacing in units of d_min (the x direction per voxel of offset).
@@ -62,7 +77,7 @@ impl StencilRows {
     /// bin volume the rows will read.
     pub fn new(stencil: &SphereStencil, padded_row: isize, padded_slice: isize) -> StencilRows {
         let mut rows: Vec<StencilRow> = vec![];
-        let (mut directions_x, mut prefix) = (vec![], vec![]);
+        let (mut directions_x, mut weights, mut prefix) = (vec![], vec![], vec![]);
         let mut i = 0;
         let n = stencil.offsets.len();
         while i < n {
@@ -88,6 +103,7 @@ impl StencilRows {
                     (0.0, 0.0)
                 };
                 directions_x.push(direction_x);
+                weights.push(weight);
                 sum += weight;
                 prefix.push(sum);
             }
@@ -112,7 +128,19 @@ impl StencilRows {
         }));
         let scale_x =
             rows.iter().find(|r| r.half > 0).map_or(1.0, |r| directions_x[r.first + r.len - 1] / r.half as f32);
-        StencilRows { rows, directions_x, prefix, scale_x }
+        StencilRows { rows, directions_x, weights, prefix, scale_x }
+    }
+
+    /// The rows, in stencil order (antipodal pairs at i and len - 1 - i).
+    pub fn rows(&self) -> impl ExactSizeIterator<Item = RowView<'_>> {
+        self.rows.iter().map(|row| RowView {
+            start: row.start,
+            row_offset: row.row_offset,
+            direction_y: row.direction_y,
+            direction_z: row.direction_z,
+            directions_x: &self.directions_x[row.first..row.first + row.len],
+            weights: &self.weights[row.first..row.first + row.len],
+        })
     }
 
     /// Adds the weights of the stencil around padded index `centre` into
