@@ -256,7 +256,8 @@ impl<'v> LocalHistograms<'v> {
     /// The normalized histograms of the voxels `first .. first + count` of one
     /// x row (linear indices), voxel after voxel into `forward` and `backward`
     /// (`count * bins` values each), as [`Self::voxel_into`] gives them: groups
-    /// of [`LANES`] centres at once ([`super::lane_rows`]), the rest by rows.
+    /// of [`LANES`] centres at once ([`super::lane_rows`]) where the CPU has a
+    /// vector path for them, the rest by rows.
     pub fn x_run_into(
         &self,
         first: usize,
@@ -271,7 +272,8 @@ impl<'v> LocalHistograms<'v> {
             "x_run_into takes voxels of one x row and room for their histograms"
         );
         let bins = self.bins;
-        let groups = count / LANES;
+        // Groups where they pay: with a vector path (docs/ao.md).
+        let groups = if LaneRows::vectorized() { count / LANES } else { 0 };
         for group in 0..groups {
             let index = first + group * LANES;
             let p = self.position(index);
