@@ -465,8 +465,9 @@ fn noise_volume(dims: UVec3, spacing: Vec3, levels: u8, seed: u64) -> Volume {
     })
 }
 
-/// The preprocessing's histograms (by stencil rows and runs of equal bin)
-/// equal the brute force's, voxel by voxel and bin by bin.
+/// The preprocessing's histograms (by stencil rows and runs of equal bin, and
+/// by centres in lanes over whole and partial x rows) equal the brute force's,
+/// voxel by voxel and bin by bin.
 #[test]
 fn histograms_by_rows_and_runs_equal_the_brute_force() {
     let cases = [

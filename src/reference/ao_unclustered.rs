@@ -2,8 +2,8 @@
 //! voxel's *own* two histograms (equations 4-5 exactly as for a cluster, but
 //! without the codebook), as a per-voxel lookup for
 //! [`crate::ao::render::AoRenderer::per_voxel`]. The clustered image tends to
-//! it as n_c grows. CPU, brute force: for the small volumes of tests and the
-//! bench.
+//! it as n_c grows. CPU, one thread, every voxel's histograms as the
+//! preprocessing computes them: for the volumes of tests and the bench.
 
 use crate::ao::environment::{cpu_environment, hemisphere_mass, GlowMapping};
 use crate::ao::histogram::LocalHistograms;
