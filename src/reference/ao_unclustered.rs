@@ -25,22 +25,14 @@ pub fn unclustered_lookup(volume: &Volume, settings: &AoSettings, lut: &Transfer
     let mut lookup = vec![[0f32; 4]; 2 * voxels];
     let mut glow_block = Vec::new();
     let mut batch = vec![0f32; 2 * BATCH * bins];
-    let (mut forward, mut backward) = (vec![0f32; BATCH * bins], vec![0f32; BATCH * bins]);
-    let nx = volume.dims.x as usize;
     for first in (0..voxels).step_by(BATCH) {
         let count = BATCH.min(voxels - first);
-        // By pieces of x rows, as the preprocessing computes them.
-        let mut done = 0;
-        while done < count {
-            let piece = (nx - (first + done) % nx).min(count - done);
-            let range = done * bins..(done + piece) * bins;
-            histograms.x_run_into(first + done, piece, &mut scratch, &mut forward[range.clone()], &mut backward[range]);
-            done += piece;
-        }
+        // As the preprocessing computes them, interleaved for cpu_environment.
+        let slab = histograms.slab(first..first + count, &mut scratch);
         for i in 0..count {
-            let one = i * bins..(i + 1) * bins;
-            batch[2 * i * bins..(2 * i + 1) * bins].copy_from_slice(&forward[one.clone()]);
-            batch[(2 * i + 1) * bins..(2 * i + 2) * bins].copy_from_slice(&backward[one]);
+            let (forward, backward) = slab.voxel(i);
+            batch[2 * i * bins..(2 * i + 1) * bins].copy_from_slice(forward);
+            batch[(2 * i + 1) * bins..(2 * i + 2) * bins].copy_from_slice(backward);
         }
         let env = cpu_environment(&batch[..2 * count * bins], bins, lut, mass, glow);
         lookup[2 * first..2 * (first + count)].copy_from_slice(&env[..2 * count]);
