@@ -154,7 +154,7 @@ impl LaneRows {
                 directions_first,
                 direction_y: row.direction_y,
                 direction_z: row.direction_z,
-                total: row.weights.iter().sum(),
+                total: row.total,
             });
             lane_rows.longest_window = lane_rows.longest_window.max(len + LANES - 1);
         }

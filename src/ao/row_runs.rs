@@ -56,6 +56,9 @@ pub struct RowView<'a> {
     /// Per voxel of the row, first to last: x direction and weight.
     pub directions_x: &'a [f32],
     pub weights: &'a [f64],
+    /// The weights' sum (the last prefix sum, what the walk adds for a whole
+    /// row).
+    pub total: f64,
 }
 
 /// The stencil grouped into rows along x, with prefix sums of the weights.
@@ -140,6 +143,7 @@ impl StencilRows {
             direction_z: row.direction_z,
             directions_x: &self.directions_x[row.first..row.first + row.len],
             weights: &self.weights[row.first..row.first + row.len],
+            total: self.prefix[row.prefix_first + row.len],
         })
     }
 
