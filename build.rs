@@ -55,6 +55,40 @@ const BINDING_VARIANTS: &[(&str, &[(&str, &str)])] = &[
 fn main() {
     link_debian_glslang();
     compile_shaders();
+    embed_git_commit();
+}
+
+/// `SWEEPLAB_GIT_COMMIT` for bench reports: the commit this build comes from,
+/// `-dirty` where tracked files differed at build time; `unknown` without git.
+fn embed_git_commit() {
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    };
+    let commit = match git(&["rev-parse", "--short=12", "HEAD"]) {
+        Some(hash) => {
+            let dirty = git(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty());
+            if dirty {
+                format!("{hash}-dirty")
+            } else {
+                hash
+            }
+        }
+        None => "unknown".to_string(),
+    };
+    println!("cargo:rustc-env=SWEEPLAB_GIT_COMMIT={commit}");
+    // A commit or a checkout moves HEAD or the index; in a worktree they live
+    // under the common git directory, which rev-parse names.
+    let branch = git(&["rev-parse", "--symbolic-full-name", "HEAD"]).unwrap_or_default();
+    for path in ["HEAD", "index", branch.as_str()].into_iter().filter(|p| !p.is_empty()) {
+        if let Some(p) = git(&["rev-parse", "--git-path", path]) {
+            println!("cargo:rerun-if-changed={p}");
+        }
+    }
 }
 
 fn link_debian_glslang() {

@@ -24,8 +24,10 @@ layout(constant_id = 2) const bool VIEW_SAMPLES = false;  // cache_update = "vie
 layout(constant_id = 3) const bool CLAIMS = false;        // cache_write = "farthest" or "nearest": one writer per texel
 layout(constant_id = 4) const bool NEAREST = false;       // "nearest": the sample closest to the light wins
 // Cost breakdown (src/ipsvi/breakdown.rs): 0 ray casting only, 1 + cache reads,
-// 2 + piecewise integration, 3 + cache writes = IPSVI.
+// 2 + piecewise integration, 3 + cache writes = IPSVI; 4 nothing at all (the
+// sync study's empty workload: the sweep's dispatches and barriers alone).
 layout(constant_id = 5) const uint STEP = 3u;
+const uint STEP_EMPTY = 4u;
 // Fixed per renderer, so the compiler drops what a frame never runs.
 layout(constant_id = 6) const bool PIECEWISE = true;  // piecewise integration (section 4.4)
 // When view rays stop: 0 never, 1 once opaque ("plain"), 2 once opaque and past
@@ -472,6 +474,7 @@ void advance_texel(uint index) {
 }
 
 void main() {
+    if (STEP == STEP_EMPTY) return;
     uint id = gl_GlobalInvocationID.x;
     block_index = push.block_index;
     if (MERGED) {

@@ -16,8 +16,8 @@ fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
         .output()
         .expect("run sweeplab");
     assert!(o.status.success(), "{}", stderr(&o));
-    let rows: Vec<serde_json::Value> =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("ipsvi_line_widths.json")).unwrap()).unwrap();
+    let rows = bench_rows(&dir.join("ipsvi_line_widths.json"));
+    assert_names_its_run(&dir.join("ipsvi_line_widths.csv"), &dir.join("ipsvi_line_widths.md"));
     for mode in ["view-samples", "light-rays"] {
         let row = |lw: u32| {
             rows.iter()

@@ -160,8 +160,8 @@ fn bench_lights_writes_table1_scaling_memory_and_error_rows_validation_clean() {
     for file in ["lights.csv", "lights.md", "lights_scaling.png", "lights_table1_4.png", "lights_error_vs_time.png"] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
-    let rows: Vec<serde_json::Value> =
-        serde_json::from_str(&std::fs::read_to_string(out.join("lights.json")).unwrap()).unwrap();
+    let rows = bench_rows(&out.join("lights.json"));
+    assert_names_its_run(&out.join("lights.csv"), &out.join("lights.md"));
     let part = |p: &str| rows.iter().filter(|r| r["part"] == p).collect::<Vec<_>>();
     let table1 = part("table1");
     assert_eq!(table1.len(), 2, "ours and the paper's DR*1/4 2-light row: {table1:?}");
@@ -224,7 +224,7 @@ fn bench_lights_rejects_bad_parameters_clearly() {
 #[test]
 fn every_bench_refuses_zero_repeats() {
     let dir = temp_dir("bench-repeat-zero");
-    for bench in ["ipsvi", "sync", "table1", "lights", "stability"] {
+    for bench in ["ipsvi", "table1", "lights", "stability"] {
         let out = dir.join(bench);
         let o = sweeplab(&["bench", bench, "--repeat", "0", "--out", out.to_str().unwrap()]);
         assert_user_error(&o, "--repeat");
@@ -246,7 +246,7 @@ fn outputs_and_list_values_are_checked_before_any_gpu_work() {
         (vec!["bench", "ipsvi", "--line-widths", "1,0", "--out", dir.to_str().unwrap()], "line_width = 0"),
         (vec!["bench", "ipsvi", "--sizes", "0", "--out", dir.to_str().unwrap()], "--sizes"),
         (vec!["bench", "ipsvi", "--half-angle-slices", "100", "--out", dir.to_str().unwrap()], "slice_step = 100"),
-        (vec!["bench", "sync", "--line-widths", "64", "--out", dir.to_str().unwrap()], "line_width = 64"),
+        (vec!["bench", "sync", "--line-widths", "1,64", "--out", dir.to_str().unwrap()], "line_width = 64"),
         (vec!["bench", "table1", "--sizes", "20000", "--out", dir.to_str().unwrap()], "--sizes"),
     ];
     for (args, mention) in cases {
@@ -265,33 +265,25 @@ fn bench_output_folders_hold_no_stale_files() {
     let dir = temp_dir("stale");
     std::fs::write(dir.join("mine.txt"), "a user's file").unwrap();
     let run = |strategies: &str| {
+        #[rustfmt::skip]
         let o = sweeplab(&[
-            "bench",
-            "sync",
-            "--sizes",
-            "8",
-            "--line-widths",
-            "1",
-            "--strategies",
-            strategies,
-            "--repeat",
-            "1",
-            "--out",
-            dir.to_str().unwrap(),
+            "bench", "sync", "--size", "8x8", "--line-widths", "1,2", "--workloads", "sweep",
+            "--strategies", strategies, "--min-rounds", "6", "--max-rounds", "6", "--out", dir.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{}", stderr(&o));
     };
     run("barrier-global,events,secondary");
-    assert!(dir.join("lines_events.json").exists());
-    // Replayed secondary buffers have no per-line timestamps: blank, not 0 or NaN.
-    let rows: Vec<serde_json::Value> =
+    assert!(dir.join("lines_sweep_events.json").exists());
+    // Replayed secondary buffers have no per-line timestamps: no gaps, not 0 or NaN.
+    let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("sync.json")).unwrap()).unwrap();
-    let row = |s: &str| rows.iter().find(|r| r["strategy"] == s).unwrap().clone();
-    assert!(row("barrier-global")["median_line_us"].as_f64().is_some_and(|v| v > 0.0));
-    assert!(row("secondary").get("median_line_us").is_none(), "{}", row("secondary"));
+    let row = |s: &str| report["strategies"].as_array().unwrap().iter().find(|r| r["strategy"] == s).unwrap().clone();
+    assert!(row("barrier-global")["line_gaps"]["line_median_us"].as_f64().is_some_and(|v| v > 0.0));
+    assert!(row("secondary")["line_gaps"].is_null(), "{}", row("secondary"));
+    assert!(!dir.join("lines_sweep_secondary.json").exists());
     run("barrier-global");
-    assert!(!dir.join("lines_events.json").exists(), "a stale file of the first run is left");
-    assert!(dir.join("lines_barrier-global.json").exists() && dir.join("sync.csv").exists());
+    assert!(!dir.join("lines_sweep_events.json").exists(), "a stale file of the first run is left");
+    assert!(dir.join("lines_sweep_barrier-global.json").exists() && dir.join("sync.csv").exists());
     assert!(dir.join("mine.txt").exists(), "a file the bench did not write was removed");
 }
 
@@ -311,8 +303,8 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
     for file in ["ipsvi_breakdown.csv", "ipsvi_breakdown.md", "ipsvi_breakdown.png"] {
         assert!(out.join(file).is_file(), "{file} missing");
     }
-    let rows: Vec<serde_json::Value> =
-        serde_json::from_str(&std::fs::read_to_string(out.join("ipsvi_breakdown.json")).unwrap()).unwrap();
+    let rows = bench_rows(&out.join("ipsvi_breakdown.json"));
+    assert_names_its_run(&out.join("ipsvi_breakdown.csv"), &out.join("ipsvi_breakdown.md"));
     for mode in ["view-samples", "light-rays"] {
         let steps: Vec<&serde_json::Value> = rows.iter().filter(|r| r["cache_update"] == mode).collect();
         assert_eq!(steps.len(), 6, "{mode}: a to f: {steps:?}");
@@ -353,8 +345,8 @@ fn bench_stability_checks_its_lists_first_and_writes_the_table() {
     for file in ["stability.csv", "stability.md", "stability.png", "stability_convergence.csv"] {
         assert!(dir.join("stability").join(file).is_file(), "{file} missing");
     }
-    let rows: Vec<serde_json::Value> =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("stability").join("stability.json")).unwrap()).unwrap();
+    let rows = bench_rows(&dir.join("stability").join("stability.json"));
+    assert_names_its_run(&dir.join("stability").join("stability.csv"), &dir.join("stability").join("stability.md"));
     let status = |case: &str, t: &str| {
         let row = rows.iter().find(|r| r["case"] == case && r["technique"] == t).unwrap();
         row["status"].as_str().unwrap().to_string()
@@ -364,10 +356,7 @@ fn bench_stability_checks_its_lists_first_and_writes_the_table() {
     assert_eq!(status("opaque", "dvr"), "ok", "DVR marches the model exactly, opaque or not");
     assert_eq!(status("opaque", "lightvolume"), "warned", "the light grid cannot resolve it, and says so");
     assert_eq!(status("transparent", "lightvolume"), "warned", "an empty image comes with its warning");
-    let orders: Vec<serde_json::Value> = serde_json::from_str(
-        &std::fs::read_to_string(dir.join("stability").join("stability_convergence.json")).unwrap(),
-    )
-    .unwrap();
+    let orders = bench_rows(&dir.join("stability").join("stability_convergence.json"));
     let dvr = orders.iter().find(|r| r["technique"] == "dvr").unwrap();
     assert!(dvr["overall_order"].as_f64().is_some_and(|o| o > 1.5), "DVR's midpoint rule is second order: {dvr}");
 }

@@ -9,6 +9,8 @@ pub enum BenchError {
     Read { path: PathBuf, source: std::io::Error },
     #[error("{path} is not a benchmark table in JSON (an array of flat objects): {source}")]
     Json { path: PathBuf, source: serde_json::Error },
+    #[error("{path} is not a sync.json written by `sweeplab bench sync`: {source}")]
+    NotSyncReport { path: PathBuf, source: serde_json::Error },
     #[error("cannot write the chart {path}: {source}")]
     Png { path: PathBuf, source: image::ImageError },
     #[error(

@@ -7,7 +7,9 @@
 
 pub mod axis;
 pub mod canvas;
+pub mod cpu_time;
 pub mod error;
+pub mod estimate;
 pub mod experiments;
 pub mod font;
 pub mod frames;
@@ -17,11 +19,14 @@ pub mod out_folder;
 pub mod pareto;
 pub mod plot;
 pub mod progress;
+pub mod protocol;
 pub mod rows;
+pub mod run_info;
 pub mod stats;
 
 pub use axis::AxisScale;
 pub use error::BenchError;
+pub use estimate::{Estimate, Verdict};
 pub use experiments::ExperimentError;
 pub use frames::{ipsvi_frame, technique_frame, ProfiledFrame};
 pub use harness::{Harness, HarnessError, Measurement, Sample};
@@ -33,5 +38,7 @@ pub use plot::{
     render_stacked_bars, Chart, Series, StackedBar,
 };
 pub use progress::Progress;
+pub use protocol::{Protocol, ProtocolError};
 pub use rows::{BenchRow, BenchTable, BenchValue};
+pub use run_info::RunInfo;
 pub use stats::{fit_line, median, LineFit};

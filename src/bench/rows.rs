@@ -13,6 +13,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::error::BenchError;
 use super::pareto::pareto_front;
+use super::run_info::RunInfo;
 
 /// One value in a benchmark row: a parameter or a measurement.
 #[derive(Debug, Clone, PartialEq)]
@@ -316,15 +317,23 @@ impl<'de> Visitor<'de> for BenchRowVisitor {
     }
 }
 
-/// All runs of a sweep.
+/// All runs of a sweep, and what produced them.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct BenchTable {
     pub rows: Vec<BenchRow>,
+    /// Device, driver, host, build, inputs and date: written ahead of the rows
+    /// in every format (see [`RunInfo`]).
+    pub run: Option<RunInfo>,
 }
 
 impl BenchTable {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// An empty table that names what produced it.
+    pub fn with_run(run: RunInfo) -> Self {
+        BenchTable { rows: Vec::new(), run: Some(run) }
     }
 
     pub fn push(&mut self, row: BenchRow) {
@@ -367,11 +376,12 @@ impl BenchTable {
         front
     }
 
-    /// The table as CSV: a header with every column, one line per row, empty
-    /// fields where a row lacks a column, RFC 4180 quoting.
+    /// The table as CSV: `#` comment lines naming the run (where known), a
+    /// header with every column, one line per row, empty fields where a row
+    /// lacks a column, RFC 4180 quoting.
     pub fn to_csv(&self) -> String {
         let columns = self.columns();
-        let mut out = String::new();
+        let mut out = self.run.as_ref().map(RunInfo::csv_comment).unwrap_or_default();
         let header: Vec<String> = columns.iter().map(|c| csv_field(c)).collect();
         out.push_str(&header.join(","));
         out.push('\n');
@@ -394,7 +404,8 @@ impl BenchTable {
         std::fs::write(path, self.to_csv()).map_err(|source| BenchError::Write { path: path.to_owned(), source })
     }
 
-    /// The table as a pretty-printed JSON array of objects, keys in row order.
+    /// The table as pretty-printed JSON: `{"run": {...}, "rows": [...]}`, or a
+    /// plain array of rows where the run is not known; keys in row order.
     /// Non-finite floats become `null` (JSON has no NaN) and read back as NaN.
     pub fn write_json(&self, path: impl AsRef<Path>) -> Result<(), BenchError> {
         let path = path.as_ref();
@@ -413,6 +424,13 @@ impl BenchTable {
         let text =
             std::fs::read_to_string(path).map_err(|source| BenchError::Read { path: path.to_owned(), source })?;
         serde_json::from_str(&text).map_err(|source| BenchError::Json { path: path.to_owned(), source })
+    }
+
+    /// The run's header block (where known) and the table: the Markdown file
+    /// a bench writes.
+    pub fn to_markdown_report(&self) -> String {
+        let header = self.run.as_ref().map(RunInfo::markdown).unwrap_or_default();
+        format!("{header}{}", self.to_markdown())
     }
 
     /// A Markdown table to paste into a report: numbers right-aligned with four
@@ -471,19 +489,36 @@ impl BenchTable {
     }
 }
 
-impl Serialize for BenchTable {
+/// The rows alone, as a JSON array.
+struct RowsOf<'a>(&'a [BenchRow]);
+
+impl Serialize for RowsOf<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut seq = serializer.serialize_seq(Some(self.rows.len()))?;
-        for row in &self.rows {
+        let mut seq = serializer.serialize_seq(Some(self.0.len()))?;
+        for row in self.0 {
             seq.serialize_element(row)?;
         }
         seq.end()
     }
 }
 
+impl Serialize for BenchTable {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match &self.run {
+            None => RowsOf(&self.rows).serialize(serializer),
+            Some(run) => {
+                let mut map = serializer.serialize_map(Some(2))?;
+                map.serialize_entry("run", run)?;
+                map.serialize_entry("rows", &RowsOf(&self.rows))?;
+                map.end()
+            }
+        }
+    }
+}
+
 impl<'de> Deserialize<'de> for BenchTable {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        deserializer.deserialize_seq(BenchTableVisitor)
+        deserializer.deserialize_any(BenchTableVisitor)
     }
 }
 
@@ -493,13 +528,25 @@ impl<'de> Visitor<'de> for BenchTableVisitor {
     type Value = BenchTable;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("an array of benchmark rows")
+        f.write_str("an array of benchmark rows, or an object with `run` and `rows`")
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut access: A) -> Result<BenchTable, A::Error> {
         let mut table = BenchTable::new();
         while let Some(row) = access.next_element::<BenchRow>()? {
             table.push(row);
+        }
+        Ok(table)
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut access: A) -> Result<BenchTable, A::Error> {
+        let mut table = BenchTable::new();
+        while let Some(key) = access.next_key::<String>()? {
+            match key.as_str() {
+                "run" => table.run = Some(access.next_value()?),
+                "rows" => table.rows = access.next_value::<BenchTable>()?.rows,
+                other => return Err(de::Error::unknown_field(other, &["run", "rows"])),
+            }
         }
         Ok(table)
     }

@@ -30,6 +30,9 @@ pub enum Command {
     /// Parameter sweeps: error against GPU time, CSV/JSON/Markdown and plots.
     #[command(subcommand)]
     Bench(BenchCommand),
+    /// Put `bench sync` results from several devices side by side: one table
+    /// and one chart of per-boundary cost per strategy per device.
+    Report(ReportArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -37,9 +40,11 @@ pub enum BenchCommand {
     /// IPSVI over line width x cache size x piecewise integration x early ray
     /// termination x image size, each run compared with the GPU ground truth.
     Ipsvi(BenchIpsviArgs),
-    /// IPSVI sweep synchronization strategies x line width x image size: GPU time,
-    /// per-line overhead over the same dispatches with no barriers, time inside dispatches and in
-    /// the gaps between them, the profiler's own perturbation, Perfetto traces.
+    /// What one block boundary of the IPSVI sweep costs per sync strategy: the
+    /// slope of frame time over the number of blocks (line widths 1..32), against
+    /// the same dispatches with no barriers, with 95 % intervals from shuffled,
+    /// paired rounds; empty and real workloads; per-line gaps. About 10 minutes
+    /// on lavapipe at the defaults, a minute with --quick.
     Sync(BenchSyncArgs),
     /// The IPSVI paper's Table 1: frame rates over image size and line width for
     /// engine (CT Engine), aneurism (beside US Baby) and LIDC2 (anisotropic, beside
@@ -171,25 +176,67 @@ pub struct BenchTable1Args {
 
 #[derive(Args, Debug)]
 pub struct BenchSyncArgs {
+    /// Without --size: 256x256.
     #[command(flatten)]
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
     #[arg(long, default_value = "bench-sync")]
     pub out: PathBuf,
-    /// Sync strategies, comma-separated: barrier-global, barrier-image, events,
-    /// secondary, submits, racy.
-    #[arg(long, value_delimiter = ',', default_values_t = ["barrier-global", "barrier-image", "events", "secondary", "submits", "racy"].map(String::from).to_vec())]
+    /// Sync strategies compared with no barriers, comma-separated:
+    /// barrier-global, barrier-image, events, secondary, submits.
+    #[arg(long, value_delimiter = ',', default_values_t = ["barrier-global", "barrier-image", "events", "secondary", "submits"].map(String::from).to_vec())]
     pub strategies: Vec<String>,
-    /// Lines per dispatch (1..=32). Comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
+    /// Lines per dispatch (1..=32), at least two: the per-boundary cost is the
+    /// slope of frame time over the number of blocks. Comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4, 8, 16, 32])]
     pub line_widths: Vec<u32>,
-    /// Square image sizes. Comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512])]
-    pub sizes: Vec<u32>,
-    /// Frames per configuration; the median GPU time is reported.
-    #[arg(long, default_value_t = 3)]
-    pub repeat: u32,
+    /// What each line dispatch does: `sweep` (the scene's IPSVI frame),
+    /// `empty` (shaders that return at once: dispatches and sync alone).
+    /// Comma-separated; default both (with --quick: empty).
+    #[arg(long, value_delimiter = ',')]
+    pub workloads: Option<Vec<String>>,
+    /// Untimed rounds of every configuration first (shader compiles, caches).
+    #[arg(long, default_value_t = 1)]
+    pub warm_up: u32,
+    /// Fewest timed rounds (6 or more: a 95 % interval of a median needs 6).
+    #[arg(long, default_value_t = 6)]
+    pub min_rounds: u32,
+    /// Most timed rounds.
+    #[arg(long, default_value_t = 30)]
+    pub max_rounds: u32,
+    /// Stop once every sync cost's 95 % interval has a half-width of at most
+    /// this fraction of the estimate ...
+    #[arg(long, default_value_t = 0.25)]
+    pub target_ci: f64,
+    /// ... or at most this many microseconds.
+    #[arg(long, default_value_t = 3.0)]
+    pub target_ci_us: f64,
+    /// Stop after the round that would end past this many minutes (never
+    /// before --min-rounds).
+    #[arg(long, default_value_t = 10.0)]
+    pub max_minutes: f64,
+    /// Seed of the shuffled round orders (default: from the clock; recorded in sync.json).
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Leave out the frames with a timestamp around every line dispatch.
+    #[arg(long)]
+    pub no_line_timestamps: bool,
+    /// About a minute on lavapipe: the empty workload (the sync primitives
+    /// alone) at 64x64, line widths 1,4,16,32, at most 1.5 minutes.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// `sweeplab report`: bench results from different devices side by side.
+#[derive(Args, Debug)]
+pub struct ReportArgs {
+    /// sync.json files written by `sweeplab bench sync` (one per device or run).
+    #[arg(required = true, num_args = 1..)]
+    pub inputs: Vec<PathBuf>,
+    /// Output folder for report.md and the chart.
+    #[arg(long, default_value = "report")]
+    pub out: PathBuf,
 }
 
 #[derive(Args, Debug)]

@@ -108,8 +108,9 @@ pub fn run(args: &BenchAoArgs) -> anyhow::Result<ExitCode> {
     let lut = scene.transfer.bake(TransferLut::DEFAULT_SIZE);
     // Per (r, bits): the unclustered image and the ground truth's.
     let mut baselines: Vec<((u32, u32), LinearImage, LinearImage)> = Vec::new();
-    let mut table = BenchTable::new();
+    let mut table = BenchTable::with_run(session::run_info(&ctx));
     let mut table1 = paper_table1_rows();
+    table1.run = table.run.clone();
     for s in &configs {
         if !baselines.iter().any(|(k, _, _)| *k == (s.radius, s.bits)) {
             progress.start_step(&format!("unclustered r={} bits={}", s.radius, s.bits));
@@ -235,10 +236,11 @@ fn write_report(args: &BenchAoArgs, table: &BenchTable, table1: &BenchTable) -> 
     table.write_json(args.out.join("ao.json"))?;
     table1.write_csv(args.out.join("ao_table1.csv"))?;
     let markdown = format!(
-        "## Ambient occlusion (bench ao)\n\n{}\n\n## Table 1 shape: the paper's preprocessing beside ours\n\n\
+        "{}## Ambient occlusion (bench ao)\n\n{}\n\n## Table 1 shape: the paper's preprocessing beside ours\n\n\
          Paper: Opteron 852, 4 per process, minutes as seconds; ours: this machine (the preprocessing runs where `ao.backend` puts it) \
          (histograms_s is our histograms with the nearest-codeword assignment, streamed together; \
          local_histograms is what the unpacked histograms would take, which we never hold).\n\n{}\n",
+        table.run.as_ref().map(|r| r.markdown()).unwrap_or_default(),
         table.to_markdown(),
         table1.to_markdown()
     );

@@ -50,8 +50,8 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let per_size = 1 + modes.len() * (STEPS.len() + args.line_widths.len());
     let mut progress = Progress::new(args.sizes.len() * per_size);
-    let mut table = BenchTable::new();
-    let mut widths_table = BenchTable::new();
+    let mut table = BenchTable::with_run(session::run_info(&ctx));
+    let mut widths_table = BenchTable::with_run(session::run_info(&ctx));
     let mut bars = Vec::new();
     for &size in &args.sizes {
         let dvr = harness.measure_step(&mut progress, &format!("{size}x{size} a: DVR, one dispatch"), || {
@@ -113,13 +113,14 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     drop(gpu);
     table.write_csv(args.out.join("ipsvi_breakdown.csv"))?;
     table.write_json(args.out.join("ipsvi_breakdown.json"))?;
-    std::fs::write(args.out.join("ipsvi_breakdown.md"), table.to_markdown()).context("writing ipsvi_breakdown.md")?;
+    std::fs::write(args.out.join("ipsvi_breakdown.md"), table.to_markdown_report())
+        .context("writing ipsvi_breakdown.md")?;
     let chart = Chart::new("One IPSVI frame, step by step", "bars: size, view samples or light rays", "GPU time (ms)")
         .size(960, 600);
     plot_stacked_bars(args.out.join("ipsvi_breakdown.png"), &chart, &bars)?;
     widths_table.write_csv(args.out.join("ipsvi_line_widths.csv"))?;
     widths_table.write_json(args.out.join("ipsvi_line_widths.json"))?;
-    std::fs::write(args.out.join("ipsvi_line_widths.md"), widths_table.to_markdown())
+    std::fs::write(args.out.join("ipsvi_line_widths.md"), widths_table.to_markdown_report())
         .context("writing ipsvi_line_widths.md")?;
     println!("{}", table.to_markdown());
     println!("{}", widths_table.to_markdown());

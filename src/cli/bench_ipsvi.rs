@@ -76,7 +76,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let total = args.sizes.len() * (2 + configs.len() + 1 + args.half_angle_slices.len());
     let mut progress = Progress::new(total);
-    let mut table = BenchTable::new();
+    let mut table = BenchTable::with_run(session::run_info(&ctx));
     for &size in &args.sizes {
         progress.start_step(&format!("{size}x{size} ground truth (GPU, model ii)"));
         let reference = render(&gpu, Technique::Reference, size, size, &mut profiler)?;
@@ -181,7 +181,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     }
     table.write_csv(args.out.join("ipsvi.csv"))?;
     table.write_json(args.out.join("ipsvi.json"))?;
-    std::fs::write(args.out.join("ipsvi.md"), table.to_markdown()).context("writing ipsvi.md")?;
+    std::fs::write(args.out.join("ipsvi.md"), table.to_markdown_report()).context("writing ipsvi.md")?;
     println!("{}", table.to_markdown());
     println!("wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md and ipsvi_<size>_error_vs_time.png", args.out.display());
     out_folder.finish()?;

@@ -15,6 +15,7 @@ use sweeplab::bench::experiments::lights::{
     grid_text, lightvolume_scene, resolution_label, scaling_lights, table1_lights, LightsMeter, Update,
     UpdateMeasurement,
 };
+use sweeplab::bench::RunInfo;
 use sweeplab::bench::{
     fit_line, median, plot_error_vs_time, plot_lines, technique_frame, AxisScale, BenchRow, BenchTable, Chart, Harness,
     OutFolder, Progress, Series,
@@ -105,7 +106,7 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
         progress: Progress::new(steps),
         harness,
     };
-    let mut report = Report::default();
+    let mut report = Report { run: session::run_info(&ctx), ..Report::default() };
     table1(args, &mut meter, &scene, &mut report)?;
     inside(args, &mut meter, &scene, &mut report)?;
     scaling(args, &mut meter, &scene, &mut report)?;
@@ -127,6 +128,7 @@ struct Report {
     memory: BenchTable,
     incremental: BenchTable,
     error: BenchTable,
+    run: RunInfo,
 }
 
 fn table1(args: &BenchLightsArgs, meter: &mut LightsMeter, scene: &Scene, report: &mut Report) -> anyhow::Result<()> {
@@ -437,8 +439,8 @@ impl Report {
     }
 
     fn write(&self, args: &BenchLightsArgs) -> anyhow::Result<()> {
-        let mut all = BenchTable::new();
-        let mut markdown = String::new();
+        let mut all = BenchTable::with_run(self.run.clone());
+        let mut markdown = self.run.markdown();
         for (part, title, table) in self.sections() {
             for row in &table.rows {
                 let mut tagged = BenchRow::new().with("part", part);

@@ -63,7 +63,7 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let mut progress = Progress::new(cases.len() * variants.len() + variants.len());
-    let mut table = BenchTable::new();
+    let mut table = BenchTable::with_run(session::run_info(&ctx));
     let mut map = HeatMap {
         title: format!("Stability: case x technique, {0}x{0}, PSNR against the model's reference", args.size),
         rows: cases.iter().map(|c| c.name.to_string()).collect(),
@@ -112,7 +112,7 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
         }
         map.cells.push(row_cells);
     }
-    let mut orders = BenchTable::new();
+    let mut orders = BenchTable::with_run(session::run_info(&ctx));
     let base = convergence_scene(&stability_cases(&dir, args.size), &dir).map_err(anyhow::Error::msg)?;
     for &variant in &variants {
         progress.start_step(&format!("convergence / {}", variant.label()));
@@ -143,10 +143,11 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     orders.write_csv(out.join("stability_convergence.csv"))?;
     orders.write_json(out.join("stability_convergence.json"))?;
     let markdown = format!(
-        "# sweeplab bench stability, {0}x{0}\n\n{1}\n\n## Convergence (relative RMSE against the model at step 1/64)\n\n{2}\n",
+        "# sweeplab bench stability, {0}x{0}\n\n{3}{1}\n\n## Convergence (relative RMSE against the model at step 1/64)\n\n{2}\n",
         args.size,
         table.to_markdown(),
-        orders.to_markdown()
+        orders.to_markdown(),
+        session::run_info(&ctx).markdown()
     );
     std::fs::write(out.join("stability.md"), &markdown).context("writing stability.md")?;
     plot_heat_map(out.join("stability.png"), &map)?;

@@ -1,259 +1,130 @@
-//! `sweeplab bench sync`: what each way of synchronizing the IPSVI sweep costs.
+//! `sweeplab bench sync`: arguments to a [`SyncPlan`], the study
+//! (`sweeplab::bench::experiments::sync`), its files after every round, and
+//! the verdict.
 
 use super::args::BenchSyncArgs;
-use super::render_cmd::{write_json, PROFILER_CAPACITY};
-use super::{bench_args, scene_args, session};
+use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::bench::{
-    ipsvi_frame, median, plot_error_vs_time, plot_lines, AxisScale, BenchRow, BenchTable, Chart, Harness, Measurement,
-    OutFolder, ProfiledFrame, Progress, Series,
-};
-use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
-use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
-use sweeplab::linear_image::LinearImage;
-use sweeplab::metrics::compare;
+use std::time::Duration;
+use sweeplab::bench::estimate::MIN_SAMPLES;
+use sweeplab::bench::experiments::sync::{self, Eta, SyncObserver, SyncPlan, SyncReport, Workload};
+use sweeplab::bench::experiments::{sync_report, ExperimentError};
+use sweeplab::bench::progress::format_duration;
+use sweeplab::bench::{OutFolder, Protocol, RunInfo};
+use sweeplab::ipsvi::SyncStrategy;
 use sweeplab::render::GpuScene;
-use sweeplab::vk::{Context, Profiler};
 
-/// The `strategy` of the baseline rows: each line width's frame with no
-/// synchronization between its blocks (strategy `racy`): the same dispatches,
-/// the same work, so what a strategy adds over it is what it costs. (The
-/// earlier baseline, all of a sweep's lines in one dispatch, did different
-/// work and gave negative overheads.)
-pub const BASELINE: &str = "no-barriers";
+/// `--quick`: about a minute on lavapipe.
+const QUICK_SIZE: &str = "64x64";
+const QUICK_LINE_WIDTHS: [u32; 4] = [1, 4, 16, 32];
+const QUICK_MINUTES: f64 = 1.5;
+const DEFAULT_SIZE: &str = "256x256";
 
-/// What a strategy costs per line over the baseline of its line width, us.
-fn per_line_overhead_us(strategy_ms: f64, baseline_ms: f64, lines: u32) -> f64 {
-    (strategy_ms - baseline_ms) * 1e3 / lines.max(1) as f64
+fn parse_list<T: std::str::FromStr<Err = String>>(flag: &str, values: &[String]) -> anyhow::Result<Vec<T>> {
+    values.iter().map(|s| s.trim().parse().map_err(|e: String| anyhow::anyhow!("{flag}: {e}"))).collect()
 }
 
-/// The baseline frames have no barriers, so synchronization validation reports
-/// their hazards by design: those are dropped (and counted in the row); any
-/// other validation message is an error.
-fn drop_hazards_by_design(ctx: &Context) -> anyhow::Result<usize> {
-    let messages = ctx.take_validation_messages();
-    let (hazards, other): (Vec<String>, Vec<String>) = messages.into_iter().partition(|m| m.contains("SYNC-HAZARD"));
-    if !other.is_empty() {
-        anyhow::bail!("validation reported the no-barriers baseline: {}", other.join("\n"));
+fn plan(args: &BenchSyncArgs, width: u32, height: u32) -> anyhow::Result<SyncPlan> {
+    let strategies: Vec<SyncStrategy> = parse_list("--strategies", &args.strategies)?;
+    if let Some(racy) = strategies.iter().find(|s| s.is_racy()) {
+        anyhow::bail!(
+            "--strategies: {} is the baseline (no barriers), measured in every run; leave it out",
+            racy.name()
+        );
     }
-    Ok(hazards.len())
+    let workloads: Vec<Workload> = match &args.workloads {
+        Some(names) => parse_list("--workloads", names)?,
+        None if args.quick => vec![Workload::Empty],
+        None => Workload::ALL.to_vec(),
+    };
+    let positive = |v: f64| v.is_finite() && v > 0.0;
+    if !positive(args.target_ci) || !(positive(args.target_ci_us) || args.target_ci_us == 0.0) {
+        anyhow::bail!("--target-ci and --target-ci-us: give a fraction above 0 (e.g. 0.25) and microseconds (e.g. 3)");
+    }
+    if !(args.max_minutes > 0.0 && args.max_minutes.is_finite()) {
+        anyhow::bail!("--max-minutes: give minutes above 0, e.g. 10");
+    }
+    let minutes = if args.quick { args.max_minutes.min(QUICK_MINUTES) } else { args.max_minutes };
+    let seed = args.seed.unwrap_or_else(Protocol::seed_from_clock);
+    let protocol = Protocol::new(args.warm_up, args.min_rounds, args.max_rounds, seed).context("--min-rounds")?;
+    Ok(SyncPlan {
+        width,
+        height,
+        strategies,
+        line_widths: if args.quick { QUICK_LINE_WIDTHS.to_vec() } else { args.line_widths.clone() },
+        workloads,
+        line_timestamps: !args.no_line_timestamps,
+        protocol,
+        precision: sync::Precision { relative: args.target_ci, absolute_us: args.target_ci_us },
+        time_budget: Some(Duration::from_secs_f64(minutes * 60.0)),
+    })
 }
 
-/// Median GPU time of the harness's frames on one renderer; the last frame's
-/// image and profile.
-fn frames(
-    ctx: &Context,
-    gpu: &GpuScene,
-    s: &IpsviSettings,
-    size: u32,
-    profiler: &mut Profiler,
-    harness: &Harness,
-) -> anyhow::Result<Measurement<ProfiledFrame>> {
-    // One renderer for all frames: the secondary strategy replays what it recorded.
-    let mut renderer = IpsviRenderer::new(gpu, s, size, size)?;
-    Ok(harness.measure(|| ipsvi_frame(ctx, &mut renderer, profiler, s.sync))?)
+/// Writes the files after every round and shows where the rounds stand.
+struct Files<'a> {
+    out: &'a std::path::Path,
+    configurations: usize,
+}
+
+impl SyncObserver for Files<'_> {
+    fn warm_up(&mut self, configurations: usize) {
+        self.configurations = configurations;
+        eprintln!("bench sync: {configurations} configurations; warm-up round, then shuffled timed rounds");
+    }
+
+    fn round(&mut self, report: &SyncReport, eta: Eta) -> Result<(), ExperimentError> {
+        sync_report::write(report, self.out)?;
+        let state = if eta.round >= MIN_SAMPLES {
+            if report.precise_in(eta.workload) {
+                "intervals as narrow as asked".to_string()
+            } else {
+                "intervals not yet as narrow as asked".to_string()
+            }
+        } else {
+            format!("intervals from round {}", MIN_SAMPLES)
+        };
+        eprintln!(
+            "{} workload: round {} done in {} ({} configurations in all); {state}; at most {} more round(s), about {} left",
+            eta.workload.name(),
+            eta.round,
+            format_duration(eta.last_round),
+            self.configurations,
+            eta.rounds_left,
+            format_duration(eta.time_left)
+        );
+        Ok(())
+    }
 }
 
 pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
-    let strategies: Vec<SyncStrategy> = args
-        .strategies
-        .iter()
-        .map(|s| s.parse().map_err(|e: String| anyhow::anyhow!("--strategies: {e}")))
-        .collect::<Result<_, _>>()?;
-    // One untimed frame first: llvmpipe compiles shader variants on first use.
-    let harness = session::harness(1, args.repeat)?;
-    bench_args::check_sizes("--sizes", &args.sizes)?;
-    let scene = scene_args::load(&args.scene)?;
-    let base = scene.settings.ipsvi.clone();
-    let line_widths: Vec<IpsviSettings> =
-        args.line_widths.iter().map(|&line_width| IpsviSettings { line_width, ..base.clone() }).collect();
-    bench_args::check_ipsvi("--line-widths", &line_widths)?;
+    let mut scene_args = args.scene.clone();
+    if scene_args.size.is_none() {
+        scene_args.size = Some(if args.quick { QUICK_SIZE } else { DEFAULT_SIZE }.to_string());
+    }
+    let scene = scene_args::load(&scene_args)?;
+    let (width, height) = (scene.render.width, scene.render.height);
+    let plan = plan(args, width, height)?;
+    sync::check(&plan, &scene.settings.ipsvi)?;
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
-    let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
-    let steps = args.sizes.len() * args.line_widths.len() * (1 + strategies.len());
-    let mut progress = Progress::new(steps);
-    let mut table = BenchTable::new();
-    let largest = args.sizes.iter().copied().max().unwrap_or(0);
-    for &size in &args.sizes {
-        for &lw in &args.line_widths {
-            // The equal-work baseline: this line width's frame, the same line
-            // dispatches in the sweep's order, with nothing between blocks.
-            progress.start_step(&format!("{size}x{size} lw={lw} {BASELINE} baseline"));
-            let baseline_settings = IpsviSettings { line_width: lw, sync: SyncStrategy::Racy, ..base.clone() };
-            let baseline = frames(&ctx, &gpu, &baseline_settings, size, &mut profiler, &harness)?;
-            let hazards = drop_hazards_by_design(&ctx)?;
-            let baseline_ms = baseline.median();
-            progress.finish_step();
-            let lines: u32 = plans(&gpu, &baseline_settings, size, size).iter().map(|p| p.lines()).sum();
-            let mut row = BenchRow::new();
-            row.set("strategy", BASELINE).set("racy", true).set("line_width", lw).set("width", size);
-            row.set("height", size).set("lines", lines).set("dispatches", baseline.last.frame.dispatches);
-            row.set("gpu_ms", baseline_ms);
-            if ctx.validation_enabled() {
-                row.set("hazards_ignored", hazards);
-            }
-            table.push(row);
-            let mut expected: Option<LinearImage> = None;
-            for &strategy in &strategies {
-                progress.start_step(&format!("{size}x{size} lw={lw} {}", strategy.name()));
-                let s = IpsviSettings { line_width: lw, sync: strategy, ..base.clone() };
-                let lines: u32 = plans(&gpu, &s, size, size).iter().map(|p| p.lines()).sum();
-                let timed = frames(&ctx, &gpu, &s, size, &mut profiler, &harness)?;
-                let timed_ms = timed.median();
-                let timed = timed.last.frame;
-                // The same frame once more with a timestamp around every dispatch.
-                profiler.set_detail(true);
-                let detailed = frames(&ctx, &gpu, &s, size, &mut profiler, &Harness::once_after(0))?;
-                profiler.set_detail(false);
-                progress.finish_step();
-                let (detailed_ms, detailed) = (detailed.median(), detailed.last.profile);
-                let timeline = detailed.timeline("ipsvi_line");
-                if strategy == SyncStrategy::BarrierGlobal {
-                    expected = Some(timed.image.clone());
-                }
-                let rmse = match &expected {
-                    Some(e) => compare(&timed.image, e).map(|c| c.rmse).unwrap_or(f64::NAN),
-                    None => f64::NAN,
-                };
-                let mut row = BenchRow::new();
-                row.set("strategy", strategy.name()).set("racy", strategy.is_racy()).set("line_width", lw);
-                row.set("width", size).set("height", size).set("lines", lines).set("dispatches", timed.dispatches);
-                row.set("gpu_ms", timed_ms);
-                row.set("per_line_overhead_us", per_line_overhead_us(timed_ms, baseline_ms, lines));
-                row.set("rmse", rmse);
-                row.set("gpu_ms_with_line_timestamps", detailed_ms);
-                row.set("timestamp_perturbation_ms", detailed_ms - timed_ms);
-                // Replayed secondary buffers carry no per-line timestamps: those
-                // columns stay blank rather than 0 or NaN.
-                if !timeline.durations_us.is_empty() {
-                    row.set("inside_dispatches_ms", timeline.inside_ms).set("gaps_ms", timeline.gap_ms);
-                    row.set("median_line_us", median(&timeline.durations_us))
-                        .set("median_gap_us", median(&timeline.gaps_us));
-                }
-                table.push(row);
-                if size == largest && lw == 1 {
-                    let name = strategy.name();
-                    write_json(&args.out.join(format!("trace_{name}.json")), &detailed.chrome_trace())?;
-                    write_json(&args.out.join(format!("lines_{name}.json")), &serde_json::to_value(&timeline)?)?;
-                    write_histogram(args, strategy, &timeline)?;
-                }
-            }
-        }
-    }
-    progress.finish();
+    let volume = scene_args.volume.as_ref().or(scene_args.scene.as_ref()).map(|p| p.display().to_string());
+    let run_info = RunInfo::collect(&ctx)
+        .input("scene", volume.unwrap_or_else(|| "embedded default scene".into()))
+        .input("size", format!("{width}x{height}"))
+        .input("line_widths", format!("{:?}", plan.line_widths))
+        .input("workloads", plan.workloads.iter().map(|w| w.name()).collect::<Vec<_>>().join(","))
+        .input("validation", ctx.validation_enabled());
+    let mut files = Files { out: &args.out, configurations: 0 };
+    let report = sync::run(&ctx, &gpu, &scene.settings.ipsvi, &plan, run_info, &mut files)?;
+    sync_report::write(&report, &args.out)?;
     drop(gpu);
-    write_reports(args, &strategies, &table)?;
-    println!("{}", table.to_markdown());
-    println!("racy rows are unsynchronized: their images are undefined and only their cost is meaningful.");
-    println!("wrote {}/sync.csv, sync.json, sync.md, plots and trace_<strategy>.json (Perfetto)", args.out.display());
+    println!("{}", report.verdict().join("\n"));
+    if ctx.validation_enabled() {
+        println!("(validation on: these times include the layers' work and say nothing about the device)");
+    }
+    println!("wrote {}/sync.md (verdict and tables), sync.json, sync.csv, sync_configurations.csv", args.out.display());
     out_folder.finish()?;
     Ok(session::finish(&ctx))
-}
-
-fn write_reports(args: &BenchSyncArgs, strategies: &[SyncStrategy], table: &BenchTable) -> anyhow::Result<()> {
-    table.write_csv(args.out.join("sync.csv"))?;
-    table.write_json(args.out.join("sync.json"))?;
-    std::fs::write(args.out.join("sync.md"), table.to_markdown()).context("writing sync.md")?;
-    let rows = |strategy: &str, lw: u32| -> Vec<&BenchRow> {
-        table
-            .rows
-            .iter()
-            .filter(|r| {
-                r.get("strategy").map(|v| v.to_string()) == Some(strategy.to_string())
-                    && r.get_f64("line_width") == Some(lw as f64)
-            })
-            .collect()
-    };
-    let label = |s: &SyncStrategy| if s.is_racy() { "racy (RACY)".to_string() } else { s.name().to_string() };
-    let series = |key: &str| -> Vec<Series> {
-        let mut out: Vec<Series> = strategies
-            .iter()
-            .map(|s| {
-                Series::new(
-                    label(s),
-                    rows(s.name(), 1)
-                        .into_iter()
-                        .filter_map(|r| Some((r.get_f64("width")?, r.get_f64(key)?)))
-                        .collect(),
-                )
-            })
-            .collect();
-        if key == "gpu_ms" {
-            out.push(Series::new(
-                "no barriers (baseline)",
-                rows(BASELINE, 1).into_iter().filter_map(|r| Some((r.get_f64("width")?, r.get_f64(key)?))).collect(),
-            ));
-        }
-        out
-    };
-    plot_lines(
-        args.out.join("sync_time_vs_size.png"),
-        &Chart::new("IPSVI sweep, line width 1: GPU time", "image size (pixels per side)", "GPU time (ms)")
-            .x_scale(AxisScale::Log2)
-            .y_scale(AxisScale::Log10),
-        &series("gpu_ms"),
-    )?;
-    plot_lines(
-        args.out.join("sync_overhead_per_line.png"),
-        &Chart::new(
-            "Per-line overhead over no barriers (equal work), line width 1",
-            "image size (pixels per side)",
-            "us per line",
-        )
-        .x_scale(AxisScale::Log2),
-        &series("per_line_overhead_us"),
-    )?;
-    let scatter: Vec<Series> = strategies
-        .iter()
-        .map(|s| {
-            let pts = table.points(|r| r.text("strategy") == s.name(), "gpu_ms", "rmse");
-            Series::new(label(s), pts.into_iter().map(|(t, e)| (t, e.max(1e-9))).collect())
-        })
-        .collect();
-    plot_error_vs_time(
-        args.out.join("sync_error_vs_time.png"),
-        &Chart::new("Error against barrier-global, all runs", "GPU time (ms)", "RMSE (floor 1e-9)")
-            .x_scale(AxisScale::Log10)
-            .y_scale(AxisScale::Log10),
-        &scatter,
-    )?;
-    Ok(())
-}
-
-/// Histogram (log-spaced bins) of per-line dispatch times and of the gaps between
-/// consecutive dispatches, one PNG per strategy.
-fn write_histogram(
-    args: &BenchSyncArgs,
-    strategy: SyncStrategy,
-    t: &sweeplab::vk::ScopeTimeline,
-) -> anyhow::Result<()> {
-    let all: Vec<f64> = t.durations_us.iter().chain(&t.gaps_us).copied().filter(|v| *v > 0.0).collect();
-    if all.is_empty() {
-        return Ok(());
-    }
-    let lo = all.iter().copied().fold(f64::INFINITY, f64::min).max(0.1).log10().floor();
-    let hi = all.iter().copied().fold(0.0, f64::max).log10().ceil().max(lo + 1.0);
-    let bins = 24;
-    let edge = |i: usize| 10f64.powf(lo + (hi - lo) * i as f64 / bins as f64);
-    let histogram = |values: &[f64]| -> Vec<(f64, f64)> {
-        (0..bins)
-            .map(|i| {
-                let (a, b) = (edge(i), edge(i + 1));
-                ((a * b).sqrt(), values.iter().filter(|&&v| v >= a && v < b).count() as f64)
-            })
-            .collect()
-    };
-    let label = if strategy.is_racy() { format!("{} (RACY)", strategy.name()) } else { strategy.name().to_string() };
-    plot_lines(
-        args.out.join(format!("lines_{}.png", strategy.name())),
-        &Chart::new(format!("{label}: per-line times, one frame"), "microseconds", "lines").x_scale(AxisScale::Log10),
-        &[
-            Series::new("inside the dispatch", histogram(&t.durations_us)),
-            Series::new("gap to the next", histogram(&t.gaps_us)),
-        ],
-    )?;
-    Ok(())
 }

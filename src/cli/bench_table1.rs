@@ -26,7 +26,7 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     let ctx = session::open(&args.gpu)?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
     let mut progress = Progress::new(PAIRS.len() * args.sizes.len() * LINE_WIDTHS.len());
-    let mut table = BenchTable::new();
+    let mut table = BenchTable::with_run(session::run_info(&ctx));
     for (file, paper) in PAIRS {
         let path = data_dir().join(file);
         let scene = scene_for_volume_file(&path, &args.set).with_context(|| format!("loading {}", path.display()))?;
@@ -74,7 +74,7 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     progress.finish();
     table.write_csv(args.out.join("table1.csv"))?;
     table.write_json(args.out.join("table1.json"))?;
-    std::fs::write(args.out.join("table1.md"), table.to_markdown()).context("writing table1.md")?;
+    std::fs::write(args.out.join("table1.md"), table.to_markdown_report()).context("writing table1.md")?;
     println!("{}", table.to_markdown());
     println!("wrote {}/table1.csv, table1.json, table1.md", args.out.display());
     out_folder.finish()?;

@@ -13,6 +13,7 @@ mod devices_cmd;
 pub mod error_report;
 mod output_paths;
 mod render_cmd;
+mod report_cmd;
 mod scene_args;
 mod session;
 mod view_cmd;
@@ -25,6 +26,7 @@ pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
         args::Command::Render(a) => render_cmd::run(&a),
         args::Command::Compare(a) => compare_cmd::run(&a),
         args::Command::View(a) => view_cmd::run(&a),
+        args::Command::Report(a) => report_cmd::run(&a),
         args::Command::Bench(args::BenchCommand::Ipsvi(a)) => bench_ipsvi::run(&a),
         args::Command::Bench(args::BenchCommand::Sync(a)) => bench_sync::run(&a),
         args::Command::Bench(args::BenchCommand::Table1(a)) => bench_table1::run(&a),

@@ -4,7 +4,7 @@ use super::args::GpuArgs;
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Duration;
-use sweeplab::bench::Harness;
+use sweeplab::bench::{Harness, RunInfo};
 use sweeplab::render::VolumeTexels;
 use sweeplab::vk::{Context, ContextOptions, WaitReport, WaitReporter};
 
@@ -52,6 +52,12 @@ pub fn finish(ctx: &Context) -> ExitCode {
         eprintln!("{m}");
     }
     ExitCode::from(2)
+}
+
+/// What produced a bench's results: the device of `ctx`, this host and
+/// build, now, and the command line (which holds every input flag).
+pub fn run_info(ctx: &Context) -> RunInfo {
+    RunInfo::collect(ctx)
 }
 
 pub fn volume_texels(gpu: &GpuArgs) -> VolumeTexels {

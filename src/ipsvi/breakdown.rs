@@ -1,5 +1,5 @@
 //! Steps of the cost breakdown of one IPSVI frame (`sweeplab bench ipsvi
-//! --breakdown`, issue 9): the same line dispatches with the work of a full
+//! --breakdown`): the same line dispatches with the work of a full
 //! frame switched on one part at a time, by a specialization constant of
 //! glsl/ipsvi_line.comp. Study baselines, not illumination results.
 
@@ -16,6 +16,10 @@ pub enum BreakdownStep {
     /// + cache writes (advance/carry, claims, sample stores): the IPSVI frame.
     #[default]
     Full,
+    /// Nothing: every invocation returns at once. The sync study's empty
+    /// workload: the sweep's dispatches and synchronization with no work in
+    /// flight to drain (not a breakdown step, so not in [`BreakdownStep::ALL`]).
+    Empty,
 }
 
 impl BreakdownStep {
@@ -28,11 +32,18 @@ impl BreakdownStep {
             BreakdownStep::CacheReads => "cache reads",
             BreakdownStep::Piecewise => "piecewise integration",
             BreakdownStep::Full => "cache writes (full IPSVI)",
+            BreakdownStep::Empty => "empty workload",
         }
     }
 
     /// The value of the shader's STEP constant.
     pub fn shader_step(self) -> u32 {
-        self as u32
+        match self {
+            BreakdownStep::Lines => 0,
+            BreakdownStep::CacheReads => 1,
+            BreakdownStep::Piecewise => 2,
+            BreakdownStep::Full => 3,
+            BreakdownStep::Empty => 4,
+        }
     }
 }

@@ -9,6 +9,11 @@ pub struct DeviceInfo {
     pub name: String,
     pub device_type: String,
     pub api_version: String,
+    /// PCI vendor id (0x10DE NVIDIA, 0x1002 AMD, 0x8086 Intel, 0x10005 Mesa).
+    pub vendor_id: u32,
+    pub device_id: u32,
+    /// `driverVersion` decoded the way its vendor packs it.
+    pub driver_version: String,
     pub driver_name: String,
     pub driver_info: String,
     pub timestamp_period_ns: f32,
@@ -25,6 +30,16 @@ impl DeviceInfo {
 
 pub fn version_string(v: u32) -> String {
     format!("{}.{}.{}", vk::api_version_major(v), vk::api_version_minor(v), vk::api_version_patch(v))
+}
+
+/// `driverVersion` as its vendor reads it: NVIDIA packs 10.8.8.6 bits, Intel's
+/// Windows driver 18.14 bits; everyone else (Mesa, AMD) uses VK_MAKE_VERSION.
+pub fn driver_version_string(vendor_id: u32, v: u32) -> String {
+    match vendor_id {
+        0x10DE => format!("{}.{}.{}.{}", v >> 22, (v >> 14) & 0xff, (v >> 6) & 0xff, v & 0x3f),
+        0x8086 if cfg!(windows) => format!("{}.{}", v >> 14, v & 0x3fff),
+        _ => version_string(v),
+    }
 }
 
 pub fn type_name(t: vk::PhysicalDeviceType) -> &'static str {
@@ -56,4 +71,16 @@ pub fn pick(wanted: &str, devices: &[DeviceInfo]) -> Option<usize> {
     }
     let w = wanted.to_lowercase();
     devices.iter().position(|d| d.name.to_lowercase().contains(&w))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn driver_versions_are_decoded_per_vendor() {
+        // NVIDIA 535.104.05 packs as (535 << 22) | (104 << 14) | (5 << 6).
+        assert_eq!(driver_version_string(0x10DE, (535 << 22) | (104 << 14) | (5 << 6)), "535.104.5.0");
+        assert_eq!(driver_version_string(0x10005, vk::make_api_version(0, 22, 3, 6)), "22.3.6");
+    }
 }

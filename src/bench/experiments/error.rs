@@ -1,3 +1,5 @@
+use crate::bench::protocol::ProtocolError;
+use crate::bench::BenchError;
 use crate::render::RenderError;
 use crate::vk::VkError;
 
@@ -10,4 +12,12 @@ pub enum ExperimentError {
     Vk(#[from] VkError),
     #[error("incremental mode did not converge in {0} frames")]
     NotConverged(usize),
+    #[error("{0}")]
+    Invalid(String),
+    #[error(transparent)]
+    Protocol(#[from] ProtocolError),
+    #[error(transparent)]
+    Report(#[from] BenchError),
+    #[error("validation reported {what}: {}", messages.join("\n"))]
+    Validation { what: String, messages: Vec<String> },
 }

@@ -1,9 +1,12 @@
 //! What the bench commands measure that is not argument wiring: scene
 //! variants, update sequences and the loops that time them.
 
+pub mod dispatch_probe;
 pub mod error;
 pub mod lights;
 pub mod stability;
 pub mod stability_cases;
+pub mod sync;
+pub mod sync_report;
 
 pub use error::ExperimentError;

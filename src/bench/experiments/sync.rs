@@ -1,0 +1,811 @@
+//! The synchronization study (`sweeplab bench sync`): what one block boundary
+//! of the IPSVI sweep costs under each way of synchronizing it.
+//!
+//! At one image size and scene, the line width varies (1, 2, 4, ... 32 lines
+//! per dispatch): the number of blocks changes, the pixels and their work do
+//! not (one workgroup size for every line width). Frame time against the
+//! number of blocks is a line per strategy; its slope is the cost of one block
+//! boundary (a dispatch and that strategy's sync). The no-barriers slope is the
+//! dispatch's own cost, a strategy's slope minus it the cost of its sync.
+//! Slopes are fitted round by round and compared round by round
+//! ([`paired_slope_difference`]), so what a round of the machine did to all
+//! its frames cancels.
+//!
+//! Two workloads: `sweep` (the scene's IPSVI frame) and `empty` (the same
+//! dispatches and sync with shaders that return at once), so a boundary's
+//! fixed cost is told apart from the drain of real work in flight.
+//!
+//! The baseline runs twice, as `no-barriers` and `no-barriers-again`: an A/A
+//! control whose difference must come out within noise.
+
+use super::ExperimentError;
+use crate::bench::cpu_time::{cpu_ms_between, process_cpu_time};
+use crate::bench::estimate::{
+    median_estimate, paired_difference, paired_slope_difference, quartiles, slope_per_round, Estimate, MIN_SAMPLES,
+};
+use crate::bench::protocol::{Next, Phase, Protocol, Rounds};
+use crate::bench::run_info::RunInfo;
+use crate::ipsvi::renderer::{plans, IpsviRenderer};
+use crate::ipsvi::{BreakdownStep, IpsviSettings, SyncStrategy};
+use crate::linear_image::LinearImage;
+use crate::metrics::compare;
+use crate::render::GpuScene;
+use crate::scene::settings_table::SettingsTable as _;
+use crate::vk::{Context, Profiler};
+use serde::{Deserialize, Serialize};
+use std::cell::{Cell, RefCell};
+use std::time::{Duration, Instant};
+
+/// Scopes a frame needs with a timestamp around every line dispatch.
+const PROFILER_CAPACITY: u32 = 1 << 16;
+
+/// Short frames (the empty workload) are run several times per run, so that
+/// a run lasts at least this long and scheduler jitter averages out.
+const MIN_RUN_MS: f64 = 25.0;
+const MAX_FRAMES_PER_RUN: u32 = 32;
+
+/// What each line dispatch does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Workload {
+    /// The scene's IPSVI frame.
+    Sweep,
+    /// Every invocation returns at once: dispatches and sync alone.
+    Empty,
+}
+
+impl Workload {
+    pub const ALL: [Workload; 2] = [Workload::Empty, Workload::Sweep];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Workload::Sweep => "sweep",
+            Workload::Empty => "empty",
+        }
+    }
+
+    fn breakdown_step(self) -> BreakdownStep {
+        match self {
+            Workload::Sweep => BreakdownStep::Full,
+            Workload::Empty => BreakdownStep::Empty,
+        }
+    }
+}
+
+impl std::str::FromStr for Workload {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Workload::ALL
+            .into_iter()
+            .find(|w| w.name() == s)
+            .ok_or_else(|| format!("unknown workload {s:?}; known: empty, sweep"))
+    }
+}
+
+/// One arm of the study: the baseline, its A/A copy, or a strategy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Arm {
+    NoBarriers,
+    NoBarriersAgain,
+    Strategy(SyncStrategy),
+}
+
+/// The baseline's name in every output.
+pub const BASELINE: &str = "no-barriers";
+/// The A/A control's name.
+pub const CONTROL: &str = "no-barriers-again";
+
+impl Arm {
+    pub fn name(self) -> &'static str {
+        match self {
+            Arm::NoBarriers => BASELINE,
+            Arm::NoBarriersAgain => CONTROL,
+            Arm::Strategy(s) => s.name(),
+        }
+    }
+
+    fn sync(self) -> SyncStrategy {
+        match self {
+            Arm::NoBarriers | Arm::NoBarriersAgain => SyncStrategy::Racy,
+            Arm::Strategy(s) => s,
+        }
+    }
+
+    fn racy(self) -> bool {
+        self.sync().is_racy()
+    }
+}
+
+/// The interval asked for: a half-width of at most `relative` times the
+/// estimate or at most `absolute_us`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Precision {
+    pub relative: f64,
+    pub absolute_us: f64,
+}
+
+impl Default for Precision {
+    fn default() -> Self {
+        Precision { relative: 0.25, absolute_us: 3.0 }
+    }
+}
+
+/// What to measure.
+#[derive(Clone, Debug)]
+pub struct SyncPlan {
+    /// Image size, pixels.
+    pub width: u32,
+    pub height: u32,
+    /// Strategies compared with the baseline (`racy` is the baseline itself).
+    pub strategies: Vec<SyncStrategy>,
+    pub line_widths: Vec<u32>,
+    pub workloads: Vec<Workload>,
+    /// Frames at the narrowest line width with a timestamp around every
+    /// dispatch: the gaps between dispatches and the timestamps' own cost.
+    pub line_timestamps: bool,
+    pub protocol: Protocol,
+    pub precision: Precision,
+    /// Rounds stop once the next would end past this (never before the
+    /// protocol's fewest rounds).
+    pub time_budget: Option<Duration>,
+}
+
+/// A configuration: workload, arm, line width, and whether its frames carry
+/// per-line timestamps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ConfigKey {
+    pub workload: Workload,
+    pub arm: Arm,
+    pub line_width: u32,
+    pub line_timestamps: bool,
+}
+
+/// One run of a configuration: the mean of its frames.
+#[derive(Clone, Debug, Default)]
+pub struct Run {
+    pub gpu_ms: f64,
+    pub cpu_ms: f64,
+    pub wall_ms: f64,
+    /// Per-line timestamps only: gaps between consecutive line dispatches and
+    /// their durations, us.
+    pub gaps_us: Vec<f64>,
+    pub lines_us: Vec<f64>,
+    /// The median of `gaps_us` (NaN without per-line timestamps).
+    pub gap_median_us: f64,
+}
+
+/// A configuration's frames, summed up.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ConfigRow {
+    pub workload: Workload,
+    pub arm: String,
+    pub racy: bool,
+    pub line_width: u32,
+    pub line_timestamps: bool,
+    pub lines: u32,
+    pub blocks: u32,
+    pub dispatches: u32,
+    pub barriers: u32,
+    /// Timed runs, and frames per run (short frames are averaged).
+    pub frames: usize,
+    pub frames_per_run: u32,
+    pub gpu_ms: Option<Estimate>,
+    pub cpu_ms: Option<Estimate>,
+    pub wall_ms: Option<Estimate>,
+    /// Every frame's GPU and CPU time, ms, in round order (paired across
+    /// configurations by index): the raw data behind the estimates.
+    pub gpu_ms_runs: Vec<f64>,
+    pub cpu_ms_runs: Vec<f64>,
+    /// Synchronization hazards validation reported (racy arms, validation on).
+    pub hazards_ignored: usize,
+    /// RMSE of the last frame against barrier-global's at the same line width
+    /// and workload (racy arms: undefined images, only their cost counts).
+    pub rmse_vs_barrier_global: Option<f64>,
+}
+
+/// Per-line timestamps of one strategy: the gaps between consecutive line
+/// dispatches (all rounds pooled), and what the timestamps themselves cost.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct LineGaps {
+    pub line_width: u32,
+    pub gap_median_us: f64,
+    pub gap_q1_us: f64,
+    pub gap_q3_us: f64,
+    pub line_median_us: f64,
+    /// This strategy's median gap minus the baseline's, round by round: the
+    /// sync cost as the per-line timestamps see it, us (None for the baseline).
+    pub gap_sync_us: Option<Estimate>,
+    /// Frame time with the timestamps minus without, paired by round, ms.
+    pub perturbation_ms: Option<Estimate>,
+    /// The gaps of the last run, for a histogram.
+    pub last_gaps_us: Vec<f64>,
+}
+
+/// One strategy (or the baseline) in one workload.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct StrategyRow {
+    pub workload: Workload,
+    pub strategy: String,
+    pub racy: bool,
+    /// Slope of GPU frame time over blocks: the cost of one block boundary, us.
+    pub boundary_us: Option<Estimate>,
+    pub r_squared: Option<f64>,
+    /// The fitted frame time at 0 blocks, ms (the work itself).
+    pub intercept_ms: Option<f64>,
+    /// `boundary_us` minus the baseline's, round by round: what the sync adds.
+    /// None for the baseline.
+    pub sync_us: Option<Estimate>,
+    /// The same two from process CPU time (what lavapipe spends on the host).
+    pub boundary_cpu_us: Option<Estimate>,
+    pub sync_cpu_us: Option<Estimate>,
+    pub line_gaps: Option<LineGaps>,
+}
+
+/// The whole study as measured so far.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SyncReport {
+    pub run: RunInfo,
+    /// False while the study is still running (a partial report).
+    pub complete: bool,
+    /// Each workload's rounds (measured one workload after the other, each
+    /// with its own shuffled rounds).
+    pub workloads: Vec<WorkloadRounds>,
+    pub warm_up_rounds: u32,
+    pub min_rounds: u32,
+    pub max_rounds: u32,
+    pub seed: u64,
+    pub precision: Precision,
+    /// Which time the verdict reads: `gpu` (timestamps).
+    pub verdict_metric: String,
+    pub width: u32,
+    pub height: u32,
+    pub line_widths: Vec<u32>,
+    pub configurations: Vec<ConfigRow>,
+    pub strategies: Vec<StrategyRow>,
+    /// Seconds since the study started (set-up and warm-up included).
+    pub seconds: f64,
+}
+
+/// The rounds of one workload.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct WorkloadRounds {
+    pub workload: Workload,
+    pub rounds: usize,
+    /// Each round's order of configurations (indices into `configurations`).
+    pub orders: Vec<Vec<usize>>,
+    /// Seconds of its timed rounds.
+    pub seconds: f64,
+}
+
+/// Of the time budget, the share the empty workload gets when the sweep
+/// follows: its frames are short, so it reaches many rounds in little time.
+const EMPTY_SHARE: f64 = 0.25;
+
+impl SyncReport {
+    /// The strategy rows of `workload`.
+    pub fn rows_of(&self, workload: Workload) -> impl Iterator<Item = &StrategyRow> {
+        self.strategies.iter().filter(move |r| r.workload == workload)
+    }
+
+    /// Whether every strategy's (and the control's) sync cost is as precise as asked.
+    pub fn precise(&self) -> bool {
+        Workload::ALL.into_iter().all(|w| self.precise_in(w))
+    }
+
+    /// Timed rounds per workload, e.g. `empty 30, sweep 6`.
+    pub fn rounds_text(&self) -> String {
+        self.workloads.iter().map(|w| format!("{} {}", w.workload.name(), w.rounds)).collect::<Vec<_>>().join(", ")
+    }
+
+    /// Timed rounds of `workload` (0 where it was not measured).
+    pub fn rounds_of(&self, workload: Workload) -> usize {
+        self.workloads.iter().find(|w| w.workload == workload).map_or(0, |w| w.rounds)
+    }
+
+    /// [`precise`](Self::precise) for one workload.
+    pub fn precise_in(&self, workload: Workload) -> bool {
+        self.rows_of(workload)
+            .filter(|r| r.strategy != BASELINE)
+            .all(|r| r.sync_us.is_some_and(|e| e.precise_to(self.precision.relative, self.precision.absolute_us)))
+    }
+
+    /// One line per strategy and workload, e.g. `barrier-global: +2.10 us per
+    /// boundary (95 % CI 0.800-3.40) over no barriers; dispatch 31.0 us (29.0-33.0)`.
+    pub fn verdict(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for w in Workload::ALL {
+            let Some(base) = self.rows_of(w).find(|r| r.strategy == BASELINE) else { continue };
+            let dispatch = base
+                .boundary_us
+                .map(|e| format!("{} us ({}-{})", readable(e.value), readable(e.lo), readable(e.hi)))
+                .unwrap_or_else(|| "not measured".into());
+            out.push(format!(
+                "{} workload ({} rounds): a boundary with no barriers (the dispatch alone) costs {dispatch}",
+                w.name(),
+                self.rounds_of(w)
+            ));
+            for r in self.rows_of(w).filter(|r| r.strategy != BASELINE) {
+                let what =
+                    if r.strategy == CONTROL { format!("{} (A/A control)", r.strategy) } else { r.strategy.clone() };
+                let cost = match r.sync_us {
+                    Some(e) => format!("{} per boundary over no barriers", e.describe("us")),
+                    None => format!("too few rounds (needs {MIN_SAMPLES})"),
+                };
+                let gaps = r
+                    .line_gaps
+                    .as_ref()
+                    .and_then(|g| g.gap_sync_us)
+                    .map(|e| format!("; per-line gaps: {}", e.describe("us")))
+                    .unwrap_or_default();
+                out.push(format!("  {what}: {cost}{gaps}"));
+            }
+        }
+        out
+    }
+}
+
+use crate::bench::estimate::readable;
+
+/// Called after every round with the report so far, and how long the rounds
+/// took and are expected to take.
+pub trait SyncObserver {
+    fn warm_up(&mut self, _configurations: usize) {}
+    fn round(&mut self, report: &SyncReport, eta: Eta) -> Result<(), ExperimentError>;
+}
+
+/// Where the rounds stand.
+#[derive(Clone, Copy, Debug)]
+pub struct Eta {
+    pub workload: Workload,
+    pub round: usize,
+    pub last_round: Duration,
+    /// Rounds still to come at most, and the time they take at the mean pace.
+    pub rounds_left: usize,
+    pub time_left: Duration,
+}
+
+struct Configuration<'a> {
+    key: ConfigKey,
+    renderer: IpsviRenderer<'a>,
+    lines: u32,
+    blocks: u32,
+    dispatches: u32,
+    barriers: u32,
+    hazards: usize,
+    frames_per_run: u32,
+    last_image: Option<LinearImage>,
+}
+
+/// Every configuration of `plan`, in a fixed order (workload, arm, line
+/// width; then the per-line-timestamp frames).
+pub fn configurations(plan: &SyncPlan) -> Vec<ConfigKey> {
+    let mut arms = vec![Arm::NoBarriers, Arm::NoBarriersAgain];
+    arms.extend(plan.strategies.iter().filter(|s| !s.is_racy()).map(|&s| Arm::Strategy(s)));
+    let narrowest = plan.line_widths.iter().copied().min().unwrap_or(1);
+    let mut keys = Vec::new();
+    for &workload in &plan.workloads {
+        for &arm in &arms {
+            for &line_width in &plan.line_widths {
+                keys.push(ConfigKey { workload, arm, line_width, line_timestamps: false });
+            }
+        }
+    }
+    if plan.line_timestamps {
+        for &workload in &plan.workloads {
+            // Replayed secondary command buffers carry no per-line timestamps;
+            // the control adds nothing the baseline does not show.
+            for &arm in
+                arms.iter().filter(|a| !matches!(a, Arm::NoBarriersAgain | Arm::Strategy(SyncStrategy::Secondary)))
+            {
+                keys.push(ConfigKey { workload, arm, line_width: narrowest, line_timestamps: true });
+            }
+        }
+    }
+    keys
+}
+
+/// Checks `plan` before any GPU work.
+pub fn check(plan: &SyncPlan, base: &IpsviSettings) -> Result<(), ExperimentError> {
+    let bad = |what: String| Err(ExperimentError::Invalid(what));
+    if plan.line_widths.len() < 2 {
+        return bad("a per-boundary cost is a slope: give at least two line widths (e.g. 1,2,4,8,16,32)".into());
+    }
+    if plan.workloads.is_empty() {
+        return bad("give at least one workload (empty, sweep)".into());
+    }
+    for &line_width in &plan.line_widths {
+        IpsviSettings { line_width, ..base.clone() }.validate().map_err(|e| ExperimentError::Invalid(e.to_string()))?;
+    }
+    Ok(())
+}
+
+/// Runs the study: sets up every configuration, then the protocol's rounds;
+/// `observer` sees the report after every round. Validation messages of a
+/// racy arm that are synchronization hazards are expected and counted; any
+/// other message fails the study.
+pub fn run(
+    ctx: &Context,
+    gpu: &GpuScene,
+    base: &IpsviSettings,
+    plan: &SyncPlan,
+    run_info: RunInfo,
+    observer: &mut dyn SyncObserver,
+) -> Result<SyncReport, ExperimentError> {
+    check(plan, base)?;
+    // The time budget counts set-up and warm-up too.
+    let started = Instant::now();
+    let (width, height) = (plan.width, plan.height);
+    let keys = configurations(plan);
+    // One workgroup size for every line width, so the work per pixel is the
+    // same and only the number of blocks changes.
+    let narrowest = plan.line_widths.iter().copied().min().unwrap_or(1);
+    let first =
+        IpsviRenderer::new(gpu, &settings_for(base, narrowest, SyncStrategy::Racy, Workload::Sweep), width, height)?;
+    let line_group = first.line_group();
+    drop(first);
+    let mut configs = Vec::with_capacity(keys.len());
+    for key in keys {
+        let s = settings_for(base, key.line_width, key.arm.sync(), key.workload);
+        let plans = plans(gpu, &s, width, height);
+        configs.push(Configuration {
+            key,
+            renderer: IpsviRenderer::with_line_group(gpu, &s, width, height, Some(line_group))?,
+            lines: plans.iter().map(|p| p.lines()).sum(),
+            blocks: plans.iter().map(|p| p.dispatches()).sum(),
+            dispatches: 0,
+            barriers: 0,
+            hazards: 0,
+            frames_per_run: 1,
+            last_image: None,
+        });
+    }
+    let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
+    observer.warm_up(configs.len());
+    let mut measured = Measured { runs: vec![Vec::new(); configs.len()], workloads: Vec::new() };
+    for (n, &workload) in plan.workloads.iter().enumerate() {
+        let members: Vec<usize> = (0..configs.len()).filter(|&i| configs[i].key.workload == workload).collect();
+        let deadline = plan.time_budget.map(|budget| {
+            let left = budget.saturating_sub(started.elapsed());
+            let last = n + 1 == plan.workloads.len();
+            Instant::now() + if last || workload != Workload::Empty { left } else { left.mul_f64(EMPTY_SHARE) }
+        });
+        measured.workloads.push(WorkloadRounds { workload, rounds: 0, orders: Vec::new(), seconds: 0.0 });
+        let mut report_of = |configs: &[Configuration], so_far: &Measured| {
+            summarize(plan, configs, so_far, &run_info, false, started.elapsed())
+        };
+        run_workload(
+            ctx,
+            plan,
+            &mut configs,
+            &members,
+            deadline,
+            &mut profiler,
+            &mut report_of,
+            &mut measured,
+            observer,
+        )?;
+    }
+    Ok(summarize(plan, &configs, &measured, &run_info, true, started.elapsed()))
+}
+
+/// What the rounds measured so far: every configuration's runs (paired by
+/// index within a workload), and each workload's rounds.
+struct Measured {
+    runs: Vec<Vec<Run>>,
+    workloads: Vec<WorkloadRounds>,
+}
+
+impl Measured {
+    fn series(&self, c: usize, value: impl Fn(&Run) -> f64) -> Vec<f64> {
+        self.runs[c].iter().map(value).collect()
+    }
+}
+
+/// One workload's configurations (`members`), in shuffled rounds until their
+/// sync costs are precise enough, the deadline, or the most rounds.
+#[allow(clippy::too_many_arguments)]
+fn run_workload(
+    ctx: &Context,
+    plan: &SyncPlan,
+    configs: &mut [Configuration],
+    members: &[usize],
+    deadline: Option<Instant>,
+    profiler: &mut Profiler,
+    report_of: &mut dyn FnMut(&[Configuration], &Measured) -> SyncReport,
+    measured: &mut Measured,
+    observer: &mut dyn SyncObserver,
+) -> Result<(), ExperimentError> {
+    // Both closures of the protocol see the configurations: one runs them,
+    // the other sums them up after each round.
+    let configs = RefCell::new(configs);
+    let measured = RefCell::new(measured);
+    let round_started: Cell<Option<Instant>> = Cell::new(None);
+    let first_round: Cell<Option<Instant>> = Cell::new(None);
+    let mut round_times: Vec<Duration> = Vec::new();
+    let workload = configs.borrow()[members[0]].key.workload;
+    plan.protocol.run(
+        members.len(),
+        |i, phase| {
+            let config = &mut configs.borrow_mut()[members[i]];
+            if phase == Phase::WarmUp {
+                return warm_up(ctx, config, profiler);
+            }
+            // The first timed run starts the clock of the rounds.
+            if round_started.get().is_none() {
+                round_started.set(Some(Instant::now()));
+                first_round.set(Some(Instant::now()));
+            }
+            measure(ctx, config, profiler)
+        },
+        |rounds: &Rounds<Run>| {
+            let now = Instant::now();
+            let since = round_started.replace(Some(now)).unwrap_or(now);
+            round_times.push(now - since);
+            let report = {
+                let mut m = measured.borrow_mut();
+                for (i, &c) in members.iter().enumerate() {
+                    m.runs[c] = rounds.runs[i].clone();
+                }
+                let w = m.workloads.last_mut().expect("the workload's entry was pushed");
+                w.rounds = rounds.count();
+                w.orders = rounds.orders.iter().map(|o| o.iter().map(|&i| members[i]).collect()).collect();
+                w.seconds = first_round.get().map(|t| t.elapsed().as_secs_f64()).unwrap_or(0.0);
+                report_of(&configs.borrow(), &m)
+            };
+            let mean = round_times.iter().sum::<Duration>() / round_times.len() as u32;
+            let precise = rounds.count() >= MIN_SAMPLES && report.precise_in(workload);
+            let out_of_time = deadline.is_some_and(|d| now + mean > d);
+            let stop = precise || out_of_time;
+            let min_rounds = plan.protocol.min_rounds as usize;
+            let to_max = plan.protocol.max_rounds as usize - rounds.count();
+            let to_min = min_rounds.saturating_sub(rounds.count());
+            let rounds_left = if stop {
+                to_min
+            } else {
+                let by_deadline = deadline
+                    .map(|d| (d.saturating_duration_since(now).as_secs_f64() / mean.as_secs_f64().max(1e-9)) as usize)
+                    .unwrap_or(usize::MAX);
+                by_deadline.max(to_min).min(to_max)
+            };
+            let eta = Eta {
+                workload,
+                round: rounds.count(),
+                last_round: now - since,
+                rounds_left,
+                time_left: mean * rounds_left as u32,
+            };
+            observer.round(&report, eta)?;
+            Ok(if stop { Next::Stop } else { Next::Continue })
+        },
+    )?;
+    Ok(())
+}
+
+fn settings_for(base: &IpsviSettings, line_width: u32, sync: SyncStrategy, workload: Workload) -> IpsviSettings {
+    IpsviSettings { line_width, sync, breakdown_step: workload.breakdown_step(), merge_sweeps: false, ..base.clone() }
+}
+
+/// A warm-up frame (the first compiles the shaders); where it is short, a
+/// second one sets how many frames a run averages.
+fn warm_up(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Result<Run, ExperimentError> {
+    let first = frame(ctx, c, profiler)?;
+    if first.wall_ms >= MIN_RUN_MS {
+        return Ok(first);
+    }
+    let second = frame(ctx, c, profiler)?;
+    c.frames_per_run = ((MIN_RUN_MS / second.wall_ms.max(1e-3)).ceil() as u32).clamp(1, MAX_FRAMES_PER_RUN);
+    Ok(second)
+}
+
+/// One run of `c`: `frames_per_run` frames, their mean times and pooled gaps.
+fn measure(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Result<Run, ExperimentError> {
+    let k = c.frames_per_run.max(1);
+    let mut sum = Run::default();
+    for _ in 0..k {
+        let f = frame(ctx, c, profiler)?;
+        sum.gpu_ms += f.gpu_ms / k as f64;
+        sum.cpu_ms += f.cpu_ms / k as f64;
+        sum.wall_ms += f.wall_ms / k as f64;
+        sum.gaps_us.extend(f.gaps_us);
+        sum.lines_us.extend(f.lines_us);
+    }
+    let mut sorted = sum.gaps_us.clone();
+    sorted.sort_by(f64::total_cmp);
+    sum.gap_median_us = crate::bench::estimate::median_of(&sorted);
+    Ok(sum)
+}
+
+/// One frame of `c`: GPU time from the profiler, process CPU time and wall
+/// time around the submission; with per-line timestamps, the gaps.
+fn frame(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Result<Run, ExperimentError> {
+    profiler.reset();
+    profiler.set_detail(c.key.line_timestamps);
+    let cpu_start = process_cpu_time();
+    let wall_start = Instant::now();
+    let frame = c.renderer.frame(profiler, c.key.arm.sync());
+    let wall_ms = wall_start.elapsed().as_secs_f64() * 1e3;
+    let cpu_ms = cpu_ms_between(cpu_start, process_cpu_time());
+    profiler.set_detail(false);
+    let frame = frame?;
+    let profile = profiler.resolve(ctx.memory.device_local_peak())?;
+    c.hazards += expected_hazards(ctx, c.key.arm)?;
+    c.dispatches = frame.dispatches;
+    c.barriers = frame.barriers;
+    c.last_image = Some(frame.image);
+    let mut run = Run { gpu_ms: profile.gpu_ms_total, cpu_ms, wall_ms, ..Run::default() };
+    if c.key.line_timestamps {
+        let t = profile.timeline("ipsvi_line");
+        run.gaps_us = t.gaps_us;
+        run.lines_us = t.durations_us;
+    }
+    Ok(run)
+}
+
+/// Racy arms have no barriers, so synchronization validation reports their
+/// hazards by design: those are counted; any other message is an error.
+fn expected_hazards(ctx: &Context, arm: Arm) -> Result<usize, ExperimentError> {
+    let messages = ctx.take_validation_messages();
+    let (hazards, other): (Vec<String>, Vec<String>) =
+        messages.into_iter().partition(|m| arm.racy() && m.contains("SYNC-HAZARD"));
+    if !other.is_empty() {
+        return Err(ExperimentError::Validation { what: arm.name().to_string(), messages: other });
+    }
+    Ok(hazards.len())
+}
+
+/// The report from the rounds so far.
+fn summarize(
+    plan: &SyncPlan,
+    configs: &[Configuration],
+    rounds: &Measured,
+    run_info: &RunInfo,
+    complete: bool,
+    elapsed: Duration,
+) -> SyncReport {
+    let gpu = |c: usize| rounds.series(c, |r| r.gpu_ms);
+    let cpu = |c: usize| rounds.series(c, |r| r.cpu_ms);
+    let wall = |c: usize| rounds.series(c, |r| r.wall_ms);
+    let reference = |key: &ConfigKey| {
+        configs.iter().find(|o| {
+            o.key.workload == key.workload
+                && o.key.line_width == key.line_width
+                && !o.key.line_timestamps
+                && o.key.arm == Arm::Strategy(SyncStrategy::BarrierGlobal)
+        })
+    };
+    let configurations = configs
+        .iter()
+        .enumerate()
+        .map(|(i, c)| ConfigRow {
+            workload: c.key.workload,
+            arm: c.key.arm.name().to_string(),
+            racy: c.key.arm.racy(),
+            line_width: c.key.line_width,
+            line_timestamps: c.key.line_timestamps,
+            lines: c.lines,
+            blocks: c.blocks,
+            dispatches: c.dispatches,
+            barriers: c.barriers,
+            frames: rounds.runs[i].len(),
+            frames_per_run: c.frames_per_run,
+            gpu_ms: median_estimate(&gpu(i)).ok(),
+            cpu_ms: median_estimate(&cpu(i)).ok(),
+            wall_ms: median_estimate(&wall(i)).ok(),
+            gpu_ms_runs: gpu(i),
+            cpu_ms_runs: cpu(i),
+            hazards_ignored: c.hazards,
+            rmse_vs_barrier_global: match (c.last_image.as_ref(), reference(&c.key).and_then(|r| r.last_image.as_ref()))
+            {
+                (Some(a), Some(b)) if !c.key.arm.racy() => compare(a, b).ok().map(|s| s.rmse),
+                _ => None,
+            },
+        })
+        .collect();
+    // Per (workload, arm): each round's points (blocks, ms) over the line widths.
+    let points = |workload: Workload, arm: Arm, value: &dyn Fn(&Run) -> f64| -> Vec<Vec<(f64, f64)>> {
+        let members: Vec<usize> = (0..configs.len())
+            .filter(|&i| {
+                configs[i].key.workload == workload && configs[i].key.arm == arm && !configs[i].key.line_timestamps
+            })
+            .collect();
+        let count = members.iter().map(|&i| rounds.runs[i].len()).min().unwrap_or(0);
+        (0..count)
+            .map(|r| members.iter().map(|&i| (configs[i].blocks as f64, value(&rounds.runs[i][r]) * 1e3)).collect())
+            .collect()
+    };
+    let mut strategies = Vec::new();
+    let arms: Vec<Arm> = {
+        let mut seen: Vec<Arm> = Vec::new();
+        for c in configs {
+            if !seen.contains(&c.key.arm) {
+                seen.push(c.key.arm);
+            }
+        }
+        seen
+    };
+    for &workload in &plan.workloads {
+        let base_gpu = points(workload, Arm::NoBarriers, &|r| r.gpu_ms);
+        let base_cpu = points(workload, Arm::NoBarriers, &|r| r.cpu_ms);
+        for &arm in &arms {
+            let arm_gpu = points(workload, arm, &|r| r.gpu_ms);
+            let arm_cpu = points(workload, arm, &|r| r.cpu_ms);
+            let fit = slope_per_round(&arm_gpu).ok();
+            let is_base = arm == Arm::NoBarriers;
+            strategies.push(StrategyRow {
+                workload,
+                strategy: arm.name().to_string(),
+                racy: arm.racy(),
+                boundary_us: fit.map(|f| f.slope),
+                r_squared: fit.map(|f| f.r_squared),
+                intercept_ms: fit.map(|f| f.intercept * 1e-3),
+                sync_us: (!is_base).then(|| paired_slope_difference(&base_gpu, &arm_gpu).ok()).flatten(),
+                boundary_cpu_us: slope_per_round(&arm_cpu).ok().map(|f| f.slope),
+                sync_cpu_us: (!is_base).then(|| paired_slope_difference(&base_cpu, &arm_cpu).ok()).flatten(),
+                line_gaps: line_gaps(configs, rounds, workload, arm),
+            });
+        }
+    }
+    SyncReport {
+        run: run_info.clone(),
+        complete,
+        workloads: rounds.workloads.clone(),
+        warm_up_rounds: plan.protocol.warm_up_rounds,
+        min_rounds: plan.protocol.min_rounds,
+        max_rounds: plan.protocol.max_rounds,
+        seed: plan.protocol.seed,
+        precision: plan.precision,
+        verdict_metric: "gpu".into(),
+        width: plan.width,
+        height: plan.height,
+        line_widths: plan.line_widths.clone(),
+        configurations,
+        strategies,
+        seconds: elapsed.as_secs_f64(),
+    }
+}
+
+/// The per-line-timestamp frames of `arm`: pooled gaps, and the timestamps'
+/// cost against the same line width's frames without them.
+fn line_gaps(configs: &[Configuration], rounds: &Measured, workload: Workload, arm: Arm) -> Option<LineGaps> {
+    let find = |stamped: bool, line_width: Option<u32>| {
+        configs.iter().position(|c| {
+            c.key.workload == workload
+                && c.key.arm == arm
+                && c.key.line_timestamps == stamped
+                && line_width.is_none_or(|w| c.key.line_width == w)
+        })
+    };
+    let stamped = find(true, None)?;
+    let line_width = configs[stamped].key.line_width;
+    let plain = find(false, Some(line_width))?;
+    let base_stamped = configs
+        .iter()
+        .position(|c| c.key.workload == workload && c.key.arm == Arm::NoBarriers && c.key.line_timestamps);
+    let gap_sync_us = match base_stamped {
+        Some(b) if arm != Arm::NoBarriers => {
+            paired_difference(&rounds.series(b, |r| r.gap_median_us), &rounds.series(stamped, |r| r.gap_median_us)).ok()
+        }
+        _ => None,
+    };
+    let gaps: Vec<f64> = rounds.runs[stamped].iter().flat_map(|r| r.gaps_us.iter().copied()).collect();
+    let lines: Vec<f64> = rounds.runs[stamped].iter().flat_map(|r| r.lines_us.iter().copied()).collect();
+    if gaps.is_empty() {
+        return None;
+    }
+    let (q1, q3) = quartiles(&gaps);
+    let mut sorted = gaps.clone();
+    sorted.sort_by(f64::total_cmp);
+    let mut sorted_lines = lines;
+    sorted_lines.sort_by(f64::total_cmp);
+    Some(LineGaps {
+        line_width,
+        gap_median_us: crate::bench::estimate::median_of(&sorted),
+        gap_q1_us: q1,
+        gap_q3_us: q3,
+        line_median_us: crate::bench::estimate::median_of(&sorted_lines),
+        gap_sync_us,
+        last_gaps_us: rounds.runs[stamped].last().map(|r| r.gaps_us.clone()).unwrap_or_default(),
+        perturbation_ms: paired_difference(&rounds.series(plain, |r| r.gpu_ms), &rounds.series(stamped, |r| r.gpu_ms))
+            .ok(),
+    })
+}

@@ -1,0 +1,178 @@
+//! The files of the synchronization study: `sync.json` (the whole report, raw
+//! frames included, what `sweeplab report` reads), `sync.csv` / `sync.md` (one
+//! row per strategy and workload: per-boundary cost and sync cost with their
+//! intervals), `sync_configurations.csv` / `.md` (one row per configuration),
+//! each naming the run that produced it. Written after every round, so an
+//! interrupted study keeps what it measured.
+
+use super::sync::{ConfigRow, StrategyRow, SyncReport, BASELINE, CONTROL};
+use crate::bench::estimate::Estimate;
+use crate::bench::rows::{BenchRow, BenchTable};
+use crate::bench::BenchError;
+use std::path::Path;
+
+/// Sets `key` (value) and `key_lo`, `key_hi` where the estimate exists.
+fn set_estimate(row: &mut BenchRow, key: &str, e: Option<Estimate>) {
+    if let Some(e) = e {
+        row.set(key, e.value).set(format!("{key}_lo"), e.lo).set(format!("{key}_hi"), e.hi);
+    }
+}
+
+/// How a sync cost reads: `cost`, `within noise`, `below baseline`.
+fn verdict_word(e: Option<Estimate>) -> &'static str {
+    match e.map(|e| e.verdict()) {
+        Some(crate::bench::Verdict::Cost) => "cost",
+        Some(crate::bench::Verdict::WithinNoise) => "within noise",
+        Some(crate::bench::Verdict::BelowBaseline) => "below baseline",
+        None => "",
+    }
+}
+
+/// One row per strategy and workload.
+pub fn strategy_table(report: &SyncReport) -> BenchTable {
+    let mut table = BenchTable::with_run(report.run.clone());
+    for r in &report.strategies {
+        table.push(strategy_row(r));
+    }
+    table
+}
+
+fn strategy_row(r: &StrategyRow) -> BenchRow {
+    let mut row = BenchRow::new();
+    row.set("workload", r.workload.name()).set("strategy", r.strategy.as_str()).set("racy", r.racy);
+    set_estimate(&mut row, "boundary_us", r.boundary_us);
+    if let Some(v) = r.r_squared {
+        row.set("r_squared", v);
+    }
+    if let Some(v) = r.intercept_ms {
+        row.set("intercept_ms", v);
+    }
+    set_estimate(&mut row, "sync_us", r.sync_us);
+    if r.strategy != BASELINE {
+        row.set("sync_verdict", verdict_word(r.sync_us));
+    }
+    set_estimate(&mut row, "boundary_cpu_us", r.boundary_cpu_us);
+    set_estimate(&mut row, "sync_cpu_us", r.sync_cpu_us);
+    if let Some(g) = &r.line_gaps {
+        row.set("gap_median_us", g.gap_median_us).set("gap_q1_us", g.gap_q1_us).set("gap_q3_us", g.gap_q3_us);
+        row.set("line_median_us", g.line_median_us);
+        set_estimate(&mut row, "gap_sync_us", g.gap_sync_us);
+        set_estimate(&mut row, "timestamp_perturbation_ms", g.perturbation_ms);
+    }
+    row
+}
+
+/// One row per configuration.
+pub fn configuration_table(report: &SyncReport) -> BenchTable {
+    let mut table = BenchTable::with_run(report.run.clone());
+    for c in &report.configurations {
+        table.push(configuration_row(c));
+    }
+    table
+}
+
+fn configuration_row(c: &ConfigRow) -> BenchRow {
+    let mut row = BenchRow::new();
+    row.set("workload", c.workload.name()).set("strategy", c.arm.as_str()).set("racy", c.racy);
+    row.set("line_width", c.line_width).set("line_timestamps", c.line_timestamps);
+    row.set("lines", c.lines).set("blocks", c.blocks).set("dispatches", c.dispatches).set("barriers", c.barriers);
+    row.set("frames", c.frames).set("frames_per_run", c.frames_per_run);
+    set_estimate(&mut row, "gpu_ms", c.gpu_ms);
+    set_estimate(&mut row, "cpu_ms", c.cpu_ms);
+    set_estimate(&mut row, "wall_ms", c.wall_ms);
+    row.set("hazards_ignored", c.hazards_ignored);
+    if let Some(e) = c.rmse_vs_barrier_global {
+        row.set("rmse_vs_barrier_global", e);
+    }
+    row
+}
+
+/// The Markdown report: run, verdict, the strategy table, how to read it.
+pub fn markdown(report: &SyncReport) -> String {
+    let strategies = strategy_table(report);
+    let mut out = String::from("# Synchronization study\n\n");
+    if !report.complete {
+        out.push_str(&format!("Partial: rounds so far: {}.\n\n", report.rounds_text()));
+    }
+    out.push_str(&report.run.markdown());
+    out.push_str(&format!(
+        "Protocol: per workload, {} warm-up round(s), then timed rounds of all its configurations, \
+         each in a shuffled order (seed {}); rounds: {}; {:.0} s in all. Estimates are medians with exact 95 % order-statistics intervals; costs \
+         are slopes of frame time over the number of line blocks (line widths {:?} at {}x{}), fitted \
+         round by round and compared with `{BASELINE}` round by round. `{CONTROL}` is the baseline \
+         measured again (A/A control): its cost must be within noise. The verdict reads GPU \
+         timestamps; `*_cpu_us` are the same estimates from process CPU time.\n\n",
+        report.warm_up_rounds,
+        report.seed,
+        report.rounds_text(),
+        report.seconds,
+        report.line_widths,
+        report.width,
+        report.height
+    ));
+    out.push_str("## Verdict\n\n```\n");
+    for line in report.verdict() {
+        out.push_str(&line);
+        out.push('\n');
+    }
+    out.push_str("```\n\n## Per strategy\n\n");
+    out.push_str(&strategies.to_markdown());
+    out.push_str("\n## Per configuration\n\n");
+    out.push_str(&configuration_table(report).to_markdown());
+    out
+}
+
+/// Writes `sync.json`, `sync.csv`, `sync.md`, `sync_configurations.csv`,
+/// `sync_configurations.md` and, per strategy with per-line timestamps,
+/// `lines_<workload>_<strategy>.json` (its gaps) into `folder`.
+pub fn write(report: &SyncReport, folder: &Path) -> Result<(), BenchError> {
+    let path = folder.join("sync.json");
+    let json = serde_json::to_string_pretty(report)
+        .map_err(|e| BenchError::Write { path: path.clone(), source: std::io::Error::other(e) })?;
+    write_text(&path, &(json + "\n"))?;
+    strategy_table(report).write_csv(folder.join("sync.csv"))?;
+    configuration_table(report).write_csv(folder.join("sync_configurations.csv"))?;
+    write_text(&folder.join("sync_configurations.md"), &configuration_table(report).to_markdown_report())?;
+    write_text(&folder.join("sync.md"), &markdown(report))?;
+    for r in &report.strategies {
+        if let Some(g) = &r.line_gaps {
+            let path = folder.join(format!("lines_{}_{}.json", r.workload.name(), r.strategy));
+            let json = serde_json::to_string_pretty(g)
+                .map_err(|e| BenchError::Write { path: path.clone(), source: std::io::Error::other(e) })?;
+            write_text(&path, &json)?;
+        }
+    }
+    Ok(())
+}
+
+fn write_text(path: &Path, text: &str) -> Result<(), BenchError> {
+    std::fs::write(path, text).map_err(|source| BenchError::Write { path: path.to_owned(), source })
+}
+
+/// Several runs (devices) side by side: one row per device, workload and
+/// strategy, with the per-boundary cost and the sync cost over no barriers.
+pub fn side_by_side(reports: &[SyncReport]) -> BenchTable {
+    let mut table = BenchTable::new();
+    for report in reports {
+        for r in &report.strategies {
+            let mut row = BenchRow::new();
+            row.set("device", report.run.device.as_str()).set("driver", report.run.driver_version.as_str());
+            row.set("commit", report.run.git_commit.as_str()).set("date", report.run.date.as_str());
+            row.set("size", format!("{}x{}", report.width, report.height)).set("rounds", report.rounds_of(r.workload));
+            row.set("workload", r.workload.name()).set("strategy", r.strategy.as_str());
+            set_estimate(&mut row, "boundary_us", r.boundary_us);
+            set_estimate(&mut row, "sync_us", r.sync_us);
+            if r.strategy != BASELINE {
+                row.set("sync_verdict", verdict_word(r.sync_us));
+            }
+            table.push(row);
+        }
+    }
+    table
+}
+
+/// Reads a `sync.json` written by [`write`].
+pub fn read(path: &Path) -> Result<SyncReport, BenchError> {
+    let text = std::fs::read_to_string(path).map_err(|source| BenchError::Read { path: path.to_owned(), source })?;
+    serde_json::from_str(&text).map_err(|source| BenchError::NotSyncReport { path: path.to_owned(), source })
+}

@@ -1,0 +1,36 @@
+//! `sweeplab report A.json B.json ...`: `bench sync` runs from several devices
+//! side by side (one table, one chart).
+
+use super::args::ReportArgs;
+use anyhow::Context as _;
+use std::process::ExitCode;
+use sweeplab::bench::experiments::sync_report;
+
+pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
+    let reports = args.inputs.iter().map(|p| sync_report::read(p)).collect::<Result<Vec<_>, _>>()?;
+    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
+    let table = sync_report::side_by_side(&reports);
+    table.write_csv(args.out.join("report.csv"))?;
+    let mut md = String::from("# bench sync, side by side\n\n");
+    for (path, r) in args.inputs.iter().zip(&reports) {
+        md.push_str(&format!(
+            "- `{}`: {} ({} {}), {}x{}, rounds {}, {} at {}, {}\n",
+            path.display(),
+            r.run.device,
+            r.run.driver_name,
+            r.run.driver_version,
+            r.width,
+            r.height,
+            r.rounds_text(),
+            r.run.sweeplab_version,
+            r.run.git_commit,
+            r.run.date
+        ));
+    }
+    md.push('\n');
+    md.push_str(&table.to_markdown());
+    std::fs::write(args.out.join("report.md"), &md).context("writing report.md")?;
+    println!("{}", table.to_markdown());
+    println!("wrote {}/report.md and report.csv", args.out.display());
+    Ok(ExitCode::SUCCESS)
+}

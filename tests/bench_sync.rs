@@ -1,0 +1,221 @@
+//! `bench sync` at tiny sizes: the protocol's rounds (shuffled, recorded,
+//! per workload), the equal-work baseline and its A/A control, hazards of the
+//! racy arms counted while every other message fails the run, metadata in
+//! every output, `sweeplab report` over two devices, and the dispatch probe.
+mod common;
+
+use common::cli::*;
+use common::validated_context;
+use serde_json::Value;
+use std::path::Path;
+use sweeplab::bench::experiments::dispatch_probe::{probe, BeforeEach, ProbeCase};
+
+fn bench(dir: &Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "bench",
+        "sync",
+        "--size",
+        "12x12",
+        "--line-widths",
+        "1,2",
+        "--strategies",
+        "barrier-global,events",
+        "--min-rounds",
+        "6",
+        "--max-rounds",
+        "6",
+        "--seed",
+        "7",
+        "--out",
+        dir.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    sweeplab(&args)
+}
+
+fn json(path: &Path) -> Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+const RUN_KEYS: [&str; 13] = [
+    "device",
+    "device_type",
+    "vendor_id",
+    "device_id",
+    "driver",
+    "driver_version",
+    "api_version",
+    "timestamp_period_ns",
+    "timestamp_valid_bits",
+    "host_cpu",
+    "sweeplab",
+    "date",
+    "command",
+];
+
+#[test]
+fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
+    let dir = temp_dir("sync-study");
+    let o = bench(&dir, &[]);
+    // With validation on (sweeplab() sets it): the racy arms' hazards are
+    // expected and counted, anything else would fail the run.
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("validation: clean"), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    for line in ["empty workload (6 rounds)", "sweep workload (6 rounds)", "barrier-global: ", "events: "] {
+        assert!(stdout.contains(line), "verdict lacks {line:?}: {stdout}");
+    }
+    assert!(!stdout.contains("per boundary over no barriers; per-line gaps: -"), "{stdout}");
+    let report = json(&dir.join("sync.json"));
+    assert_eq!(report["complete"], true);
+    let configs = report["configurations"].as_array().unwrap();
+    // 2 workloads x (baseline, A/A control, 2 strategies) x 2 line widths, and
+    // per workload 3 arms with per-line timestamps at line width 1.
+    assert_eq!(configs.len(), 2 * 4 * 2 + 2 * 3, "{configs:?}");
+    for w in report["workloads"].as_array().unwrap() {
+        assert_eq!(w["rounds"], 6);
+        let name = w["workload"].as_str().unwrap();
+        let mut members: Vec<u64> =
+            (0..configs.len() as u64).filter(|&i| configs[i as usize]["workload"] == name).collect();
+        members.sort();
+        let orders = w["orders"].as_array().unwrap();
+        assert_eq!(orders.len(), 6);
+        let mut distinct = std::collections::BTreeSet::new();
+        for order in orders {
+            let mut o: Vec<u64> = order.as_array().unwrap().iter().map(|v| v.as_u64().unwrap()).collect();
+            distinct.insert(o.clone());
+            o.sort();
+            assert_eq!(o, members, "each round runs each of {name}'s configurations once");
+        }
+        assert!(distinct.len() > 1, "the rounds are shuffled: {orders:?}");
+    }
+    for c in configs {
+        assert_eq!(c["frames"], 6, "{c}");
+        assert_eq!(c["gpu_ms_runs"].as_array().unwrap().len(), 6);
+        let racy = c["racy"].as_bool().unwrap();
+        let hazards = c["hazards_ignored"].as_u64().unwrap();
+        // The empty workload's shaders touch nothing, so nothing can race.
+        if racy && c["workload"] == "sweep" && c["line_width"] == 1 {
+            assert!(hazards > 0, "the baseline has no barriers, validation must see hazards: {c}");
+        }
+        if !racy {
+            assert_eq!(hazards, 0, "{c}");
+        }
+        // Equal work: every arm dispatches the same blocks at a line width.
+        let same = configs.iter().filter(|o| o["line_width"] == c["line_width"] && o["workload"] == c["workload"]);
+        for o in same {
+            assert_eq!(o["blocks"], c["blocks"]);
+            assert_eq!(o["lines"], c["lines"]);
+        }
+    }
+    let strategies = report["strategies"].as_array().unwrap();
+    for workload in ["empty", "sweep"] {
+        for arm in ["no-barriers", "no-barriers-again", "barrier-global", "events"] {
+            let r = strategies
+                .iter()
+                .find(|r| r["workload"] == workload && r["strategy"] == arm)
+                .unwrap_or_else(|| panic!("no {arm} row in {workload}"));
+            let b = &r["boundary_us"];
+            assert!(b["lo"].as_f64().unwrap() <= b["value"].as_f64().unwrap(), "{r}");
+            assert!(b["value"].as_f64().unwrap() <= b["hi"].as_f64().unwrap(), "{r}");
+            if arm == "no-barriers" {
+                assert!(r["sync_us"].is_null(), "{r}");
+            } else {
+                assert_eq!(r["sync_us"]["n"], 6, "{r}");
+            }
+        }
+    }
+    // Non-racy strategies render barrier-global's image.
+    for c in configs.iter().filter(|c| c["racy"] == false && c["workload"] == "sweep") {
+        assert_eq!(c["rmse_vs_barrier_global"], 0.0, "{c}");
+    }
+}
+
+#[test]
+fn every_output_names_its_run_and_report_puts_two_devices_side_by_side() {
+    let dir = temp_dir("sync-metadata");
+    let o = bench(&dir, &["--workloads", "empty", "--no-line-timestamps"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report = json(&dir.join("sync.json"));
+    let run = &report["run"];
+    for key in
+        ["device", "vendor_id", "device_id", "driver_name", "driver_version", "api_version", "git_commit", "date"]
+    {
+        assert!(run[key].as_str().is_some_and(|v| !v.is_empty()), "run.{key} in {run}");
+    }
+    assert!(run["timestamp_period_ns"].as_f64().is_some_and(|v| v > 0.0), "{run}");
+    assert!(run["host_cores"].as_u64().is_some_and(|v| v > 0), "{run}");
+    assert!(run["command"].as_str().unwrap().contains("--line-widths 1,2"), "{run}");
+    for file in ["sync.csv", "sync_configurations.csv"] {
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        for key in RUN_KEYS {
+            assert!(text.contains(&format!("# {key}: ")), "{file} lacks {key}");
+        }
+    }
+    for file in ["sync.md", "sync_configurations.md"] {
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        for key in RUN_KEYS {
+            assert!(text.contains(&format!("- {key}: ")), "{file} lacks {key}");
+        }
+    }
+    // A second "device": the same report under another name.
+    let mut other = report.clone();
+    other["run"]["device"] = Value::from("Fake GPU 9000");
+    other["run"]["driver_version"] = Value::from("1.2.3");
+    let (a, b) = (dir.join("a.json"), dir.join("b.json"));
+    std::fs::write(&a, report.to_string()).unwrap();
+    std::fs::write(&b, other.to_string()).unwrap();
+    let out = dir.join("report");
+    let o = sweeplab(&["report", a.to_str().unwrap(), b.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let device = run["device"].as_str().unwrap();
+    for strategy in ["no-barriers", "barrier-global", "events"] {
+        for d in [device, "Fake GPU 9000"] {
+            assert!(
+                md.lines().any(|l| l.contains(d) && l.contains(&format!(" {strategy} "))),
+                "no {strategy} row for {d}: {md}"
+            );
+        }
+    }
+    let bad = dir.join("not-a-report.json");
+    std::fs::write(&bad, "[1, 2]").unwrap();
+    assert_user_error(&sweeplab(&["report", bad.to_str().unwrap(), "--out", out.to_str().unwrap()]), "sync.json");
+}
+
+#[test]
+fn bad_plans_are_refused_before_any_gpu_work() {
+    let dir = temp_dir("sync-refused");
+    let out = dir.to_str().unwrap();
+    for (args, mention) in [
+        (vec!["--min-rounds", "3"], "95 %"),
+        (vec!["--line-widths", "4"], "two line widths"),
+        (vec!["--strategies", "racy"], "baseline"),
+        (vec!["--workloads", "full"], "unknown workload"),
+        (vec!["--max-rounds", "5", "--min-rounds", "6"], "most rounds"),
+    ] {
+        let mut all = vec!["bench", "sync", "--out", out];
+        all.extend(args);
+        let o = sweeplab(&all);
+        assert_user_error(&o, mention);
+        assert!(!stderr(&o).contains("device:"), "{all:?}: opened the GPU before refusing: {}", stderr(&o));
+    }
+}
+
+/// Every case of the probe runs validation-clean and gives a time per
+/// dispatch. (Its barrier is what it measures, not a protection: the 1x1
+/// output is never read back, and this layer version reports no
+/// write-after-write between dispatches of a write-only image.)
+#[test]
+fn the_dispatch_probe_runs_every_case() {
+    let ctx = validated_context();
+    let rows = probe(&ctx, &ProbeCase::all(), 4, 1).unwrap();
+    assert_eq!(rows.len(), BeforeEach::ALL.len() + 1);
+    for r in &rows {
+        assert!(r.gpu_us_per_dispatch > 0.0 && r.wall_us_per_dispatch > 0.0, "{r:?}");
+        assert_eq!(r.dispatches, 4);
+    }
+    assert!(rows.iter().any(|r| !r.case.barrier), "the dispatches alone are a case too");
+    common::assert_validation_clean(&ctx);
+}
