@@ -1,5 +1,5 @@
 //! `bench sync` measures each strategy against an equal-work baseline: the
-//! same line dispatches in the sweep's order with no barriers (issue 9), one
+//! same line dispatches in the sweep's order with no barriers, one
 //! per line width, not the single dispatch over all lines it used to be.
 mod common;
 

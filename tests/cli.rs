@@ -325,7 +325,7 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
     }
 }
 
-/// `bench stability` (issue 14): its lists are checked before any GPU work,
+/// `bench stability`: its lists are checked before any GPU work,
 /// with a "did you mean"; a small table writes every report, each cell with
 /// its status, and a meaningless or stiff case shows as warned, not ok.
 #[test]
@@ -374,7 +374,7 @@ fn bench_stability_checks_its_lists_first_and_writes_the_table() {
 
 /// `--set` names what is wrong: an unknown table or key with a "did you mean",
 /// a bad value as a bad value; a technique that cannot hold a scene to its
-/// bound says so on stderr (issue 14 item 4).
+/// bound says so on stderr.
 #[test]
 fn set_errors_name_the_cause_and_technique_warnings_are_printed() {
     let o = sweeplab(&["render", "--set", "camra.azimuth=3", "--size", "4x4"]);

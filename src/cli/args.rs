@@ -50,7 +50,7 @@ pub enum BenchCommand {
     /// selective updates of one light (state change, on/off), scaling over 1-40
     /// lights, memory, and error against time.
     Lights(BenchLightsArgs),
-    /// Issue 14's stability table: every technique (IPSVI in both cache
+    /// The stability table: every technique (IPSVI in both cache
     /// updates) on every stiff or extreme case, each cell within the
     /// technique's bound against the reference of its model, refused or
     /// warned by name, or FAILED; the convergence order of each technique over

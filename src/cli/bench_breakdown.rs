@@ -1,5 +1,5 @@
 //! `sweeplab bench ipsvi --breakdown`: where the time of one IPSVI frame goes,
-//! in both cache-update modes (issue 9 item 3). Each step adds one part of the
+//! in both cache-update modes. Each step adds one part of the
 //! frame to the one before; its cost is its GPU time minus the previous step's.
 
 use super::args::BenchIpsviArgs;

@@ -1,4 +1,4 @@
-//! `sweeplab bench stability`: issue 14's table of every case x technique
+//! `sweeplab bench stability`: the table of every case x technique
 //! (src/bench/experiments/stability*.rs), the convergence of each technique
 //! over the step, and a heat map of the table.
 

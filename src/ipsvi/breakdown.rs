@@ -1,5 +1,5 @@
 //! Steps of the cost breakdown of one IPSVI frame (`sweeplab bench ipsvi
-//! --breakdown`, issue 9): the same line dispatches with the work of a full
+//! --breakdown`): the same line dispatches with the work of a full
 //! frame switched on one part at a time, by a specialization constant of
 //! glsl/ipsvi_line.comp. Study baselines, not illumination results.
 

@@ -141,7 +141,7 @@ impl SceneSpec {
             volume,
             transfer,
             camera,
-            // Issue 14: far point and spot lights become the directional
+            // Far point and spot lights become the directional
             // lights they approach, one rule for every technique.
             lights: self.lights.iter().map(|l| l.far_limit(volume_box.half_extent.length())).collect(),
             render: self.render,
