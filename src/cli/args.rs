@@ -6,7 +6,7 @@ use sweeplab::render::Technique;
 
 /// `--technique` short help: the registry's names.
 fn technique_names() -> String {
-    Technique::ALL.map(|t| t.name()).join(" | ")
+    Technique::NAMED.map(|t| t.name()).join(" | ")
 }
 
 #[derive(Parser, Debug)]
@@ -159,7 +159,7 @@ pub struct BenchTable1Args {
     #[arg(long, default_value = "bench-table1")]
     pub out: PathBuf,
     /// Square image sizes (the paper's: 64,128,256,512,1024). Comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
+    #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![64, 128, 256, 512, 1024])]
     pub sizes: Vec<u32>,
     /// Frames per configuration; the median is reported.
     #[arg(long, default_value_t = 2)]
@@ -185,7 +185,7 @@ pub struct BenchSyncArgs {
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4])]
     pub line_widths: Vec<u32>,
     /// Square image sizes. Comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512])]
+    #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![64, 128, 256, 512])]
     pub sizes: Vec<u32>,
     /// Frames per configuration; the median GPU time is reported.
     #[arg(long, default_value_t = 3)]
@@ -208,7 +208,7 @@ pub struct BenchIpsviArgs {
     #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
     pub cache_sizes: Vec<u32>,
     /// Square image sizes. Comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![256, 512])]
+    #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![256, 512])]
     pub sizes: Vec<u32>,
     /// Runs per configuration; the median GPU time is reported.
     #[arg(long, default_value_t = 3)]
@@ -266,7 +266,9 @@ pub struct SceneArgs {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Image size, e.g. 512x512 (overrides render.width/height).
-    #[arg(long, value_name = "WxH")]
+    // Hyphen values are taken so that `--size -64x64` gets a size message, not
+    // "unexpected argument '-6'".
+    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
     pub size: Option<String>,
 }
 

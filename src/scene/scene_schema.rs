@@ -202,6 +202,7 @@ impl Default for PhongSection {
 /// serde's "unknown field `x`, expected one of `a`, `b`" with the nearest known
 /// field suggested: "... (did you mean `a`?)".
 fn with_suggestion(message: &str) -> String {
+    let message = &super::user_terms::in_user_terms(message);
     let unknown = message.strip_prefix("unknown field `").and_then(|rest| rest.split_once('`'));
     let Some((field, rest)) = unknown else { return message.to_string() };
     let known = rest.split('`').skip(1).step_by(2);

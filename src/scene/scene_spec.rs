@@ -114,6 +114,11 @@ pub struct SceneSpec {
 impl SceneSpec {
     pub fn load_volume(&self) -> Result<Volume, SceneError> {
         match &self.volume {
+            VolumeSource::File(path) if !path.exists() => Err(SceneError::MissingVolume {
+                origin: self.origin.clone(),
+                path: path.clone(),
+                hint: super::missing_file::missing_file_hint(path),
+            }),
             VolumeSource::File(path) => loaders::load_volume(path).map_err(|source| SceneError::Volume {
                 origin: self.origin.clone(),
                 path: path.clone(),
