@@ -133,7 +133,8 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             out_folder.save_rows("ipsvi", &table)?;
         }
         if !args.half_angle_slices.is_empty() && scene.lights.len() == 1 {
-            half_angle_rows(args, &ctx, &scene, size, &mut profiler, &mut progress, &mut table, &out_folder)?;
+            half_angle_rows(args, &ctx, &scene, size, &mut profiler, &mut progress, &mut table)?;
+            out_folder.save_rows("ipsvi", &table)?;
         }
     }
     progress.finish();
@@ -203,7 +204,6 @@ fn half_angle_rows(
     profiler: &mut Profiler,
     progress: &mut Progress,
     table: &mut BenchTable,
-    out_folder: &OutFolder,
 ) -> anyhow::Result<()> {
     // A warm-up frame per slice spacing: each compiles its own pipelines.
     let harness = session::harness(1, args.repeat)?;
@@ -232,7 +232,6 @@ fn half_angle_rows(
         row.set("dispatches", out.dispatches).set("gpu_memory_bytes", out.profile.gpu_memory_bytes);
         row.set("reference_model", "single-scattering");
         table.push(row);
-        out_folder.save_rows("ipsvi", table)?;
     }
     Ok(())
 }
