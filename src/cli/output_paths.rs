@@ -50,6 +50,9 @@ mod tests {
         assert!(jpg.contains("--out") && jpg.contains("PNG"), "{jpg}");
         let missing = check_png("--out", &dir.join("no-such-folder-sweeplab/a.png")).unwrap_err().to_string();
         assert!(missing.contains("does not exist"), "{missing}");
-        assert!(check_file("--json", &dir).unwrap_err().to_string().contains("is a folder"));
+        assert!(check_file("--json", &dir).unwrap_err().to_string().contains("expects a file, got a directory"));
+        let slash = format!("{}/", dir.display());
+        let e = check_png("--out", Path::new(&slash)).unwrap_err().to_string();
+        assert!(e.contains("expects a file, got a directory"), "{e}");
     }
 }

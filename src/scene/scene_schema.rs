@@ -589,6 +589,6 @@ mod tests {
         let far = "unknown field `zzz`, expected one of `type`, `direction`";
         assert_eq!(with_suggestion(far), far);
         let other = "invalid type: string \"abc\", expected f32";
-        assert_eq!(with_suggestion(other), other);
+        assert_eq!(with_suggestion(other), "invalid type: string \"abc\", expected a number");
     }
 }
