@@ -1,4 +1,4 @@
-//! The ambient-occlusion ground truth (issue 10, item 6): on the GPU, chunked
+//! The ambient-occlusion ground truth: on the GPU, chunked
 //! across dispatches, equal to the CPU computation; its chunk barrier
 //! load-bearing; and the clustered image approaching the image of the
 //! unclustered histograms as n_c grows.

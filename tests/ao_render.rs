@@ -1,4 +1,4 @@
-//! Technique `ao` (issue 10, items 4-5): the environment lookup follows the
+//! Technique `ao`: the environment lookup follows the
 //! transfer function on the GPU without any preprocessing, equals the CPU
 //! sums of equations 4-5, and the Cornell box shows colour bleeding that a
 //! transfer-function edit takes away (the paper's figure 5).

@@ -1,5 +1,5 @@
 //! `bench ipsvi --breakdown` also times the whole frame at each of
-//! --line-widths, for the LW4/LW1 speed-up of issue 9's goals.
+//! --line-widths, for the LW4/LW1 speed-up.
 mod common;
 
 use common::cli::*;

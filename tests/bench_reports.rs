@@ -138,7 +138,13 @@ fn non_finite_floats_are_json_null_and_read_back_as_nan() {
 #[test]
 fn file_errors_name_the_file() {
     let dir = scratch_dir("errors");
-    let missing_dir = dir.join("no_such_dir").join("runs.csv");
+    // A missing folder is created (a bench's folder comes with its first file);
+    // a file in the way of the folder is an error naming the file.
+    let in_new_folder = dir.join("new_folder").join("runs.csv");
+    sample_table().write_csv(&in_new_folder).expect("the folder is created");
+    let blocker = dir.join("a_file");
+    std::fs::write(&blocker, "x").expect("write");
+    let missing_dir = blocker.join("runs.csv");
     let err = sample_table().write_csv(&missing_dir).unwrap_err();
     assert!(matches!(err, BenchError::Write { .. }));
     assert!(err.to_string().contains("runs.csv"), "{err}");

@@ -317,7 +317,7 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
     }
 }
 
-/// `bench stability` (issue 14): its lists are checked before any GPU work,
+/// `bench stability`: its lists are checked before any GPU work,
 /// with a "did you mean"; a small table writes every report, each cell with
 /// its status, and a meaningless or stiff case shows as warned, not ok.
 #[test]
@@ -363,7 +363,7 @@ fn bench_stability_checks_its_lists_first_and_writes_the_table() {
 
 /// `--set` names what is wrong: an unknown table or key with a "did you mean",
 /// a bad value as a bad value; a technique that cannot hold a scene to its
-/// bound says so on stderr (issue 14 item 4).
+/// bound says so on stderr.
 #[test]
 fn set_errors_name_the_cause_and_technique_warnings_are_printed() {
     let o = sweeplab(&["render", "--set", "camra.azimuth=3", "--size", "4x4"]);
@@ -386,4 +386,90 @@ fn set_errors_name_the_cause_and_technique_warnings_are_printed() {
     assert!(stderr(&o).contains("warning: lightvolume: the transfer function gives the volume an optical depth"));
     let o = sweeplab(&["render", "--scene", scene, "--technique", "dvr", "--size", "8x8", "--out", png]);
     assert!(!stderr(&o).contains("warning:"), "DVR renders it exactly: {}", stderr(&o));
+}
+
+/// Messages in the user's terms: what was given, what is accepted, and the
+/// nearest right thing, each before any GPU work.
+#[test]
+fn messages_say_what_is_accepted_and_suggest_the_right_thing() {
+    let dir = temp_dir("messages");
+    let folder_out = format!("{}/", dir.join("some-dir").display());
+    std::fs::create_dir_all(dir.join("some-dir")).unwrap();
+    std::fs::write(dir.join("engine.vti"), b"x").unwrap();
+    let typo = dir.join("engin.vti");
+    let nowhere = dir.join("no-such-folder").join("engine.vti");
+    let cases: Vec<(Vec<&str>, Vec<&str>)> = vec![
+        (vec!["render", "--size", "-64x64"], vec!["--size", "1..=16384"]),
+        (
+            vec!["render", "--technique", "ipsvi", "--set", "ipsvi.line_width=four"],
+            vec!["ipsvi.line_width", "a whole number in 1..=32", "\"four\""],
+        ),
+        (vec!["render", "--set", "camera.azimuth=abc"], vec!["camera.azimuth", "expected a number"]),
+        (vec!["render", "--technique", "IPSVI"], vec!["did you mean ipsvi?"]),
+        (vec!["render", "--volume", typo.to_str().unwrap()], vec!["no such file", "did you mean", "engine.vti"]),
+        (vec!["render", "--volume", nowhere.to_str().unwrap()], vec!["does not exist", "SWEEPLAB_DATA"]),
+        (vec!["render", "--out", &folder_out], vec!["expects a file, got a directory"]),
+        (vec!["bench", "ipsvi", "--sizes", "64x64"], vec!["side lengths", "`64` for 64x64"]),
+    ];
+    for (args, mentions) in cases {
+        let o = sweeplab(&args);
+        for mention in &mentions {
+            assert_user_error(&o, mention);
+        }
+        let err = stderr(&o);
+        assert!(!err.contains("device:"), "{args:?}: opened the GPU before refusing: {err}");
+        for rust_type in ["u32", "f32", "unexpected argument"] {
+            assert!(!err.contains(rust_type), "{args:?}: {err}");
+        }
+    }
+    // A missing volume names its path once.
+    let err = stderr(&sweeplab(&["render", "--volume", typo.to_str().unwrap()]));
+    assert_eq!(err.matches("engin.vti").count(), 1, "{err}");
+    // `render -h` lists every technique, `ao` included.
+    let help = String::from_utf8_lossy(&sweeplab(&["render", "-h"]).stdout).into_owned();
+    assert!(help.contains("lightvolume | ao"), "{help}");
+}
+
+/// A bench that stops before its first row leaves no empty output folder.
+#[test]
+fn a_bench_that_fails_early_leaves_no_empty_folder() {
+    let out = temp_dir("no-empty").join("bench-out");
+    let o = sweeplab(&["bench", "ipsvi", "--sizes", "8", "--device", "no-such-gpu", "--out", out.to_str().unwrap()]);
+    assert_user_error(&o, "no-such-gpu");
+    assert!(!out.exists(), "an empty output folder was left behind");
+}
+
+/// The AO preprocessing says where it came from: computed and cached, then
+/// loaded from that cache file.
+#[test]
+fn ao_says_whether_it_loaded_or_computed_its_preprocessing() {
+    let dir = temp_dir("ao-cache");
+    let cache = format!("ao.cache_dir={}", dir.join("cache").display());
+    let png = dir.join("ao.png");
+    let run = || {
+        let o = sweeplab(&[
+            "render",
+            "--technique",
+            "ao",
+            "--size",
+            "8x8",
+            "--set",
+            "ao.radius=1",
+            "--set",
+            "ao.clusters=4",
+            "--set",
+            &cache,
+            "--out",
+            png.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let first = run();
+    let stored =
+        first.lines().find(|l| l.contains("computed preprocessing, cached at ")).unwrap_or_else(|| panic!("{first}"));
+    let path = stored.rsplit("cached at ").next().unwrap().trim();
+    assert!(std::path::Path::new(path).is_file(), "{first}");
+    let second = run();
+    assert!(second.contains(&format!("loaded preprocessing from cache {path}")), "{second}");
 }

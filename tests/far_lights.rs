@@ -1,4 +1,4 @@
-//! Issue 14: a point or spot light far enough that its rays are parallel
+//! A point or spot light far enough that its rays are parallel
 //! within f32 precision across the volume renders as the directional light it
 //! approaches (src/scene/light.rs, `Light::far_limit`), in every technique and
 //! the reference: finite, lit, close to the reference of its model. Before the

@@ -1,4 +1,4 @@
-//! Issue 11's error goal at coarse illumination volumes: the default
+//! The light volume's error at coarse illumination volumes: the default
 //! propagation (medium shared by the lights of a pass, chromatic) against the
 //! chromatic ground truth stays within 1.5x of the per-light integration of
 //! model (i) against the model (i) ground truth, on the engine data set with
@@ -19,7 +19,7 @@ use sweeplab::scene::Scene;
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 64;
-/// Issue 11's goal: the default's error at most this multiple of the per-light model (i)'s.
+/// The default's error at most this multiple of the per-light model (i)'s.
 const GOAL_RATIO: f64 = 1.5;
 
 fn image(ctx: &Context, scene: &Scene, technique: Technique) -> LinearImage {

@@ -1,4 +1,4 @@
-//! Issue 14: view marches longer than llvmpipe's 65,535 loop iterations per
+//! View marches longer than llvmpipe's 65,535 loop iterations per
 //! invocation. DVR, Phong and the light volume's ray cast split them across
 //! dispatches, so a tiny `render.step` converges instead of going black; a step
 //! whose rays would outgrow f32 sample indices is refused by name.

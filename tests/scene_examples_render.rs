@@ -28,7 +28,7 @@ fn examples() -> Vec<PathBuf> {
 /// is technique `half-angle`); a table that names none fails the test.
 fn named_techniques(path: &Path) -> Vec<Technique> {
     const SCENE_SECTIONS: [&str; 7] = ["volume", "transfer", "camera", "lights", "render", "reference", "phong"];
-    // Settings whose technique does not render yet: AO's preprocessing (issue 10).
+    // Settings whose technique does not render yet: AO's preprocessing.
     const NOT_RENDERED_YET: [&str; 1] = ["ao"];
     let doc: toml::Table = std::fs::read_to_string(path).unwrap().parse().unwrap();
     doc.keys()

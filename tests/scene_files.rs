@@ -244,10 +244,12 @@ fn a_missing_volume_file_is_an_error_naming_scene_and_volume() {
     std::fs::create_dir_all(&dir).unwrap();
     let scene_path = dir.join("missing-volume.toml");
     std::fs::write(&scene_path, "[volume]\nfile = \"no-such-volume.nrrd\"\n").unwrap();
+    std::fs::write(dir.join("no-such-volume.nrd"), "x").unwrap();
     let e = sweeplab::scene::scene_file::load_scene(&scene_path, &[]).unwrap_err();
-    assert!(matches!(e, SceneError::Volume { .. }), "{e:?}");
-    assert_mentions(&e.to_string(), &["missing-volume.toml", "no-such-volume.nrrd"]);
-    assert!(std::error::Error::source(&e).is_some(), "the loader's error is kept as the source");
+    assert!(matches!(e, SceneError::MissingVolume { .. }), "{e:?}");
+    let message = e.to_string();
+    assert_mentions(&message, &["missing-volume.toml", "no volume file", "did you mean", "no-such-volume.nrd"]);
+    assert_eq!(message.matches("no-such-volume.nrrd").count(), 1, "the path once: {message}");
 }
 
 #[test]
@@ -595,7 +597,7 @@ fn technique_values_out_of_range_name_key_value_and_range() {
     assert_mentions(&e, &["ipsvi.albedo = 0.5 needs ipsvi.cache_update = \"light-rays\""]);
     // Wrong types and unknown names name the key too.
     let cases: &[(&str, &[&str])] = &[
-        ("[ipsvi]\nline_width = \"wide\"", &["ipsvi.line_width", "invalid type"]),
+        ("[ipsvi]\nline_width = \"wide\"", &["ipsvi.line_width", "a whole number in 1..=32", "\"wide\""]),
         ("[ipsvi]\nearly_termination = \"sometimes\"", &["ipsvi.early_termination", "sometimes", "exit-points"]),
         ("[ipsvi]\nsync = \"fences\"", &["ipsvi.sync", "fences", "barrier-global"]),
         ("[ipsvi]\nmerge_sweeps = \"yes\"", &["ipsvi.merge_sweeps", "invalid type"]),

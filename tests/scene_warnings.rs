@@ -1,4 +1,4 @@
-//! Issue 14: a render that would be meaningless says why (all-transparent
+//! A render that would be meaningless says why (all-transparent
 //! transfer function, constant volume under the automatic one, NaN/Inf voxels
 //! in the file, a light that sends nothing), and a frame with non-finite pixels
 //! is an error naming the technique and the count, never a written image.

@@ -1,4 +1,4 @@
-//! Issue 14's stability suite, CI part: every technique (IPSVI in both cache
+//! The stability suite, CI part: every technique (IPSVI in both cache
 //! updates) on the cases of `sweeplab::bench::experiments::stability_cases`
 //! marked `ci`, at 16x16 on 16^3 volumes. Each cell is either within the
 //! technique's stated bound against the reference of its model, or an explicit
@@ -72,7 +72,7 @@ fn error_shrinks_as_the_step_shrinks_with_an_observed_order() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// Issue 14's opaque-TF artefacts: IPSVI warns on a stiff medium (its image
+/// Opaque-TF artefacts: IPSVI warns on a stiff medium (its image
 /// depends on the view step, as the reference's does), but at the reference's
 /// view step it keeps its bound in both cache updates. Light rays read each
 /// sample's light at the nearest cache texel's front until this was fixed: the

@@ -1,4 +1,4 @@
-//! Long renders show progress (issue 14): a submission still running when the
+//! Long renders show progress: a submission still running when the
 //! context's reporter is due is reported with its name and what it holds, and
 //! nothing is reported without a reporter or for a submission that ends first.
 

@@ -26,8 +26,13 @@ if [ ${#missing[@]} -gt 0 ]; then
     exit 1
   fi
   export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  # apt's progress goes to a log, named only when something fails.
+  apt_log="${TMPDIR:-/tmp}/sweeplab-setup-apt.log"
+  if ! { apt-get update -qq && apt-get install -y -qq --no-install-recommends "${missing[@]}"; } >"$apt_log" 2>&1; then
+    echo "setup: installing packages failed; the last lines of $apt_log:" >&2
+    tail -n 20 "$apt_log" >&2
+    exit 1
+  fi
 fi
 
 if ! command -v cargo >/dev/null 2>&1; then
@@ -35,7 +40,12 @@ if ! command -v cargo >/dev/null 2>&1; then
     export PATH="$HOME/.cargo/bin:$PATH"
   else
     echo "setup: installing Rust with rustup"
-    curl -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal
+    rustup_log="${TMPDIR:-/tmp}/sweeplab-setup-rustup.log"
+    if ! curl -sSf https://sh.rustup.rs 2>"$rustup_log" | sh -s -- -y --profile minimal >>"$rustup_log" 2>&1; then
+      echo "setup: installing Rust failed; the last lines of $rustup_log:" >&2
+      tail -n 20 "$rustup_log" >&2
+      exit 1
+    fi
     export PATH="$HOME/.cargo/bin:$PATH"
   fi
 fi

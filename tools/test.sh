@@ -8,4 +8,11 @@ export SWEEPLAB_VALIDATE=1
 export SWEEPLAB_DATA="${SWEEPLAB_DATA:-$(pwd)/../shared/data}"
 cargo fmt --all -- --check
 cargo clippy --all-targets --quiet -- -D warnings
-cargo test --release --no-fail-fast 2>&1
+# The whole output stays on the terminal; the last line sums cargo's
+# `test result:` lines (CI reads it). The exit status is cargo test's.
+log="$(mktemp)"
+status=0
+cargo test --release --no-fail-fast 2>&1 | tee "$log" || status=$?
+bash tools/test_summary.sh <"$log"
+rm -f "$log"
+exit "$status"

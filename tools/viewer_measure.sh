@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Viewer cost against headless rendering (issue 13's goals): the DVR frame time
+# Viewer cost against headless rendering: the DVR frame time
 # in `sweeplab view` (under the X server of $DISPLAY, e.g. Xvfb) beside the
 # headless `render`'s GPU time at the same size, and the panel's own cost per
 # frame (its `ui` profiler scope on the GPU, its layout on the host).

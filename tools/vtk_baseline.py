@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""VTK 9.7's GPU ray caster beside sweeplab, on the same machine, in one run (issue 9's goal).
+"""VTK 9.7's GPU ray caster beside sweeplab, on the same machine, in one run.
 
 What it measures
   VTK: `vtkGPUVolumeRayCastMapper` on a volume file (default ../shared/data/engine.vti),

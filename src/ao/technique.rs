@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use super::render::{self, AoRenderer};
 use super::session::AoSession;
-use super::{preprocess_cached_on, AoError, AoPreprocessed, AoSettings, Backend, CacheKey, Progress};
+use super::{preprocess_cached_on, AoError, AoPreprocessed, AoSettings, Backend, CacheKey, CacheOutcome, Progress};
 use crate::render::view_chunks::check_view_step;
 use crate::render::{FrameResult, FrameSession, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene, Volume};
@@ -41,19 +41,32 @@ pub fn preprocessed(
     device: Option<&Context>,
     progress: &mut dyn FnMut(&Progress),
 ) -> Result<Arc<AoPreprocessed>, AoError> {
+    preprocessed_telling(volume, settings, device, progress).map(|(result, _)| result)
+}
+
+/// [`preprocessed`], and where the result came from: `None` when it was kept
+/// in memory from the last call, else how the disk cache served it (loaded,
+/// computed and stored, or computed with the cache off), so the command line
+/// can say so.
+pub fn preprocessed_telling(
+    volume: &Volume,
+    settings: &AoSettings,
+    device: Option<&Context>,
+    progress: &mut dyn FnMut(&Progress),
+) -> Result<(Arc<AoPreprocessed>, Option<CacheOutcome>), AoError> {
     let device = device.filter(|ctx| settings.backend == Some(Backend::Gpu) || !ctx.info.is_cpu());
     let key = CacheKey::new(volume, settings);
     let mut last = LAST.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     if let Some((k, result)) = last.as_ref() {
         if *k == key {
-            return Ok(result.clone());
+            return Ok((result.clone(), None));
         }
     }
     PREPROCESS_RUNS.fetch_add(1, Ordering::SeqCst);
-    let (result, _) = preprocess_cached_on(volume, settings, device, progress)?;
+    let (result, outcome) = preprocess_cached_on(volume, settings, device, progress)?;
     let result = Arc::new(result);
     *last = Some((key, result.clone()));
-    Ok(result)
+    Ok((result, Some(outcome)))
 }
 
 impl RenderTechnique for Ao {

@@ -1,6 +1,11 @@
 //! A progress line on stderr for long sweeps:
 //! `[ 3/40] line_width=4 cache=256 ... 1.2 s (eta 45 s)`.
 //!
+//! Steps may differ in size (a 512x512 frame costs four 256x256 ones): each
+//! step has a weight, and the time left is the time per unit of weight so far
+//! times the weight left, so a sweep whose large steps come last is not
+//! promised an early end.
+//!
 //! On a terminal the line is redrawn in place; otherwise (logs, CI, pipes)
 //! every step gets its own line, so the log shows every run and its time.
 //! Own code rather than `indicatif`: one line of text and an average is all a
@@ -19,6 +24,8 @@ pub struct Progress<W: Write = io::Stderr> {
     out: W,
     redraw: bool,
     total: usize,
+    /// One weight per step, in the order the steps run.
+    weights: Vec<f64>,
     finished_steps: usize,
     sweep_started: Instant,
     time_in_steps: Duration,
@@ -34,9 +41,15 @@ struct CurrentStep {
 impl Progress<io::Stderr> {
     /// Progress on stderr, redrawn in place only when stderr is a terminal.
     pub fn new(total: usize) -> Self {
+        Progress::weighted(vec![1.0; total])
+    }
+
+    /// Progress on stderr through steps of the given weights (e.g. pixels x
+    /// repeats), one per step in the order they run.
+    pub fn weighted(weights: Vec<f64>) -> Self {
         let out = io::stderr();
         let redraw = out.is_terminal();
-        Progress::with_writer(total, out, redraw)
+        Progress::weighted_with_writer(weights, out, redraw)
     }
 }
 
@@ -44,10 +57,18 @@ impl<W: Write> Progress<W> {
     /// Progress on any writer; `redraw` chooses one line redrawn in place
     /// (terminals) over one line per step.
     pub fn with_writer(total: usize, out: W, redraw: bool) -> Self {
+        Progress::weighted_with_writer(vec![1.0; total], out, redraw)
+    }
+
+    /// [`Progress::weighted`] on any writer. A weight that is not a positive
+    /// number counts as 1, so a bad estimate cannot stop the time left.
+    pub fn weighted_with_writer(weights: Vec<f64>, out: W, redraw: bool) -> Self {
+        let weights: Vec<f64> = weights.into_iter().map(|w| if w.is_finite() && w > 0.0 { w } else { 1.0 }).collect();
         Progress {
             out,
             redraw,
-            total,
+            total: weights.len(),
+            weights,
             finished_steps: 0,
             sweep_started: Instant::now(),
             time_in_steps: Duration::ZERO,
@@ -118,7 +139,7 @@ impl<W: Write> Progress<W> {
             None => format_duration(took),
             Some(reason) => format!("failed after {}: {reason}", format_duration(took)),
         };
-        if let Some(eta) = remaining_time(self.time_in_steps, self.finished_steps, self.total) {
+        if let Some(eta) = remaining_time(self.time_in_steps, &self.weights, self.finished_steps) {
             outcome.push_str(&format!(" (eta {})", format_duration(eta)));
         }
         if self.redraw {
@@ -173,13 +194,16 @@ fn step_counter(step: usize, total: usize) -> String {
     format!("[{step:>width$}/{total}]")
 }
 
-/// The mean step time so far times the steps left; `None` when nothing was
-/// measured yet or nothing is left.
-fn remaining_time(time_in_steps: Duration, finished: usize, total: usize) -> Option<Duration> {
-    let left = total.checked_sub(finished).filter(|&n| n > 0)?;
-    let finished = u32::try_from(finished).ok().filter(|&n| n > 0)?;
-    let mean = time_in_steps / finished;
-    Some(mean.saturating_mul(u32::try_from(left).unwrap_or(u32::MAX)))
+/// The time per unit of weight so far times the weight of the steps left;
+/// `None` when nothing was measured yet or nothing is left. Steps run past the
+/// planned count weigh nothing.
+fn remaining_time(time_in_steps: Duration, weights: &[f64], finished: usize) -> Option<Duration> {
+    if finished == 0 || finished >= weights.len() {
+        return None;
+    }
+    let (done, left) = weights.split_at(finished);
+    let per_weight = time_in_steps.as_secs_f64() / done.iter().sum::<f64>();
+    Duration::try_from_secs_f64(per_weight * left.iter().sum::<f64>()).ok()
 }
 
 /// Durations as a person reads them: "340 ms", "1.2 s", "45 s", "3 m 05 s", "1 h 02 m".
@@ -223,11 +247,43 @@ mod tests {
 
     #[test]
     fn eta_is_the_mean_step_time_times_the_steps_left() {
-        let eta = remaining_time(Duration::from_secs(10), 2, 6);
+        let equal = [1.0; 6];
+        let eta = remaining_time(Duration::from_secs(10), &equal, 2);
         assert_eq!(eta, Some(Duration::from_secs(20)));
-        assert_eq!(remaining_time(Duration::from_secs(10), 6, 6), None);
-        assert_eq!(remaining_time(Duration::ZERO, 0, 6), None);
-        assert_eq!(remaining_time(Duration::from_secs(1), 7, 6), None);
+        assert_eq!(remaining_time(Duration::from_secs(10), &equal, 6), None);
+        assert_eq!(remaining_time(Duration::ZERO, &equal, 0), None);
+        assert_eq!(remaining_time(Duration::from_secs(1), &equal, 7), None);
+    }
+
+    #[test]
+    fn eta_weighs_the_steps_left_by_their_size() {
+        // Two 256x256 steps took 2 s; two 512x512 steps (four times the
+        // pixels) are left: 8 s, not the 2 s a per-step mean would say.
+        let weights = [1.0, 1.0, 4.0, 4.0];
+        assert_eq!(remaining_time(Duration::from_secs(2), &weights, 2), Some(Duration::from_secs(8)));
+        // Large steps first: the small ones left are quick.
+        let weights = [4.0, 4.0, 1.0, 1.0];
+        assert_eq!(remaining_time(Duration::from_secs(8), &weights, 2), Some(Duration::from_secs(2)));
+    }
+
+    #[test]
+    fn a_weighted_sweep_prints_the_weighted_eta() {
+        let mut out = Vec::new();
+        {
+            let mut progress = Progress::weighted_with_writer(vec![1.0, 3.0, f64::NAN], &mut out, false);
+            progress.start_step("small");
+            std::thread::sleep(Duration::from_millis(20));
+            progress.finish_step();
+            progress.finish();
+        }
+        let text = String::from_utf8(out).unwrap();
+        let first = text.lines().next().unwrap();
+        // Weight 1 done; weight 3 + 1 (NaN counts as 1) left: four times the step.
+        let ms = |text: &str| -> f64 { text.trim().trim_end_matches(" ms").parse().unwrap() };
+        let (took, eta) = first.split_once("... ").unwrap().1.split_once(" (eta ").unwrap();
+        let (took, eta) = (ms(took), ms(eta.trim_end_matches(')')));
+        assert!(took >= 20.0 && (eta - 4.0 * took).abs() <= 4.0, "{first}");
+        assert!(text.contains("1/3 steps"), "{text}");
     }
 
     #[test]

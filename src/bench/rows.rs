@@ -317,6 +317,13 @@ impl<'de> Visitor<'de> for BenchRowVisitor {
     }
 }
 
+fn create_parent(path: &Path) -> std::io::Result<()> {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => std::fs::create_dir_all(parent),
+        _ => Ok(()),
+    }
+}
+
 /// All runs of a sweep, and what produced them.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct BenchTable {
@@ -399,9 +406,13 @@ impl BenchTable {
         out
     }
 
+    /// Writes the table as CSV, creating the folder it goes into when needed
+    /// (a bench's output folder is created by its first file).
     pub fn write_csv(&self, path: impl AsRef<Path>) -> Result<(), BenchError> {
         let path = path.as_ref();
-        std::fs::write(path, self.to_csv()).map_err(|source| BenchError::Write { path: path.to_owned(), source })
+        let write_error = |source| BenchError::Write { path: path.to_owned(), source };
+        create_parent(path).map_err(write_error)?;
+        std::fs::write(path, self.to_csv()).map_err(write_error)
     }
 
     /// The table as pretty-printed JSON: `{"run": {...}, "rows": [...]}`, or a
@@ -410,6 +421,7 @@ impl BenchTable {
     pub fn write_json(&self, path: impl AsRef<Path>) -> Result<(), BenchError> {
         let path = path.as_ref();
         let write_error = |source| BenchError::Write { path: path.to_owned(), source };
+        create_parent(path).map_err(write_error)?;
         let file = File::create(path).map_err(write_error)?;
         let mut writer = BufWriter::new(file);
         serde_json::to_writer_pretty(&mut writer, self)

@@ -6,8 +6,8 @@ use std::io::Write;
 use std::time::{Duration, Instant};
 
 use anyhow::Context as _;
-use sweeplab::ao::technique::preprocessed;
-use sweeplab::ao::Progress;
+use sweeplab::ao::technique::preprocessed_telling;
+use sweeplab::ao::{CacheOutcome, Progress};
 use sweeplab::render::Technique;
 use sweeplab::scene::Scene;
 use sweeplab::vk::Context;
@@ -33,9 +33,22 @@ pub fn prepare(scene: &Scene, technique: Technique, device: &Context) -> anyhow:
             step = p.step.to_string();
         }
     };
-    preprocessed(&scene.volume, &scene.settings.ao, Some(device), &mut report).context("ao preprocessing")?;
+    let (_, outcome) = preprocessed_telling(&scene.volume, &scene.settings.ao, Some(device), &mut report)
+        .context("ao preprocessing")?;
     if !step.is_empty() {
         let _ = writeln!(stderr);
     }
+    if let Some(outcome) = outcome {
+        eprintln!("{}", cache_line(&outcome));
+    }
     Ok(())
+}
+
+/// Where the preprocessing came from, in one line.
+fn cache_line(outcome: &CacheOutcome) -> String {
+    match outcome {
+        CacheOutcome::Hit(path) => format!("ao: loaded preprocessing from cache {}", path.display()),
+        CacheOutcome::Stored(path, _) => format!("ao: computed preprocessing, cached at {}", path.display()),
+        CacheOutcome::Disabled => "ao: computed preprocessing (ao.cache = false: not cached)".to_string(),
+    }
 }

@@ -6,7 +6,7 @@ use sweeplab::render::Technique;
 
 /// `--technique` short help: the registry's names.
 fn technique_names() -> String {
-    Technique::ALL.map(|t| t.name()).join(" | ")
+    Technique::NAMED.map(|t| t.name()).join(" | ")
 }
 
 #[derive(Parser, Debug)]
@@ -39,6 +39,8 @@ pub enum Command {
 pub enum BenchCommand {
     /// IPSVI over line width x cache size x piecewise integration x early ray
     /// termination x image size, each run compared with the GPU ground truth.
+    /// Long at the defaults (312 steps; the progress line shows the time left);
+    /// --breakdown takes about 2.5 min at 128-512 on lavapipe with 2 cores.
     Ipsvi(BenchIpsviArgs),
     /// What one block boundary of the IPSVI sweep costs per sync strategy: the
     /// slope of frame time over the number of blocks (line widths 1..32), against
@@ -48,24 +50,28 @@ pub enum BenchCommand {
     Sync(BenchSyncArgs),
     /// The IPSVI paper's Table 1: frame rates over image size and line width for
     /// engine (CT Engine), aneurism (beside US Baby) and LIDC2 (anisotropic, beside
-    /// the giraffe), next to the paper's, with the ratios compared.
+    /// the giraffe), next to the paper's, with the ratios compared. The
+    /// progress line shows the time left.
     Table1(BenchTable1Args),
     /// The selective-light-updates paper's Table 1 and Figure 10 for the light
     /// volume: entire updates (sequential and coherence-based propagation),
     /// selective updates of one light (state change, on/off), scaling over 1-40
-    /// lights, memory, and error against time.
+    /// lights, memory, and error against time. About 7 min on engine.vti on
+    /// lavapipe with 2 cores.
     Lights(BenchLightsArgs),
-    /// Issue 14's stability table: every technique (IPSVI in both cache
+    /// The stability table: every technique (IPSVI in both cache
     /// updates) on every stiff or extreme case, each cell within the
     /// technique's bound against the reference of its model, refused or
     /// warned by name, or FAILED; the convergence order of each technique over
     /// step 1..1/16 voxel; CSV/JSON/Markdown and a heat map PNG. Exit status 1
-    /// if any cell failed.
+    /// if any cell failed. About 2 min on lavapipe with 2 cores.
     Stability(BenchStabilityArgs),
     /// Ambient occlusion from clustered histograms (the 2008 paper): sweeps r,
     /// bits, packed dimension, n_c and metric with preprocessing time per step,
     /// codebook error, image RMSE against the unclustered histograms and the
     /// ground truth, TF-change update and frame time against Blinn-Phong.
+    /// About 2.5 min on the Cornell box on lavapipe with 2 cores (seconds with
+    /// the preprocessing cached).
     Ao(BenchAoArgs),
 }
 
@@ -164,7 +170,7 @@ pub struct BenchTable1Args {
     #[arg(long, default_value = "bench-table1")]
     pub out: PathBuf,
     /// Square image sizes (the paper's: 64,128,256,512,1024). Comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
+    #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![64, 128, 256, 512, 1024])]
     pub sizes: Vec<u32>,
     /// Frames per configuration; the median is reported.
     #[arg(long, default_value_t = 2)]
@@ -255,7 +261,7 @@ pub struct BenchIpsviArgs {
     #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
     pub cache_sizes: Vec<u32>,
     /// Square image sizes. Comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![256, 512])]
+    #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![256, 512])]
     pub sizes: Vec<u32>,
     /// Runs per configuration; the median GPU time is reported.
     #[arg(long, default_value_t = 3)]
@@ -313,7 +319,9 @@ pub struct SceneArgs {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
     /// Image size, e.g. 512x512 (overrides render.width/height).
-    #[arg(long, value_name = "WxH")]
+    // Hyphen values are taken so that `--size -64x64` gets a size message, not
+    // "unexpected argument '-6'".
+    #[arg(long, value_name = "WxH", allow_hyphen_values = true)]
     pub size: Option<String>,
 }
 

@@ -21,6 +21,18 @@ pub fn check_sizes(flag: &str, sizes: &[u32]) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// clap's parser of one `--sizes` value: the side length of a square image.
+/// `64x64` is answered with what to write instead (`64`).
+pub fn side_length(text: &str) -> Result<u32, String> {
+    let text = text.trim();
+    if let Some((w, h)) = text.to_lowercase().split_once('x') {
+        let hint = if w == h { format!("`{w}` for {w}x{h}") } else { "e.g. `64` for 64x64".to_string() };
+        return Err(format!("sizes are side lengths of square images: {hint}"));
+    }
+    text.parse::<u32>()
+        .map_err(|_| format!("{text:?} is not a side length: a whole number in 1..={MAX_IMAGE_SIZE}, e.g. 256"))
+}
+
 /// Every IPSVI configuration a bench will run, checked as the scene file would be.
 pub fn check_ipsvi(flags: &str, configurations: &[IpsviSettings]) -> anyhow::Result<()> {
     for c in configurations {
@@ -42,6 +54,15 @@ pub fn check_slice_steps(flag: &str, steps: &[f32]) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sizes_are_side_lengths() {
+        assert_eq!(side_length("64"), Ok(64));
+        let e = side_length("64x64").unwrap_err();
+        assert!(e.contains("side lengths") && e.contains("`64` for 64x64"), "{e}");
+        assert!(side_length("64x32").unwrap_err().contains("side lengths"));
+        assert!(side_length("big").unwrap_err().contains("whole number"));
+    }
 
     #[test]
     fn bad_values_name_the_flag() {

@@ -1,5 +1,5 @@
 //! `sweeplab bench ipsvi --breakdown`: where the time of one IPSVI frame goes,
-//! in both cache-update modes (issue 9 item 3). Each step adds one part of the
+//! in both cache-update modes. Each step adds one part of the
 //! frame to the one before; its cost is its GPU time minus the previous step's.
 
 use super::args::BenchIpsviArgs;
@@ -48,8 +48,18 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
-    let per_size = 1 + modes.len() * (STEPS.len() + args.line_widths.len());
-    let mut progress = Progress::new(args.sizes.len() * per_size);
+    // Each step weighs its pixels (DVR a twentieth of an IPSVI step's cost per
+    // pixel), so the time left counts a 512x512 step as four 256x256 ones.
+    let per_size = modes.len() * (STEPS.len() + args.line_widths.len());
+    let weights: Vec<f64> = args
+        .sizes
+        .iter()
+        .flat_map(|&size| {
+            let pixels = f64::from(size) * f64::from(size);
+            std::iter::once(pixels * 0.05).chain(std::iter::repeat_n(pixels, per_size))
+        })
+        .collect();
+    let mut progress = Progress::weighted(weights);
     let mut table = BenchTable::with_run(session::run_info(&ctx));
     let mut widths_table = BenchTable::with_run(session::run_info(&ctx));
     let mut bars = Vec::new();
@@ -84,6 +94,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
                 row.set("lines", lines).set("dispatches", dispatches).set("barriers", barriers);
                 table.push(row);
             }
+            out_folder.save_rows("ipsvi_breakdown", &table)?;
             bars.push(bar);
             // The whole frame (step f) at each line width: what wider blocks save.
             let mut by_width = Vec::new();
@@ -107,6 +118,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
                 }
                 widths_table.push(row);
             }
+            out_folder.save_rows("ipsvi_line_widths", &widths_table)?;
         }
     }
     progress.finish();
@@ -122,13 +134,37 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     widths_table.write_json(args.out.join("ipsvi_line_widths.json"))?;
     std::fs::write(args.out.join("ipsvi_line_widths.md"), widths_table.to_markdown_report())
         .context("writing ipsvi_line_widths.md")?;
-    println!("{}", table.to_markdown());
-    println!("{}", widths_table.to_markdown());
+    print_summary(&table);
     println!(
-        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md, ipsvi_breakdown.png, \
+        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md (the full tables), ipsvi_breakdown.png, \
          ipsvi_line_widths.csv, ipsvi_line_widths.json, ipsvi_line_widths.md",
         args.out.display()
     );
     out_folder.finish()?;
     Ok(session::finish(&ctx))
+}
+
+/// What the terminal shows: per size and mode the whole frame against DVR and
+/// its largest step; every step is in the files.
+fn print_summary(table: &BenchTable) {
+    let mut groups: Vec<(String, String)> = Vec::new();
+    for r in &table.rows {
+        let key = (r.text("width"), r.text("cache_update"));
+        if !groups.contains(&key) {
+            groups.push(key);
+        }
+    }
+    for (size, mode) in groups {
+        let rows: Vec<&BenchRow> =
+            table.rows.iter().filter(|r| r.text("width") == size && r.text("cache_update") == mode).collect();
+        let (Some(first), Some(last)) = (rows.first(), rows.last()) else { continue };
+        let ms = |r: &BenchRow, k: &str| r.get_f64(k).unwrap_or(f64::NAN);
+        let largest = rows.iter().max_by(|a, b| ms(a, "step_ms").total_cmp(&ms(b, "step_ms")));
+        let (dvr, frame) = (ms(first, "gpu_ms"), ms(last, "gpu_ms"));
+        print!("{size}x{size} {mode}: IPSVI {frame:.0} ms, {:.1}x DVR ({dvr:.0} ms)", frame / dvr);
+        if let Some(step) = largest {
+            print!("; largest step {} ({:.0} %)", step.text("step"), 100.0 * ms(step, "step_share"));
+        }
+        println!();
+    }
 }

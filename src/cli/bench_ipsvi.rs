@@ -74,8 +74,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
-    let total = args.sizes.len() * (2 + configs.len() + 1 + args.half_angle_slices.len());
-    let mut progress = Progress::new(total);
+    let mut progress = Progress::weighted(step_weights(args, configs.len(), harness.repeat()));
     let mut table = BenchTable::with_run(session::run_info(&ctx));
     for &size in &args.sizes {
         progress.start_step(&format!("{size}x{size} ground truth (GPU, model ii)"));
@@ -87,6 +86,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         row.set("gpu_ms", reference.profile.gpu_ms_total).set("rmse", 0.0).set("max_abs", 0.0);
         row.set("dispatches", reference.dispatches).set("gpu_memory_bytes", reference.profile.gpu_memory_bytes);
         table.push(row);
+        out_folder.save_rows("ipsvi", &table)?;
 
         let dvr = harness.measure_step(&mut progress, &format!("{size}x{size} unshaded DVR"), || {
             technique_frame(&gpu, Technique::Dvr, (size, size), &mut profiler)
@@ -100,6 +100,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         let dvr_ms = row.get_f64("gpu_ms").unwrap_or(f64::NAN);
         let dvr_bytes = dvr.profile.gpu_memory_bytes;
         table.push(row);
+        out_folder.save_rows("ipsvi", &table)?;
 
         for s in &configs {
             let label = format!(
@@ -129,9 +130,11 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             row.set("time_over_dvr", gpu_ms / dvr_ms);
             row.set("ms_per_dispatch", gpu_ms / frame.dispatches.max(1) as f64);
             table.push(row);
+            out_folder.save_rows("ipsvi", &table)?;
         }
         if !args.half_angle_slices.is_empty() && scene.lights.len() == 1 {
             half_angle_rows(args, &ctx, &scene, size, &mut profiler, &mut progress, &mut table)?;
+            out_folder.save_rows("ipsvi", &table)?;
         }
     }
     progress.finish();
@@ -182,8 +185,11 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     table.write_csv(args.out.join("ipsvi.csv"))?;
     table.write_json(args.out.join("ipsvi.json"))?;
     std::fs::write(args.out.join("ipsvi.md"), table.to_markdown_report()).context("writing ipsvi.md")?;
-    println!("{}", table.to_markdown());
-    println!("wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md and ipsvi_<size>_error_vs_time.png", args.out.display());
+    print_summary(&table);
+    println!(
+        "wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md (the full table) and ipsvi_<size>_error_vs_time.png",
+        args.out.display()
+    );
     out_folder.finish()?;
     Ok(session::finish(&ctx))
 }
@@ -228,4 +234,59 @@ fn half_angle_rows(
         table.push(row);
     }
     Ok(())
+}
+
+/// The relative size of each progress step, in the order `run` takes them:
+/// pixels x frames rendered x a rough cost per pixel of the technique (the
+/// ground truth and IPSVI about one unit, half-angle half, DVR a twentieth),
+/// so the time left weighs a 512x512 step four times a 256x256 one.
+fn step_weights(args: &BenchIpsviArgs, configs: usize, repeat: u32) -> Vec<f64> {
+    let frames = f64::from(1 + repeat);
+    let mut weights = Vec::new();
+    for &size in &args.sizes {
+        let pixels = f64::from(size) * f64::from(size);
+        weights.push(pixels);
+        weights.push(pixels * frames * 0.05);
+        weights.extend(std::iter::repeat_n(pixels * frames, configs));
+        weights.push(pixels);
+        weights.extend(std::iter::repeat_n(pixels * frames * 0.5, args.half_angle_slices.len()));
+    }
+    weights
+}
+
+/// What the terminal shows: per size the fastest and the most accurate IPSVI
+/// run and the unshaded baseline; the full table is in the files.
+fn print_summary(table: &BenchTable) {
+    let mut sizes: Vec<u64> = table.rows.iter().filter_map(|r| r.get_f64("width")).map(|w| w as u64).collect();
+    sizes.dedup();
+    for size in sizes {
+        let of = |technique: &str| -> Vec<&BenchRow> {
+            table
+                .rows
+                .iter()
+                .filter(|r| r.text("technique") == technique && r.get_f64("width") == Some(size as f64))
+                .collect()
+        };
+        let ipsvi = of("ipsvi");
+        let by = |key: &str| {
+            ipsvi.iter().copied().min_by(|a, b| {
+                a.get_f64(key).unwrap_or(f64::INFINITY).total_cmp(&b.get_f64(key).unwrap_or(f64::INFINITY))
+            })
+        };
+        let describe = |r: &BenchRow| {
+            format!(
+                "lw={} cache={} {:.0} ms, rmse {:.3e}",
+                r.text("line_width"),
+                r.text("cache_size"),
+                r.get_f64("gpu_ms").unwrap_or(f64::NAN),
+                r.get_f64("rmse").unwrap_or(f64::NAN)
+            )
+        };
+        let dvr = of("dvr").first().and_then(|r| r.get_f64("gpu_ms")).unwrap_or(f64::NAN);
+        println!("{size}x{size}: {} IPSVI runs; unshaded DVR {dvr:.0} ms", ipsvi.len());
+        if let (Some(fast), Some(exact)) = (by("gpu_ms"), by("rmse")) {
+            println!("  fastest:       {}", describe(fast));
+            println!("  most accurate: {}", describe(exact));
+        }
+    }
 }

@@ -93,29 +93,63 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     scene.reference.model = Technique::LightVolume.reference_model(&scene);
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
-    let table1_steps = args.scales.len() * args.light_counts.len() * Update::ALL.len();
-    let steps = table1_steps
-        + 2 * args.scales.len()
-        + 2 * args.scaling_counts.len()
-        + args.incremental_passes.len()
-        + 3
-        + 3 * args.error_scales.len();
     let mut meter = LightsMeter {
         ctx: &ctx,
         profiler: Profiler::new(&ctx, PROFILER_CAPACITY)?,
-        progress: Progress::new(steps),
+        progress: Progress::weighted(step_weights(args, (width, height))),
         harness,
     };
+    // Each part's rows are saved as soon as it ends: an interrupted run keeps them.
     let mut report = Report { run: session::run_info(&ctx), ..Report::default() };
     table1(args, &mut meter, &scene, &mut report)?;
+    report.save(&out_folder)?;
     inside(args, &mut meter, &scene, &mut report)?;
+    report.save(&out_folder)?;
     scaling(args, &mut meter, &scene, &mut report)?;
+    report.save(&out_folder)?;
     incremental(args, &mut meter, &scene, &mut report)?;
+    report.save(&out_folder)?;
     error_rows(args, &mut meter, &scene, (width, height), &mut report)?;
     meter.progress.finish();
     report.write(args)?;
     out_folder.finish()?;
     Ok(session::finish(&ctx))
+}
+
+/// The relative size of each progress step in the order the parts take them,
+/// in passes over an illumination volume at DR*1 (a pass at scale s costs
+/// about 1/s^3 of one; sequential propagation runs a pass per light, a
+/// coherent one about a pass per four lights, a selective update one or two);
+/// a ground truth about two such passes per light at 256x256.
+fn step_weights(args: &BenchLightsArgs, (width, height): (u32, u32)) -> Vec<f64> {
+    let pass = |scale: u32| 1.0 / f64::from(scale.max(1)).powi(3);
+    let coherent = |count: u32| 1.0 + f64::from(count) / 4.0;
+    let mut weights = Vec::new();
+    for &scale in &args.scales {
+        for &count in &args.light_counts {
+            let sequential = f64::from(count);
+            weights.extend([sequential, coherent(count), 1.0, 1.0].map(|passes| passes * pass(scale)));
+        }
+    }
+    for &scale in &args.scales {
+        weights.extend([6.0 * pass(scale), 2.0 * pass(scale)]);
+    }
+    let scaling = pass(args.scaling_scale);
+    for &count in &args.scaling_counts {
+        weights.extend([coherent(count) * scaling, f64::from(count) * scaling]);
+    }
+    let most = args.light_counts.iter().copied().max().unwrap_or(2);
+    weights.extend(std::iter::repeat_n(coherent(most) * scaling, args.incremental_passes.len()));
+    let pixels = f64::from(width) * f64::from(height) / 65536.0;
+    weights.extend([2.0 * f64::from(most) * pixels, 2.0 * f64::from(most) * pixels, 0.01]);
+    for &scale in &args.error_scales {
+        weights.extend([
+            coherent(most) * pass(scale),
+            2.0 * f64::from(most) * pass(scale),
+            2.0 * f64::from(most) * pass(scale),
+        ]);
+    }
+    weights
 }
 
 #[derive(Default)]
@@ -417,6 +451,39 @@ fn error_rows(
 }
 
 impl Report {
+    /// What the terminal shows: the per-added-light slopes, each entire update's
+    /// sequential/coherent ratio and each error row, one line each; every
+    /// column is in the files.
+    fn print_summary(&self) {
+        let num = |r: &BenchRow, k: &str| r.get_f64(k).unwrap_or(f64::NAN);
+        for r in &self.scaling_fit.rows {
+            println!(
+                "figure 10, {} {}: {:.3} per added light (ms; the paper {:.3})",
+                r.text("resolution"),
+                r.text("propagation"),
+                num(r, "ms_per_added_light"),
+                num(r, "paper_ms_per_added_light")
+            );
+        }
+        for r in self.table1.rows.iter().filter(|r| r.text("source").starts_with("ours")) {
+            println!(
+                "entire update, {} {} lights: sequential/coherent {:.2}x",
+                r.text("resolution"),
+                r.text("lights"),
+                num(r, "sequential_over_coherent")
+            );
+        }
+        for r in &self.error.rows {
+            println!(
+                "error, {} {}: rmse {:.4} in {:.0} ms",
+                r.text("technique"),
+                r.text("resolution"),
+                num(r, "rmse"),
+                num(r, "gpu_ms")
+            );
+        }
+    }
+
     fn sections(&self) -> [(&'static str, &'static str, &BenchTable); 8] {
         [
             ("table1", "Table 1 shape: median GPU ms per update, ours beside the paper's Engine rows", &self.table1),
@@ -438,10 +505,10 @@ impl Report {
         ]
     }
 
-    fn write(&self, args: &BenchLightsArgs) -> anyhow::Result<()> {
+    /// Every part's rows in one table, each tagged with its part.
+    fn combined(&self) -> BenchTable {
         let mut all = BenchTable::with_run(self.run.clone());
-        let mut markdown = self.run.markdown();
-        for (part, title, table) in self.sections() {
+        for (part, _, table) in self.sections() {
             for row in &table.rows {
                 let mut tagged = BenchRow::new().with("part", part);
                 for (k, v) in row.iter() {
@@ -449,15 +516,28 @@ impl Report {
                 }
                 all.push(tagged);
             }
+        }
+        all
+    }
+
+    /// The rows measured so far, as `lights.csv` and `lights.json`.
+    fn save(&self, out_folder: &OutFolder) -> anyhow::Result<()> {
+        Ok(out_folder.save_rows("lights", &self.combined())?)
+    }
+
+    fn write(&self, args: &BenchLightsArgs) -> anyhow::Result<()> {
+        let all = self.combined();
+        let mut markdown = self.run.markdown();
+        for (_, title, table) in self.sections() {
             markdown.push_str(&format!("## {title}\n\n{}\n", table.to_markdown()));
         }
         all.write_csv(args.out.join("lights.csv"))?;
         all.write_json(args.out.join("lights.json"))?;
         std::fs::write(args.out.join("lights.md"), &markdown).context("writing lights.md")?;
         self.plots(args)?;
-        println!("{markdown}");
+        self.print_summary();
         println!(
-            "wrote {}/lights.csv, lights.json, lights.md, lights_scaling.png, lights_table1_<scale>.png, \
+            "wrote {}/lights.csv, lights.json, lights.md (the full tables), lights_scaling.png, lights_table1_<scale>.png, \
              lights_error_vs_time.png",
             args.out.display()
         );

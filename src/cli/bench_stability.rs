@@ -1,4 +1,4 @@
-//! `sweeplab bench stability`: issue 14's table of every case x technique
+//! `sweeplab bench stability`: the table of every case x technique
 //! (src/bench/experiments/stability*.rs), the convergence of each technique
 //! over the step, and a heat map of the table.
 
@@ -108,6 +108,7 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
             }
             row.set("wall_s", started.elapsed().as_secs_f64()).set("message", cell.verdict.message());
             table.push(row);
+            out_folder.save_rows("stability", &table)?;
             row_cells.push(heat_cell(&cell));
         }
         map.cells.push(row_cells);
@@ -134,6 +135,7 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
         row.set("overall_order", c.overall_order());
         row.set("status", if c.failures.is_empty() { "ok" } else { "FAILED" }).set("message", c.failures.join("; "));
         orders.push(row);
+        out_folder.save_rows("stability_convergence", &orders)?;
     }
     progress.finish();
     let _ = std::fs::remove_dir_all(&dir);
@@ -151,10 +153,10 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     );
     std::fs::write(out.join("stability.md"), &markdown).context("writing stability.md")?;
     plot_heat_map(out.join("stability.png"), &map)?;
-    println!("{markdown}");
+    print_summary(&table, &orders);
     println!(
-        "wrote {}/stability.csv, stability.json, stability.md, stability_convergence.csv, stability_convergence.json, \
-         stability.png",
+        "wrote {}/stability.csv, stability.json, stability.md (the full table), stability_convergence.csv, \
+         stability_convergence.json, stability.png",
         out.display()
     );
     out_folder.finish()?;
@@ -164,4 +166,31 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
         return Ok(ExitCode::from(1));
     }
     Ok(code)
+}
+
+/// What the terminal shows: the cells counted by status, every cell that is
+/// not ok or warned by name, and the convergence orders; the full table is in
+/// the files.
+fn print_summary(table: &BenchTable, orders: &BenchTable) {
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    for r in &table.rows {
+        let status = r.text("status");
+        match counts.iter_mut().find(|(s, _)| *s == status) {
+            Some((_, n)) => *n += 1,
+            None => counts.push((status, 1)),
+        }
+    }
+    let counted: Vec<String> = counts.iter().map(|(s, n)| format!("{n} {s}")).collect();
+    println!("{} cells: {}", table.rows.len(), counted.join(", "));
+    for r in table.rows.iter().filter(|r| !matches!(r.text("status").as_str(), "ok" | "warned")) {
+        println!("  {} / {}: {} {}", r.text("case"), r.text("technique"), r.text("status"), r.text("message"));
+    }
+    for r in &orders.rows {
+        println!(
+            "convergence {}: order {:.2} ({})",
+            r.text("technique"),
+            r.get_f64("overall_order").unwrap_or(f64::NAN),
+            r.text("status")
+        );
+    }
 }

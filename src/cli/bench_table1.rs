@@ -25,7 +25,7 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
-    let mut progress = Progress::new(PAIRS.len() * args.sizes.len() * LINE_WIDTHS.len());
+    let mut progress = Progress::weighted(step_weights(&args.sizes));
     let mut table = BenchTable::with_run(session::run_info(&ctx));
     for (file, paper) in PAIRS {
         let path = data_dir().join(file);
@@ -70,13 +70,40 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
                 table.push(row);
             }
         }
+        out_folder.save_rows("table1", &table)?;
     }
     progress.finish();
     table.write_csv(args.out.join("table1.csv"))?;
     table.write_json(args.out.join("table1.json"))?;
     std::fs::write(args.out.join("table1.md"), table.to_markdown_report()).context("writing table1.md")?;
-    println!("{}", table.to_markdown());
-    println!("wrote {}/table1.csv, table1.json, table1.md", args.out.display());
+    for r in &table.rows {
+        println!(
+            "{} {}x{} lw={}: {:.2} fps (paper, {}: {:.1} fps)",
+            r.text("data_set"),
+            r.text("width"),
+            r.text("width"),
+            r.text("line_width"),
+            r.get_f64("fps").unwrap_or(f64::NAN),
+            r.text("paper_data_set"),
+            r.get_f64("paper_fps").unwrap_or(f64::NAN)
+        );
+    }
+    println!("wrote {}/table1.csv, table1.json, table1.md (the full table)", args.out.display());
     out_folder.finish()?;
     Ok(session::finish(&ctx))
+}
+
+/// The relative size of each progress step: pixels times the cube root of the
+/// data set's file size (a ray's length in voxels), so the time left counts
+/// large images and large volumes as such.
+fn step_weights(sizes: &[u32]) -> Vec<f64> {
+    let mut weights = Vec::new();
+    for (file, _) in PAIRS {
+        let bytes = std::fs::metadata(data_dir().join(file)).map(|m| m.len() as f64).unwrap_or(1.0);
+        for &size in sizes {
+            let pixels = f64::from(size) * f64::from(size);
+            weights.extend(std::iter::repeat_n(pixels * bytes.max(1.0).cbrt(), LINE_WIDTHS.len()));
+        }
+    }
+    weights
 }

@@ -7,6 +7,16 @@ use std::path::Path;
 
 /// A PNG image to write for `flag`.
 pub fn check_png(flag: &str, path: &Path) -> anyhow::Result<()> {
+    // A folder (or a path ending in a separator) first: "name the file *.png"
+    // would not tell that a folder was given.
+    let text = path.to_string_lossy();
+    if path.is_dir() || text.ends_with('/') || text.ends_with(std::path::MAIN_SEPARATOR) {
+        bail!(
+            "{flag} {}: expects a file, got a directory (e.g. {flag} {})",
+            path.display(),
+            path.join("image.png").display()
+        );
+    }
     let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
     if extension.as_deref() != Some("png") {
         bail!("{flag} {}: images are written as PNG; name the file *.png", path.display());
@@ -17,7 +27,7 @@ pub fn check_png(flag: &str, path: &Path) -> anyhow::Result<()> {
 /// A file to write for `flag`: its folder must exist and it must not be a folder.
 pub fn check_file(flag: &str, path: &Path) -> anyhow::Result<()> {
     if path.is_dir() {
-        bail!("{flag} {}: is a folder, not a file", path.display());
+        bail!("{flag} {}: expects a file, got a directory", path.display());
     }
     let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     if !folder.is_dir() {
@@ -40,6 +50,9 @@ mod tests {
         assert!(jpg.contains("--out") && jpg.contains("PNG"), "{jpg}");
         let missing = check_png("--out", &dir.join("no-such-folder-sweeplab/a.png")).unwrap_err().to_string();
         assert!(missing.contains("does not exist"), "{missing}");
-        assert!(check_file("--json", &dir).unwrap_err().to_string().contains("is a folder"));
+        assert!(check_file("--json", &dir).unwrap_err().to_string().contains("expects a file, got a directory"));
+        let slash = format!("{}/", dir.display());
+        let e = check_png("--out", Path::new(&slash)).unwrap_err().to_string();
+        assert!(e.contains("expects a file, got a directory"), "{e}");
     }
 }

@@ -31,6 +31,9 @@ pub fn parse_size(text: &str) -> anyhow::Result<(u32, u32)> {
     else {
         bail!("--size {text:?}: expected WIDTHxHEIGHT, e.g. 512x512");
     };
+    if w.starts_with('-') || h.starts_with('-') {
+        bail!("--size {text:?}: width and height are whole numbers in 1..=16384, e.g. 512x512");
+    }
     let w: u32 = w.parse().with_context(|| format!("--size {text:?}: width {w:?} is not a whole number"))?;
     let h: u32 = h.parse().with_context(|| format!("--size {text:?}: height {h:?} is not a whole number"))?;
     if w == 0 || h == 0 || w > 16384 || h > 16384 {

@@ -1,4 +1,4 @@
-//! Ground truth of ambient occlusion and colour bleeding (issue 10): per voxel
+//! Ground truth of ambient occlusion and colour bleeding: per voxel
 //! and hemisphere, the occlusion and environment colour over the same sphere
 //! radius r that the clustered histograms summarize, but keeping what they
 //! discard: the medium attenuates along each direction (a wall hides what is

@@ -1,7 +1,7 @@
 //! Where a technique that holds light on a grid (IPSVI's cache, half-angle's
 //! light buffer, the light volume) cannot keep its stated bound against the
 //! reference of its model: a named warning each, which the command line prints
-//! and the stability table counts as a warning, not a pass (issue 14: never a
+//! and the stability table counts as a warning, not a pass (never a
 //! silent wrong image). The thresholds are where the table's cells left their
 //! bounds on lavapipe (docs/stability.md).
 

@@ -6,6 +6,7 @@ pub mod default_scene;
 pub mod geometry;
 pub mod light;
 pub mod loaders;
+pub mod missing_file;
 pub mod overrides;
 pub mod presets;
 pub mod scene_file;
@@ -16,6 +17,7 @@ pub mod suggest;
 pub mod synthetic;
 pub mod technique_settings;
 pub mod transfer;
+pub mod user_terms;
 pub mod volume;
 pub mod warnings;
 

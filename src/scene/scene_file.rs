@@ -98,6 +98,19 @@ pub enum SceneError {
     Settings { origin: String, error: SettingsError },
     #[error("{origin}: cannot load volume {path}: {source}")]
     Volume { origin: String, path: PathBuf, source: Box<LoadError> },
+    /// The volume file is not there: its path once, and a likely meant one.
+    #[error("{origin}: {}{hint}", missing_volume(.origin, .path))]
+    MissingVolume { origin: String, path: PathBuf, hint: String },
+}
+
+/// "no such file" where the origin already names the path (`--volume FILE`),
+/// else "no volume file FILE".
+fn missing_volume(origin: &str, path: &Path) -> String {
+    if origin.ends_with(&path.display().to_string()) {
+        "no such file".to_string()
+    } else {
+        format!("no volume file {}", path.display())
+    }
 }
 
 /// Reads, checks and builds (loading the volume) the scene file at `path`.

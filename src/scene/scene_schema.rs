@@ -202,6 +202,7 @@ impl Default for PhongSection {
 /// serde's "unknown field `x`, expected one of `a`, `b`" with the nearest known
 /// field suggested: "... (did you mean `a`?)".
 fn with_suggestion(message: &str) -> String {
+    let message = &super::user_terms::in_user_terms(message);
     let unknown = message.strip_prefix("unknown field `").and_then(|rest| rest.split_once('`'));
     let Some((field, rest)) = unknown else { return message.to_string() };
     let known = rest.split('`').skip(1).step_by(2);
@@ -588,6 +589,6 @@ mod tests {
         let far = "unknown field `zzz`, expected one of `type`, `direction`";
         assert_eq!(with_suggestion(far), far);
         let other = "invalid type: string \"abc\", expected f32";
-        assert_eq!(with_suggestion(other), other);
+        assert_eq!(with_suggestion(other), "invalid type: string \"abc\", expected a number");
     }
 }

@@ -114,6 +114,11 @@ pub struct SceneSpec {
 impl SceneSpec {
     pub fn load_volume(&self) -> Result<Volume, SceneError> {
         match &self.volume {
+            VolumeSource::File(path) if !path.exists() => Err(SceneError::MissingVolume {
+                origin: self.origin.clone(),
+                path: path.clone(),
+                hint: super::missing_file::missing_file_hint(path),
+            }),
             VolumeSource::File(path) => loaders::load_volume(path).map_err(|source| SceneError::Volume {
                 origin: self.origin.clone(),
                 path: path.clone(),
@@ -141,7 +146,7 @@ impl SceneSpec {
             volume,
             transfer,
             camera,
-            // Issue 14: far point and spot lights become the directional
+            // Far point and spot lights become the directional
             // lights they approach, one rule for every technique.
             lights: self.lights.iter().map(|l| l.far_limit(volume_box.half_extent.length())).collect(),
             render: self.render,

@@ -46,17 +46,40 @@ pub fn read_table<T: SettingsTable>(value: Value) -> Result<T, SettingsError> {
         let suggestion = nearest(key, known.iter().copied());
         return Err(SettingsError::UnknownKey { table, key: key.clone(), suggestion, known });
     }
-    let settings: T = Value::Table(entries).try_into().map_err(|e: toml::de::Error| {
+    let settings: T = Value::Table(entries.clone()).try_into().map_err(|e: toml::de::Error| {
         // toml names the key on the error's last line ("in `key`").
         let display = e.to_string();
         let inner = display.lines().rev().find_map(|l| l.trim().strip_prefix("in `")?.strip_suffix('`'));
-        SettingsError::Value {
-            key: inner.map_or_else(|| table.to_string(), |k| format!("{table}.{k}")),
-            message: e.message().trim_end().to_string(),
-        }
+        let message = super::user_terms::in_user_terms(e.message().trim_end());
+        // A number of the wrong kind: say which numbers the key takes, and what was given.
+        let given =
+            message.strip_prefix("invalid type: ").and_then(|m| m.split_once(", expected")).map(|(g, _)| g.to_string());
+        let message = match (given, inner.and_then(|k| allowed_numbers::<T>(&entries, k))) {
+            (Some(given), Some(allowed)) => format!("must be {allowed}, not the {given}"),
+            _ => message,
+        };
+        SettingsError::Value { key: inner.map_or_else(|| table.to_string(), |k| format!("{table}.{k}")), message }
     })?;
     settings.validate()?;
     Ok(settings)
+}
+
+/// The range `key` accepts as the range check states it ("a whole number in
+/// 1..=32"), found by trying values far outside any range in its place; `None`
+/// for keys that are not plain numbers.
+fn allowed_numbers<T: SettingsTable>(entries: &toml::Table, key: &str) -> Option<String> {
+    let probes = [Value::Integer(0), Value::Integer(i64::from(u32::MAX)), Value::Float(-1e30), Value::Float(1e30)];
+    probes.into_iter().find_map(|probe| {
+        let mut probed = entries.clone();
+        probed.insert(key.to_string(), probe);
+        let settings: T = Value::Table(probed).try_into().ok()?;
+        match settings.validate() {
+            Err(SettingsError::OutOfRange { key: named, allowed, .. }) if named == format!("{}.{key}", T::TABLE) => {
+                Some(allowed)
+            }
+            _ => None,
+        }
+    })
 }
 
 /// The keys serde reads for `T` (its field names as written in the file).
@@ -173,8 +196,9 @@ mod tests {
         assert_eq!(read("step = 2.0").unwrap_err().to_string(), "example.step = 2: must be in 0..=1");
         assert_eq!(read("step = nan").unwrap_err().to_string(), "example.step = NaN: must be in 0..=1");
         assert_eq!(read("width = 9").unwrap_err().to_string(), "example.width = 9: must be a whole number in 0..=8");
+        // A value of the wrong kind: what the key takes, in words, and what was given.
         let e = read("width = \"big\"").unwrap_err().to_string();
-        assert!(e.starts_with("example.width: invalid type"), "{e}");
+        assert_eq!(e, "example.width: must be a whole number in 0..=8, not the string \"big\"");
         let e = read_table::<Example>(Value::Integer(3)).unwrap_err().to_string();
         assert_eq!(e, "[example] must be a table of settings");
     }

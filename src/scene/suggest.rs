@@ -4,10 +4,12 @@
 const MAX_EDITS: usize = 2;
 
 /// The known name closest to `name`, if it is within [`MAX_EDITS`] edits.
+/// Case does not count: `IPSVI` is `ipsvi` typed with caps lock on.
 pub fn nearest<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let name = name.to_lowercase();
     known
         .into_iter()
-        .map(|k| (edit_distance(name, k), k))
+        .map(|k| (edit_distance(&name, &k.to_lowercase()), k))
         .filter(|&(d, _)| d <= MAX_EDITS)
         .min_by_key(|&(d, _)| d)
         .map(|(_, k)| k)
@@ -41,6 +43,12 @@ mod tests {
         assert_eq!(edit_distance("render", "rendre"), 2);
         assert_eq!(edit_distance("ipsvi", "phong"), 5);
         assert_eq!(edit_distance("", "ao"), 2);
+    }
+
+    #[test]
+    fn case_does_not_count() {
+        assert_eq!(nearest("IPSVI", ["dvr", "ipsvi", "ao"]), Some("ipsvi"));
+        assert_eq!(nearest("Half-Angel", ["half-angle", "phong"]), Some("half-angle"));
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! Scenes that load and render but whose image would be meaningless: the
-//! library returns these, the command line prints them (issue 14: never a
+//! library returns these, the command line prints them (never a
 //! silent black image).
 
 use super::{Scene, TransferFunction, TransferLut};

@@ -1,4 +1,4 @@
-//! Issue 14's stability table: every technique on every case of
+//! The stability table: every technique on every case of
 //! [`super::stability_cases`], each cell within the technique's stated bound
 //! against the CPU f64 reference of its model, or an explicit refusal naming
 //! the setting, or a warning the scene comes with; then each technique's

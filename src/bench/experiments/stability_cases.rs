@@ -1,4 +1,4 @@
-//! The cases of issue 14's stability suite, one definition for the CI test
+//! The cases of the stability suite, one definition for the CI test
 //! (tests/stability.rs, the cases marked `ci`) and `sweeplab bench stability`
 //! (all of them): a scene file's text and overrides each, the techniques that
 //! must refuse it (and a word their refusal names), and the warning the scene

@@ -126,6 +126,7 @@ pub fn markdown(report: &SyncReport) -> String {
 /// `sync_configurations.md` and, per strategy with per-line timestamps,
 /// `lines_<workload>_<strategy>.json` (its gaps) into `folder`.
 pub fn write(report: &SyncReport, folder: &Path) -> Result<(), BenchError> {
+    std::fs::create_dir_all(folder).map_err(|source| BenchError::Write { path: folder.to_owned(), source })?;
     let path = folder.join("sync.json");
     let json = serde_json::to_string_pretty(report)
         .map_err(|e| BenchError::Write { path: path.clone(), source: std::io::Error::other(e) })?;
