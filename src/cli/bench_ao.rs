@@ -262,7 +262,7 @@ fn write_report(args: &BenchAoArgs, table: &BenchTable, table1: &BenchTable) -> 
     )?;
     println!("{markdown}");
     println!(
-        "wrote {}/ao.csv, ao.json, ao_table1.csv, ao.md, ao_error_vs_clusters.png, ao_error_vs_preprocessing.png",
+        "wrote {}/ao.csv, ao.json, ao_table1.csv, ao.md, ao_error_vs_clusters.png, ao_error_vs_preprocessing.png (and .svg)",
         args.out.display()
     );
     Ok(())

@@ -124,7 +124,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     println!("{}", table.to_markdown());
     println!("{}", widths_table.to_markdown());
     println!(
-        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md, ipsvi_breakdown.png, \
+        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md, ipsvi_breakdown.png and .svg, \
          ipsvi_line_widths.csv, ipsvi_line_widths.json, ipsvi_line_widths.md",
         args.out.display()
     );

@@ -183,7 +183,10 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     table.write_json(args.out.join("ipsvi.json"))?;
     std::fs::write(args.out.join("ipsvi.md"), table.to_markdown()).context("writing ipsvi.md")?;
     println!("{}", table.to_markdown());
-    println!("wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md and ipsvi_<size>_error_vs_time.png", args.out.display());
+    println!(
+        "wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md and ipsvi_<size>_error_vs_time.png (and .svg)",
+        args.out.display()
+    );
     out_folder.finish()?;
     Ok(session::finish(&ctx))
 }

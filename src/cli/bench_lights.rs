@@ -456,7 +456,7 @@ impl Report {
         println!("{markdown}");
         println!(
             "wrote {}/lights.csv, lights.json, lights.md, lights_scaling.png, lights_table1_<scale>.png, \
-             lights_error_vs_time.png",
+             lights_error_vs_time.png (and .svg)",
             args.out.display()
         );
         Ok(())

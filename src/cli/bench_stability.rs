@@ -153,7 +153,7 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     println!("{markdown}");
     println!(
         "wrote {}/stability.csv, stability.json, stability.md, stability_convergence.csv, stability_convergence.json, \
-         stability.png",
+         stability.png and .svg",
         out.display()
     );
     out_folder.finish()?;

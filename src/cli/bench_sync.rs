@@ -6,8 +6,8 @@ use super::{bench_args, scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::{
-    ipsvi_frame, median, plot_error_vs_time, plot_lines, AxisScale, BenchRow, BenchTable, Chart, Harness, Measurement,
-    OutFolder, ProfiledFrame, Progress, Series,
+    ipsvi_frame, median, plot_error_vs_time, plot_histogram, plot_lines, AxisScale, BenchRow, BenchTable, Chart,
+    Distribution, Harness, Measurement, OutFolder, ProfiledFrame, Progress, Series,
 };
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
@@ -224,36 +224,24 @@ fn write_reports(args: &BenchSyncArgs, strategies: &[SyncStrategy], table: &Benc
 }
 
 /// Histogram (log-spaced bins) of per-line dispatch times and of the gaps between
-/// consecutive dispatches, one PNG per strategy.
+/// consecutive dispatches, one chart (PNG and SVG) per strategy.
 fn write_histogram(
     args: &BenchSyncArgs,
     strategy: SyncStrategy,
     t: &sweeplab::vk::ScopeTimeline,
 ) -> anyhow::Result<()> {
-    let all: Vec<f64> = t.durations_us.iter().chain(&t.gaps_us).copied().filter(|v| *v > 0.0).collect();
-    if all.is_empty() {
+    if !t.durations_us.iter().chain(&t.gaps_us).any(|v| *v > 0.0) {
         return Ok(());
     }
-    let lo = all.iter().copied().fold(f64::INFINITY, f64::min).max(0.1).log10().floor();
-    let hi = all.iter().copied().fold(0.0, f64::max).log10().ceil().max(lo + 1.0);
-    let bins = 24;
-    let edge = |i: usize| 10f64.powf(lo + (hi - lo) * i as f64 / bins as f64);
-    let histogram = |values: &[f64]| -> Vec<(f64, f64)> {
-        (0..bins)
-            .map(|i| {
-                let (a, b) = (edge(i), edge(i + 1));
-                ((a * b).sqrt(), values.iter().filter(|&&v| v >= a && v < b).count() as f64)
-            })
-            .collect()
-    };
     let label = if strategy.is_racy() { format!("{} (RACY)", strategy.name()) } else { strategy.name().to_string() };
-    plot_lines(
+    plot_histogram(
         args.out.join(format!("lines_{}.png", strategy.name())),
         &Chart::new(format!("{label}: per-line times, one frame"), "microseconds", "lines").x_scale(AxisScale::Log10),
         &[
-            Series::new("inside the dispatch", histogram(&t.durations_us)),
-            Series::new("gap to the next", histogram(&t.gaps_us)),
+            Distribution::new("inside the dispatch", t.durations_us.clone()),
+            Distribution::new("gap to the next", t.gaps_us.clone()),
         ],
+        24,
     )?;
     Ok(())
 }
