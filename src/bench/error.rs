@@ -18,6 +18,14 @@ pub enum BenchError {
          {min_width}x{min_height} to {max_side}x{max_side} pixels"
     )]
     ChartSize { width: u32, height: u32, min_width: u32, min_height: u32, max_side: u32 },
+    #[error("cannot draw the chart: {0}")]
+    Chart(String),
     #[error("a heat map of {rows} row label(s) and {columns} column label(s) needs as many rows of as many cells")]
     HeatMapShape { rows: usize, columns: usize },
+}
+
+impl<E: std::error::Error + Send + Sync> From<plotters::drawing::DrawingAreaErrorKind<E>> for BenchError {
+    fn from(error: plotters::drawing::DrawingAreaErrorKind<E>) -> Self {
+        BenchError::Chart(error.to_string())
+    }
 }

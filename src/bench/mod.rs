@@ -1,42 +1,37 @@
 //! Benchmark reports shared by every `sweeplab bench ...` sweep: one [`BenchRow`]
 //! per run, written as CSV, JSON and a Markdown table; the Pareto front of
-//! (GPU time, error); PNG charts drawn without system fonts; and a progress line
+//! (GPU time, error); charts as PNG and SVG ([`charts`], by plotters); and a progress line
 //! on stderr while the sweep runs. The measuring loop (warm-up, timed repeats,
 //! median) is [`Harness`]; [`frames`] times technique and IPSVI frames with it,
 //! and [`experiments`] holds what the bench commands measure.
 
-pub mod axis;
-pub mod canvas;
+pub mod charts;
 pub mod cpu_time;
 pub mod error;
 pub mod estimate;
 pub mod experiments;
-pub mod font;
 pub mod frames;
 pub mod harness;
-pub mod heat_map;
 pub mod out_folder;
 pub mod pareto;
-pub mod plot;
 pub mod progress;
 pub mod protocol;
 pub mod rows;
 pub mod run_info;
 pub mod stats;
 
-pub use axis::AxisScale;
+pub use charts::{
+    palette_color, plot_error_map, plot_error_vs_time, plot_heat_map, plot_histogram, plot_lines, plot_stacked_bars,
+    render_error_map, render_error_vs_time, render_heat_map, render_histogram, render_lines, render_stacked_bars,
+    AxisScale, Chart, Distribution, ErrorMap, HeatCell, HeatLevel, HeatMap, Point, Series, StackedBar,
+};
 pub use error::BenchError;
 pub use estimate::{Estimate, Verdict};
 pub use experiments::ExperimentError;
 pub use frames::{ipsvi_frame, technique_frame, ProfiledFrame};
 pub use harness::{Harness, HarnessError, Measurement, Sample};
-pub use heat_map::{plot_heat_map, render_heat_map, HeatCell, HeatLevel, HeatMap};
 pub use out_folder::{OutFolder, OutFolderError};
 pub use pareto::pareto_front;
-pub use plot::{
-    palette_color, plot_error_vs_time, plot_lines, plot_stacked_bars, render_error_vs_time, render_lines,
-    render_stacked_bars, Chart, Series, StackedBar,
-};
 pub use progress::Progress;
 pub use protocol::{Protocol, ProtocolError};
 pub use rows::{BenchRow, BenchTable, BenchValue};

@@ -362,7 +362,7 @@ pub struct CompareArgs {
     /// Write the figures as JSON.
     #[arg(long, value_name = "FILE")]
     pub json: Option<PathBuf>,
-    /// Write an error heat-map PNG.
+    /// Write the error heat map (with its colour scale) as PNG, and as SVG beside it.
     #[arg(long, value_name = "FILE")]
     pub heatmap: Option<PathBuf>,
     /// Write the technique's image.

@@ -285,7 +285,7 @@ fn write_report(args: &BenchAoArgs, table: &BenchTable, table1: &BenchTable) -> 
     print_summary(table);
     println!(
         "wrote {}/ao.csv, ao.json, ao_table1.csv, ao.md (the full table), ao_error_vs_clusters.png, \
-         ao_error_vs_preprocessing.png",
+         ao_error_vs_preprocessing.png (and .svg)",
         args.out.display()
     );
     Ok(())

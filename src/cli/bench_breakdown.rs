@@ -136,7 +136,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         .context("writing ipsvi_line_widths.md")?;
     print_summary(&table);
     println!(
-        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md (the full tables), ipsvi_breakdown.png, \
+        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md (the full tables), ipsvi_breakdown.png and .svg, \
          ipsvi_line_widths.csv, ipsvi_line_widths.json, ipsvi_line_widths.md",
         args.out.display()
     );

@@ -187,7 +187,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     std::fs::write(args.out.join("ipsvi.md"), table.to_markdown_report()).context("writing ipsvi.md")?;
     print_summary(&table);
     println!(
-        "wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md (the full table) and ipsvi_<size>_error_vs_time.png",
+        "wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md (the full table) and ipsvi_<size>_error_vs_time.png (and .svg)",
         args.out.display()
     );
     out_folder.finish()?;

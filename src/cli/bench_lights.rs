@@ -538,7 +538,7 @@ impl Report {
         self.print_summary();
         println!(
             "wrote {}/lights.csv, lights.json, lights.md (the full tables), lights_scaling.png, lights_table1_<scale>.png, \
-             lights_error_vs_time.png",
+             lights_error_vs_time.png (and .svg)",
             args.out.display()
         );
         Ok(())

@@ -156,7 +156,7 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     print_summary(&table, &orders);
     println!(
         "wrote {}/stability.csv, stability.json, stability.md (the full table), stability_convergence.csv, \
-         stability_convergence.json, stability.png",
+         stability_convergence.json, stability.png and .svg",
         out.display()
     );
     out_folder.finish()?;

@@ -4,7 +4,8 @@ use super::{output_paths, scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Instant;
-use sweeplab::metrics::{compare, error_heatmap, save_heatmap};
+use sweeplab::bench::{plot_error_map, ErrorMap};
+use sweeplab::metrics::{compare, pixel_errors};
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
 use sweeplab::render::{render, GpuScene, Technique};
 use sweeplab::vk::Profiler;
@@ -77,7 +78,9 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
         write_json(path, &value)?;
     }
     if let Some(path) = &args.heatmap {
-        save_heatmap(&error_heatmap(&tested.image, &reference, None)?, path)?;
+        let title = format!("{}: largest channel error against the reference", technique.name());
+        let errors = pixel_errors(&tested.image, &reference)?;
+        plot_error_map(path, &ErrorMap { title, width: w, height: h, errors })?;
     }
     if let Some(path) = &args.out {
         tested.image.save_png(path)?;

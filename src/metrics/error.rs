@@ -1,4 +1,4 @@
-//! Why two images could not be compared, or a heatmap not written.
+//! Why two images could not be compared.
 
 #[derive(Debug, thiserror::Error)]
 pub enum MetricsError {
@@ -14,8 +14,4 @@ pub enum MetricsError {
     /// NaN or infinity: an error rather than a silently meaningless statistic.
     #[error("{which} image has a non-finite value {value:?} at pixel ({x}, {y})")]
     NonFinite { which: &'static str, x: u32, y: u32, value: [f32; 3] },
-    #[error("heatmap scale must be a finite number above 0, got {0}")]
-    InvalidScale(f32),
-    #[error("cannot write heatmap {path}: {source}")]
-    Write { path: String, source: image::ImageError },
 }

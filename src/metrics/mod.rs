@@ -1,11 +1,11 @@
-//! How far a rendered image is from a reference: error statistics on linear RGB
-//! and a false-colour map of where the error is.
+//! How far a rendered image is from a reference: error statistics on linear RGB,
+//! the per-pixel error field, and the colour map that shows it.
 
 pub mod colormap;
 pub mod error;
-pub mod heatmap;
+pub mod pixel_errors;
 pub mod stats;
 
 pub use error::MetricsError;
-pub use heatmap::{error_heatmap, save_heatmap};
+pub use pixel_errors::pixel_errors;
 pub use stats::{compare, ErrorStats};

@@ -1,0 +1,73 @@
+//! What a chart shows besides its data: title, axis labels and scales, size.
+
+use super::scale::AxisScale;
+use crate::bench::BenchError;
+
+const MIN_WIDTH: u32 = 320;
+const MIN_HEIGHT: u32 = 200;
+pub(super) const MAX_SIDE: u32 = 8192;
+
+/// Titles, axes and size of a chart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Chart {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub x_scale: AxisScale,
+    pub y_scale: AxisScale,
+    pub width: u32,
+    pub height: u32,
+    /// A line under the chart naming what produced it (device, driver,
+    /// commit, date: [`RunInfo::caption`](crate::bench::RunInfo::caption)).
+    pub caption: Option<String>,
+}
+
+impl Chart {
+    /// A 900x600 chart with linear axes.
+    pub fn new(title: impl Into<String>, x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
+        Chart {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            x_scale: AxisScale::Linear,
+            y_scale: AxisScale::Linear,
+            width: 900,
+            height: 600,
+            caption: None,
+        }
+    }
+
+    pub fn x_scale(mut self, scale: AxisScale) -> Self {
+        self.x_scale = scale;
+        self
+    }
+
+    pub fn y_scale(mut self, scale: AxisScale) -> Self {
+        self.y_scale = scale;
+        self
+    }
+
+    pub fn caption(mut self, caption: impl Into<String>) -> Self {
+        self.caption = Some(caption.into());
+        self
+    }
+
+    pub fn size(mut self, width: u32, height: u32) -> Self {
+        self.width = width;
+        self.height = height;
+        self
+    }
+
+    pub(super) fn check_size(&self) -> Result<(), BenchError> {
+        check_size(self.width, self.height, MIN_WIDTH, MIN_HEIGHT)
+    }
+}
+
+pub(super) fn check_size(width: u32, height: u32, min_width: u32, min_height: u32) -> Result<(), BenchError> {
+    let fits = (min_width..=MAX_SIDE).contains(&width) && (min_height..=MAX_SIDE).contains(&height);
+    if fits {
+        Ok(())
+    } else {
+        Err(BenchError::ChartSize { width, height, min_width, min_height, max_side: MAX_SIDE })
+    }
+}
