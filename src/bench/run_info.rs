@@ -102,9 +102,10 @@ impl RunInfo {
 
     /// One line for a chart caption: device, driver, commit, date.
     pub fn caption(&self) -> String {
+        let driver = if self.driver_info.is_empty() { &self.driver_version } else { &self.driver_info };
         format!(
-            "{} ({} {}), {} at {}, {}",
-            self.device, self.driver_name, self.driver_version, self.sweeplab_version, self.git_commit, self.date
+            "{}, {} {}, sweeplab {} at {}, {}",
+            self.device, self.driver_name, driver, self.sweeplab_version, self.git_commit, self.date
         )
     }
 

@@ -68,9 +68,13 @@ struct Files<'a> {
 }
 
 impl SyncObserver for Files<'_> {
-    fn warm_up(&mut self, configurations: usize) {
+    fn warm_up(&mut self, workload: Workload, configurations: usize) {
         self.configurations = configurations;
-        eprintln!("bench sync: {configurations} configurations; warm-up round, then shuffled timed rounds");
+        eprintln!(
+            "{} workload: {configurations} configurations; a warm-up round (each configuration's first frame \
+             compiles its shaders), then shuffled timed rounds",
+            workload.name()
+        );
     }
 
     fn round(&mut self, report: &SyncReport, eta: Eta) -> Result<(), ExperimentError> {
@@ -85,7 +89,7 @@ impl SyncObserver for Files<'_> {
             format!("intervals from round {}", MIN_SAMPLES)
         };
         eprintln!(
-            "{} workload: round {} done in {} ({} configurations in all); {state}; at most {} more round(s), about {} left",
+            "{} workload: round {} done in {} ({} configurations); {state}; at most {} more round(s), about {} left",
             eta.workload.name(),
             eta.round,
             format_duration(eta.last_round),
@@ -119,12 +123,17 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
     let mut files = Files { out: &args.out, configurations: 0 };
     let report = sync::run(&ctx, &gpu, &scene.settings.ipsvi, &plan, run_info, &mut files)?;
     sync_report::write(&report, &args.out)?;
+    sync_report::write_charts(&report, &args.out)?;
     drop(gpu);
     println!("{}", report.verdict().join("\n"));
     if ctx.validation_enabled() {
         println!("(validation on: these times include the layers' work and say nothing about the device)");
     }
-    println!("wrote {}/sync.md (verdict and tables), sync.json, sync.csv, sync_configurations.csv", args.out.display());
+    println!(
+        "wrote {}/sync.md (verdict and tables), sync.json, sync.csv, sync_configurations.csv, \
+         sync_frames_<workload>.png, sync_cost_<workload>.png, sync_gaps_<workload>.png (and .svg)",
+        args.out.display()
+    );
     out_folder.finish()?;
     Ok(session::finish(&ctx))
 }

@@ -4,6 +4,7 @@
 use super::args::ReportArgs;
 use anyhow::Context as _;
 use std::process::ExitCode;
+use sweeplab::bench::experiments::sync::Workload;
 use sweeplab::bench::experiments::sync_report;
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
@@ -30,7 +31,16 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
     md.push('\n');
     md.push_str(&table.to_markdown());
     std::fs::write(args.out.join("report.md"), &md).context("writing report.md")?;
+    for workload in Workload::ALL {
+        if reports.iter().any(|r| r.rounds_of(workload) > 0) {
+            sync_report::plot_side_by_side(
+                &reports,
+                workload,
+                &args.out.join(format!("report_{}.png", workload.name())),
+            )?;
+        }
+    }
     println!("{}", table.to_markdown());
-    println!("wrote {}/report.md and report.csv", args.out.display());
+    println!("wrote {}/report.md, report.csv and report_<workload>.png (and .svg)", args.out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -349,7 +349,8 @@ use crate::bench::estimate::readable;
 /// Called after every round with the report so far, and how long the rounds
 /// took and are expected to take.
 pub trait SyncObserver {
-    fn warm_up(&mut self, _configurations: usize) {}
+    /// Before a workload's warm-up round.
+    fn warm_up(&mut self, _workload: Workload, _configurations: usize) {}
     fn round(&mut self, report: &SyncReport, eta: Eta) -> Result<(), ExperimentError>;
 }
 
@@ -460,7 +461,6 @@ pub fn run(
         });
     }
     let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
-    observer.warm_up(configs.len());
     let mut measured = Measured { runs: vec![Vec::new(); configs.len()], workloads: Vec::new() };
     for (n, &workload) in plan.workloads.iter().enumerate() {
         let members: Vec<usize> = (0..configs.len()).filter(|&i| configs[i].key.workload == workload).collect();
@@ -470,6 +470,7 @@ pub fn run(
             Instant::now() + if last || workload != Workload::Empty { left } else { left.mul_f64(EMPTY_SHARE) }
         });
         measured.workloads.push(WorkloadRounds { workload, rounds: 0, orders: Vec::new(), seconds: 0.0 });
+        observer.warm_up(workload, members.len());
         let mut report_of = |configs: &[Configuration], so_far: &Measured| {
             summarize(plan, configs, so_far, &run_info, false, started.elapsed())
         };

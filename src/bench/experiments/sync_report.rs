@@ -8,7 +8,7 @@
 use super::sync::{ConfigRow, StrategyRow, SyncReport, BASELINE, CONTROL};
 use crate::bench::estimate::Estimate;
 use crate::bench::rows::{BenchRow, BenchTable};
-use crate::bench::BenchError;
+use crate::bench::{plot_histogram, plot_lines, AxisScale, BenchError, Chart, Distribution, Point, Series};
 use std::path::Path;
 
 /// Sets `key` (value) and `key_lo`, `key_hi` where the estimate exists.
@@ -176,4 +176,114 @@ pub fn side_by_side(reports: &[SyncReport]) -> BenchTable {
 pub fn read(path: &Path) -> Result<SyncReport, BenchError> {
     let text = std::fs::read_to_string(path).map_err(|source| BenchError::Read { path: path.to_owned(), source })?;
     serde_json::from_str(&text).map_err(|source| BenchError::NotSyncReport { path: path.to_owned(), source })
+}
+
+/// The study's charts, each PNG with an SVG beside it, captioned with the run:
+/// - `sync_frames_<workload>.png`: frame time over the number of blocks per
+///   strategy (medians with their intervals): the lines whose slopes are the
+///   per-boundary costs;
+/// - `sync_cost_<workload>.png`: each strategy's sync cost over no barriers
+///   with its interval (a hollow marker: within noise);
+/// - `sync_gaps_<workload>.png`: the gaps between consecutive line dispatches
+///   of one timestamped frame per strategy.
+pub fn write_charts(report: &SyncReport, folder: &Path) -> Result<(), BenchError> {
+    let caption = report.run.caption();
+    for w in report.workloads.iter().map(|w| w.workload) {
+        let name = w.name();
+        let arms: Vec<&StrategyRow> = report.rows_of(w).collect();
+        let frames: Vec<Series> = arms
+            .iter()
+            .map(|arm| {
+                let points = report
+                    .configurations
+                    .iter()
+                    .filter(|c| c.workload == w && c.arm == arm.strategy && !c.line_timestamps)
+                    .filter_map(|c| c.gpu_ms.map(|e| Point::new(c.blocks as f64, e.value).with_interval(e.lo, e.hi)))
+                    .collect();
+                Series::with_points(arm.strategy.as_str(), points)
+            })
+            .collect();
+        let chart = |title: String, x: &str, y: &str| Chart::new(title, x, y).caption(caption.as_str());
+        plot_lines(
+            folder.join(format!("sync_frames_{name}.png")),
+            &chart(format!("{name} workload: frame time over line blocks"), "line blocks per frame", "GPU time (ms)")
+                .x_scale(AxisScale::Log2),
+            &frames,
+        )?;
+        let costs: Vec<Series> = arms
+            .iter()
+            .filter(|r| r.strategy != BASELINE)
+            .enumerate()
+            .map(|(i, r)| {
+                let points = r.sync_us.map(|e| Point::new(i as f64 + 1.0, e.value).with_interval(e.lo, e.hi));
+                Series::with_points(r.strategy.as_str(), points.into_iter().collect())
+            })
+            .collect();
+        plot_lines(
+            folder.join(format!("sync_cost_{name}.png")),
+            &chart(
+                format!("{name} workload: sync cost per boundary over no barriers, 95 % CI"),
+                "strategy (see legend)",
+                "us per boundary",
+            ),
+            &costs,
+        )?;
+        let gaps: Vec<Distribution> = arms
+            .iter()
+            .filter_map(|r| r.line_gaps.as_ref().map(|g| (r, g)))
+            .filter(|(_, g)| g.last_gaps_us.iter().any(|v| *v > 0.0))
+            .map(|(r, g)| Distribution::new(r.strategy.as_str(), g.last_gaps_us.clone()))
+            .collect();
+        if !gaps.is_empty() {
+            plot_histogram(
+                folder.join(format!("sync_gaps_{name}.png")),
+                &chart(format!("{name} workload: gaps between line dispatches, one frame"), "us", "gaps")
+                    .x_scale(AxisScale::Log10),
+                &gaps,
+                24,
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// `report.png`: per device (one series each), every strategy's sync cost
+/// over no barriers in `workload`, with its interval.
+pub fn plot_side_by_side(
+    reports: &[SyncReport],
+    workload: super::sync::Workload,
+    path: &Path,
+) -> Result<(), BenchError> {
+    let mut strategies: Vec<String> = Vec::new();
+    for r in reports {
+        for s in r.rows_of(workload).filter(|s| s.strategy != BASELINE) {
+            if !strategies.contains(&s.strategy) {
+                strategies.push(s.strategy.clone());
+            }
+        }
+    }
+    let series: Vec<Series> = reports
+        .iter()
+        .map(|r| {
+            let points = strategies
+                .iter()
+                .enumerate()
+                .filter_map(|(i, name)| {
+                    let e = r.rows_of(workload).find(|s| &s.strategy == name)?.sync_us?;
+                    Some(Point::new(i as f64 + 1.0, e.value).with_interval(e.lo, e.hi))
+                })
+                .collect();
+            Series::with_points(format!("{} ({})", r.run.device, r.run.driver_version), points)
+        })
+        .collect();
+    let x_label = strategies.iter().enumerate().map(|(i, s)| format!("{} {s}", i + 1)).collect::<Vec<_>>().join(", ");
+    plot_lines(
+        path,
+        &Chart::new(
+            format!("{} workload: sync cost per boundary over no barriers, 95 % CI", workload.name()),
+            x_label,
+            "us per boundary",
+        ),
+        &series,
+    )
 }
