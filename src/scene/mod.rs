@@ -49,6 +49,9 @@ pub struct RenderSettings {
     pub background: Vec3,
     /// Emission scale: the medium emits `emission * rgb(s)` (the ambient term).
     pub emission: f32,
+    /// Each pixel's view samples at its own phase within their steps
+    /// (reference::ray_start) instead of at the midpoints.
+    pub jitter: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]

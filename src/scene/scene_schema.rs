@@ -147,11 +147,12 @@ struct RenderSection {
     step: f32,
     background: [f32; 3],
     emission: f32,
+    jitter: bool,
 }
 
 impl Default for RenderSection {
     fn default() -> Self {
-        RenderSection { width: 512, height: 512, step: 0.5, background: [0.0; 3], emission: 0.1 }
+        RenderSection { width: 512, height: 512, step: 0.5, background: [0.0; 3], emission: 0.1, jitter: true }
     }
 }
 
@@ -540,6 +541,7 @@ impl Checker<'_> {
             step_voxels: self.positive("render.step", s.step)?,
             background: self.colour("render.background", s.background)?,
             emission: self.non_negative("render.emission", s.emission)?,
+            jitter: s.jitter,
         })
     }
 
