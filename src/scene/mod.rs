@@ -3,6 +3,7 @@
 
 pub mod camera;
 pub mod default_scene;
+pub mod framing;
 pub mod geometry;
 pub mod light;
 pub mod loaders;
@@ -88,6 +89,9 @@ pub struct Scene {
     /// Settings of the techniques with their own table (`[ipsvi]`,
     /// `[lightvolume]`, `[half_angle]`), checked when the scene file is read.
     pub settings: TechniqueSettings,
+    /// The technique tables the scene gave (in the file or by `--set`), so a
+    /// table no running technique reads can be named.
+    pub technique_tables: Vec<&'static str>,
 }
 
 impl Scene {
