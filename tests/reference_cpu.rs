@@ -77,6 +77,7 @@ fn tiny_scene(volume: Volume, transfer: TransferFunction, lights: Vec<Light>) ->
         },
         phong: PhongSettings { ambient: 0.2, diffuse: 0.6, specular: 0.3, shininess: 16.0 },
         settings: TechniqueSettings::default(),
+        technique_tables: Vec::new(),
     }
 }
 

@@ -116,6 +116,7 @@ pub fn scene_with(volume: Volume, lights: Vec<Light>, width: u32, height: u32) -
         },
         phong: PhongSettings { ambient: 0.2, diffuse: 0.8, specular: 0.3, shininess: 32.0 },
         settings: TechniqueSettings::default(),
+        technique_tables: Vec::new(),
     }
 }
 
