@@ -347,6 +347,9 @@ pub struct ViewArgs {
     /// No control panel: the frame alone (as `render` would write it).
     #[arg(long)]
     pub no_ui: bool,
+    /// Start with the control panel hidden (H or Tab shows and hides it).
+    #[arg(long)]
+    pub hide_panel: bool,
     /// Leave out the barrier between the technique's frame and the present
     /// pass: a race, only for the test that proves validation reports it.
     #[arg(long, hide = true)]
