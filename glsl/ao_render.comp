@@ -115,7 +115,7 @@ vec3 shade(vec3 p, vec3 rgb, vec3 d, uvec2 entries) {
 void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
-    ViewMarch v = view_march(camera_ray(px), frame.view_step);
+    ViewMarch v = pixel_march(px, frame.view_step);
     vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(state_in, ivec2(px));
     vec3 C = acc.rgb;
     float T = acc.a;

@@ -23,7 +23,9 @@ layout(std140, set = 0, binding = 0) uniform Frame {
     float diffuse;
     float specular;
     float shininess;
-    uvec4 image_size;         // width, height (zw unused)
+    uvec2 image_size;         // width, height
+    uint jitter;              // 1: each pixel's view samples start at its own phase (view_ray.glsl)
+    uint frame_unused;
 } frame;
 
 struct Ray { vec3 origin; vec3 dir; };

@@ -348,7 +348,7 @@ void claim_pixel(BlockParams next, uint index) {
     uvec2 px = block_pixel(next, index);
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     if (zone_weight(next, vec2(px) + 0.5) <= 0.0) return;
-    ViewMarch v = view_march(camera_ray(px), frame.view_step);
+    ViewMarch v = pixel_march(px, frame.view_step);
     float keep_going = stop_distance(px);
     bool ert = may_stop();
     float T = 1.0;
@@ -378,7 +378,7 @@ void shade_pixel(uint index) {
     if (w <= 0.0) return;
     bool first_light = (sweep.flags & FLAG_FIRST_LIGHT) != 0u;
     Light light = lights[sweep.light_index];
-    ViewMarch v = view_march(camera_ray(px), frame.view_step);
+    ViewMarch v = pixel_march(px, frame.view_step);
     vec3 C = vec3(0.0);
     float T = 1.0;
     // view-samples: the run of samples in one texel, written when it ends.

@@ -29,7 +29,7 @@ void main() {
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(accum_in, ivec2(px));
-    ViewMarch v = view_march(camera_ray(px), frame.view_step);
+    ViewMarch v = pixel_march(px, frame.view_step);
     // The ground truth stops at its own threshold, `reference.min_transmittance`.
     uint end = min(chunk.first_sample + chunk.sample_count, uint(v.samples));
     int count = int(frame.light_count);

@@ -473,3 +473,45 @@ fn ao_says_whether_it_loaded_or_computed_its_preprocessing() {
     let second = run();
     assert!(second.contains(&format!("loaded preprocessing from cache {path}")), "{second}");
 }
+
+/// Without arguments `render` shows the point of the project: IPSVI with the
+/// sphere's shadow, and the per-line row of its profile.
+#[test]
+fn render_without_arguments_runs_ipsvi_with_its_per_line_profile() {
+    let dir = temp_dir("render-default");
+    let png = dir.join("r.png");
+    let o = sweeplab(&["render", "--size", "48x48", "--out", png.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.contains("ipsvi_line") && out.contains("ipsvi: 48x48"), "{out}");
+    // --no-detail leaves the per-line row out.
+    let o = sweeplab(&["render", "--size", "48x48", "--no-detail", "--out", png.to_str().unwrap()]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && !out.contains("ipsvi_line"), "{out}");
+}
+
+/// A setting of a technique that does not run is named, with the technique
+/// that would read it; the same setting for the technique that runs is not.
+#[test]
+fn a_setting_of_a_technique_that_does_not_run_is_a_warning() {
+    let dir = temp_dir("unused-setting");
+    let png = dir.join("r.png");
+    let run = |technique: &str| {
+        let o = sweeplab(&[
+            "render",
+            "--size",
+            "16x16",
+            "--technique",
+            technique,
+            "--set",
+            "ipsvi.sync=events",
+            "--out",
+            png.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let err = run("dvr");
+    assert!(err.contains("warning: the [ipsvi] settings are read only by technique ipsvi, not by dvr"), "{err}");
+    assert!(!run("ipsvi").contains("[ipsvi] settings"));
+}

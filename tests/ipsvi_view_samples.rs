@@ -13,7 +13,10 @@ use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
-use sweeplab::scene::{presets, Camera, Falloff, Light, LightKind, OpticalModel, Projection, Scene, Volume, VoxelData};
+use sweeplab::scene::{
+    presets, Camera, ControlPoint, Falloff, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction,
+    Volume, VoxelData,
+};
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 48;
@@ -96,6 +99,23 @@ fn figure5_scene(with_b: bool) -> Scene {
     };
     let mut scene = scene_with(volume, vec![directional(Vec3::new(0.1, -1.0, 0.05), 2.0)], SIZE, SIZE);
     reference_settings(&mut scene);
+    // This volume is binary: an opaque band at 255 (what "slab-sphere" was
+    // before it became ramps for smooth volumes, and what the figures below
+    // were measured with) keeps wall A opaque on every sample.
+    let (grey, orange, slab) = ([0.8, 0.8, 0.8], [1.0, 0.6, 0.3], 128.0 / 255.0);
+    let at = |value: f32, [r, g, b]: [f32; 3], alpha: f32| ControlPoint { value, rgba: [r, g, b, alpha] };
+    let points = vec![
+        at(0.0, grey, 0.0),
+        at(slab - 0.04, grey, 0.0),
+        at(slab - 0.02, grey, 0.95),
+        at(slab + 0.02, grey, 0.95),
+        at(slab + 0.04, grey, 0.0),
+        at(0.96, orange, 0.0),
+        at(0.98, orange, 0.95),
+        at(1.0, orange, 0.95),
+        at(1.0, orange, 0.95),
+    ];
+    scene.transfer = TransferFunction { points };
     scene.camera = Camera::orbit(Vec3::ZERO, 2.5, 0.0, 12.0, Projection::Perspective { fov_y_deg: 30.0 });
     scene
 }

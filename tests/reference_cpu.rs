@@ -65,6 +65,8 @@ fn tiny_scene(volume: Volume, transfer: TransferFunction, lights: Vec<Light>) ->
             step_voxels: 0.5,
             background: Vec3::new(0.1, 0.2, 0.3),
             emission: 0.0,
+            // Closed forms are written for midpoint samples.
+            jitter: false,
         },
         reference: ReferenceSettings {
             model: OpticalModel::SingleScattering,
@@ -75,6 +77,7 @@ fn tiny_scene(volume: Volume, transfer: TransferFunction, lights: Vec<Light>) ->
         },
         phong: PhongSettings { ambient: 0.2, diffuse: 0.6, specular: 0.3, shininess: 16.0 },
         settings: TechniqueSettings::default(),
+        technique_tables: Vec::new(),
     }
 }
 

@@ -9,6 +9,7 @@ use sweeplab::half_angle::HalfAngleSettings;
 use sweeplab::ipsvi::{CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WriteValue};
 use sweeplab::lightvolume::{CostEstimate, LightVolumeSettings};
 use sweeplab::scene::default_scene::volume_file_scene_spec;
+use sweeplab::scene::framing::{visible_box, FRAME_FILL};
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::scene_file::{parse_scene_file, parse_scene_str, scene_from_toml_str, SceneError};
 use sweeplab::scene::scene_spec::{CameraPlacement, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource};
@@ -414,25 +415,36 @@ fn scene_from_toml_str_builds_synthetic_scenes() {
 }
 
 #[test]
-fn volume_file_scene_frames_the_box_and_makes_the_background_clear() {
+fn volume_file_scene_frames_what_shows_and_makes_the_background_clear() {
     let spec = volume_file_scene_spec(Path::new("x.raw"), &["render.height=256".into()]).unwrap();
     assert_eq!(spec.transfer, TransferSpec::FromHistogram);
     let scene = spec.build_with_volume(three_spheres(32));
     assert_eq!(scene.transfer.eval(0.0)[3], 0.0, "background (empty space) must be clear");
     assert!(scene.transfer.eval(1.0)[3] > 0.0, "the spheres must be visible");
-    // Upper-left-front light.
+    // Light from the upper right of the default camera (azimuth 30), square to
+    // the view, so its shadows show.
     let LightKind::Directional { direction } = scene.lights[0].kind else { panic!("expected a directional light") };
-    assert!(direction.y < 0.0 && direction.x > 0.0 && direction.z < 0.0, "{direction}");
-    // The whole box is inside the view: every corner projects inside the image.
     let basis = scene.camera.basis(scene.render.width, scene.render.height);
-    for corner in scene.volume_box().corners() {
+    let from = -direction;
+    assert!(
+        from.dot(basis.right.normalize()) > 0.5
+            && from.dot(basis.up.normalize()) > 0.3
+            && from.dot(basis.forward).abs() < 0.1,
+        "{direction}"
+    );
+    // What the transfer function shows fills the view: the corners of its box
+    // reach FRAME_FILL of the half view, none beyond.
+    let framed = visible_box(&scene.volume, &scene.transfer, &scene.volume_box());
+    let mut reach = 0.0f32;
+    for corner in framed.corners() {
         let d = corner - basis.origin;
         let along = d.dot(basis.forward);
         assert!(along > 0.0);
         let x = d.dot(basis.right) / basis.right.length_squared() / along;
         let y = d.dot(basis.up) / basis.up.length_squared() / along;
-        assert!(x.abs() < 1.0 && y.abs() < 1.0, "corner {corner} at ndc ({x}, {y})");
+        reach = reach.max(x.abs()).max(y.abs());
     }
+    assert!((reach - FRAME_FILL).abs() < 1e-3, "corners reach {reach}");
 }
 
 // The techniques' tables: typed settings read with the scene.

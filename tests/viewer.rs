@@ -449,7 +449,8 @@ fn with_the_panel_drawn_the_per_pass_times_of_a_dvr_frame_are_the_headless_rende
     let x = xvfb_or_skip!();
     let dir = temp_dir("pass-times");
     let headless = dir.join("render.json");
-    let args = ["render", "--size", "96x96", "--out", "r.png", "--profile-json", headless.to_str().unwrap()];
+    let profile = headless.to_str().unwrap();
+    let args = ["render", "--technique", "dvr", "--size", "96x96", "--out", "r.png", "--profile-json", profile];
     let headless_ms = (0..3)
         .map(|_| {
             assert_clean_run(&sweeplab_in(&dir, &args, &x.display));
@@ -518,4 +519,52 @@ fn half_angle_records_into_the_viewer_both_slice_orders_and_the_view_matches_ren
         assert_clean_run(&sweeplab(&[&args[..], &["--out", reference.to_str().unwrap()]].concat(), None));
         assert_screenshot_is_render(&shot, &reference);
     }
+}
+
+/// The image is drawn beside the panel, not under it: the default window holds
+/// the panel (260 px) and the image at the scene's size; the window right of
+/// the panel is the frame of `--no-ui` (same image size, so the same image),
+/// the panel's area holds none of it; `--hide-panel` gives the image the
+/// whole window, and `H` brings the panel back.
+#[test]
+fn the_image_is_drawn_beside_the_panel_and_the_panel_hides() {
+    let x = xvfb_or_skip!();
+    let dir = temp_dir("layout");
+    let (panel, plain, hidden, back) =
+        (dir.join("panel.png"), dir.join("plain.png"), dir.join("hidden.png"), dir.join("back.png"));
+    let script = dir.join("script.txt");
+    std::fs::write(&script, "1 key H\n").unwrap();
+    let run = |shot: &Path, extra: &[&str]| {
+        let mut args = vec!["view", "--size", "200x160", "--frames", "3", "--screenshot", shot.to_str().unwrap()];
+        args.extend(extra);
+        assert_clean_run(&sweeplab_in(&dir, &args, &x.display));
+        image::open(shot).unwrap().to_rgb8()
+    };
+    let plain = run(&plain, &["--no-ui"]);
+    let panel = run(&panel, &[]);
+    assert_eq!(plain.dimensions(), (200, 160));
+    assert_eq!(panel.dimensions(), (460, 160), "the default window fits the panel and the image");
+    let levels =
+        |a: &image::Rgb<u8>, b: &image::Rgb<u8>| (0..3).map(|c| (a[c] as i32 - b[c] as i32).abs()).max().unwrap();
+    // Right of the panel: the image, pixel for pixel.
+    let mut worst = 0;
+    for (x, y, p) in plain.enumerate_pixels() {
+        worst = worst.max(levels(p, panel.get_pixel(x + 260, y)));
+    }
+    assert!(worst <= SRGB_LEVELS_TOLERANCE, "the image beside the panel differs from the frame by {worst} levels");
+    // Under the panel: not the image (the image's left part would be there if
+    // it were drawn under the panel).
+    let under = (0..160).flat_map(|y| (0..200).map(move |x| (x, y)));
+    let same = under.filter(|&(x, y)| levels(plain.get_pixel(x, y), panel.get_pixel(x, y)) <= 1).count();
+    let shows_something = plain.pixels().filter(|p| p.0.iter().any(|&c| c > 40)).count();
+    assert!(shows_something > 200 * 160 / 10, "the frame must show the volume ({shows_something} bright pixels)");
+    assert!(same < 200 * 160 / 2, "{same} pixels under the panel are the image's");
+    // Hidden from the start, the image fills the window; H shows the panel again.
+    let hidden = run(&hidden, &["--hide-panel"]);
+    assert_eq!(hidden.dimensions(), (200, 160));
+    let worst = hidden.pixels().zip(plain.pixels()).map(|(a, b)| levels(a, b)).max().unwrap();
+    assert!(worst <= SRGB_LEVELS_TOLERANCE, "the hidden panel left {worst} levels of difference");
+    let back = run(&back, &["--hide-panel", "--script", script.to_str().unwrap()]);
+    let differing = back.pixels().zip(hidden.pixels()).filter(|(a, b)| levels(a, b) > 1).count();
+    assert!(differing > 200 * 160 / 20, "H did not bring the panel back ({differing} pixels differ)");
 }

@@ -5,14 +5,18 @@
 # profile (the `ipsvi_line` row: lines, total and mean per line) and writes the
 # image, the profile with every line's time, and a Perfetto trace.
 # Arguments replace the defaults and go to `sweeplab render`
-# (e.g. --technique reference, or --volume ../shared/data/engine.vti --technique ipsvi --detail).
+# (e.g. --technique reference, or --volume ../shared/data/engine.vti).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source tools/setup.sh
 cargo build --release --quiet
 mkdir -p out
+# `sweeplab render` alone renders this scene with IPSVI, timed per line. The
+# cache is fed by each texel's light ray: fed by the view samples (the paper's
+# way), the jittered sample depths reach the cache as noise that the sweep
+# carries on (21.7 dB against the converged reference at 512x512, 36.4 dB so).
 if [ $# -eq 0 ]; then
-  set -- --scene tests/scenes/slab-under-sphere.toml --technique ipsvi --detail
+  set -- --set ipsvi.cache_update=light-rays
 fi
 ./target/release/sweeplab render --out out/render.png --profile-json out/profile.json --trace out/trace.json "$@"
 echo "wrote out/render.png (the sphere's shadow on the slab), out/profile.json (per-pass and per-line GPU times) and out/trace.json (open in Perfetto)"

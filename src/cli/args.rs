@@ -331,7 +331,8 @@ pub struct RenderArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    #[arg(long, default_value = "dvr", help = technique_names(), long_help = Technique::help())]
+    // IPSVI by default: the technique with shadows this project measures.
+    #[arg(long, default_value = "ipsvi", help = technique_names(), long_help = Technique::help())]
     pub technique: String,
     /// Output PNG (8-bit sRGB of the linear image).
     #[arg(long, default_value = "sweeplab.png")]
@@ -342,9 +343,13 @@ pub struct RenderArgs {
     /// Chrome trace of the GPU scopes (opens in Perfetto).
     #[arg(long, value_name = "FILE")]
     pub trace: Option<PathBuf>,
-    /// Per-dispatch timestamps (adds a flush per dispatch on lavapipe).
-    #[arg(long)]
+    /// Per-dispatch timestamps, e.g. IPSVI's per-line row (the default; adds a
+    /// flush per dispatch on lavapipe).
+    #[arg(long, overrides_with = "no_detail")]
     pub detail: bool,
+    /// Pass totals only, without per-dispatch timestamps.
+    #[arg(long, overrides_with = "detail")]
+    pub no_detail: bool,
 }
 
 #[derive(Args, Debug)]
@@ -397,6 +402,9 @@ pub struct ViewArgs {
     /// No control panel: the frame alone (as `render` would write it).
     #[arg(long)]
     pub no_ui: bool,
+    /// Start with the control panel hidden (H or Tab shows and hides it).
+    #[arg(long)]
+    pub hide_panel: bool,
     /// Leave out the barrier between the technique's frame and the present
     /// pass: a race, only for the test that proves validation reports it.
     #[arg(long, hide = true)]

@@ -26,7 +26,7 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     scene.reference.chromatic = technique.reference_chromatic(&scene);
     let (w, h) = (scene.render.width, scene.render.height);
     technique.check(&scene).with_context(|| format!("rendering {technique}"))?;
-    for warning in technique.warnings(&scene) {
+    for warning in technique.warnings(&scene).into_iter().chain(technique.unused_settings(&scene)) {
         eprintln!("warning: {warning}");
     }
     let ctx = session::open(&args.gpu)?;

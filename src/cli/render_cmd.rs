@@ -19,7 +19,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     }
     let scene = scene_args::load(&args.scene)?;
     technique.check(&scene).with_context(|| format!("rendering {technique}"))?;
-    for warning in technique.warnings(&scene) {
+    for warning in technique.warnings(&scene).into_iter().chain(technique.unused_settings(&scene)) {
         eprintln!("warning: {warning}");
     }
     let ctx = session::open(&args.gpu)?;
@@ -29,7 +29,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         let gpu =
             GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
         let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
-        profiler.set_detail(args.detail);
+        // On unless --no-detail came last (each flag overrides the other).
+        profiler.set_detail(args.detail || !args.no_detail);
         render(&gpu, technique, scene.render.width, scene.render.height, &mut profiler)
             .with_context(|| format!("rendering {technique}"))?
     };

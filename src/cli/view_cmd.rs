@@ -51,6 +51,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
         script,
         out_dir: std::path::PathBuf::from("."),
         ui: !args.no_ui,
+        hide_panel: args.hide_panel,
         handoff_barrier: !args.racy_no_handoff_barrier,
     };
     let (report, validation) = viewer::run(source, &overrides, &options).context("sweeplab view")?;

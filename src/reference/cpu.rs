@@ -1,11 +1,13 @@
 //! The view march shared by every CPU renderer: front-to-back emission-absorption
-//! with the midpoint rule and opacity correction, a source term per sample
+//! with one sample per step (at the midpoint, or the pixel's jittered phase,
+//! [`super::ray_start`]) and opacity correction, a source term per sample
 //! (see [`super::sources`]), early termination and the background behind.
 
 use glam::DVec3;
 
 use super::medium::Medium;
 use super::parallel::render_rows;
+use super::ray_start::ray_start_phase;
 use super::sources::{phong, scattering};
 use super::validate::{check_scene, CpuRenderError};
 use crate::linear_image::LinearImage;
@@ -84,10 +86,12 @@ impl<'a> CpuRenderer<'a> {
     fn march_pixel(&self, x: u32, y: u32) -> DVec3 {
         let (nx, ny) = RayBasis::ndc(x, y, self.width, self.height);
         let (o, d) = self.basis.ray_f64(nx as f64, ny as f64);
-        self.march(DVec3::from_array(o), DVec3::from_array(d))
+        let phase = ray_start_phase(self.scene.render.jitter, x, y);
+        self.march(DVec3::from_array(o), DVec3::from_array(d), phase)
     }
 
-    fn march(&self, o: DVec3, d: DVec3) -> DVec3 {
+    /// Sample `i` lies at `t0 + (i + phase) * h` ([`ray_start_phase`]).
+    fn march(&self, o: DVec3, d: DVec3, phase: f64) -> DVec3 {
         let background = self.scene.render.background.as_dvec3();
         let Some((t0, t1)) = self.medium.intersect(o, d) else {
             return background;
@@ -100,7 +104,7 @@ impl<'a> CpuRenderer<'a> {
         let mut color = DVec3::ZERO;
         let mut transmittance = 1.0;
         for i in 0..steps as u64 {
-            let p = o + d * (t0 + (i as f64 + 0.5) * h);
+            let p = o + d * (t0 + (i as f64 + phase) * h);
             let m = self.medium.at(p);
             let alpha = 1.0 - (-m.sigma * hv).exp();
             if alpha > 0.0 {

@@ -15,6 +15,7 @@ pub mod gpu;
 pub mod lights;
 pub mod medium;
 mod parallel;
+pub mod ray_start;
 pub mod shadow;
 pub mod sources;
 pub mod validate;

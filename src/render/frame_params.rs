@@ -36,8 +36,11 @@ pub struct FrameParams {
     pub diffuse: f32,
     pub specular: f32,
     pub shininess: f32,
-    /// Width, height (zw unused).
-    pub image_size: [u32; 4],
+    /// Width, height.
+    pub image_size: [u32; 2],
+    /// 1: each pixel's view samples start at its own phase (`render.jitter`).
+    pub jitter: u32,
+    pub frame_unused: u32,
 }
 
 crate::assert_gpu_layout!(
@@ -64,6 +67,8 @@ crate::assert_gpu_layout!(
         specular,
         shininess,
         image_size,
+        jitter,
+        frame_unused,
     ]
 );
 
@@ -134,7 +139,9 @@ pub fn frame_params(scene: &Scene, width: u32, height: u32, lut_size: usize, ste
         diffuse: scene.phong.diffuse,
         specular: scene.phong.specular,
         shininess: scene.phong.shininess,
-        image_size: [width, height, 0, 0],
+        image_size: [width, height],
+        jitter: scene.render.jitter as u32,
+        frame_unused: 0,
     }
 }
 

@@ -8,6 +8,7 @@ use super::gpu_scene::GpuScene;
 use super::session::{EachFrameAnew, FrameSession};
 use super::technique::RenderTechnique;
 use crate::linear_image::LinearImage;
+use crate::scene::{Scene, TechniqueSettings};
 use crate::vk::{ProfileReport, Profiler};
 use std::fmt;
 use std::ops::Deref;
@@ -96,6 +97,32 @@ impl FromStr for Technique {
     }
 }
 
+impl Technique {
+    /// The technique table this technique reads (its name, `-` as `_`), if any.
+    pub fn settings_table(self) -> Option<&'static str> {
+        let table = self.name().replace('-', "_");
+        TechniqueSettings::TABLES.into_iter().find(|&t| t == table)
+    }
+
+    /// A warning for each technique table the scene gave that this technique
+    /// does not read: such settings have no effect, and saying nothing would
+    /// let a user believe they did.
+    pub fn unused_settings(self, scene: &Scene) -> Vec<String> {
+        scene
+            .technique_tables
+            .iter()
+            .filter(|&&table| self.settings_table() != Some(table))
+            .map(|&table| {
+                let reader = Technique::NAMED.into_iter().find(|t| t.settings_table() == Some(table));
+                let reader = reader.map_or_else(|| "another technique".to_string(), |t| format!("technique {t}"));
+                format!(
+                    "the [{table}] settings are read only by {reader}, not by {self}, which runs: they have no effect"
+                )
+            })
+            .collect()
+    }
+}
+
 pub struct RenderOutput {
     pub technique: Technique,
     pub image: LinearImage,
@@ -166,6 +193,31 @@ mod tests {
         }
         let e = "half_angle".parse::<Technique>().unwrap_err();
         assert!(e.contains("did you mean half-angle?") && e.contains("lightvolume"), "{e}");
+    }
+
+    #[test]
+    fn every_technique_table_is_read_by_exactly_one_technique() {
+        for table in TechniqueSettings::TABLES {
+            let readers: Vec<Technique> =
+                Technique::NAMED.into_iter().filter(|t| t.settings_table() == Some(table)).collect();
+            assert_eq!(readers.len(), 1, "[{table}]: {readers:?}");
+        }
+    }
+
+    #[test]
+    fn a_table_of_a_technique_that_does_not_run_is_named_with_its_reader() {
+        let text = "[volume]\nsynthetic = \"noise\"\nsize = 4\n[half_angle]\nslice_step = 0.75\n";
+        let overrides = ["ipsvi.line_width=4".to_string()];
+        let scene = scene_from_toml_str(text, std::path::Path::new(""), "test", &overrides).unwrap();
+        let w = Technique::Dvr.unused_settings(&scene);
+        assert_eq!(w.len(), 2, "{w:?}");
+        assert!(w.iter().any(|m| m.contains("[ipsvi]") && m.contains("technique ipsvi") && m.contains("dvr")), "{w:?}");
+        assert!(w.iter().any(|m| m.contains("[half_angle]") && m.contains("technique half-angle")), "{w:?}");
+        let w = Technique::Ipsvi.unused_settings(&scene);
+        assert!(w.len() == 1 && w[0].contains("[half_angle]"), "{w:?}");
+        let plain =
+            scene_from_toml_str("[volume]\nsynthetic = \"noise\"\nsize = 4\n", std::path::Path::new(""), "test", &[]);
+        assert_eq!(Technique::Dvr.unused_settings(&plain.unwrap()), Vec::<String>::new());
     }
 
     #[test]

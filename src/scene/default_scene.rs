@@ -13,24 +13,10 @@ use super::Scene;
 /// Origin named in errors about the default scene.
 pub const DEFAULT_SCENE_ORIGIN: &str = "<default scene>";
 
-/// The default scene: a procedural Shepp-Logan phantom (with its own preset,
-/// "phantom", since no transfer function is given), orbit camera framing it, one
-/// directional light from upper-left-front.
-pub const DEFAULT_SCENE_TOML: &str = r#"# sweeplab default scene
-[volume]
-synthetic = "shepp-logan"
-size = 96
-
-[camera]
-azimuth = 30.0
-elevation = 20.0
-
-[[lights]]
-type = "directional"
-direction = [1.0, -1.0, -1.0]
-color = [1.0, 1.0, 1.0]
-intensity = 1.0
-"#;
+/// The default scene: the known-shadow scene of the main job (a sphere over a
+/// slab, lit from above, tests/scenes/slab-under-sphere.toml), so that the
+/// first render shows a shadow.
+pub const DEFAULT_SCENE_TOML: &str = include_str!("../../tests/scenes/slab-under-sphere.toml");
 
 /// Reads [`DEFAULT_SCENE_TOML`] with `overrides` applied, without building it.
 pub fn default_scene_spec(overrides: &[String]) -> Result<SceneSpec, SceneError> {
@@ -44,10 +30,13 @@ pub fn default_scene(overrides: &[String]) -> Result<Scene, SceneError> {
 /// The scene around a volume file, without its `[volume]` table. No transfer
 /// function is given, so it comes from the volume's histogram; no camera
 /// distance, so the camera frames the volume's box.
+/// The light comes from the upper right of the default camera (azimuth 30,
+/// elevation 20), square to its view, so that the shadows it casts show
+/// (light from the camera's side hides them behind what casts them).
 const VOLUME_FILE_SCENE_TOML: &str = r#"
 [[lights]]
 type = "directional"
-direction = [1.0, -1.0, -1.0]
+direction = [-0.6, -0.52, 0.56]
 "#;
 
 /// Reads the scene for `--volume FILE` (`path` as given, relative to the current
@@ -69,8 +58,8 @@ pub fn volume_file_scene_spec(path: &Path, overrides: &[String]) -> Result<Scene
 }
 
 /// The scene for `--volume FILE`: the file's volume, a transfer function from
-/// its histogram, a camera framing its box, one directional light from
-/// upper-left-front.
+/// its histogram, a camera framing what it shows, one directional light from
+/// the upper right.
 pub fn scene_for_volume_file(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
     volume_file_scene_spec(path, overrides)?.build()
 }
@@ -83,19 +72,19 @@ mod tests {
     use crate::scene::LightKind;
 
     #[test]
-    fn default_scene_is_a_lit_shepp_logan_phantom() {
+    fn default_scene_is_the_known_shadow_scene() {
         let scene = default_scene(&[]).expect("the embedded default scene is valid");
-        assert_eq!(scene.volume.name, "shepp-logan");
-        assert_eq!(scene.volume.dims, glam::UVec3::splat(96));
+        assert_eq!(scene.volume.name, "slab-under-sphere");
+        assert_eq!(scene.volume.dims, glam::UVec3::splat(64));
         assert_eq!(scene.lights.len(), 1);
         assert!(matches!(scene.lights[0].kind, LightKind::Directional { .. }));
-        assert_eq!(Some(scene.transfer), crate::scene::presets::preset("phantom"));
+        assert_eq!(Some(scene.transfer), crate::scene::presets::preset("slab-sphere"));
     }
 
     #[test]
     fn default_scene_takes_overrides() {
         let spec = default_scene_spec(&["volume.size=16".into(), "render.width=64".into()]).unwrap();
-        assert_eq!(spec.volume, VolumeSource::Synthetic { kind: SyntheticKind::SheppLogan, size: 16, seed: 1 });
+        assert_eq!(spec.volume, VolumeSource::Synthetic { kind: SyntheticKind::SlabUnderSphere, size: 16, seed: 1 });
         assert_eq!(spec.render.width, 64);
         let e = default_scene_spec(&["volume.size=0".into()]).unwrap_err().to_string();
         assert!(e.contains(DEFAULT_SCENE_ORIGIN) && e.contains("volume.size"), "{e}");

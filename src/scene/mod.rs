@@ -3,6 +3,7 @@
 
 pub mod camera;
 pub mod default_scene;
+pub mod framing;
 pub mod geometry;
 pub mod light;
 pub mod loaders;
@@ -51,6 +52,9 @@ pub struct RenderSettings {
     pub background: Vec3,
     /// Emission scale: the medium emits `emission * rgb(s)` (the ambient term).
     pub emission: f32,
+    /// Each pixel's view samples at its own phase within their steps
+    /// (reference::ray_start) instead of at the midpoints.
+    pub jitter: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -87,6 +91,9 @@ pub struct Scene {
     /// Settings of the techniques with their own table (`[ipsvi]`,
     /// `[lightvolume]`, `[half_angle]`), checked when the scene file is read.
     pub settings: TechniqueSettings,
+    /// The technique tables the scene gave (in the file or by `--set`), so a
+    /// table no running technique reads can be named.
+    pub technique_tables: Vec<&'static str>,
 }
 
 impl Scene {

@@ -171,6 +171,7 @@ pub fn parse_scene_table(
         |key: &str, problem: String| SceneError::Invalid { origin: origin.to_string(), key: key.to_string(), problem };
     let mut tables = SceneTables::default();
     let mut settings = TechniqueSettings::default();
+    let mut technique_tables = Vec::new();
     for (key, value) in doc {
         let slot = match key.as_str() {
             "volume" => &mut tables.volume,
@@ -187,15 +188,16 @@ pub fn parse_scene_table(
                 let technique_table = settings
                     .read(&key, value)
                     .map_err(|error| SceneError::Settings { origin: origin.to_string(), error })?;
-                if !technique_table {
-                    return Err(invalid(&key, unknown_table(&key)));
+                match TechniqueSettings::TABLES.iter().find(|&&t| t == key) {
+                    Some(&table) if technique_table => technique_tables.push(table),
+                    _ => return Err(invalid(&key, unknown_table(&key))),
                 }
                 continue;
             }
         };
         *slot = Some(value);
     }
-    check_scene(origin, base_dir, tables, settings)
+    check_scene(origin, base_dir, tables, settings, technique_tables)
 }
 
 /// "is not a known table", with the nearest known one and the list.

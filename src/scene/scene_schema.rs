@@ -56,6 +56,7 @@ pub(crate) fn check_scene(
     base_dir: &Path,
     tables: SceneTables,
     settings: TechniqueSettings,
+    technique_tables: Vec<&'static str>,
 ) -> Result<SceneSpec, SceneError> {
     let c = Checker { origin };
     let volume = c.volume(c.section(tables.volume, "volume")?, base_dir)?;
@@ -65,7 +66,18 @@ pub(crate) fn check_scene(
     let render = c.render(c.section(tables.render, "render")?.unwrap_or_default())?;
     let reference = c.reference(c.section(tables.reference, "reference")?.unwrap_or_default())?;
     let phong = c.phong(c.section(tables.phong, "phong")?.unwrap_or_default())?;
-    Ok(SceneSpec { origin: origin.to_string(), volume, transfer, camera, lights, render, reference, phong, settings })
+    Ok(SceneSpec {
+        origin: origin.to_string(),
+        volume,
+        transfer,
+        camera,
+        lights,
+        render,
+        reference,
+        phong,
+        settings,
+        technique_tables,
+    })
 }
 
 // The schema, one struct per table. Options where "absent" means something
@@ -147,11 +159,12 @@ struct RenderSection {
     step: f32,
     background: [f32; 3],
     emission: f32,
+    jitter: bool,
 }
 
 impl Default for RenderSection {
     fn default() -> Self {
-        RenderSection { width: 512, height: 512, step: 0.5, background: [0.0; 3], emission: 0.1 }
+        RenderSection { width: 512, height: 512, step: 0.5, background: [0.0; 3], emission: 0.1, jitter: true }
     }
 }
 
@@ -541,6 +554,7 @@ impl Checker<'_> {
             step_voxels: self.positive("render.step", s.step)?,
             background: self.colour("render.background", s.background)?,
             emission: self.non_negative("render.emission", s.emission)?,
+            jitter: s.jitter,
         })
     }
 

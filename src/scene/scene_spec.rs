@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use glam::Vec3;
 
 use super::camera::{Camera, Projection};
+use super::framing::{fit_orbit, visible_box, WorldBox};
 use super::light::Light;
 use super::loaders;
 use super::presets::transfer_from_histogram;
@@ -15,9 +16,6 @@ use super::synthetic::SyntheticKind;
 use super::transfer::TransferFunction;
 use super::volume::Volume;
 use super::{PhongSettings, ReferenceSettings, RenderSettings, Scene, TechniqueSettings, VolumeBox};
-
-/// Auto-framing leaves this much room around the volume's bounding sphere.
-pub const FRAMING_MARGIN: f32 = 1.05;
 
 /// Where the volume comes from.
 #[derive(Clone, Debug, PartialEq)]
@@ -67,31 +65,43 @@ pub struct CameraSpec {
 }
 
 impl CameraSpec {
-    /// The camera for a volume box and image size, filling in auto-framed values:
-    /// the box's bounding sphere fits the view with 5 % margin, horizontally too.
-    pub fn resolve(&self, volume_box: &VolumeBox, width: u32, height: u32) -> Camera {
-        let radius = volume_box.half_extent.length() * FRAMING_MARGIN;
+    /// The camera for an image size, filling in auto-framed values: the
+    /// distance (or orthographic height) that puts the corners of `framed`
+    /// (what the transfer function shows, [`super::framing::visible_box`]) at
+    /// [`super::framing::FRAME_FILL`] of the view; an orthographic eye stays outside the
+    /// volume's bounding sphere.
+    pub fn resolve(&self, volume_box: &VolumeBox, framed: &WorldBox, width: u32, height: u32) -> Camera {
         let aspect = width as f32 / height.max(1) as f32;
-        let projection = match self.projection {
-            ProjectionSpec::Perspective { fov_y_deg } => Projection::Perspective { fov_y_deg },
-            ProjectionSpec::Orthographic { height } => {
-                Projection::Orthographic { height: height.unwrap_or(2.0 * radius / aspect.min(1.0)) }
-            }
-        };
+        let outside = 3.0 * volume_box.half_extent.length();
         match self.placement {
             CameraPlacement::Orbit { target, azimuth_deg, elevation_deg, distance } => {
-                let distance = distance.unwrap_or_else(|| match projection {
-                    Projection::Perspective { fov_y_deg } => {
-                        let half_y = fov_y_deg.to_radians() * 0.5;
-                        let half_x = (half_y.tan() * aspect).atan();
-                        radius / half_y.min(half_x).sin()
-                    }
+                let fov_y_deg = match self.projection {
+                    ProjectionSpec::Perspective { fov_y_deg } => fov_y_deg,
+                    ProjectionSpec::Orthographic { .. } => 30.0,
+                };
+                let fit = fit_orbit(framed, target, azimuth_deg, elevation_deg, fov_y_deg, aspect);
+                let (projection, auto_distance) = match self.projection {
+                    ProjectionSpec::Perspective { fov_y_deg } => (Projection::Perspective { fov_y_deg }, fit.distance),
                     // Any distance outside the box shows the same image.
-                    Projection::Orthographic { .. } => 3.0 * radius,
-                });
-                Camera::orbit(target, distance, azimuth_deg, elevation_deg, projection)
+                    ProjectionSpec::Orthographic { height } => {
+                        (Projection::Orthographic { height: height.unwrap_or(fit.ortho_height) }, outside)
+                    }
+                };
+                Camera::orbit(target, distance.unwrap_or(auto_distance), azimuth_deg, elevation_deg, projection)
             }
-            CameraPlacement::LookAt { eye, target, up } => Camera { eye, target, up, projection },
+            CameraPlacement::LookAt { eye, target, up } => {
+                let projection = match self.projection {
+                    ProjectionSpec::Perspective { fov_y_deg } => Projection::Perspective { fov_y_deg },
+                    ProjectionSpec::Orthographic { height } => {
+                        // Framed as seen from the eye's direction around the target.
+                        let d = (eye - target).normalize_or(Vec3::Z);
+                        let (az, el) = (d.x.atan2(d.z).to_degrees(), d.y.clamp(-1.0, 1.0).asin().to_degrees());
+                        let fit = fit_orbit(framed, target, az, el, 30.0, aspect);
+                        Projection::Orthographic { height: height.unwrap_or(fit.ortho_height) }
+                    }
+                };
+                Camera { eye, target, up, projection }
+            }
         }
     }
 }
@@ -109,6 +119,8 @@ pub struct SceneSpec {
     pub reference: ReferenceSettings,
     pub phong: PhongSettings,
     pub settings: TechniqueSettings,
+    /// See [`Scene::technique_tables`].
+    pub technique_tables: Vec<&'static str>,
 }
 
 impl SceneSpec {
@@ -141,7 +153,8 @@ impl SceneSpec {
             TransferSpec::FromHistogram => transfer_from_histogram(&volume),
         };
         let volume_box = VolumeBox::new(volume.dims, volume.spacing);
-        let camera = self.camera.resolve(&volume_box, self.render.width, self.render.height);
+        let framed = visible_box(&volume, &transfer, &volume_box);
+        let camera = self.camera.resolve(&volume_box, &framed, self.render.width, self.render.height);
         Scene {
             volume,
             transfer,
@@ -153,6 +166,7 @@ impl SceneSpec {
             reference: self.reference,
             phong: self.phong,
             settings: self.settings,
+            technique_tables: self.technique_tables,
         }
     }
 }
@@ -160,9 +174,10 @@ impl SceneSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::framing::FRAME_FILL;
 
     #[test]
-    fn auto_framing_fits_the_bounding_sphere() {
+    fn auto_framing_fits_the_framed_box() {
         let spec = CameraSpec {
             placement: CameraPlacement::Orbit {
                 target: Vec3::ZERO,
@@ -173,12 +188,17 @@ mod tests {
             projection: ProjectionSpec::Perspective { fov_y_deg: 30.0 },
         };
         let cube = VolumeBox::new(glam::UVec3::splat(10), Vec3::ONE);
-        let camera = spec.resolve(&cube, 200, 100);
-        // Cube of side 1: bounding radius sqrt(3)/2, seen under the half fov of 15 deg.
-        let expected = 3f32.sqrt() / 2.0 * FRAMING_MARGIN / 15f32.to_radians().sin();
+        let whole = WorldBox::of_volume(&cube);
+        let camera = spec.resolve(&cube, &whole, 200, 100);
+        // Seen head-on, the cube's near face (z = 0.5) is the widest: its top
+        // edge (y = 0.5) reaches FRAME_FILL of tan(15 deg) at that depth.
+        let expected = 0.5 / (15f32.to_radians().tan() * FRAME_FILL) + 0.5;
         assert!((camera.eye.length() - expected).abs() < 1e-4, "{} vs {expected}", camera.eye.length());
         // A tall image is limited by its narrower horizontal field of view.
-        let tall = spec.resolve(&cube, 100, 200);
+        let tall = spec.resolve(&cube, &whole, 100, 200);
         assert!(tall.eye.length() > expected * 1.5);
+        // A smaller object is framed closer.
+        let small = WorldBox { min: Vec3::splat(-0.2), max: Vec3::splat(0.2) };
+        assert!(spec.resolve(&cube, &small, 200, 100).eye.length() < 0.5 * expected);
     }
 }

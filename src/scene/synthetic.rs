@@ -9,12 +9,18 @@
 //! `[i, i+1) x [j, j+1) x [k, k+1)` and its centre is `(i + 0.5, j + 0.5, k + 0.5)`.
 //! [`cubic_voxel_to_world`] converts such a point to world space.
 //!
-//! Spheres are anti-aliased: a voxel's value is the object value times the
-//! coverage `clamp(radius - distance(voxel centre, sphere centre) + 0.5, 0, 1)`, a
-//! linear ramp one voxel wide across the surface. The sum of the coverages is
-//! `4/3 pi r³ + pi r / 3` (the integral of that ramp), within 1 % of the sphere's
-//! volume for r >= 5 voxels.
-//! Boxes, walls and slabs have integer bounds and hard edges.
+//! Objects with a surface are smooth fields, so that trilinear filtering gives
+//! smooth surfaces at any magnification (a binary field terraces): a voxel's
+//! value is the object value times the coverage `clamp(0.5 - sd / w, 0, 1)` of
+//! the signed distance `sd` (voxels, negative inside) from its centre to the
+//! surface, a linear ramp [`TRANSITION_VOXELS`] `w = 1.5` voxels wide whose 0.5
+//! level is the surface itself. A sphere's coverages sum to
+//! `4/3 pi r³ + pi r w² / 3` (the integral of that ramp). The slab of
+//! [`slab_under_sphere`] and the Shepp-Logan ellipsoids are smooth the same way.
+//! The Cornell box is a labelled volume (each part its own value, the "cornell"
+//! preset a narrow band per value): a ramp from one part's value to air would
+//! pass through the values of the other parts and give its edges their colours,
+//! so its boxes and walls keep integer bounds and hard edges.
 
 use glam::{UVec3, Vec3};
 
@@ -27,11 +33,21 @@ pub struct Sphere {
     pub radius: f32,
 }
 
+/// Width in voxels of the density ramp across a smooth surface: enough for
+/// trilinear filtering to give a smooth surface, narrow enough to keep edges
+/// sharp in the image.
+pub const TRANSITION_VOXELS: f32 = 1.5;
+
+/// Coverage of a voxel whose centre lies `signed_distance` voxels from a surface
+/// (negative inside): 0.5 on the surface, 0 and 1 beyond half the transition.
+pub fn ramp_coverage(signed_distance: f32) -> f32 {
+    (0.5 - signed_distance / TRANSITION_VOXELS).clamp(0.0, 1.0)
+}
+
 impl Sphere {
-    /// Fraction of the voxel whose centre is `p` that lies inside (linear ramp one
-    /// voxel wide across the surface).
+    /// Coverage of the voxel whose centre is `p` ([`ramp_coverage`]).
     pub fn coverage(&self, p: Vec3) -> f32 {
-        (self.radius - p.distance(self.centre) + 0.5).clamp(0.0, 1.0)
+        ramp_coverage(p.distance(self.centre) - self.radius)
     }
 }
 
@@ -51,6 +67,14 @@ impl VoxelBox {
     pub fn voxel_count(&self) -> u64 {
         let d = self.max.saturating_sub(self.min);
         d.x as u64 * d.y as u64 * d.z as u64
+    }
+
+    /// Signed distance in voxels from `p` (continuous voxel coordinates) to the
+    /// box `[min, max]`, negative inside: a voxel centre is inside exactly when
+    /// [`VoxelBox::contains`] holds for its voxel.
+    pub fn signed_distance(&self, p: Vec3) -> f32 {
+        let q = (self.min.as_vec3() - p).max(p - self.max.as_vec3());
+        q.max(Vec3::ZERO).length() + q.max_element().min(0.0)
     }
 }
 
@@ -196,32 +220,64 @@ const SHEPP_LOGAN_ELLIPSOIDS: [Ellipsoid; 10] = [
 ];
 
 impl Ellipsoid {
-    fn contains(&self, p: [f32; 3]) -> bool {
-        let d = [p[0] - self.centre[0], p[1] - self.centre[1], p[2] - self.centre[2]];
+    /// `p` in the ellipsoid's own frame, divided by the semi-axes: inside when
+    /// its length is at most 1.
+    fn scaled_local(&self, p: [f32; 3]) -> Vec3 {
+        let d = Vec3::from(p) - Vec3::from(self.centre);
         // Into the ellipsoid's own frame: rotate by -angle about z.
         let (s, c) = self.angle_deg.to_radians().sin_cos();
-        let local = [c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]];
-        let q: f32 = (0..3).map(|a| (local[a] / self.semi_axes[a]).powi(2)).sum();
-        q <= 1.0
+        Vec3::new(c * d.x + s * d.y, -s * d.x + c * d.y, d.z) / Vec3::from(self.semi_axes)
+    }
+
+    fn contains(&self, p: [f32; 3]) -> bool {
+        self.scaled_local(p).length_squared() <= 1.0
+    }
+
+    /// Signed distance from `p` to the surface in phantom units, to first order
+    /// (exact on the axes, good near the surface, which is all a ramp needs):
+    /// `(|q| - 1) |q| / |q / semi_axes|` for the scaled point `q`.
+    fn signed_distance(&self, p: [f32; 3]) -> f32 {
+        let q = self.scaled_local(p);
+        let k0 = q.length();
+        let k1 = (q / Vec3::from(self.semi_axes)).length();
+        if k1 > 0.0 {
+            (k0 - 1.0) * k0 / k1
+        } else {
+            -Vec3::from(self.semi_axes).min_element()
+        }
     }
 }
 
 /// Density of the Shepp-Logan phantom at `p` in its [-1, 1]³ frame (+y is the top
-/// of the head, as in the 2D phantom).
+/// of the head, as in the 2D phantom), hard-edged.
 pub fn shepp_logan_density(p: [f32; 3]) -> f32 {
     let tenths: i32 = SHEPP_LOGAN_ELLIPSOIDS.iter().filter(|e| e.contains(p)).map(|e| e.density_tenths).sum();
     tenths as f32 / 10.0
 }
 
+/// The density at `p` of an `n³` phantom with smooth surfaces: each ellipsoid's
+/// density weighted by its [`ramp_coverage`] (distances in voxels, `n / 2` per
+/// phantom unit). Equals [`shepp_logan_density`] farther than half a transition
+/// from every surface.
+fn smooth_shepp_logan_density(p: [f32; 3], n: u32) -> f32 {
+    let voxels_per_unit = n as f32 / 2.0;
+    let tenths: f32 = SHEPP_LOGAN_ELLIPSOIDS
+        .iter()
+        .map(|e| e.density_tenths as f32 * ramp_coverage(e.signed_distance(p) * voxels_per_unit))
+        .sum();
+    tenths / 10.0
+}
+
 /// 3D Shepp-Logan phantom (Kak-Slaney geometry, Toft densities), F32 data. The
-/// phantom's [-1, 1]³ fills the volume; each voxel takes the density at its centre
-/// (hard edges, no anti-aliasing); densities are rescaled from their [min, max]
-/// (0 and 1) into [0, 1], so the normalized values are the densities themselves.
+/// phantom's [-1, 1]³ fills the volume; each voxel takes the smooth density at
+/// its centre ([`smooth_shepp_logan_density`]); densities are rescaled from
+/// their [min, max] (0 and 1) into [0, 1], so the normalized values are the
+/// densities themselves.
 pub fn shepp_logan(n: u32) -> Volume {
     let n = n.max(1);
     let raw = fill(n, |i| {
         let p = voxel_centre(i) / n as f32 * 2.0 - Vec3::ONE;
-        shepp_logan_density(p.to_array())
+        smooth_shepp_logan_density(p.to_array(), n)
     });
     rescaled_f32_volume("shepp-logan", n, raw)
 }
@@ -238,7 +294,7 @@ pub fn three_spheres_geometry(n: u32) -> [Sphere; 3] {
 
 /// Three solid spheres of growing size side by side along x (the test scene of the
 /// selective-light-updates paper, Fig. 7), U8 data: 255 inside, 0 outside,
-/// anti-aliased surfaces. Geometry: [`three_spheres_geometry`].
+/// smooth surfaces ([`ramp_coverage`]). Geometry: [`three_spheres_geometry`].
 pub fn three_spheres(n: u32) -> Volume {
     let n = n.max(1);
     let spheres = three_spheres_geometry(n);
@@ -306,10 +362,12 @@ pub const SPHERE_VALUE: u8 = 255;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SlabUnderSphere {
     /// Slab: y in [n / 10, n / 5), x and z in [n / 10, n - n / 10) (integer
-    /// division), hard edges. Its top face is the plane y = `slab.max.y`.
+    /// division), smooth faces ([`ramp_coverage`] of its signed distance). Its
+    /// top face (the 0.5 level of the ramp) is the plane y = `slab.max.y`.
     pub slab: VoxelBox,
-    /// Sphere: centre (0.5 n, 0.6 n, 0.5 n), radius 0.2 n, anti-aliased. Its lowest
-    /// point (y = 0.4 n) is at least 0.2 n above the slab.
+    /// Sphere: centre (0.5 n, 0.6 n, 0.5 n), radius 0.2 n, smooth surface. Its
+    /// lowest point (y = 0.4 n) is at least 0.2 n above the slab, far more than
+    /// the two ramps' half widths, so they never overlap.
     pub sphere: Sphere,
 }
 
@@ -342,11 +400,9 @@ pub fn slab_under_sphere(n: u32) -> Volume {
     let n = n.max(1);
     let g = SlabUnderSphere::for_size(n);
     let data = fill(n, |i| {
-        if g.slab.contains(i) {
-            SLAB_VALUE
-        } else {
-            coverage_to_u8(SPHERE_VALUE, g.sphere.coverage(voxel_centre(i)))
-        }
+        let p = voxel_centre(i);
+        let slab = coverage_to_u8(SLAB_VALUE, ramp_coverage(g.slab.signed_distance(p)));
+        slab.max(coverage_to_u8(SPHERE_VALUE, g.sphere.coverage(p)))
     });
     u8_volume("slab-under-sphere", n, data)
 }
@@ -490,12 +546,16 @@ mod tests {
             let (lo, hi) = sphere_bounds(s, n);
             let sum = sum_over(&v, lo, hi);
             let r = s.radius as f64;
+            let w = TRANSITION_VOXELS as f64;
             let ball = 4.0 / 3.0 * PI as f64 * r.powi(3);
-            // The one-voxel ramp adds pi r / 3 (see the module doc); sampling it on
-            // the voxel lattice is good to far better than 0.2 % at these radii.
-            let ramp = ball + PI as f64 * r / 3.0;
+            // The ramp adds pi r w² / 3 (see the module doc); sampling it on the
+            // voxel lattice is good to far better than 0.2 % at these radii.
+            let ramp = ball + PI as f64 * r * w * w / 3.0;
             assert!((sum / ramp - 1.0).abs() < 0.002, "radius {r}: {sum} vs {ramp}");
-            assert!((sum / ball - 1.0).abs() < 0.01, "radius {r}: {sum} vs {ball}");
+            // So the ball's own volume is off by the ramp's share, w² / (4 r²)
+            // (2.1 % at the smallest radius, 5.1 voxels), plus that 0.2 %.
+            let ramp_share = w * w / (4.0 * r * r);
+            assert!((sum / ball - 1.0).abs() < ramp_share + 0.002, "radius {r}: {sum} vs {ball}");
             assert_eq!(value_at(&v, s.centre.as_uvec3()), 1.0);
         }
         // Different sizes, disjoint.
@@ -542,18 +602,62 @@ mod tests {
         assert_eq!(g.sphere.centre, Vec3::new(25.0, 30.0, 25.0));
         assert_eq!(g.sphere.radius, 10.0);
         let slab_value = SLAB_VALUE as f32 / 255.0;
-        assert_eq!(value_at(&v, UVec3::new(5, 5, 5)), slab_value);
-        assert_eq!(value_at(&v, UVec3::new(44, 9, 44)), slab_value);
-        assert_eq!(value_at(&v, UVec3::new(25, 10, 25)), 0.0, "air right above the slab");
-        assert_eq!(value_at(&v, UVec3::new(25, 4, 25)), 0.0, "air right below the slab");
+        // Voxel centres more than half a transition (0.75 voxel) inside hold the
+        // full value; the outermost layer, 0.5 voxel inside, 0.5 + 0.5 / 1.5 of
+        // it; the first layer of air, 0.5 voxel out, 0.5 - 0.5 / 1.5; the next
+        // (1.5 voxels out) nothing.
+        let raw = |i: UVec3| (value_at(&v, i) * 255.0).round() as u8;
+        let part = |c: f32| (SLAB_VALUE as f32 * c).round() as u8;
+        assert_eq!(value_at(&v, UVec3::new(25, 7, 25)), slab_value);
+        assert_eq!(value_at(&v, UVec3::new(6, 8, 43)), slab_value);
+        assert_eq!(raw(UVec3::new(25, 9, 25)), part(0.5 + 1.0 / 3.0), "top layer of the slab");
+        assert_eq!(raw(UVec3::new(25, 10, 25)), part(0.5 - 1.0 / 3.0), "air right above the slab");
+        assert_eq!(raw(UVec3::new(25, 4, 25)), part(0.5 - 1.0 / 3.0), "air right below the slab");
+        assert_eq!(raw(UVec3::new(25, 11, 25)), 0, "air 1.5 voxels above the slab");
+        // The top face is the ramp's 0.5 level: the two layers around y = 10 average to it.
+        let face = (value_at(&v, UVec3::new(25, 9, 25)) + value_at(&v, UVec3::new(25, 10, 25))) / 2.0;
+        assert!((face / slab_value - 0.5).abs() < 0.01, "{face}");
         assert_eq!(value_at(&v, UVec3::new(25, 30, 25)), 1.0);
         let (lo, hi) = sphere_bounds(&g.sphere, n);
         let sum = sum_over(&v, lo.max(UVec3::new(0, 11, 0)), hi);
-        let ramp = 4.0 / 3.0 * PI as f64 * 1000.0 + PI as f64 * 10.0 / 3.0;
+        let w = TRANSITION_VOXELS as f64;
+        let ramp = 4.0 / 3.0 * PI as f64 * 1000.0 + PI as f64 * 10.0 * w * w / 3.0;
         assert!((sum / ramp - 1.0).abs() < 0.002, "{sum} vs {ramp}");
         assert!(g.in_shadow_from_above(25.0, 25.0) && g.in_shadow_from_above(34.9, 25.0));
         assert!(!g.in_shadow_from_above(35.1, 25.0) && !g.in_shadow_from_above(10.0, 10.0));
         assert!(cubic_voxel_to_world(n, g.sphere.centre).abs_diff_eq(Vec3::new(0.0, 0.1, 0.0), 1e-6));
+    }
+
+    #[test]
+    fn box_signed_distance_is_negative_exactly_inside() {
+        let b = VoxelBox { min: UVec3::new(2, 2, 2), max: UVec3::new(6, 5, 7) };
+        for z in 0..9 {
+            for y in 0..9 {
+                for x in 0..9 {
+                    let i = UVec3::new(x, y, z);
+                    assert_eq!(b.signed_distance(voxel_centre(i)) < 0.0, b.contains(i), "{i}");
+                }
+            }
+        }
+        assert_eq!(b.signed_distance(Vec3::new(4.0, 3.5, 4.0)), -1.5);
+        assert_eq!(b.signed_distance(Vec3::new(9.0, 3.0, 4.0)), 3.0);
+        assert!((b.signed_distance(Vec3::new(9.0, 8.0, 4.0)) - 18f32.sqrt()).abs() < 1e-6);
+    }
+
+    #[test]
+    fn smooth_surfaces_ramp_over_the_transition() {
+        assert_eq!(ramp_coverage(0.0), 0.5);
+        assert_eq!(ramp_coverage(-0.75), 1.0);
+        assert_eq!(ramp_coverage(0.75), 0.0);
+        assert_eq!(ramp_coverage(-0.375), 0.75);
+        // The phantom's smooth density equals the hard one away from surfaces,
+        // and takes values between them on the skull's outer surface.
+        let n = 64;
+        for p in [[0.0, 0.0, 0.0], [0.0, 0.35, -0.15], [0.95, 0.95, 0.95]] {
+            assert_eq!(smooth_shepp_logan_density(p, n), shepp_logan_density(p), "{p:?}");
+        }
+        let on_surface = smooth_shepp_logan_density([0.0, 0.92, 0.0], n);
+        assert!((on_surface - 0.5).abs() < 0.01, "{on_surface}");
     }
 
     #[test]

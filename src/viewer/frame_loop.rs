@@ -15,7 +15,7 @@ use super::present_pass::{
 use super::report::{FrameRecord, ViewerReport};
 use super::script::{Action, Script};
 use super::tf_editor;
-use super::ui::{PanelView, PassHistory, Ui, UiEdit};
+use super::ui::{PanelView, PassHistory, Ui, UiEdit, PANEL_WIDTH};
 use super::window::{self, WindowEvents};
 use crate::render::{self, FrameSession, GpuScene, Technique, VolumeTexels};
 use crate::scene::Light;
@@ -46,6 +46,9 @@ pub struct ViewerOptions {
     pub out_dir: PathBuf,
     /// The control panel (off: the frame alone, e.g. to compare screenshots).
     pub ui: bool,
+    /// Start with the panel hidden (`H` or Tab shows it); the image takes the
+    /// whole window.
+    pub hide_panel: bool,
     /// The barrier between the technique's frame and the present pass; off
     /// only to prove that validation reports its absence (a test).
     pub handoff_barrier: bool,
@@ -61,8 +64,10 @@ pub fn run(
     let mut live = LiveScene::load(source, overrides)?;
     let mut event_loop = window::event_loop()?;
     let (width, height) = (live.scene.render.width, live.scene.render.height);
+    // The image beside the panel at the scene's size: the window holds both.
+    let panel = if options.ui && !options.hide_panel { PANEL_WIDTH as u32 } else { 0 };
     // Declared before the context: the window outlives the surface made from it.
-    let mut events = WindowEvents::new(&format!("sweeplab view: {}", options.technique), width, height);
+    let mut events = WindowEvents::new(&format!("sweeplab view: {}", options.technique), width + panel, height);
     events.open(&mut event_loop)?;
     let (display, _) = events.handles()?;
     let names =
@@ -127,6 +132,7 @@ fn frame_loop<'c>(
     let mut recreate = true;
     let mut last_present = Instant::now();
     let mut technique = options.technique;
+    let mut panel_shown = !options.hide_panel;
     let mut enabled: Vec<bool> = vec![true; live.scene.lights.len()];
     let mut ui_edits: Vec<UiEdit> = Vec::new();
     let mut message: Option<String> = None;
@@ -157,6 +163,7 @@ fn frame_loop<'c>(
                 .filter_map(|k| match k {
                     KeyCode::KeyS => Some('S'),
                     KeyCode::KeyP => Some('P'),
+                    KeyCode::KeyH | KeyCode::Tab => Some('H'),
                     _ => None,
                 })
                 .collect();
@@ -278,7 +285,15 @@ fn frame_loop<'c>(
             let lights: Vec<Option<Light>> =
                 live.scene.lights.iter().zip(&enabled).map(|(l, &on)| on.then_some(*l)).collect();
             technique.check(gpu.scene)?;
-            if let (Some(panel), Some(state)) = (ui.as_mut(), events.egui.as_mut()) {
+            if keys.contains(&'H') {
+                panel_shown = !panel_shown;
+            }
+            // The panel's width in window pixels; the image is drawn beside it.
+            let panel_px = match ui.is_some() && panel_shown {
+                true => ((PANEL_WIDTH as f64 * events.window()?.scale_factor()).round() as u32).min(w - 1),
+                false => 0,
+            };
+            if let (Some(panel), Some(state), true) = (ui.as_mut(), events.egui.as_mut(), panel_shown) {
                 if panel.has_pending_frees() {
                     // Textures egui let go of may be in a frame in flight.
                     frames.wait_all()?;
@@ -315,7 +330,9 @@ fn frame_loop<'c>(
             }
             let source = FrameSource { gpu: &gpu, technique, lights: &lights, host_profiler: &mut host_profiler };
             let wants = Wants { screenshot: !shots.is_empty(), profile: keys.contains(&'P') };
-            let presented = present(ctx, frames, sc, session.as_mut(), source, wants, options, ui.as_mut(), log)?;
+            let shown_ui = ui.as_mut().filter(|_| panel_shown);
+            let presented =
+                present(ctx, frames, sc, session.as_mut(), source, wants, options, (shown_ui, panel_px), log)?;
             let Some(submitted) = presented else {
                 recreate = true;
                 continue;
@@ -447,7 +464,7 @@ fn present(
     source: FrameSource,
     wants: Wants,
     options: &ViewerOptions,
-    ui: Option<&mut Ui>,
+    (ui, panel_px): (Option<&mut Ui>, u32),
     log: &mut FrameLog,
 ) -> Result<Option<Submitted>, ViewerError> {
     let device = &ctx.device;
@@ -482,7 +499,9 @@ fn present(
     slot.profiler.reset();
     let mut rec = Recorder::for_command_buffer(ctx, slot.cb);
     let started = Instant::now();
-    let recorded = session.record(source.lights, &mut rec, w, h, &mut slot.profiler)?;
+    // The technique renders the area beside the panel; the screenshot is the window.
+    let (iw, ih) = (w - panel_px, h);
+    let recorded = session.record(source.lights, &mut rec, iw, ih, &mut slot.profiler)?;
     let (frame, uploaded_profile, dispatches, barriers, linear_layout) = match recorded {
         Some(frame) => {
             let layout = present_pass::record_handoff(&mut rec, &frame.output.image, options.handoff_barrier);
@@ -490,12 +509,12 @@ fn present(
             (Some(frame), None, d, b, layout)
         }
         None => {
-            let output = render::profiled_frame(source.gpu, source.technique, w, h, source.host_profiler, |p| {
-                session.frame(source.lights, w, h, p)
+            let output = render::profiled_frame(source.gpu, source.technique, iw, ih, source.host_profiler, |p| {
+                session.frame(source.lights, iw, ih, p)
             })?;
-            if slot.upload.as_ref().is_none_or(|u| (u.width, u.height) != (w, h)) {
+            if slot.upload.as_ref().is_none_or(|u| (u.width, u.height) != (iw, ih)) {
                 // The slot's last use of the old one finished (its fence).
-                slot.upload = Some(Upload::new(ctx, w, h)?);
+                slot.upload = Some(Upload::new(ctx, iw, ih)?);
             }
             let upload = slot.upload.as_mut().ok_or_else(|| ViewerError::Window("no upload".into()))?;
             let rgba: Vec<[f32; 4]> = output.image.pixels.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect();
@@ -512,7 +531,7 @@ fn present(
     };
     let i = image_index as usize;
     let target = PresentTarget { image: sc.images[i], view: sc.views[i], extent: sc.extent };
-    present_pass::record(&mut rec, &mut slot.profiler, linear, linear_layout, &target, shot.as_ref(), ui)?;
+    present_pass::record(&mut rec, &mut slot.profiler, (linear, linear_layout, panel_px), &target, shot.as_ref(), ui)?;
     // SAFETY: recording began above.
     unsafe { device.end_command_buffer(slot.cb) }.call("vkEndCommandBuffer")?;
     let waits = [vk::SemaphoreSubmitInfo::default().semaphore(slot.image_acquired).stage_mask(ACQUIRE_WAIT_STAGE)];

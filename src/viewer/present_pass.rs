@@ -96,13 +96,13 @@ pub struct PresentTarget {
 }
 
 /// Records the pass from `linear`, readable by the blit in `linear_layout`
-/// ([`record_handoff`] or [`record_upload`] made it so); `ui` draws the panel
-/// over the frame.
+/// ([`record_handoff`] or [`record_upload`] made it so) into the target right
+/// of `image_x` (the panel's width); `ui` draws the panel, whose opaque fill
+/// covers the target left of `image_x`.
 pub fn record(
     rec: &mut Recorder,
     profiler: &mut Profiler,
-    linear: &Image,
-    linear_layout: vk::ImageLayout,
+    (linear, linear_layout, image_x): (&Image, vk::ImageLayout, u32),
     target: &PresentTarget,
     screenshot: Option<&Buffer>,
     ui: Option<&mut Ui>,
@@ -126,7 +126,7 @@ pub fn record(
         .src_subresource(color_layers())
         .src_offsets([vk::Offset3D::default(), src_end])
         .dst_subresource(color_layers())
-        .dst_offsets([vk::Offset3D::default(), dst_end]);
+        .dst_offsets([vk::Offset3D { x: image_x as i32, y: 0, z: 0 }, dst_end]);
     // SAFETY: both images are in the layouts named (the caller's barrier and the
     // one above), were created with TRANSFER usage, and their formats support BLIT_SRC/BLIT_DST
     // (RGBA32F on every Vulkan device; the swapchain format was checked).

@@ -71,7 +71,12 @@ impl Script {
                 "key" => match rest.to_ascii_uppercase().as_str() {
                     "S" => Action::Key('S'),
                     "P" => Action::Key('P'),
-                    _ => return Err(at(format!("key `{rest}` has no action; known: S (screenshot), P (profile)"))),
+                    "H" => Action::Key('H'),
+                    _ => {
+                        return Err(at(format!(
+                            "key `{rest}` has no action; known: S (screenshot), P (profile), H (hide or show the panel)"
+                        )))
+                    }
                 },
                 "tf-point" => match index_and_pair(rest, |v| (0.0..=1.0).contains(&v)) {
                     Some((index, value, alpha)) => Action::TfPoint { index, value, alpha },

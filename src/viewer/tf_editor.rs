@@ -90,7 +90,8 @@ impl TfEditor {
             let h = (count as f32).ln_1p() / top * rect.height();
             let x = rect.left() + i as f32 * bar;
             let r = egui::Rect::from_min_max(egui::pos2(x, rect.bottom() - h), egui::pos2(x + bar, rect.bottom()));
-            painter.rect_filled(r, 0.0, egui::Color32::from_gray(70));
+            // Light enough to read under the white curve on the dark plot.
+            painter.rect_filled(r, 0.0, egui::Color32::from_gray(115));
         }
         let curve: Vec<egui::Pos2> = shown.iter().map(|p| to_screen(p.value, p.rgba[3])).collect();
         painter.add(egui::Shape::line(curve, egui::Stroke::new(1.5, egui::Color32::WHITE)));

@@ -174,8 +174,12 @@ impl Drop for Ui {
     }
 }
 
+/// Width of the control panel, in points: fixed, so the image beside it is laid
+/// out before the panel runs.
+pub const PANEL_WIDTH: f32 = 260.0;
+
 fn panel(ctx: &egui::Context, view: &PanelView, state: &mut PanelState, edits: &mut Vec<UiEdit>) {
-    egui::SidePanel::left("controls").default_width(260.0).show(ctx, |ui| {
+    egui::SidePanel::left("controls").exact_width(PANEL_WIDTH).resizable(false).show(ctx, |ui| {
         egui::ScrollArea::vertical().show(ui, |ui| {
             technique_section(ui, view, &mut state.settings, edits);
             ui.separator();

@@ -276,6 +276,9 @@ impl Convergence {
 pub fn convergence(ctx: &Context, base: &Scene, variant: Variant, size: u32) -> Result<Convergence, String> {
     let t = variant.technique;
     let mut scene = variant.prepare(base);
+    // The order of the midpoint rule: jittered phases (render.jitter) are
+    // another quadrature, first order per pixel.
+    scene.render.jitter = false;
     let mut fine = scene.clone();
     fine.render.step_voxels = 1.0 / 64.0;
     fine.reference.step_voxels = 1.0 / 64.0;
