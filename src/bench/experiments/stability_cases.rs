@@ -69,11 +69,8 @@ impl StabilityCase {
 /// table compares each technique with its model at fixed sample positions,
 /// and the convergence study measures the midpoint rule's order.
 fn scene_text(size: u32, volume: &str, extra: &str) -> String {
-    let camera = if extra.contains("[camera]") {
-        ""
-    } else {
-        "[camera]\nazimuth = 30.0\nelevation = 20.0\ndistance = 3.5137\n"
-    };
+    let camera =
+        if extra.contains("[camera]") { "" } else { "[camera]\nazimuth = 30.0\nelevation = 20.0\ndistance = 3.5137\n" };
     format!(
         "{volume}\n[render]\nwidth = {size}\nheight = {size}\njitter = false\n[reference]\nstep = 0.25\n\
          shadow_step = 0.25\n{camera}{extra}"
