@@ -21,7 +21,8 @@
 use super::ExperimentError;
 use crate::bench::cpu_time::{cpu_ms_between, process_cpu_time};
 use crate::bench::estimate::{
-    median_estimate, paired_difference, paired_slope_difference, quartiles, slope_per_round, Estimate, MIN_SAMPLES,
+    median_estimate, paired_difference, paired_slope_difference, quartiles, readable, slope_per_round, Estimate,
+    MIN_SAMPLES,
 };
 use crate::bench::protocol::{Next, Phase, Protocol, Rounds};
 use crate::bench::run_info::RunInfo;
@@ -343,8 +344,6 @@ impl SyncReport {
         out
     }
 }
-
-use crate::bench::estimate::readable;
 
 /// Called after every round with the report so far, and how long the rounds
 /// took and are expected to take.
