@@ -288,11 +288,6 @@ impl SyncReport {
         self.strategies.iter().filter(move |r| r.workload == workload)
     }
 
-    /// Whether every strategy's (and the control's) sync cost is as precise as asked.
-    pub fn precise(&self) -> bool {
-        Workload::ALL.into_iter().all(|w| self.precise_in(w))
-    }
-
     /// Timed rounds per workload, e.g. `empty 30, sweep 6`.
     pub fn rounds_text(&self) -> String {
         self.workloads.iter().map(|w| format!("{} {}", w.workload.name(), w.rounds)).collect::<Vec<_>>().join(", ")
@@ -303,7 +298,8 @@ impl SyncReport {
         self.workloads.iter().find(|w| w.workload == workload).map_or(0, |w| w.rounds)
     }
 
-    /// [`precise`](Self::precise) for one workload.
+    /// Whether every strategy's (and the control's) sync cost in `workload` is
+    /// as precise as asked.
     pub fn precise_in(&self, workload: Workload) -> bool {
         self.rows_of(workload)
             .filter(|r| r.strategy != BASELINE)
