@@ -15,13 +15,13 @@
 //! `assert_gpu_layout!` compares with the Rust mirrors. The GLSL is the one
 //! source of truth: a renamed or removed binding is a compile error where Rust
 //! names it. Every shader also gets `EARLY_TERMINATION_TRANSMITTANCE` defined
-//! from src/reference/early_termination.rs, the CPU reference's constant.
+//! from src/render/early_termination.rs, the constant every renderer shares.
 
 use std::env;
 use std::fs;
 use std::path::{Path, PathBuf};
 
-#[path = "src/reference/early_termination.rs"]
+#[path = "src/render/early_termination.rs"]
 mod early_termination;
 #[path = "tools/spirv_reflect.rs"]
 mod spirv_reflect;
@@ -117,7 +117,7 @@ fn compile_shaders() {
     let glsl_dir = PathBuf::from(env::var("CARGO_MANIFEST_DIR").unwrap()).join("glsl");
     let out_dir = PathBuf::from(env::var("OUT_DIR").unwrap());
     println!("cargo:rerun-if-changed={}", glsl_dir.display());
-    println!("cargo:rerun-if-changed=src/reference/early_termination.rs");
+    println!("cargo:rerun-if-changed=src/render/early_termination.rs");
     println!("cargo:rerun-if-changed=tools/spirv_reflect.rs");
 
     let compiler = shaderc::Compiler::new().expect("shaderc compiler");

@@ -4,10 +4,10 @@
 //! transfer functions, camera, lights, scene files), [`render`] (what all GPU
 //! techniques share, and the [`render::RenderTechnique`] trait), one module per
 //! technique ([`dvr`] baselines, [`reference`] ground truth, [`ipsvi`],
-//! [`half_angle`], [`lightvolume`], [`ao`] preprocessing so far),
-//! [`render::registry`] listing them, and [`metrics`]. Each technique's settings
-//! type sits in its module; the scene holds the parsed settings of all of them
-//! ([`scene::TechniqueSettings`]).
+//! [`half_angle`], [`lightvolume`], [`ao`]), [`metrics`], and above them the
+//! catalogue [`techniques`] that lists them and owns their scene-file tables.
+//! Each technique's settings type sits in its module; the scene stores them
+//! without knowing their types ([`scene::TechniqueSettings`]).
 
 pub mod ao;
 pub mod bench;
@@ -20,6 +20,7 @@ pub mod metrics;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod techniques;
 pub mod viewer;
 pub mod vk;
 

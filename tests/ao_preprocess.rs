@@ -13,9 +13,9 @@ use sweeplab::ao::histogram::{LocalHistograms, SphereStencil};
 use sweeplab::ao::packing::PackingScheme;
 use sweeplab::ao::quantize::{distance, unpack_cluster_ids};
 use sweeplab::ao::{preprocess, preprocess_cached, AoPreprocessed, AoSettings, CacheOutcome, Metric, TrainingSet};
-use sweeplab::scene::scene_file::load_scene;
 use sweeplab::scene::synthetic::cornell_box;
 use sweeplab::scene::{Volume, VoxelData};
+use sweeplab::techniques::load_scene;
 
 /// 9^3 U8 volume: material A (100) for z <= 4, material B (200) for z >= 5.
 fn two_materials() -> Volume {

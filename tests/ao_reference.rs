@@ -7,13 +7,15 @@ mod common;
 
 use common::*;
 use sweeplab::ao::render::AoRenderer;
+use sweeplab::ao::AoSettings;
 use sweeplab::metrics::compare;
 use sweeplab::reference::ao::{reference_cpu, AoReferenceParams};
 use sweeplab::reference::ao_gpu::reference_gpu;
 use sweeplab::reference::ao_unclustered::unclustered_lookup;
 use sweeplab::reference::gpu::ChunkSync;
-use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::{Scene, TransferLut};
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 fn cornell(n: u32, radius: u32, size: u32) -> Scene {
@@ -78,15 +80,16 @@ fn the_clustered_image_approaches_the_unclustered_one_as_n_c_grows() {
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     let per_voxel = |scene: &Scene, lookup: &[[f32; 4]], profiler: &mut Profiler| {
         let gpu = GpuScene::upload(&ctx, scene).unwrap();
-        let renderer = AoRenderer::per_voxel(&gpu, lookup, &scene.settings.ao).unwrap();
+        let renderer = AoRenderer::per_voxel(&gpu, lookup, &scene.settings.get::<AoSettings>()).unwrap();
         renderer.frame(&gpu, (size, size), profiler).unwrap().image
     };
-    let unclustered = per_voxel(&scene, &unclustered_lookup(&scene.volume, &scene.settings.ao, &lut), &mut profiler);
+    let unclustered =
+        per_voxel(&scene, &unclustered_lookup(&scene.volume, &scene.settings.get::<AoSettings>(), &lut), &mut profiler);
     let params = AoReferenceParams { radius: 4, pairs: 32, step: 0.5 };
     let truth = per_voxel(&scene, &reference_cpu(&scene.volume, &lut, &params), &mut profiler);
     let mut errors = Vec::new();
     for clusters in [2, 8, 32, 128] {
-        scene.settings.ao.clusters = clusters;
+        scene.settings.get_mut::<AoSettings>().clusters = clusters;
         let gpu = GpuScene::upload(&ctx, &scene).unwrap();
         let image = render(&gpu, Technique::Ao, size, size, &mut profiler).unwrap().image;
         let error = compare(&image, &unclustered).unwrap();

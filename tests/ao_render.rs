@@ -6,6 +6,7 @@
 mod common;
 
 use std::sync::Mutex;
+use sweeplab::ao::AoSettings;
 
 use common::*;
 use glam::Vec3;
@@ -14,9 +15,10 @@ use sweeplab::ao::render::AoRenderer;
 use sweeplab::ao::technique::{preprocess_runs, preprocessed};
 use sweeplab::ao::AoMode;
 use sweeplab::linear_image::LinearImage;
-use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::render::GpuScene;
 use sweeplab::scene::synthetic::{CORNELL_LEFT_WALL, CORNELL_SHORT_BOX};
 use sweeplab::scene::{Scene, TransferLut};
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 /// The preprocessing counter and the kept result are per process: tests that
@@ -58,7 +60,7 @@ fn a_tf_change_recomputes_the_lookup_on_the_gpu_without_preprocessing() {
     let _one_at_a_time = PREPROCESSING.lock().unwrap_or_else(|p| p.into_inner());
     let ctx = validated_context();
     let scene = cornell("glow");
-    let settings = scene.settings.ao.clone();
+    let settings = scene.settings.get::<AoSettings>().into_owned();
     let pre = preprocessed(&scene.volume, &settings, None, &mut |_| {}).unwrap();
     let runs = preprocess_runs();
     let mut gpu = GpuScene::upload(&ctx, &scene).unwrap();
@@ -198,7 +200,7 @@ fn every_mode_renders_validation_clean_and_differs_from_the_others() {
     let mut images = Vec::new();
     for mode in AoMode::ALL {
         let mut scene = cornell(mode.name());
-        scene.settings.ao.isovalue = 0.1;
+        scene.settings.get_mut::<AoSettings>().isovalue = 0.1;
         let image = frame(&ctx, &scene, Technique::Ao, None);
         assert!(image.all_finite());
         let centre = image.get(SIZE / 2, SIZE / 2);
@@ -223,9 +225,9 @@ fn every_mode_renders_validation_clean_and_differs_from_the_others() {
 fn goals_tf_change_time_and_overhead_over_blinn_phong() {
     let _one_at_a_time = PREPROCESSING.lock().unwrap_or_else(|p| p.into_inner());
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/cornell-box.toml");
-    let mut scene = sweeplab::scene::scene_file::load_scene(&path, &[]).unwrap();
+    let mut scene = sweeplab::techniques::load_scene(&path, &[]).unwrap();
     (scene.render.width, scene.render.height) = (512, 512);
-    let settings = scene.settings.ao.clone();
+    let settings = scene.settings.get::<AoSettings>().into_owned();
     assert_eq!((settings.clusters, settings.bits), (2048, 8));
     let started = std::time::Instant::now();
     let pre = preprocessed(&scene.volume, &settings, None, &mut |_| {}).unwrap();
@@ -269,7 +271,7 @@ fn a_session_computes_the_lookup_once_and_renders_the_headless_image() {
     let scene = cornell("dvr");
     let headless = frame(&ctx, &scene, Technique::Ao, None);
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
-    let mut session = sweeplab::render::session(&gpu, Technique::Ao).unwrap();
+    let mut session = sweeplab::techniques::session(&gpu, Technique::Ao).unwrap();
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     let lights: Vec<_> = scene.lights.iter().cloned().map(Some).collect();
     let mut lookup_passes = Vec::new();

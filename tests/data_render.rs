@@ -3,9 +3,10 @@
 mod common;
 
 use common::*;
-use sweeplab::render::{render, GpuScene, Technique};
-use sweeplab::scene::default_scene::scene_for_volume_file;
+use sweeplab::render::GpuScene;
 use sweeplab::scene::loaders::data_dir;
+use sweeplab::techniques::scene_for_volume_file;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 const FILES: [&str; 5] = ["engine.vti", "aneurism.vti", "LIDC2.mha", "smallHeart.mhd", "nucleon.nrrd"];

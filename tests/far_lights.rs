@@ -11,9 +11,10 @@ use glam::Vec3;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
-use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
-use sweeplab::scene::scene_file::scene_from_toml_str;
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::{Falloff, Light, LightKind, Scene};
+use sweeplab::techniques::scene_from_toml_str;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Context, Profiler};
 
 /// The camera at the distance the bounds below were measured at (the bounding

@@ -2,9 +2,14 @@ mod common;
 
 use common::*;
 use glam::Vec3;
+use sweeplab::ao::AoSettings;
+use sweeplab::half_angle::HalfAngleSettings;
 use sweeplab::ipsvi::EarlyTermination;
+use sweeplab::ipsvi::IpsviSettings;
+use sweeplab::lightvolume::LightVolumeSettings;
 use sweeplab::render::technique::total_bytes;
-use sweeplab::render::{render, GpuScene, ResourceNeed, Technique};
+use sweeplab::render::{GpuScene, ResourceNeed};
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 #[test]
@@ -79,9 +84,10 @@ fn every_technique_lists_the_memory_its_frame_allocates() {
     // Other settings, other resources: the exit-point images, an uncompensated
     // volume at a quarter of the resolution, a smaller light buffer.
     let mut tuned = lit.clone();
-    tuned.settings.ipsvi.early_termination = EarlyTermination::ExitPoints;
-    (tuned.settings.lightvolume.scale, tuned.settings.lightvolume.compensated) = (4, false);
-    tuned.settings.half_angle.light_buffer_size = 64;
+    tuned.settings.get_mut::<IpsviSettings>().early_termination = EarlyTermination::ExitPoints;
+    let lightvolume = tuned.settings.get_mut::<LightVolumeSettings>();
+    (lightvolume.scale, lightvolume.compensated) = (4, false);
+    tuned.settings.get_mut::<HalfAngleSettings>().light_buffer_size = 64;
     // Three lights: light volume passes of several members (half-angle takes one light).
     let three = scene_with(sphere_volume(24, 9.0), vec![light(-1.0), light(-0.8), light(1.0)], width, height);
     let cases = [
@@ -91,7 +97,7 @@ fn every_technique_lists_the_memory_its_frame_allocates() {
     ];
     // The three lights' sweeps merged: per-sweep caches and colour accumulation.
     let mut merged = three.clone();
-    merged.settings.ipsvi.merge_sweeps = true;
+    merged.settings.get_mut::<IpsviSettings>().merge_sweeps = true;
     let cases = cases.into_iter().chain([
         ("three lights", &three, &[Technique::Ipsvi, Technique::LightVolume][..]),
         ("three lights merged", &merged, &[Technique::Ipsvi][..]),
@@ -131,7 +137,7 @@ fn ao_lists_the_memory_its_frame_allocates_in_every_mode() {
     for (what, base) in [("lit", &lit), ("unlit", &unlit)] {
         for mode in AoMode::ALL {
             let mut scene = base.clone();
-            let ao = &mut scene.settings.ao;
+            let ao = scene.settings.get_mut::<AoSettings>();
             (ao.radius, ao.clusters, ao.packed_dim, ao.cache, ao.mode) = (3, 8, 16, false, mode);
             let gpu = GpuScene::upload(&ctx, &scene).unwrap();
             let mut profiler = Profiler::new(&ctx, 256).unwrap();

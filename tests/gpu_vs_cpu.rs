@@ -8,9 +8,10 @@ use glam::Vec3;
 use sweeplab::metrics::compare;
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
 use sweeplab::reference::gpu::plan_for;
-use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::{noise, slab_under_sphere, three_spheres};
 use sweeplab::scene::{Falloff, Light, LightKind, OpticalModel, Scene};
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 fn gpu_and_cpu(

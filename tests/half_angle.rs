@@ -7,9 +7,10 @@ use glam::Vec3;
 use sweeplab::half_angle::{slicing, HalfAngleSettings};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
-use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, OpticalModel, Scene};
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 const SIZE: u32 = 48;
@@ -23,7 +24,7 @@ fn slab_scene(direction: Vec3) -> Scene {
     scene.reference.step_voxels = 0.125;
     scene.reference.shadow_step_voxels = 0.125;
     scene.render.emission = 0.2;
-    scene.settings.half_angle = HalfAngleSettings { slice_step: Some(0.125), light_buffer_size: 256 };
+    scene.settings.set(HalfAngleSettings { slice_step: Some(0.125), light_buffer_size: 256 });
     scene
 }
 
@@ -44,7 +45,7 @@ fn half_angle_matches_the_reference_with_the_light_behind_and_in_front_of_the_vi
         ("light facing the viewer", Vec3::new(-0.3, -1.0, 0.8)),
     ] {
         let scene = slab_scene(direction);
-        let sl = slicing(&scene, &scene.settings.half_angle).unwrap();
+        let sl = slicing(&scene, &scene.settings.get::<HalfAngleSettings>()).unwrap();
         let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
         let mut profiler = Profiler::new(&ctx, 16).unwrap();
         let out = render(&gpu, Technique::HalfAngle, SIZE, SIZE, &mut profiler).unwrap();
@@ -84,7 +85,7 @@ fn front_to_back_the_last_slice_adds_the_background_on_the_gpu() {
     let ctx = validated_context();
     let mut scene = slab_scene(Vec3::new(0.3, -1.0, -0.6));
     scene.render.background = Vec3::new(0.6, 0.3, 0.9);
-    assert!(slicing(&scene, &scene.settings.half_angle).unwrap().front_to_back);
+    assert!(slicing(&scene, &scene.settings.get::<HalfAngleSettings>()).unwrap().front_to_back);
     let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
     let mut profiler = Profiler::new(&ctx, 16).unwrap();
     let out = render(&gpu, Technique::HalfAngle, SIZE, SIZE, &mut profiler).unwrap();

@@ -8,9 +8,10 @@ use sweeplab::ipsvi::renderer::plans;
 use sweeplab::ipsvi::{render_with, CacheUpdate, IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::{compare, ErrorStats};
-use sweeplab::render::{render, GpuScene, RenderOutput, Technique, VolumeTexels};
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, Falloff, Light, LightKind, OpticalModel, Projection, Scene};
+use sweeplab::techniques::{render, RenderOutput, Technique};
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 48;
@@ -25,7 +26,7 @@ fn slab_scene(lights: Vec<Light>) -> Scene {
     scene.reference.min_transmittance = 1e-4;
     scene.render.emission = 0.2;
     // What `render` (no explicit settings) uses: the settings of the tolerance.
-    scene.settings.ipsvi = IpsviSettings { cache_size: 256, light_step_voxels: 0.125, ..IpsviSettings::default() };
+    scene.settings.set(IpsviSettings { cache_size: 256, light_step_voxels: 0.125, ..IpsviSettings::default() });
     scene
 }
 
@@ -198,7 +199,7 @@ fn no_light_means_no_sweep_and_no_cache() {
     let ctx = validated_context();
     // The cache pair of light-rays mode (view samples add their pair and claim keys).
     let mut lit = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
-    lit.settings.ipsvi.cache_update = CacheUpdate::LightRays;
+    lit.settings.get_mut::<IpsviSettings>().cache_update = CacheUpdate::LightRays;
     let dark = slab_scene(vec![]);
     let mut memory = Vec::new();
     for scene in [&dark, &lit] {

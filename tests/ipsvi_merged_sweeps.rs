@@ -147,7 +147,7 @@ fn the_merged_line_barrier_is_load_bearing_and_every_strategy_agrees() {
 #[test]
 #[ignore = "a measurement, not a check"]
 fn merged_against_unmerged_timing() {
-    use sweeplab::scene::scene_file::load_scene;
+    use sweeplab::techniques::load_scene;
     let var = |name: &str| std::env::var(name).ok();
     let size: u32 = var("MERGED_SIZE").and_then(|v| v.parse().ok()).unwrap_or(256);
     let repeat: usize = var("MERGED_REPEAT").and_then(|v| v.parse().ok()).unwrap_or(3);
@@ -172,7 +172,7 @@ fn merged_against_unmerged_timing() {
         let mut renderers: Vec<IpsviRenderer> = [false, true]
             .into_iter()
             .map(|merge_sweeps| {
-                let s = IpsviSettings { merge_sweeps, ..scene.settings.ipsvi.clone() };
+                let s = IpsviSettings { merge_sweeps, ..scene.settings.get::<IpsviSettings>().into_owned() };
                 IpsviRenderer::new(&gpu, &s, size, size).unwrap()
             })
             .collect();

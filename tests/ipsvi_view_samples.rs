@@ -11,12 +11,13 @@ use sweeplab::ipsvi::{
 };
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
-use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{
     presets, Camera, ControlPoint, Falloff, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction,
     Volume, VoxelData,
 };
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 48;

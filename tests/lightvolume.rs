@@ -10,13 +10,14 @@ use std::path::Path;
 use sweeplab::lightvolume::{render_frame, LightVolumeFrame, LightVolumeSettings};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
-use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
-use sweeplab::scene::scene_file::parse_scene_str;
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{
     presets, Camera, ControlPoint, Falloff, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction,
     TransferLut, Volume, VoxelData,
 };
+use sweeplab::techniques::parse_scene_str;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 48;
@@ -24,7 +25,7 @@ const SIZE: u32 = 48;
 /// `lightvolume.shared_medium`: the medium sampled along the axis and shared by
 /// the lights of a pass (exact for a homogeneous medium, like per light).
 fn set_shared_medium(scene: &mut Scene, shared: bool) {
-    scene.settings.lightvolume.shared_medium = shared;
+    scene.settings.get_mut::<LightVolumeSettings>().shared_medium = shared;
 }
 
 /// The light volume at `scale`, propagating model (i) (one transmittance, not
@@ -33,8 +34,12 @@ fn set_shared_medium(scene: &mut Scene, shared: bool) {
 /// propagation unless they set otherwise.
 fn with_scale(mut scene: Scene, scale: u32) -> Scene {
     // Model (i) and the per-light propagation these tests were written for.
-    scene.settings.lightvolume =
-        LightVolumeSettings { scale, chromatic: false, shared_medium: false, ..LightVolumeSettings::default() };
+    scene.settings.set(LightVolumeSettings {
+        scale,
+        chromatic: false,
+        shared_medium: false,
+        ..LightVolumeSettings::default()
+    });
     scene
 }
 
@@ -351,7 +356,7 @@ fn no_lights_renders_the_emission_term_and_bad_settings_are_errors() {
     assert!(out.image.as_ref().unwrap().all_finite());
     // Set in code: refused when rendered.
     let mut bad = slab_sphere_scene(vec![directional(Vec3::NEG_Y, 1.0)], 2);
-    bad.settings.lightvolume.scale = 3;
+    bad.settings.get_mut::<LightVolumeSettings>().scale = 3;
     let gpu = GpuScene::upload(&ctx, &bad).unwrap();
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     assert!(render(&gpu, Technique::LightVolume, 8, 8, &mut profiler).is_err(), "scale = 3");
@@ -428,8 +433,12 @@ fn coherent_and_sequential_propagation_give_the_same_volume() {
     let mut passes = Vec::new();
     for (coherent, shared) in [(true, false), (false, false), (true, true), (false, true)] {
         let mut scene = scene_with(slab_under_sphere(16), lights.clone(), 16, 16);
-        scene.settings.lightvolume =
-            LightVolumeSettings { scale: 2, coherent, shared_medium: shared, ..LightVolumeSettings::default() };
+        scene.settings.set(LightVolumeSettings {
+            scale: 2,
+            coherent,
+            shared_medium: shared,
+            ..LightVolumeSettings::default()
+        });
         let (out, _) = frame(&ctx, &scene, 16, true);
         passes.push(out.groups().len());
         volumes.push(out.illumination.unwrap().high);
@@ -456,7 +465,7 @@ fn coherent_and_sequential_propagation_give_the_same_volume() {
 /// homogeneous medium.
 fn side_view_of_the_lit_cube(scale: u32, chromatic: bool) -> Scene {
     let (mut scene, _) = homogeneous_scene(16, Vec3::NEG_Y, scale);
-    scene.settings.lightvolume = LightVolumeSettings { scale, chromatic, ..LightVolumeSettings::default() };
+    scene.settings.set(LightVolumeSettings { scale, chromatic, ..LightVolumeSettings::default() });
     if chromatic {
         for p in &mut scene.transfer.points {
             p.rgba[..3].copy_from_slice(&[0.8, 0.5, 0.2]);

@@ -12,10 +12,11 @@ use sweeplab::bench::experiments::lights::{lightvolume_scene, table1_lights};
 use sweeplab::lightvolume::CostEstimate;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
-use sweeplab::render::{render, GpuScene, Technique};
-use sweeplab::scene::default_scene::scene_for_volume_file;
+use sweeplab::render::GpuScene;
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::Scene;
+use sweeplab::techniques::scene_for_volume_file;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 64;

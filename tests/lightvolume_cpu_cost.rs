@@ -10,9 +10,9 @@ mod common;
 use sweeplab::bench::experiments::lights::{lightvolume_scene, scaling_lights};
 use sweeplab::lightvolume::{CostEstimate, LightVolumeRenderer};
 use sweeplab::render::GpuScene;
-use sweeplab::scene::default_scene::scene_for_volume_file;
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::Light;
+use sweeplab::techniques::scene_for_volume_file;
 use sweeplab::vk::{Context, ContextOptions, Profiler};
 
 /// Entire updates per measurement; the least of `ROUNDS` measurements counts.

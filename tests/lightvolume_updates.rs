@@ -20,8 +20,8 @@ use sweeplab::vk::{Context, Profiler};
 fn scene(settings: impl FnOnce(&mut LightVolumeSettings)) -> Scene {
     let mut scene = scene_with(slab_under_sphere(16), vec![], 16, 16);
     scene.transfer = presets::preset("slab-sphere").unwrap();
-    scene.settings.lightvolume.scale = 2;
-    settings(&mut scene.settings.lightvolume);
+    scene.settings.get_mut::<LightVolumeSettings>().scale = 2;
+    settings(scene.settings.get_mut::<LightVolumeSettings>());
     scene
 }
 

@@ -6,13 +6,15 @@ mod common;
 
 use common::*;
 use glam::Vec3;
+use sweeplab::half_angle::HalfAngleSettings;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
 use sweeplab::render::view_chunks::{diagonal_voxels, smallest_view_step, ViewChunks};
-use sweeplab::render::{render, GpuScene, RenderError, Technique, VolumeTexels};
+use sweeplab::render::{GpuScene, RenderError, VolumeTexels};
 use sweeplab::scene::synthetic::noise;
 use sweeplab::scene::Scene;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 /// 16^3 voxels: the diagonal is 27.7 voxels, so this step takes about 139,000
@@ -93,7 +95,7 @@ fn ipsvi_and_half_angle_refuse_a_step_they_cannot_march_before_any_gpu_work() {
         let e = Technique::HalfAngle.check(&scene).expect_err("half-angle refuses").to_string();
         assert!(e.contains("render.step") && e.contains("half-angle") && e.contains("smallest step"), "{e}");
     }
-    scene.settings.half_angle.slice_step = Some(0.5);
+    scene.settings.get_mut::<HalfAngleSettings>().slice_step = Some(0.5);
     assert!(Technique::HalfAngle.check(&scene).is_ok(), "its own slice_step decides");
     scene.render.step_voxels = 1e-4;
     let e = Technique::Ipsvi.check(&scene).expect_err("ipsvi refuses").to_string();

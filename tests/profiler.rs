@@ -4,7 +4,8 @@ mod common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::render::GpuScene;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::commands::submit_and_wait;
 use sweeplab::vk::Profiler;
 

@@ -8,9 +8,10 @@ use glam::Vec3;
 use std::path::{Path, PathBuf};
 use sweeplab::metrics::compare;
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
-use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
-use sweeplab::scene::scene_file::load_scene;
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::noise;
+use sweeplab::techniques::load_scene;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 fn repo(path: &str) -> PathBuf {

@@ -8,9 +8,10 @@ mod common;
 use common::*;
 use std::path::Path;
 use sweeplab::metrics::compare;
-use sweeplab::render::{render, GpuScene, Technique, VolumeTexels};
-use sweeplab::scene::scene_file::load_scene;
+use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::scene_spec::VolumeSource;
+use sweeplab::techniques::load_scene;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 const SIZE: u32 = 32;
@@ -27,7 +28,7 @@ fn the_reference_of_every_synthetic_example_is_converged_at_its_steps() {
     let mut checked = 0;
     let mut failures = Vec::new();
     for path in paths {
-        let spec = sweeplab::scene::scene_file::parse_scene_file(&path, &[]).unwrap();
+        let spec = sweeplab::techniques::parse_scene_file(&path, &[]).unwrap();
         if !matches!(spec.volume, VolumeSource::Synthetic { .. }) {
             continue;
         }

@@ -7,8 +7,9 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::*;
-use sweeplab::render::{render, GpuScene, Technique};
-use sweeplab::scene::scene_file::load_scene;
+use sweeplab::render::GpuScene;
+use sweeplab::techniques::load_scene;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 const SIZE: u32 = 16;

@@ -8,14 +8,15 @@ use sweeplab::ao::AoSettings;
 use sweeplab::half_angle::HalfAngleSettings;
 use sweeplab::ipsvi::{CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WriteValue};
 use sweeplab::lightvolume::{CostEstimate, LightVolumeSettings};
-use sweeplab::scene::default_scene::volume_file_scene_spec;
 use sweeplab::scene::framing::{visible_box, FRAME_FILL};
 use sweeplab::scene::loaders::data_dir;
-use sweeplab::scene::scene_file::{parse_scene_file, parse_scene_str, scene_from_toml_str, SceneError};
+use sweeplab::scene::scene_file::SceneError;
 use sweeplab::scene::scene_spec::{CameraPlacement, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource};
 use sweeplab::scene::settings_table::known_keys;
 use sweeplab::scene::synthetic::{three_spheres, SyntheticKind};
 use sweeplab::scene::{Falloff, LightKind, OpticalModel, TechniqueSettings};
+use sweeplab::techniques::volume_file_scene_spec;
+use sweeplab::techniques::{parse_scene_file, parse_scene_str, scene_from_toml_str};
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes")
@@ -110,7 +111,10 @@ fn examples_read_what_they_say() {
     assert_eq!(spheres.lights.len(), 2);
     assert_eq!(spheres.lights[0].kind, LightKind::Point { position: Vec3::new(-1.2, 0.2, 0.3) });
     assert_eq!(spheres.lights[1].color, Vec3::new(0.2, 0.4, 1.0));
-    assert_eq!(spheres.settings.lightvolume, LightVolumeSettings { scale: 2, ..LightVolumeSettings::default() });
+    assert_eq!(
+        *spheres.settings.get::<LightVolumeSettings>(),
+        LightVolumeSettings { scale: 2, ..LightVolumeSettings::default() }
+    );
 
     let cornell = example("cornell-box.toml", &[]);
     let LightKind::Spot { direction, inner_cone_deg, outer_cone_deg, .. } = cornell.lights[0].kind else {
@@ -188,7 +192,7 @@ fn set_changes_the_named_fields() {
     assert_eq!(after.render.height, 256, "other keys keep their values");
     assert_eq!((before.lights[0].intensity, after.lights[0].intensity), (1.0, 5.0));
     assert_eq!(before.settings, TechniqueSettings::default());
-    assert_eq!(after.settings.ipsvi.line_width, 4);
+    assert_eq!(after.settings.get::<IpsviSettings>().line_width, 4);
     assert_eq!(after.camera.projection, ProjectionSpec::Orthographic { height: None });
     assert_eq!(after.reference.model, OpticalModel::EmissiveScattering);
     assert_eq!(after.volume, VolumeSource::Synthetic { kind: SyntheticKind::SheppLogan, size: 16, seed: 1 });
@@ -246,7 +250,7 @@ fn a_missing_volume_file_is_an_error_naming_scene_and_volume() {
     let scene_path = dir.join("missing-volume.toml");
     std::fs::write(&scene_path, "[volume]\nfile = \"no-such-volume.nrrd\"\n").unwrap();
     std::fs::write(dir.join("no-such-volume.nrd"), "x").unwrap();
-    let e = sweeplab::scene::scene_file::load_scene(&scene_path, &[]).unwrap_err();
+    let e = sweeplab::techniques::load_scene(&scene_path, &[]).unwrap_err();
     assert!(matches!(e, SceneError::MissingVolume { .. }), "{e:?}");
     let message = e.to_string();
     assert_mentions(&message, &["missing-volume.toml", "no volume file", "did you mean", "no-such-volume.nrd"]);
@@ -471,7 +475,7 @@ fn technique_defaults_are_the_documented_ones() {
     assert_eq!(HalfAngleSettings::default(), HalfAngleSettings { slice_step: None, light_buffer_size: 256 });
     // The slice step follows render.step unless given.
     let scene = scene_from_toml_str(&format!("{MINIMAL}[render]\nstep = 0.75\n"), Path::new(""), "t", &[]).unwrap();
-    assert_eq!(scene.settings.half_angle.slice_step_voxels(&scene), 0.75);
+    assert_eq!(scene.settings.get::<HalfAngleSettings>().slice_step_voxels(&scene), 0.75);
 }
 
 #[test]
@@ -533,17 +537,22 @@ fn technique_tables_are_read_into_typed_settings() {
     };
     let half_angle = HalfAngleSettings { slice_step: Some(0.25), light_buffer_size: 64 };
     let ao = AoSettings { radius: 4, clusters: 64, ..AoSettings::default() };
-    assert_eq!(s, TechniqueSettings { ipsvi, lightvolume, half_angle, ao });
+    let mut expected = TechniqueSettings::default();
+    expected.set(ipsvi);
+    expected.set(lightvolume);
+    expected.set(half_angle);
+    expected.set(ao);
+    assert_eq!(s, expected);
     // early_termination also takes true (plain) and false (off).
     for (value, expected) in
         [("true", EarlyTermination::Plain), ("false", EarlyTermination::Off), ("\"off\"", EarlyTermination::Off)]
     {
         let s = settings_of(&format!("[ipsvi]\nearly_termination = {value}\n"), &[]);
-        assert_eq!(s.ipsvi.early_termination, expected, "{value}");
+        assert_eq!(s.get::<IpsviSettings>().early_termination, expected, "{value}");
     }
     // --set edits the same table before it is read.
     let s = settings_of("[ipsvi]\nline_width = 2\n", &["ipsvi.line_width=8", "half_angle.slice_step=0.5"]);
-    assert_eq!((s.ipsvi.line_width, s.half_angle.slice_step), (8, Some(0.5)));
+    assert_eq!((s.get::<IpsviSettings>().line_width, s.get::<HalfAngleSettings>().slice_step), (8, Some(0.5)));
 }
 
 #[test]

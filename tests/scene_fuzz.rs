@@ -8,9 +8,9 @@ use std::path::{Path, PathBuf};
 
 use proptest::prelude::*;
 use proptest::test_runner::{Config, FileFailurePersistence};
-use sweeplab::scene::scene_file::parse_scene_str;
 use sweeplab::scene::scene_spec::VolumeSource;
 use sweeplab::scene::{LightKind, Scene};
+use sweeplab::techniques::parse_scene_str;
 
 #[path = "fuzz/mutation.rs"]
 mod mutation;

@@ -9,9 +9,10 @@ use common::*;
 use glam::Vec3;
 use std::path::{Path, PathBuf};
 use std::process::Output;
-use sweeplab::render::{render, GpuScene, RenderError, Technique, VolumeTexels};
+use sweeplab::render::{GpuScene, RenderError, VolumeTexels};
 use sweeplab::scene::loaders::load_volume;
 use sweeplab::scene::synthetic::noise;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 /// A 4^3 float NRRD, raw little-endian, with `values` (64 of them).

@@ -8,7 +8,8 @@ use common::*;
 use glam::Vec3;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
-use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::render::GpuScene;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Profiler, WaitReporter};
 
 type Reports = Arc<Mutex<Vec<(String, Duration, u32)>>>;

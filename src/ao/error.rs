@@ -25,3 +25,11 @@ pub enum AoError {
         source: std::io::Error,
     },
 }
+
+/// How a frame of technique `ao` reports its preprocessing's errors: `render`
+/// knows no technique, so it carries them as a technique's error.
+impl From<AoError> for crate::render::RenderError {
+    fn from(e: AoError) -> Self {
+        crate::render::RenderError::Technique(Box::new(e))
+    }
+}

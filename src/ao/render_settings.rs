@@ -136,7 +136,7 @@ mod table_tests {
         let e = parse("mode = \"dvrr\"").unwrap_err().to_string();
         assert!(e.contains("isosurface") && e.contains("glow"), "{e}");
         let e = parse("mdoe = \"dvr\"").unwrap_err().to_string();
-        assert!(e.contains("did you mean ao.mode?"), "{e}");
+        assert!(e.contains("did you mean `mode`?"), "{e}");
         let e = parse("glow_max = 100.0").unwrap_err().to_string();
         assert!(e.contains("ao.glow_max = 100"), "{e}");
     }

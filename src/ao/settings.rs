@@ -22,7 +22,7 @@ use super::error::AoError;
 use super::render_settings::{
     validate_render_keys, AoMode, DEFAULT_GLOW_MAX, DEFAULT_GLOW_RANGE, DEFAULT_ISOVALUE, DEFAULT_PHASE_G,
 };
-use crate::scene::suggest::nearest;
+use crate::scene::settings_table::{check_keys, read_table, SettingsError, SettingsTable};
 use crate::scene::Scene;
 
 /// Distance between histograms during vector quantization (paper figure 6).
@@ -164,25 +164,6 @@ impl Default for AoSettings {
     }
 }
 
-/// Top-level keys, for the did-you-mean of a misspelt one.
-const KEYS: [&str; 16] = [
-    "radius",
-    "bits",
-    "packed_dim",
-    "clusters",
-    "metric",
-    "training",
-    "lbg_iterations",
-    "lbg_threshold",
-    "cache",
-    "cache_dir",
-    "mode",
-    "isovalue",
-    "phase_g",
-    "glow_max",
-    "glow_range",
-    "backend",
-];
 const TRAINING_KEYS: [&str; 4] = ["rule", "count", "seed", "eps"];
 
 pub const MAX_RADIUS: u32 = 64;
@@ -190,31 +171,18 @@ pub const MAX_BITS: u32 = 12;
 pub const MAX_CLUSTERS: u32 = 2048;
 
 impl AoSettings {
-    /// The scene-file table.
-    pub const TABLE: &'static str = "ao";
-
     /// The scene's `[ao]` settings (read and checked with the scene file;
     /// checked again here for settings changed in code).
     pub fn from_scene(scene: &Scene) -> Result<Self, AoError> {
-        let settings = scene.settings.ao.clone();
+        let settings = scene.settings.get::<AoSettings>().into_owned();
         settings.validate()?;
         Ok(settings)
     }
 
-    /// Parses and validates an `[ao]` table; a misspelt key is an error that
-    /// suggests the nearest known one.
+    /// Parses and validates an `[ao]` table as the scene file reads it; a
+    /// misspelt key is an error that suggests the nearest known one.
     pub fn from_toml(value: &toml::Value) -> Result<Self, AoError> {
-        let table = value.as_table().ok_or_else(|| AoError::Invalid("[ao] must be a table".into()))?;
-        check_keys("ao", table, &KEYS)?;
-        if let Some(training) = table.get("training").and_then(|t| t.as_table()) {
-            check_keys("ao.training", training, &TRAINING_KEYS)?;
-        }
-        let settings: AoSettings = value
-            .clone()
-            .try_into()
-            .map_err(|e: toml::de::Error| AoError::Invalid(format!("[ao]: {}", e.message())))?;
-        settings.validate()?;
-        Ok(settings)
+        read_table(value.clone()).map_err(|e| AoError::Invalid(e.to_string()))
     }
 
     /// Every value in its range; the error names `ao.key = value` and the range.
@@ -282,17 +250,20 @@ impl AoSettings {
     }
 }
 
-fn check_keys(prefix: &str, table: &toml::Table, known: &[&str]) -> Result<(), AoError> {
-    if let Some(key) = table.keys().find(|k| !known.contains(&k.as_str())) {
-        let hint = nearest(key, known.iter().copied())
-            .map(|near| format!("did you mean {prefix}.{near}? "))
-            .unwrap_or_default();
-        return Err(AoError::Invalid(format!(
-            "{prefix}.{key} is not a setting: {hint}the known keys are {}",
-            known.join(", ")
-        )));
+impl SettingsTable for AoSettings {
+    const TABLE: &'static str = "ao";
+
+    fn validate(&self) -> Result<(), SettingsError> {
+        AoSettings::validate(self).map_err(|e| SettingsError::Technique(e.to_string()))
     }
-    Ok(())
+
+    /// `training` is an inline table of its own keys.
+    fn check_nested_keys(entries: &toml::Table) -> Result<(), SettingsError> {
+        match entries.get("training").and_then(|t| t.as_table()) {
+            Some(training) => check_keys("ao.training", training, &TRAINING_KEYS),
+            None => Ok(()),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -330,9 +301,9 @@ mod tests {
     #[test]
     fn a_misspelt_key_suggests_the_right_one() {
         let e = parse("radus = 4").unwrap_err().to_string();
-        assert!(e.contains("ao.radus") && e.contains("did you mean ao.radius?"), "{e}");
+        assert!(e.contains("ao.radus") && e.contains("did you mean `radius`?"), "{e}");
         let e = parse("training = { rule = \"random\", cuont = 4 }").unwrap_err().to_string();
-        assert!(e.contains("did you mean ao.training.count?"), "{e}");
+        assert!(e.contains("ao.training.cuont") && e.contains("did you mean `count`?"), "{e}");
     }
 
     #[test]
@@ -364,7 +335,7 @@ mod tests {
         let e = parse("backend = \"vulkan\"").unwrap_err().to_string();
         assert!(e.contains("gpu") && e.contains("cpu"), "{e}");
         let e = parse("backnd = \"cpu\"").unwrap_err().to_string();
-        assert!(e.contains("did you mean ao.backend?"), "{e}");
+        assert!(e.contains("did you mean `backend`?"), "{e}");
     }
 
     #[test]

@@ -84,7 +84,7 @@ impl RenderTechnique for Ao {
         scene.reference.model
     }
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
-        render::resources(scene, &scene.settings.ao, width, height)
+        render::resources(scene, &scene.settings.get::<AoSettings>(), width, height)
     }
     fn check(&self, scene: &Scene) -> Result<(), RenderError> {
         AoSettings::from_scene(scene)?;
@@ -108,7 +108,7 @@ impl RenderTechnique for Ao {
         Ok(Some(Box::new(AoSession::new(gpu)?)))
     }
     fn settings_note(&self, scene: &Scene) -> Option<String> {
-        let s = &scene.settings.ao;
+        let s = &scene.settings.get::<AoSettings>();
         Some(format!(
             "ao: mode {}, r = {}, b = {}, n_c = {}, {}",
             s.mode.name(),

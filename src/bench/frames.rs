@@ -5,7 +5,8 @@ use super::harness::Sample;
 use crate::ipsvi::renderer::IpsviRenderer;
 use crate::ipsvi::SyncStrategy;
 use crate::render::FrameResult;
-use crate::render::{render, GpuScene, RenderError, RenderOutput, Technique};
+use crate::render::{GpuScene, RenderError};
+use crate::techniques::{render, RenderOutput, Technique};
 use crate::vk::{Context, ProfileReport, Profiler};
 
 /// A frame and the profile resolved right after it.

@@ -4,12 +4,13 @@
 
 use std::io::Write;
 use std::time::{Duration, Instant};
+use sweeplab::ao::AoSettings;
 
 use anyhow::Context as _;
 use sweeplab::ao::technique::preprocessed_telling;
 use sweeplab::ao::{CacheOutcome, Progress};
-use sweeplab::render::Technique;
 use sweeplab::scene::Scene;
+use sweeplab::techniques::Technique;
 use sweeplab::vk::Context;
 
 /// Runs (or loads) `scene`'s AO preprocessing when `technique` is `ao`, so the
@@ -33,8 +34,9 @@ pub fn prepare(scene: &Scene, technique: Technique, device: &Context) -> anyhow:
             step = p.step.to_string();
         }
     };
-    let (_, outcome) = preprocessed_telling(&scene.volume, &scene.settings.ao, Some(device), &mut report)
-        .context("ao preprocessing")?;
+    let (_, outcome) =
+        preprocessed_telling(&scene.volume, &scene.settings.get::<AoSettings>(), Some(device), &mut report)
+            .context("ao preprocessing")?;
     if !step.is_empty() {
         let _ = writeln!(stderr);
     }

@@ -2,7 +2,7 @@
 
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
-use sweeplab::render::Technique;
+use sweeplab::techniques::Technique;
 
 /// `--technique` short help: the registry's names.
 fn technique_names() -> String {

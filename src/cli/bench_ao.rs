@@ -25,8 +25,9 @@ use sweeplab::reference::ao::AoReferenceParams;
 use sweeplab::reference::ao_gpu::reference_gpu;
 use sweeplab::reference::ao_unclustered::unclustered_lookup;
 use sweeplab::reference::gpu::ChunkSync;
-use sweeplab::render::{GpuScene, RenderError, Technique};
+use sweeplab::render::{GpuScene, RenderError};
 use sweeplab::scene::{Scene, TransferLut};
+use sweeplab::techniques::Technique;
 use sweeplab::vk::Profiler;
 
 const DEFAULT_IMAGE: u32 = 256;
@@ -76,7 +77,7 @@ fn parse_metric(name: &str) -> anyhow::Result<Metric> {
 fn load_scene(args: &BenchAoArgs) -> anyhow::Result<Scene> {
     let mut scene = if args.scene.scene.is_none() && args.scene.volume.is_none() {
         let base = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes");
-        sweeplab::scene::scene_file::scene_from_toml_str(CORNELL_BOX, &base, "cornell-box", &args.scene.set)?
+        sweeplab::techniques::scene_from_toml_str(CORNELL_BOX, &base, "cornell-box", &args.scene.set)?
     } else {
         scene_args::load(&args.scene)?
     };
@@ -91,7 +92,7 @@ fn load_scene(args: &BenchAoArgs) -> anyhow::Result<Scene> {
 pub fn run(args: &BenchAoArgs) -> anyhow::Result<ExitCode> {
     let harness = Harness::new(1, args.repeat).context("--repeat")?;
     let scene = load_scene(args)?;
-    let configs = configurations(args, &scene.settings.ao)?;
+    let configs = configurations(args, &scene.settings.get::<AoSettings>())?;
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload(&ctx, &scene).context("uploading the scene")?;

@@ -12,7 +12,8 @@ use sweeplab::bench::{
 };
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{BreakdownStep, CacheUpdate, IpsviSettings, SyncStrategy};
-use sweeplab::render::{GpuScene, Technique};
+use sweeplab::render::GpuScene;
+use sweeplab::techniques::Technique;
 use sweeplab::vk::Profiler;
 
 /// (step label, breakdown step, synchronization) after the single-dispatch DVR.
@@ -36,7 +37,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let harness = session::harness(1, args.repeat)?;
     bench_args::check_sizes("--sizes", &args.sizes)?;
     let scene = scene_args::load(&args.scene)?;
-    let base = scene.settings.ipsvi.clone();
+    let base = scene.settings.get::<IpsviSettings>().into_owned();
     let modes = [CacheUpdate::ViewSamples, CacheUpdate::LightRays];
     let configs: Vec<IpsviSettings> =
         modes.iter().map(|&cache_update| IpsviSettings { cache_update, ..base.clone() }).collect();

@@ -9,12 +9,14 @@ use sweeplab::bench::{
     ipsvi_frame, plot_error_vs_time, technique_frame, AxisScale, BenchRow, BenchTable, Chart, OutFolder, ProfiledFrame,
     Progress, Series,
 };
+use sweeplab::half_angle::HalfAngleSettings;
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
 use sweeplab::ipsvi::{EarlyTermination, IpsviSettings, SyncStrategy};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
-use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::render::GpuScene;
 use sweeplab::scene::OpticalModel;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSettings> {
@@ -67,7 +69,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     bench_args::check_slice_steps("--half-angle-slices", &args.half_angle_slices)?;
     let mut scene = scene_args::load(&args.scene)?;
     scene.reference.model = OpticalModel::EmissiveScattering;
-    let base = scene.settings.ipsvi.clone();
+    let base = scene.settings.get::<IpsviSettings>().into_owned();
     let configs = configurations(args, &base);
     bench_args::check_ipsvi("--line-widths/--cache-sizes", &configs)?;
     let out_folder = OutFolder::prepare(&args.out)?;
@@ -219,7 +221,7 @@ fn half_angle_rows(
         if !(step.is_finite() && (0.01..=16.0).contains(&step)) {
             anyhow::bail!("--half-angle-slices: {step} is not a slice spacing in 0.01..=16 voxels");
         }
-        scene.settings.half_angle.slice_step = Some(step);
+        scene.settings.get_mut::<HalfAngleSettings>().slice_step = Some(step);
         let gpu = GpuScene::upload_with(ctx, &scene, session::volume_texels(&args.gpu))?;
         let label = format!("{size}x{size} half-angle slices {step} voxel");
         let measured = harness

@@ -23,8 +23,9 @@ use sweeplab::bench::{
 use sweeplab::lightvolume::CostEstimate;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
-use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::render::GpuScene;
 use sweeplab::scene::{Falloff, Light, LightKind, Scene};
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 /// The paper's Table 1, Engine (256x256x256) rows: (illumination scale, lights,

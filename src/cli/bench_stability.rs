@@ -12,8 +12,8 @@ use sweeplab::bench::experiments::stability::{
 };
 use sweeplab::bench::experiments::stability_cases::{stability_cases, StabilityCase};
 use sweeplab::bench::{plot_heat_map, BenchRow, BenchTable, HeatCell, HeatLevel, HeatMap, OutFolder, Progress};
-use sweeplab::render::Technique;
 use sweeplab::scene::suggest::nearest;
+use sweeplab::techniques::Technique;
 
 /// The cases named by `--cases` (all for none), in table order.
 fn chosen_cases(all: Vec<StabilityCase>, ids: &[String]) -> anyhow::Result<Vec<StabilityCase>> {

@@ -12,6 +12,7 @@ use sweeplab::bench::experiments::sync::{self, Eta, SyncObserver, SyncPlan, Sync
 use sweeplab::bench::experiments::{sync_report, ExperimentError};
 use sweeplab::bench::progress::format_duration;
 use sweeplab::bench::{OutFolder, Protocol, RunInfo};
+use sweeplab::ipsvi::IpsviSettings;
 use sweeplab::ipsvi::SyncStrategy;
 use sweeplab::render::GpuScene;
 
@@ -113,7 +114,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
     let scene = scene_args::load(&scene_args)?;
     let (width, height) = (scene.render.width, scene.render.height);
     let plan = plan(args, width, height)?;
-    sync::check(&plan, &scene.settings.ipsvi)?;
+    sync::check(&plan, &scene.settings.get::<IpsviSettings>())?;
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
@@ -125,7 +126,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
         .input("workloads", plan.workloads.iter().map(|w| w.name()).collect::<Vec<_>>().join(","))
         .input("validation", ctx.validation_enabled());
     let mut files = Files { out: &args.out, configurations: 0 };
-    let report = sync::run(&ctx, &gpu, &scene.settings.ipsvi, &plan, run_info, &mut files)?;
+    let report = sync::run(&ctx, &gpu, &scene.settings.get::<IpsviSettings>(), &plan, run_info, &mut files)?;
     sync_report::write(&report, &args.out)?;
     sync_report::write_charts(&report, &args.out)?;
     drop(gpu);

@@ -10,8 +10,8 @@ use sweeplab::ipsvi::paper_table1::{PaperColumn, CT_ENGINE, CT_GIRAFFE, LINE_WID
 use sweeplab::ipsvi::renderer::IpsviRenderer;
 use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
 use sweeplab::render::GpuScene;
-use sweeplab::scene::default_scene::scene_for_volume_file;
 use sweeplab::scene::loaders::data_dir;
+use sweeplab::techniques::scene_for_volume_file;
 use sweeplab::vk::Profiler;
 
 /// Our data set and the paper column it stands beside.
@@ -30,7 +30,7 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     for (file, paper) in PAIRS {
         let path = data_dir().join(file);
         let scene = scene_for_volume_file(&path, &args.set).with_context(|| format!("loading {}", path.display()))?;
-        let base = IpsviSettings { piecewise: true, ..scene.settings.ipsvi.clone() };
+        let base = IpsviSettings { piecewise: true, ..scene.settings.get::<IpsviSettings>().into_owned() };
         let gpu = GpuScene::upload(&ctx, &scene).context("uploading the scene")?;
         let mut fps = std::collections::BTreeMap::new();
         for &size in &args.sizes {

@@ -7,7 +7,8 @@ use std::time::Instant;
 use sweeplab::bench::{plot_error_map, ErrorMap};
 use sweeplab::metrics::{compare, pixel_errors};
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
-use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::render::GpuScene;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {

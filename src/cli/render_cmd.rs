@@ -3,7 +3,8 @@ use super::{output_paths, scene_args, session};
 use anyhow::Context as _;
 use std::path::Path;
 use std::process::ExitCode;
-use sweeplab::render::{render, GpuScene, Technique};
+use sweeplab::render::GpuScene;
+use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
 /// Scopes per frame the profiler can hold (per-dispatch detail included).

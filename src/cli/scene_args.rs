@@ -4,7 +4,7 @@ use super::args::SceneArgs;
 use anyhow::{bail, Context as _};
 use sweeplab::scene::warnings::scene_warnings;
 use sweeplab::scene::Scene;
-use sweeplab::scene::{default_scene, scene_file};
+use sweeplab::techniques;
 
 pub fn load(args: &SceneArgs) -> anyhow::Result<Scene> {
     let mut overrides = args.set.clone();
@@ -14,11 +14,11 @@ pub fn load(args: &SceneArgs) -> anyhow::Result<Scene> {
         overrides.push(format!("render.height={h}"));
     }
     let scene = if let Some(path) = &args.scene {
-        scene_file::load_scene(path, &overrides)?
+        techniques::load_scene(path, &overrides)?
     } else if let Some(path) = &args.volume {
-        default_scene::scene_for_volume_file(path, &overrides)?
+        techniques::scene_for_volume_file(path, &overrides)?
     } else {
-        default_scene::default_scene(&overrides)?
+        techniques::default_scene(&overrides)?
     };
     for warning in scene_warnings(&scene) {
         eprintln!("warning: {warning}");

@@ -5,7 +5,7 @@ use super::render_cmd::write_json;
 use super::session;
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::render::Technique;
+use sweeplab::techniques::Technique;
 use sweeplab::viewer::{self, SceneSource, Script, ViewerOptions};
 use sweeplab::vk::swapchain::PRESENT_MODES;
 use sweeplab::vk::ContextOptions;

@@ -77,7 +77,7 @@ pub struct Slicing {
 /// Checks the slice step before any GPU work.
 pub fn check(scene: &Scene) -> Result<(), RenderError> {
     if scene.lights.len() == 1 {
-        slicing(scene, &scene.settings.half_angle)?;
+        slicing(scene, &scene.settings.get::<HalfAngleSettings>())?;
     }
     Ok(())
 }
@@ -144,7 +144,7 @@ pub fn record(
     profiler: &mut Profiler,
 ) -> Result<RecordedFrame, RenderError> {
     let scene = gpu.scene;
-    let settings = &scene.settings.half_angle;
+    let settings = &scene.settings.get::<HalfAngleSettings>();
     settings.validate()?;
     match scene.lights.len() {
         0 => {

@@ -2,6 +2,7 @@
 //! model (i), and the frame of [`super::render`].
 
 use super::LightBufferParams;
+use crate::half_angle::HalfAngleSettings;
 use crate::render::frame_params::FrameParams;
 use crate::render::raycast::{self, Shading};
 use crate::render::{FrameResult, GpuScene, RecordedFrame, RenderError, RenderTechnique, ResourceNeed};
@@ -34,7 +35,7 @@ impl RenderTechnique for HalfAngle {
         if scene.lights.is_empty() {
             return raycast::resources(scene, Shading::EmissionOnly, width, height);
         }
-        let n = scene.settings.half_angle.light_buffer_size;
+        let n = scene.settings.get::<HalfAngleSettings>().light_buffer_size;
         vec![
             ResourceNeed::of::<FrameParams>("frame params", 1),
             ResourceNeed::of::<LightBufferParams>("half-angle light buffer", 1),
@@ -59,7 +60,8 @@ impl RenderTechnique for HalfAngle {
                 .into_iter()
                 .flatten()
                 .collect();
-        let slicing = (scene.lights.len() == 1).then(|| super::slicing(scene, &scene.settings.half_angle).ok());
+        let slicing =
+            (scene.lights.len() == 1).then(|| super::slicing(scene, &scene.settings.get::<HalfAngleSettings>()).ok());
         if let Some(slicing) = slicing.flatten() {
             if slicing.count < MIN_HALF_ANGLE_SLICES {
                 out.push(format!(
@@ -67,8 +69,8 @@ impl RenderTechnique for HalfAngle {
                      half_angle.slice_step) carry its light too coarsely, so its image may be far from the reference; \
                      use a step below {:.3} voxels",
                     slicing.count,
-                    scene.settings.half_angle.slice_step_voxels(scene),
-                    scene.settings.half_angle.slice_step_voxels(scene) * slicing.count as f32
+                    scene.settings.get::<HalfAngleSettings>().slice_step_voxels(scene),
+                    scene.settings.get::<HalfAngleSettings>().slice_step_voxels(scene) * slicing.count as f32
                         / MIN_HALF_ANGLE_SLICES as f32
                 ));
             }

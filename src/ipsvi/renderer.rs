@@ -133,7 +133,7 @@ fn single_block(blocks: &[LineBlock]) -> LineBlock {
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
-    let settings = &gpu.scene.settings.ipsvi;
+    let settings = &gpu.scene.settings.get::<IpsviSettings>();
     render_with(gpu, settings, width, height, profiler, settings.sync)
 }
 

@@ -13,6 +13,7 @@
 
 use super::renderer::IpsviRenderer;
 use super::sync_strategy::SyncStrategy;
+use crate::ipsvi::IpsviSettings;
 use crate::reference::gpu::ChunkSync;
 use crate::render::raycast::{self, Shading};
 use crate::render::{FrameResult, FrameSession, GpuScene, RecordedFrame, RenderError};
@@ -32,12 +33,12 @@ pub struct IpsviSession<'s> {
 
 impl<'s> IpsviSession<'s> {
     pub fn new(gpu: &'s GpuScene<'s>) -> Result<Self, RenderError> {
-        gpu.scene.settings.ipsvi.validate()?;
+        gpu.scene.settings.get::<IpsviSettings>().validate()?;
         Ok(IpsviSession { gpu, renderer: None, size: (0, 0), recorded: 0 })
     }
 
     fn sync(&self) -> SyncStrategy {
-        self.gpu.scene.settings.ipsvi.sync
+        self.gpu.scene.settings.get::<IpsviSettings>().sync
     }
 
     /// The renderer for a `width` x `height` frame, rebuilt if the size changed
@@ -45,7 +46,8 @@ impl<'s> IpsviSession<'s> {
     fn renderer(&mut self, width: u32, height: u32) -> Result<&mut IpsviRenderer<'s>, RenderError> {
         if self.renderer.is_none() || self.size != (width, height) {
             self.renderer = None;
-            self.renderer = Some(IpsviRenderer::new(self.gpu, &self.gpu.scene.settings.ipsvi, width, height)?);
+            self.renderer =
+                Some(IpsviRenderer::new(self.gpu, &self.gpu.scene.settings.get::<IpsviSettings>(), width, height)?);
             self.size = (width, height);
         }
         Ok(self.renderer.as_mut().expect("built above"))

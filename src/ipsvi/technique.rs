@@ -5,6 +5,7 @@ use super::cache_update::CacheUpdate;
 use super::gpu_params::{BlockParams, SweepParams};
 use super::renderer::{render_with, scene_plans};
 use super::settings::EarlyTermination;
+use crate::ipsvi::IpsviSettings;
 use crate::render::frame_params::FrameParams;
 use crate::render::raycast::{self, Shading};
 use crate::render::{FrameResult, FrameSession, GpuScene, RenderError, RenderTechnique, ResourceNeed};
@@ -38,7 +39,7 @@ impl RenderTechnique for Ipsvi {
         if scene.lights.is_empty() {
             return raycast::resources(scene, Shading::EmissionOnly, width, height);
         }
-        let s = &scene.settings.ipsvi;
+        let s = &scene.settings.get::<IpsviSettings>();
         let plans = scene_plans(scene, s, width, height);
         let blocks: usize = plans.iter().flat_map(|p| &p.sweeps).map(|sweep| sweep.blocks.len()).sum();
         let sweeps: usize = plans.iter().map(|p| p.sweeps.len()).sum();
@@ -110,14 +111,14 @@ impl RenderTechnique for Ipsvi {
         height: u32,
         profiler: &mut Profiler,
     ) -> Result<FrameResult, RenderError> {
-        let settings = &gpu.scene.settings.ipsvi;
+        let settings = &gpu.scene.settings.get::<IpsviSettings>();
         settings.validate()?;
         render_with(gpu, settings, width, height, profiler, settings.sync)
     }
 
     fn warnings(&self, scene: &Scene) -> Vec<String> {
         use crate::render::light_grid_limits::{camera_inside, stiff_medium, StiffLimit};
-        let view_samples = scene.settings.ipsvi.cache_update == CacheUpdate::ViewSamples;
+        let view_samples = scene.settings.get::<IpsviSettings>().cache_update == CacheUpdate::ViewSamples;
         // The view-sample cache holds light at the depths of the samples that
         // wrote it: from inside the volume those lie beside the eye.
         let inside = camera_inside(scene, "ipsvi (cache_update = \"view-samples\")").filter(|_| view_samples);
@@ -125,7 +126,7 @@ impl RenderTechnique for Ipsvi {
     }
 
     fn settings_note(&self, scene: &Scene) -> Option<String> {
-        let s = &scene.settings.ipsvi;
+        let s = &scene.settings.get::<IpsviSettings>();
         let write = match s.cache_update {
             CacheUpdate::ViewSamples => format!(", cache_write: {}", s.cache_write.name()),
             CacheUpdate::LightRays => String::new(),

@@ -56,10 +56,11 @@ pub fn piecewise_steps(scene: &Scene) -> Result<u32, RenderError> {
 mod tests {
     use super::*;
     use crate::scene::scene_file::scene_from_toml_str;
+    use crate::scene::technique_settings::NoTechniqueTables;
 
     fn scene(step: f32) -> Scene {
         let text = format!("[volume]\nsynthetic = \"noise\"\nsize = 16\n[render]\nstep = {step}\n");
-        scene_from_toml_str(&text, std::path::Path::new(""), "test", &[]).unwrap()
+        scene_from_toml_str(&NoTechniqueTables, &text, std::path::Path::new(""), "test", &[]).unwrap()
     }
 
     #[test]

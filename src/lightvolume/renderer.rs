@@ -89,7 +89,7 @@ pub struct LightVolumeRenderer<'s> {
 
 impl<'s> LightVolumeRenderer<'s> {
     pub fn new(gpu: &'s GpuScene<'s>) -> Result<Self, RenderError> {
-        let settings = gpu.scene.settings.lightvolume.clone();
+        let settings = gpu.scene.settings.get::<LightVolumeSettings>().into_owned();
         settings.validate()?;
         let illumination =
             IlluminationVolume::new(gpu.ctx, gpu.scene.volume.dims, settings.scale, settings.compensated)?;

@@ -6,6 +6,7 @@ use super::illumination::IlluminationVolume;
 use super::plan::{plan_update, PeakGeometry, PlanState};
 use super::propagation::Capacity;
 use super::render_frame;
+use crate::lightvolume::LightVolumeSettings;
 use crate::render::frame_params::FrameParams;
 use crate::render::{FrameResult, FrameSession, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use crate::scene::{OpticalModel, Scene};
@@ -32,11 +33,11 @@ impl RenderTechnique for LightVolume {
 
     /// Coloured when its propagation is (`lightvolume.chromatic`).
     fn reference_chromatic(&self, scene: &Scene) -> bool {
-        scene.settings.lightvolume.chromatic
+        scene.settings.get::<LightVolumeSettings>().chromatic
     }
 
     fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
-        let s = &scene.settings.lightvolume;
+        let s = &scene.settings.get::<LightVolumeSettings>();
         let grid = IlluminationVolume::size_for(scene.volume.dims, s.scale);
         let mut needs = vec![
             // RGBA32F; the low words of the compensated sum, or a 1-voxel placeholder.

@@ -15,7 +15,7 @@ use crate::scene::{Light, OpticalModel, RayBasis, Scene};
 
 /// DVR and Phong stop a view ray once its transmittance falls below this (the
 /// shaders get the same constant from build.rs).
-pub use super::early_termination::EARLY_TERMINATION_TRANSMITTANCE;
+pub use crate::render::early_termination::EARLY_TERMINATION_TRANSMITTANCE;
 
 /// What one sample sends toward the eye.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

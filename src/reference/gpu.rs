@@ -5,6 +5,7 @@
 //! travel between dispatches through a ping-pong pair of images.
 
 use crate::render::frame_params::{frame_params, FrameParams, MarchSteps};
+pub use crate::render::view_chunks::{ChunkSync, LOOP_BUDGET};
 use crate::render::{
     render_recorded, FrameResult, GpuScene, OutputImage, RecordedFrame, RenderError, RenderTechnique, ResourceNeed,
 };
@@ -17,9 +18,6 @@ use crate::vk::{Buffer, Profiler, Recorder};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
 use std::sync::Arc;
-
-/// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
-pub const LOOP_BUDGET: u64 = 60_000;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -74,15 +72,6 @@ pub fn plan_for(gpu: &GpuScene) -> ChunkPlan {
         gpu.scene.reference.shadow_step_voxels as f64,
         gpu.scene.lights.len() as u64,
     )
-}
-
-/// Whether consecutive chunks are separated by their barrier.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ChunkSync {
-    Barrier,
-    /// RACY: no barrier between chunks. Only for proving that synchronization
-    /// validation reports the missing barrier; its image is undefined.
-    RacyNoBarrier,
 }
 
 /// Ground truth on the GPU, of the model the scene names.

@@ -4,8 +4,8 @@
 
 use glam::DVec3;
 
-use super::lights::LightPath;
 use super::medium::Medium;
+use crate::scene::light_paths::LightPath;
 use crate::scene::{Light, LightKind};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,7 +62,7 @@ pub fn trace_shadow(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reference::lights::toward_light;
+    use crate::scene::light_paths::toward_light;
     use crate::scene::{ControlPoint, Falloff, TransferFunction, Volume, VoxelData};
     use glam::{UVec3, Vec3};
 

@@ -4,9 +4,9 @@
 
 use glam::DVec3;
 
-use super::lights::{cone, falloff, radiance, toward_light};
 use super::medium::Medium;
 use super::shadow::trace_shadow;
+use crate::scene::light_paths::{cone, falloff, radiance, toward_light};
 use crate::scene::{Light, OpticalModel, PhongSettings};
 
 /// Below this gradient length a sample counts as unshaded (no normal).

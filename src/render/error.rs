@@ -10,9 +10,10 @@ pub enum RenderError {
     Settings(#[from] SettingsError),
     #[error("{0}")]
     Invalid(String),
-    /// Ambient occlusion's preprocessing or its settings.
+    /// A technique's own error (ambient occlusion's preprocessing, ...), which
+    /// `render` knows only as an error.
     #[error(transparent)]
-    Ao(#[from] crate::ao::AoError),
+    Technique(Box<dyn std::error::Error + Send + Sync>),
     /// The frame came back with NaN or infinite pixels: never written or compared.
     #[error("{technique} rendered {bad} of {total} pixels as NaN or infinity; the image is not written")]
     NonFinite { technique: &'static str, bad: usize, total: usize },

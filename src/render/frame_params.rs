@@ -2,7 +2,7 @@
 //! (glsl/frame.glsl, glsl/lights.glsl); `assert_gpu_layout!` checks them against
 //! the offsets reflected from the SPIR-V.
 
-use crate::reference::early_termination::EARLY_TERMINATION_TRANSMITTANCE;
+use crate::render::early_termination::EARLY_TERMINATION_TRANSMITTANCE;
 use crate::scene::{Falloff, Light, LightKind, Scene};
 use bytemuck::{Pod, Zeroable};
 

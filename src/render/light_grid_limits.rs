@@ -140,10 +140,11 @@ pub fn camera_inside(scene: &Scene, technique: &str) -> Option<String> {
 mod tests {
     use super::*;
     use crate::scene::scene_file::scene_from_toml_str;
+    use crate::scene::technique_settings::NoTechniqueTables;
 
     fn scene(tf: &str, camera: &str) -> Scene {
         let text = format!("[volume]\nsynthetic = \"noise\"\nsize = 8\n[transfer]\n{tf}\n{camera}");
-        scene_from_toml_str(&text, std::path::Path::new(""), "test", &[]).unwrap()
+        scene_from_toml_str(&NoTechniqueTables, &text, std::path::Path::new(""), "test", &[]).unwrap()
     }
 
     #[test]

@@ -1,8 +1,10 @@
 //! What every GPU technique shares: the scene uploaded once ([`GpuScene`]), the
 //! frame parameters, the output image and its readback, the light-space and
 //! image-space geometry, the plain ray cast, and the [`RenderTechnique`] trait
-//! each technique implements in its own module. [`registry`] lists them.
+//! each technique implements in its own module. `render` knows no technique:
+//! the catalogue above them (`crate::techniques`) lists them.
 
+pub mod early_termination;
 pub mod error;
 pub mod frame_params;
 pub mod frame_result;
@@ -13,7 +15,6 @@ pub mod light_space;
 pub mod output;
 pub mod raycast;
 pub mod recorded_frame;
-pub mod registry;
 pub mod session;
 pub mod technique;
 pub mod view_chunks;
@@ -23,6 +24,5 @@ pub use frame_result::FrameResult;
 pub use gpu_scene::{GpuScene, VolumeTexels};
 pub use output::OutputImage;
 pub use recorded_frame::{render_recorded, RecordedFrame};
-pub use registry::{profiled_frame, render, session, RenderOutput, Technique};
 pub use session::FrameSession;
 pub use technique::{RenderTechnique, ResourceNeed};

@@ -11,13 +11,24 @@
 
 use super::error::RenderError;
 use super::technique::ResourceNeed;
-use crate::reference::gpu::{ChunkSync, LOOP_BUDGET};
 use crate::scene::Scene;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::pipeline::ComputePipeline;
 use crate::vk::{Context, Image, Recorder};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
+
+/// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
+pub const LOOP_BUDGET: u64 = 60_000;
+
+/// Whether consecutive chunks are separated by their barrier.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ChunkSync {
+    Barrier,
+    /// RACY: no barrier between chunks. Only for proving that synchronization
+    /// validation reports the missing barrier; its image is undefined.
+    RacyNoBarrier,
+}
 
 /// Most view samples a ray may take: the sample index and position are computed
 /// in f32, exact only up to 2^24; past that, samples would repeat or skip.

@@ -58,7 +58,7 @@ impl Light {
         if !position.is_finite() || (radius as f64) >= distance * f32::EPSILON as f64 {
             return *self;
         }
-        use crate::reference::lights::{cone, falloff, toward_light};
+        use crate::scene::light_paths::{cone, falloff, toward_light};
         let at_centre = toward_light(self, glam::DVec3::ZERO);
         let scale = falloff(self, &at_centre, 0.0) * cone(self, &at_centre);
         Light {

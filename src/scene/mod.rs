@@ -6,6 +6,7 @@ pub mod default_scene;
 pub mod framing;
 pub mod geometry;
 pub mod light;
+pub mod light_paths;
 pub mod loaders;
 pub mod missing_file;
 pub mod overrides;

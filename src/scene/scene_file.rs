@@ -4,7 +4,8 @@
 //! Every key has a default except the volume, so `[volume]\nsynthetic = "noise"`
 //! is a complete scene. Misspelt keys are errors (`deny_unknown_fields`); besides
 //! the scene sections below, the techniques' tables (`[ipsvi]`, `[lightvolume]`,
-//! `[half_angle]`, see [`TechniqueSettings`]) are read into
+//! `[half_angle]`, `[ao]`) are read by the [`TableCatalogue`] the reader is
+//! given (the techniques' catalogue, `crate::techniques`) into
 //! [`Scene::settings`]; any other table is an error naming it.
 //!
 //! ```toml
@@ -74,6 +75,7 @@ use super::scene_schema::{check_scene, SceneTables, DEFAULT_LIGHT_DIRECTION};
 use super::scene_spec::SceneSpec;
 use super::settings_table::SettingsError;
 use super::suggest::nearest;
+use super::technique_settings::TableCatalogue;
 use super::{Scene, TechniqueSettings};
 
 /// Why a scene could not be read or built. Every variant names where the scene
@@ -113,30 +115,37 @@ fn missing_volume(origin: &str, path: &Path) -> String {
     }
 }
 
-/// Reads, checks and builds (loading the volume) the scene file at `path`.
-pub fn load_scene(path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
-    parse_scene_file(path, overrides)?.build()
+/// Reads, checks and builds (loading the volume) the scene file at `path`;
+/// `catalogue` reads the technique tables.
+pub fn load_scene(catalogue: &dyn TableCatalogue, path: &Path, overrides: &[String]) -> Result<Scene, SceneError> {
+    parse_scene_file(catalogue, path, overrides)?.build()
 }
 
 /// Reads and checks the scene file at `path` without loading its volume.
-pub fn parse_scene_file(path: &Path, overrides: &[String]) -> Result<SceneSpec, SceneError> {
+pub fn parse_scene_file(
+    catalogue: &dyn TableCatalogue,
+    path: &Path,
+    overrides: &[String],
+) -> Result<SceneSpec, SceneError> {
     let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read { path: path.to_path_buf(), source })?;
     let base_dir = path.parent().unwrap_or(Path::new(""));
-    parse_scene_str(&text, base_dir, &path.display().to_string(), overrides)
+    parse_scene_str(catalogue, &text, base_dir, &path.display().to_string(), overrides)
 }
 
 /// Checks and builds a scene given as TOML text; relative volume paths are taken
 /// from `base_dir`; `origin` names the text in errors.
 pub fn scene_from_toml_str(
+    catalogue: &dyn TableCatalogue,
     text: &str,
     base_dir: &Path,
     origin: &str,
     overrides: &[String],
 ) -> Result<Scene, SceneError> {
-    parse_scene_str(text, base_dir, origin, overrides)?.build()
+    parse_scene_str(catalogue, text, base_dir, origin, overrides)?.build()
 }
 
 pub fn parse_scene_str(
+    catalogue: &dyn TableCatalogue,
     text: &str,
     base_dir: &Path,
     origin: &str,
@@ -146,7 +155,7 @@ pub fn parse_scene_str(
         origin: origin.to_string(),
         message: e.to_string().trim_end().to_string(),
     })?;
-    parse_scene_table(doc, base_dir, origin, overrides)
+    parse_scene_table(catalogue, doc, base_dir, origin, overrides)
 }
 
 /// The scene sections.
@@ -156,6 +165,7 @@ const SECTIONS: [&str; 7] = ["volume", "transfer", "camera", "lights", "render",
 /// default light first, so `--set lights.0.intensity=2` applies to it. The
 /// techniques' tables go to [`SceneSpec::settings`].
 pub fn parse_scene_table(
+    catalogue: &dyn TableCatalogue,
     mut doc: Table,
     base_dir: &Path,
     origin: &str,
@@ -185,13 +195,12 @@ pub fn parse_scene_table(
                 return Err(invalid(&key, "is not a scene setting (settings belong in tables such as [render])".into()))
             }
             _ => {
-                let technique_table = settings
-                    .read(&key, value)
-                    .map_err(|error| SceneError::Settings { origin: origin.to_string(), error })?;
-                match TechniqueSettings::TABLES.iter().find(|&&t| t == key) {
-                    Some(&table) if technique_table => technique_tables.push(table),
-                    _ => return Err(invalid(&key, unknown_table(&key))),
-                }
+                let Some(read) = catalogue.read(&key, value) else {
+                    return Err(invalid(&key, unknown_table(catalogue, &key)));
+                };
+                let table = read.map_err(|error| SceneError::Settings { origin: origin.to_string(), error })?;
+                technique_tables.push(table.table());
+                settings.insert(table);
                 continue;
             }
         };
@@ -201,8 +210,8 @@ pub fn parse_scene_table(
 }
 
 /// "is not a known table", with the nearest known one and the list.
-fn unknown_table(name: &str) -> String {
-    let known = SECTIONS.iter().chain(&TechniqueSettings::TABLES).copied();
+fn unknown_table(catalogue: &dyn TableCatalogue, name: &str) -> String {
+    let known = SECTIONS.iter().chain(catalogue.tables()).copied();
     let near = nearest(name, known.clone()).map(|n| format!("; did you mean [{n}]?")).unwrap_or_default();
     let list: Vec<String> = known.map(|k| format!("[{k}]")).collect();
     format!("is not a known table{near} (known: {})", list.join(" "))

@@ -15,6 +15,27 @@ pub trait SettingsTable: DeserializeOwned + Default {
     /// Checks every range; settings built in code (benchmarks) are checked by
     /// the technique before it renders.
     fn validate(&self) -> Result<(), SettingsError>;
+
+    /// Checks the keys of nested tables (the top level's are checked for every
+    /// type); none by default.
+    fn check_nested_keys(_entries: &toml::Table) -> Result<(), SettingsError> {
+        Ok(())
+    }
+}
+
+/// An unknown key of `table` among `known`, with the nearest known one.
+pub fn check_keys(
+    table: &'static str,
+    entries: &toml::Table,
+    known: &'static [&'static str],
+) -> Result<(), SettingsError> {
+    match entries.keys().find(|k| !known.contains(&k.as_str())) {
+        Some(key) => {
+            let suggestion = nearest(key, known.iter().copied());
+            Err(SettingsError::UnknownKey { table, key: key.clone(), suggestion, known })
+        }
+        None => Ok(()),
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -41,11 +62,8 @@ fn did_you_mean(suggestion: &Option<&str>) -> String {
 pub fn read_table<T: SettingsTable>(value: Value) -> Result<T, SettingsError> {
     let table = T::TABLE;
     let Value::Table(entries) = value else { return Err(SettingsError::NotATable { table }) };
-    let known = known_keys::<T>();
-    if let Some(key) = entries.keys().find(|k| !known.contains(&k.as_str())) {
-        let suggestion = nearest(key, known.iter().copied());
-        return Err(SettingsError::UnknownKey { table, key: key.clone(), suggestion, known });
-    }
+    check_keys(table, &entries, known_keys::<T>())?;
+    T::check_nested_keys(&entries)?;
     let settings: T = Value::Table(entries.clone()).try_into().map_err(|e: toml::de::Error| {
         // toml names the key on the error's last line ("in `key`").
         let display = e.to_string();

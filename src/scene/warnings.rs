@@ -98,11 +98,12 @@ fn max_opacity(scene: &Scene, lo: f32, hi: f32) -> f32 {
 mod tests {
     use super::*;
     use crate::scene::scene_file::scene_from_toml_str;
+    use crate::scene::technique_settings::NoTechniqueTables;
     use crate::scene::VoxelData;
 
     fn scene(extra: &str) -> Scene {
         let text = format!("[volume]\nsynthetic = \"noise\"\nsize = 8\n{extra}");
-        scene_from_toml_str(&text, std::path::Path::new(""), "test", &[]).unwrap()
+        scene_from_toml_str(&NoTechniqueTables, &text, std::path::Path::new(""), "test", &[]).unwrap()
     }
 
     #[test]

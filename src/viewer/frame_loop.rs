@@ -17,8 +17,9 @@ use super::script::{Action, Script};
 use super::tf_editor;
 use super::ui::{PanelView, PassHistory, Ui, UiEdit, PANEL_WIDTH};
 use super::window::{self, WindowEvents};
-use crate::render::{self, FrameSession, GpuScene, Technique, VolumeTexels};
+use crate::render::{FrameSession, GpuScene, VolumeTexels};
 use crate::scene::Light;
+use crate::techniques::{self, Technique};
 use crate::vk::error::VkResultExt;
 use crate::vk::swapchain::present_mode_name;
 use crate::vk::{Buffer, Context, ContextOptions, ProfileReport, Profiler, Recorder, Surface, Swapchain, VkError};
@@ -146,7 +147,7 @@ fn frame_loop<'c>(
         let mut scene = live.scene.clone();
         scene.lights = scene.lights.iter().zip(&enabled).filter(|(_, &on)| on).map(|(l, _)| *l).collect();
         let gpu = GpuScene::upload_with(ctx, &scene, options.texels)?;
-        let mut session = render::session(&gpu, technique)?;
+        let mut session = techniques::session(&gpu, technique)?;
         // Dropped first when the scene is left (edited, closed, or an error):
         // frames in flight use the scene's and the session's resources.
         let _in_flight_done = QueueIdleOnDrop(ctx);
@@ -509,7 +510,7 @@ fn present(
             (Some(frame), None, d, b, layout)
         }
         None => {
-            let output = render::profiled_frame(source.gpu, source.technique, iw, ih, source.host_profiler, |p| {
+            let output = techniques::profiled_frame(source.gpu, source.technique, iw, ih, source.host_profiler, |p| {
                 session.frame(source.lights, iw, ih, p)
             })?;
             if slot.upload.as_ref().is_none_or(|u| (u.width, u.height) != (iw, ih)) {

@@ -4,7 +4,8 @@
 
 use super::error::ViewerError;
 use crate::scene::scene_spec::SceneSpec;
-use crate::scene::{default_scene, scene_file, Camera, Light, Scene};
+use crate::scene::{Camera, Light, Scene};
+use crate::techniques;
 use std::path::PathBuf;
 
 #[derive(Clone, Debug)]
@@ -78,9 +79,9 @@ impl LiveScene {
 
 fn spec(source: &SceneSource, overrides: &[String]) -> Result<SceneSpec, ViewerError> {
     Ok(match source {
-        SceneSource::Default => default_scene::default_scene_spec(overrides)?,
-        SceneSource::File(path) => scene_file::parse_scene_file(path, overrides)?,
-        SceneSource::Volume(path) => default_scene::volume_file_scene_spec(path, overrides)?,
+        SceneSource::Default => techniques::default_scene_spec(overrides)?,
+        SceneSource::File(path) => techniques::parse_scene_file(path, overrides)?,
+        SceneSource::Volume(path) => techniques::volume_file_scene_spec(path, overrides)?,
     })
 }
 

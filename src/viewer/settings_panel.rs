@@ -11,10 +11,14 @@
 use super::ui::UiEdit;
 use crate::ao::render_settings::{AoMode, MAX_GLOW, MAX_PHASE_G};
 use crate::ao::settings::{Metric, TrainingSet};
+use crate::ao::AoSettings;
+use crate::half_angle::HalfAngleSettings;
 use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite, WriteValue};
 use crate::ipsvi::settings::EarlyTermination;
 use crate::ipsvi::sync_strategy::SyncStrategy;
+use crate::ipsvi::IpsviSettings;
 use crate::lightvolume::CostEstimate;
+use crate::lightvolume::LightVolumeSettings;
 use crate::scene::Scene;
 use std::collections::BTreeMap;
 
@@ -77,40 +81,54 @@ pub fn controls() -> Vec<Control> {
     use Kind::{Choice, Numbers, Real, Toggle, Whole};
     let names = |all: &[&'static str]| all.to_vec();
     vec![
-        control("ipsvi", "line_width", Whole { lo: 1, hi: 32 }, |s| Number(s.settings.ipsvi.line_width as f64)),
-        control("ipsvi", "cache_size", Whole { lo: 16, hi: 4096 }, |s| Number(s.settings.ipsvi.cache_size as f64)),
-        control("ipsvi", "piecewise", Toggle, |s| Bool(s.settings.ipsvi.piecewise)),
+        control("ipsvi", "line_width", Whole { lo: 1, hi: 32 }, |s| {
+            Number(s.settings.get::<IpsviSettings>().line_width as f64)
+        }),
+        control("ipsvi", "cache_size", Whole { lo: 16, hi: 4096 }, |s| {
+            Number(s.settings.get::<IpsviSettings>().cache_size as f64)
+        }),
+        control("ipsvi", "piecewise", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().piecewise)),
         control(
             "ipsvi",
             "early_termination",
             Choice(names(
                 &[EarlyTermination::Off, EarlyTermination::Plain, EarlyTermination::ExitPoints].map(|e| e.name()),
             )),
-            |s| Name(s.settings.ipsvi.early_termination.name()),
+            |s| Name(s.settings.get::<IpsviSettings>().early_termination.name()),
         ),
-        control("ipsvi", "albedo", Real { lo: 0.0, hi: 1.0 }, |s| Number(s.settings.ipsvi.albedo as f64)),
-        control("ipsvi", "cone_angle", Real { lo: 0.0, hi: 80.0 }, |s| Number(s.settings.ipsvi.cone_angle_deg as f64)),
-        control("ipsvi", "zone_blend", Real { lo: 0.0, hi: 64.0 }, |s| Number(s.settings.ipsvi.zone_blend_px as f64)),
-        control("ipsvi", "light_step", Real { lo: 0.01, hi: 16.0 }, |s| {
-            Number(s.settings.ipsvi.light_step_voxels as f64)
+        control("ipsvi", "albedo", Real { lo: 0.0, hi: 1.0 }, |s| {
+            Number(s.settings.get::<IpsviSettings>().albedo as f64)
         }),
-        control("ipsvi", "ert_scale", Whole { lo: 1, hi: 16 }, |s| Number(s.settings.ipsvi.ert_scale as f64)),
+        control("ipsvi", "cone_angle", Real { lo: 0.0, hi: 80.0 }, |s| {
+            Number(s.settings.get::<IpsviSettings>().cone_angle_deg as f64)
+        }),
+        control("ipsvi", "zone_blend", Real { lo: 0.0, hi: 64.0 }, |s| {
+            Number(s.settings.get::<IpsviSettings>().zone_blend_px as f64)
+        }),
+        control("ipsvi", "light_step", Real { lo: 0.01, hi: 16.0 }, |s| {
+            Number(s.settings.get::<IpsviSettings>().light_step_voxels as f64)
+        }),
+        control("ipsvi", "ert_scale", Whole { lo: 1, hi: 16 }, |s| {
+            Number(s.settings.get::<IpsviSettings>().ert_scale as f64)
+        }),
         control("ipsvi", "cache_update", Choice(names(&CacheUpdate::ALL.map(|c| c.name()))), |s| {
-            Name(s.settings.ipsvi.cache_update.name())
+            Name(s.settings.get::<IpsviSettings>().cache_update.name())
         }),
         control("ipsvi", "cache_write", Choice(names(&CacheWrite::ALL.map(|c| c.name()))), |s| {
-            Name(s.settings.ipsvi.cache_write.name())
+            Name(s.settings.get::<IpsviSettings>().cache_write.name())
         }),
         control("ipsvi", "write_value", Choice(names(&WriteValue::ALL.map(|c| c.name()))), |s| {
-            Name(s.settings.ipsvi.write_value.name())
+            Name(s.settings.get::<IpsviSettings>().write_value.name())
         }),
         control("ipsvi", "sync", Choice(names(&SyncStrategy::ALL.map(|c| c.name()))), |s| {
-            Name(s.settings.ipsvi.sync.name())
+            Name(s.settings.get::<IpsviSettings>().sync.name())
         }),
-        control("ipsvi", "merge_sweeps", Toggle, |s| Bool(s.settings.ipsvi.merge_sweeps)),
-        control("lightvolume", "scale", Numbers(&[1, 2, 4]), |s| Number(s.settings.lightvolume.scale as f64)),
-        control("lightvolume", "coherent", Toggle, |s| Bool(s.settings.lightvolume.coherent)),
-        control("lightvolume", "compensated", Toggle, |s| Bool(s.settings.lightvolume.compensated)),
+        control("ipsvi", "merge_sweeps", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().merge_sweeps)),
+        control("lightvolume", "scale", Numbers(&[1, 2, 4]), |s| {
+            Number(s.settings.get::<LightVolumeSettings>().scale as f64)
+        }),
+        control("lightvolume", "coherent", Toggle, |s| Bool(s.settings.get::<LightVolumeSettings>().coherent)),
+        control("lightvolume", "compensated", Toggle, |s| Bool(s.settings.get::<LightVolumeSettings>().compensated)),
         control(
             "lightvolume",
             "cost_estimate",
@@ -118,56 +136,74 @@ pub fn controls() -> Vec<Control> {
                 &[CostEstimate::Share, CostEstimate::Passes, CostEstimate::Selective, CostEstimate::Entire]
                     .map(|c| c.name()),
             )),
-            |s| Name(s.settings.lightvolume.cost_estimate.name()),
+            |s| Name(s.settings.get::<LightVolumeSettings>().cost_estimate.name()),
         ),
         control("lightvolume", "max_passes_per_frame", Whole { lo: 0, hi: 1_000_000 }, |s| {
-            Number(s.settings.lightvolume.max_passes_per_frame as f64)
+            Number(s.settings.get::<LightVolumeSettings>().max_passes_per_frame as f64)
         }),
         control("lightvolume", "pass_lights", Whole { lo: 1, hi: 64 }, |s| {
-            Number(s.settings.lightvolume.pass_lights as f64)
+            Number(s.settings.get::<LightVolumeSettings>().pass_lights as f64)
         }),
         control("lightvolume", "rebase_tolerance", Real { lo: f64::MIN_POSITIVE, hi: f64::INFINITY }, |s| {
-            Number(s.settings.lightvolume.rebase_tolerance)
+            Number(s.settings.get::<LightVolumeSettings>().rebase_tolerance)
         }),
         control("lightvolume", "substep", Real { lo: 0.05, hi: 4.0 }, |s| {
-            Number(s.settings.lightvolume.substep as f64)
+            Number(s.settings.get::<LightVolumeSettings>().substep as f64)
         }),
-        control("lightvolume", "shared_medium", Toggle, |s| Bool(s.settings.lightvolume.shared_medium)),
-        control("lightvolume", "chromatic", Toggle, |s| Bool(s.settings.lightvolume.chromatic)),
-        control("lightvolume", "racy", Toggle, |s| Bool(s.settings.lightvolume.racy)),
+        control("lightvolume", "shared_medium", Toggle, |s| {
+            Bool(s.settings.get::<LightVolumeSettings>().shared_medium)
+        }),
+        control("lightvolume", "chromatic", Toggle, |s| Bool(s.settings.get::<LightVolumeSettings>().chromatic)),
+        control("lightvolume", "racy", Toggle, |s| Bool(s.settings.get::<LightVolumeSettings>().racy)),
         // Unset: the scene's render.step, shown as such.
         control("half_angle", "slice_step", Real { lo: 0.01, hi: 16.0 }, |s| {
-            Number(s.settings.half_angle.slice_step_voxels(s) as f64)
+            Number(s.settings.get::<HalfAngleSettings>().slice_step_voxels(s) as f64)
         }),
         control("half_angle", "light_buffer_size", Whole { lo: 16, hi: 4096 }, |s| {
-            Number(s.settings.half_angle.light_buffer_size as f64)
+            Number(s.settings.get::<HalfAngleSettings>().light_buffer_size as f64)
         }),
-        control("ao", "radius", Whole { lo: 1, hi: 64 }, |s| Number(s.settings.ao.radius as f64)),
-        control("ao", "bits", Whole { lo: 1, hi: 12 }, |s| Number(s.settings.ao.bits as f64)),
+        control("ao", "radius", Whole { lo: 1, hi: 64 }, |s| Number(s.settings.get::<AoSettings>().radius as f64)),
+        control("ao", "bits", Whole { lo: 1, hi: 12 }, |s| Number(s.settings.get::<AoSettings>().bits as f64)),
         // At most 2^bits: the check refuses more.
-        control("ao", "packed_dim", Whole { lo: 2, hi: 4096 }, |s| Number(s.settings.ao.packed_dim as f64)),
-        control("ao", "clusters", Whole { lo: 2, hi: 2048 }, |s| Number(s.settings.ao.clusters as f64)),
-        control("ao", "metric", Choice(names(&Metric::ALL.map(|m| m.name()))), |s| Name(s.settings.ao.metric.name())),
-        control("ao", "training", Kind::Text, |s| Text(training_toml(&s.settings.ao.training))),
-        control("ao", "lbg_iterations", Whole { lo: 1, hi: 1000 }, |s| Number(s.settings.ao.lbg_iterations as f64)),
-        control("ao", "lbg_threshold", Real { lo: 0.0, hi: 0.999_999 }, |s| Number(s.settings.ao.lbg_threshold)),
-        control("ao", "cache", Toggle, |s| Bool(s.settings.ao.cache)),
+        control("ao", "packed_dim", Whole { lo: 2, hi: 4096 }, |s| {
+            Number(s.settings.get::<AoSettings>().packed_dim as f64)
+        }),
+        control("ao", "clusters", Whole { lo: 2, hi: 2048 }, |s| {
+            Number(s.settings.get::<AoSettings>().clusters as f64)
+        }),
+        control("ao", "metric", Choice(names(&Metric::ALL.map(|m| m.name()))), |s| {
+            Name(s.settings.get::<AoSettings>().metric.name())
+        }),
+        control("ao", "training", Kind::Text, |s| Text(training_toml(&s.settings.get::<AoSettings>().training))),
+        control("ao", "lbg_iterations", Whole { lo: 1, hi: 1000 }, |s| {
+            Number(s.settings.get::<AoSettings>().lbg_iterations as f64)
+        }),
+        control("ao", "lbg_threshold", Real { lo: 0.0, hi: 0.999_999 }, |s| {
+            Number(s.settings.get::<AoSettings>().lbg_threshold)
+        }),
+        control("ao", "cache", Toggle, |s| Bool(s.settings.get::<AoSettings>().cache)),
         control("ao", "cache_dir", Kind::Text, |s| {
-            Text(s.settings.ao.cache_dir.as_ref().map_or(String::new(), |d| format!("{d:?}")))
+            Text(s.settings.get::<AoSettings>().cache_dir.as_ref().map_or(String::new(), |d| format!("{d:?}")))
         }),
-        control("ao", "mode", Choice(names(&AoMode::ALL.map(|m| m.name()))), |s| Name(s.settings.ao.mode.name())),
-        control("ao", "isovalue", Real { lo: 0.0, hi: 1.0 }, |s| Number(s.settings.ao.isovalue as f64)),
+        control("ao", "mode", Choice(names(&AoMode::ALL.map(|m| m.name()))), |s| {
+            Name(s.settings.get::<AoSettings>().mode.name())
+        }),
+        control("ao", "isovalue", Real { lo: 0.0, hi: 1.0 }, |s| {
+            Number(s.settings.get::<AoSettings>().isovalue as f64)
+        }),
         control("ao", "phase_g", Real { lo: -MAX_PHASE_G as f64, hi: MAX_PHASE_G as f64 }, |s| {
-            Number(s.settings.ao.phase_g as f64)
+            Number(s.settings.get::<AoSettings>().phase_g as f64)
         }),
-        control("ao", "glow_max", Real { lo: 1.0, hi: MAX_GLOW as f64 }, |s| Number(s.settings.ao.glow_max as f64)),
+        control("ao", "glow_max", Real { lo: 1.0, hi: MAX_GLOW as f64 }, |s| {
+            Number(s.settings.get::<AoSettings>().glow_max as f64)
+        }),
         control("ao", "glow_range", Kind::Text, |s| {
-            let [lo, hi] = s.settings.ao.glow_range;
+            let [lo, hi] = s.settings.get::<AoSettings>().glow_range;
             Text(format!("[{lo}, {hi}]"))
         }),
         // Unset: the GPU when there is a device, shown as empty.
         control("ao", "backend", Kind::Text, |s| {
-            Text(s.settings.ao.backend.map_or(String::new(), |b| format!("{:?}", b.name())))
+            Text(s.settings.get::<AoSettings>().backend.map_or(String::new(), |b| format!("{:?}", b.name())))
         }),
     ]
 }
@@ -281,12 +317,9 @@ impl SettingsPanel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ao::AoSettings;
-    use crate::half_angle::HalfAngleSettings;
-    use crate::ipsvi::IpsviSettings;
-    use crate::lightvolume::LightVolumeSettings;
     use crate::scene::settings_table::known_keys;
-    use crate::scene::technique_settings::TechniqueSettings;
+    use crate::scene::technique_settings::TableCatalogue;
+    use crate::techniques::CATALOGUE;
     use crate::viewer::live_scene::{LiveScene, SceneSource};
 
     fn keys_of(table: &str) -> Vec<&'static str> {
@@ -295,7 +328,7 @@ mod tests {
 
     #[test]
     fn the_controls_are_exactly_the_keys_serde_reads_for_each_table() {
-        assert_eq!(TABLES, TechniqueSettings::TABLES);
+        assert_eq!(TABLES, CATALOGUE.tables());
         assert_eq!(keys_of("ipsvi"), known_keys::<IpsviSettings>());
         assert_eq!(keys_of("lightvolume"), known_keys::<LightVolumeSettings>());
         assert_eq!(keys_of("half_angle"), known_keys::<HalfAngleSettings>());
@@ -337,8 +370,7 @@ mod tests {
     /// Whether the table's own check refuses `table.key = value` as out of range.
     fn out_of_range(table: &str, key: &str, value: f64, whole: bool) -> bool {
         let text = if whole { format!("{key} = {}", value as i64) } else { format!("{key} = {value:?}") };
-        let mut settings = TechniqueSettings::default();
-        match settings.read(table, toml::Value::Table(text.parse().unwrap())) {
+        match CATALOGUE.read(table, toml::Value::Table(text.parse().unwrap())).expect("a technique table") {
             Ok(_) => false,
             Err(e) => {
                 let e = e.to_string();

@@ -8,9 +8,9 @@
 use super::report::FrameRecord;
 use super::settings_panel::{SettingsPanel, TABLES};
 use super::tf_editor::TfEditor;
-use crate::render::Technique;
 use crate::scene::presets::PRESET_NAMES;
 use crate::scene::{Light, LightKind, Scene};
+use crate::techniques::Technique;
 use crate::vk::error::VkResultExt;
 use crate::vk::{Context, VkError};
 use ash::vk;

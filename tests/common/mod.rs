@@ -6,6 +6,7 @@ pub mod cli;
 
 use glam::{UVec3, Vec3};
 use sweeplab::scene::*;
+use sweeplab::techniques;
 use sweeplab::vk::{Context, ContextOptions};
 
 /// A context with validation and synchronization validation on.
@@ -134,7 +135,7 @@ pub fn cornell_box_scene(n: u32, size: u32, ao: &str) -> Scene {
          inner_cone = 50.0\nouter_cone = 70.0\nfalloff = \"inverse-square\"\nintensity = 0.3\n\
          [render]\nwidth = {size}\nheight = {size}\n[ao]\n{ao}\n"
     );
-    scene_file::scene_from_toml_str(&text, std::path::Path::new(""), "cornell", &[]).unwrap()
+    techniques::scene_from_toml_str(&text, std::path::Path::new(""), "cornell", &[]).unwrap()
 }
 
 /// IPSVI's line barrier, load-bearing: `s` renders validation-clean with the

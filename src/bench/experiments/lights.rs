@@ -66,7 +66,7 @@ pub fn lightvolume_scene(
     extra: impl FnOnce(&mut LightVolumeSettings),
 ) -> Scene {
     let mut s = scene.clone();
-    let lv = &mut s.settings.lightvolume;
+    let lv = s.settings.get_mut::<LightVolumeSettings>();
     (lv.scale, lv.coherent, lv.cost_estimate) = (scale, coherent, cost_estimate);
     extra(lv);
     s

@@ -5,6 +5,7 @@
 //! convergence as the step shrinks, with its observed order. What the CI test
 //! and `sweeplab bench stability` share.
 
+use crate::ipsvi::IpsviSettings;
 use std::path::Path;
 
 use super::stability_cases::StabilityCase;
@@ -13,10 +14,11 @@ use crate::ipsvi::CacheUpdate;
 use crate::linear_image::LinearImage;
 use crate::metrics::compare;
 use crate::reference::cpu::{render_cpu, CpuRenderKind};
-use crate::render::{render, GpuScene, RenderError, Technique, VolumeTexels};
-use crate::scene::scene_file::scene_from_toml_str;
+use crate::render::{GpuScene, RenderError, VolumeTexels};
 use crate::scene::warnings::{scene_warnings, SceneWarning};
 use crate::scene::Scene;
+use crate::techniques::scene_from_toml_str;
+use crate::techniques::{render, Technique};
 use crate::vk::{Context, Profiler};
 
 /// The view steps (voxels) of the convergence check.
@@ -57,7 +59,7 @@ impl Variant {
     pub fn prepare(&self, scene: &Scene) -> Scene {
         let mut scene = scene.clone();
         if let Some(mode) = self.cache_update {
-            scene.settings.ipsvi.cache_update = mode;
+            scene.settings.get_mut::<IpsviSettings>().cache_update = mode;
         }
         scene.reference.model = self.technique.reference_model(&scene);
         scene.reference.chromatic = self.technique.reference_chromatic(&scene);

@@ -1,14 +1,13 @@
 //! The techniques a user can name, and one entry point that renders any of them
-//! into a [`LinearImage`] with its GPU profile. The one part of `render` above
-//! the techniques: it lists them; they know nothing of it.
+//! into a [`LinearImage`] with its GPU profile.
 
-use super::error::RenderError;
-use super::frame_result::FrameResult;
-use super::gpu_scene::GpuScene;
-use super::session::{EachFrameAnew, FrameSession};
-use super::technique::RenderTechnique;
+use super::tables::CATALOGUE;
 use crate::linear_image::LinearImage;
-use crate::scene::{Scene, TechniqueSettings};
+use crate::render::frame_result::FrameResult;
+use crate::render::session::{EachFrameAnew, FrameSession};
+use crate::render::{GpuScene, RenderError, RenderTechnique};
+use crate::scene::technique_settings::TableCatalogue;
+use crate::scene::Scene;
 use crate::vk::{ProfileReport, Profiler};
 use std::fmt;
 use std::ops::Deref;
@@ -101,7 +100,7 @@ impl Technique {
     /// The technique table this technique reads (its name, `-` as `_`), if any.
     pub fn settings_table(self) -> Option<&'static str> {
         let table = self.name().replace('-', "_");
-        TechniqueSettings::TABLES.into_iter().find(|&t| t == table)
+        CATALOGUE.tables().iter().copied().find(|&t| t == table)
     }
 
     /// A warning for each technique table the scene gave that this technique
@@ -181,8 +180,8 @@ pub fn session<'s>(gpu: &'s GpuScene<'s>, technique: Technique) -> Result<Box<dy
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::scene_file::scene_from_toml_str;
     use crate::scene::OpticalModel;
+    use crate::techniques::scene_from_toml_str;
 
     #[test]
     fn every_technique_is_found_by_its_own_name_only() {
@@ -197,7 +196,7 @@ mod tests {
 
     #[test]
     fn every_technique_table_is_read_by_exactly_one_technique() {
-        for table in TechniqueSettings::TABLES {
+        for &table in CATALOGUE.tables() {
             let readers: Vec<Technique> =
                 Technique::NAMED.into_iter().filter(|t| t.settings_table() == Some(table)).collect();
             assert_eq!(readers.len(), 1, "[{table}]: {readers:?}");
