@@ -1,5 +1,6 @@
 use crate::bench::protocol::ProtocolError;
 use crate::bench::BenchError;
+use crate::metrics::MetricsError;
 use crate::render::RenderError;
 use crate::vk::VkError;
 
@@ -10,6 +11,8 @@ pub enum ExperimentError {
     Render(#[from] RenderError),
     #[error(transparent)]
     Vk(#[from] VkError),
+    #[error(transparent)]
+    Metrics(#[from] MetricsError),
     #[error("incremental mode did not converge in {0} frames")]
     NotConverged(usize),
     #[error("{0}")]

@@ -4,6 +4,7 @@
 pub mod dispatch_probe;
 pub mod error;
 pub mod lights;
+pub mod lights_bench;
 pub mod stability;
 pub mod stability_cases;
 pub mod sync;
