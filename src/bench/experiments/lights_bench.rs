@@ -648,7 +648,8 @@ mod tests {
     #[test]
     fn a_tiny_plan_is_accepted_and_each_bad_list_is_named() {
         assert_eq!(plan().check().unwrap().repeat(), 1);
-        let bad: [(&str, fn(&mut LightsPlan)); 7] = [
+        type Spoil = fn(&mut LightsPlan);
+        let bad: [(&str, Spoil); 7] = [
             ("--scales", |p| p.scales = vec![3]),
             ("--error-scales", |p| p.error_scales.clear()),
             ("--scaling-scale", |p| p.scaling_scale = 8),

@@ -1,6 +1,7 @@
 //! What the bench commands measure that is not argument wiring: scene
 //! variants, update sequences and the loops that time them.
 
+pub mod ao_bench;
 pub mod dispatch_probe;
 pub mod error;
 pub mod lights;
