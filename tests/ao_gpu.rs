@@ -252,8 +252,8 @@ fn the_gpu_backend_past_one_storage_buffer_range_is_validation_clean_and_equals_
     };
     let gpu = preprocess_on(&volume, &settings, Some(&ctx), &mut |_| {}).unwrap();
     assert_validation_clean(&ctx);
-    let cpu = preprocess_on(&volume, &AoSettings { backend: Some(Backend::Cpu), ..settings }, None, &mut |_| {})
-        .unwrap();
+    let cpu =
+        preprocess_on(&volume, &AoSettings { backend: Some(Backend::Cpu), ..settings }, None, &mut |_| {}).unwrap();
     assert_eq!(gpu.packed_codebook, cpu.packed_codebook, "the same training");
     let differing = gpu.cluster_ids.iter().zip(&cpu.cluster_ids).filter(|(g, c)| g != c).count();
     assert!(differing * 1000 <= volume.voxel_count(), "{differing} voxels assigned differently");

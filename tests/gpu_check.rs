@@ -29,12 +29,13 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
         .status()
         .expect("run tools/gpu_check.sh");
     let report = std::fs::read_to_string(out.join("report.json")).expect("report.json written");
-    let report: serde_json::Value = serde_json::from_str(&report).unwrap_or_else(|e| panic!("report.json: {e}\n{report}"));
+    let report: serde_json::Value =
+        serde_json::from_str(&report).unwrap_or_else(|e| panic!("report.json: {e}\n{report}"));
     assert!(out.join("report.md").exists(), "report.md written");
     (status.success(), report)
 }
 
-fn parts(report: &serde_json::Value) -> Vec<(String, i64, String)> {
+fn parts_of(report: &serde_json::Value) -> Vec<(String, i64, String)> {
     report["parts"]
         .as_array()
         .expect("parts")
@@ -52,7 +53,7 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     let _ = std::fs::remove_dir_all(&out);
     let all = "dvr,phong,reference,ipsvi,half-angle,lightvolume,ao";
     let (ok, report) = run_check(&out, all, true);
-    let parts = parts(&report);
+    let parts = parts_of(&report);
     let names: Vec<&str> = parts.iter().map(|p| p.0.as_str()).collect();
     let mut expected = vec!["devices".to_string()];
     expected.extend(all.split(',').map(|t| format!("compare-{t}")));
@@ -73,7 +74,7 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     // A part that fails is recorded, and the check goes on.
     let failing = out.join("failing");
     let (ok, report) = run_check(&failing, "no-such-technique,dvr", false);
-    let parts = parts(&report);
+    let parts = parts_of(&report);
     assert!(!ok, "the script's exit status says a part failed");
     assert_eq!(report["failed_parts"], 1);
     assert_ne!(parts[1].1, 0, "{:?}", parts[1]);

@@ -68,7 +68,8 @@ impl AoRenderer {
                 pre.dims
             )));
         }
-        let ids = device_buffer_with_data(gpu.ctx, "ao cluster ids", &pre.cluster_ids, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let ids =
+            device_buffer_with_data(gpu.ctx, "ao cluster ids", &pre.cluster_ids, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let environment = GpuEnvironment::new(
             gpu.ctx,
             &pre.codebook,

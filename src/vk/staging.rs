@@ -30,12 +30,7 @@ impl<'c> Uploads<'c> {
 
     /// A device-local buffer of `usage` that holds `data` once [`Self::finish`]
     /// has run (before that its contents are undefined).
-    pub fn buffer<T: Pod>(
-        &mut self,
-        name: &str,
-        data: &[T],
-        usage: vk::BufferUsageFlags,
-    ) -> Result<Buffer, VkError> {
+    pub fn buffer<T: Pod>(&mut self, name: &str, data: &[T], usage: vk::BufferUsageFlags) -> Result<Buffer, VkError> {
         let bytes: &[u8] = bytemuck::cast_slice(data);
         let size = bytes.len().max(4) as u64;
         let usage = usage | vk::BufferUsageFlags::TRANSFER_DST;

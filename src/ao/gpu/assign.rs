@@ -215,7 +215,11 @@ pub fn assign_packed(
     submit_and_wait(ctx, "ao assign packed", |rec| {
         let range = AssignRange { first: 0, count, hint_first: 0, has_hints: hints.is_some() };
         pass.record(rec, &mut profiler, range)?;
-        rec.barrier(&Barrier::memory("search_state_write_to_readback_copy", Access::COMPUTE_WRITE, Access::TRANSFER_READ));
+        rec.barrier(&Barrier::memory(
+            "search_state_write_to_readback_copy",
+            Access::COMPUTE_WRITE,
+            Access::TRANSFER_READ,
+        ));
         copy_buffer(rec, &states, &readback, states_bytes as u64);
         rec.barrier(&Barrier::memory("readback_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
         Ok(())

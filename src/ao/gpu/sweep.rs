@@ -448,8 +448,9 @@ impl<'c> GpuSweep<'c> {
     }
 
     fn record_batch(&mut self, b: usize, sync: SliceSync) -> Result<(), VkError> {
-        let GpuSweep { ctx, plan, push, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, .. } =
-            self;
+        let GpuSweep {
+            ctx, plan, push, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, ..
+        } = self;
         let (nx, e_z, padded) =
             (plan.dims.x, push.extent[2], [push.dims[0] + 2 * push.extent[0], push.dims[1] + 2 * push.extent[1]]);
         submit_and_wait(ctx, "ao histogram sweep", |rec| {
