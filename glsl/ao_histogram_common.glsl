@@ -9,8 +9,8 @@
 // from z mod R and every stencil entry is one constant linear offset.
 
 layout(push_constant) uniform Sweep {
-    vec3 spacing;        // voxel spacing (world units per voxel, per axis)
-    float d_min;         // the smallest spacing
+    vec3 gradient_scale; // 0.5 d_min / spacing per axis, rounded once on the host (src/ao/gradient.rs)
+    float pad_scale;
     ivec3 dims;          // volume size
     int bins;            // 2^b; bin `bins` is "outside the volume"
     ivec3 extent;        // stencil extent e per axis

@@ -8,7 +8,7 @@ mod common;
 
 use common::{assert_validation_clean, validated_context};
 use glam::{UVec3, Vec3};
-use sweeplab::ao::gpu::{assign_packed, GpuSweep, SliceSync, SweepInputs, BATCH_BYTES};
+use sweeplab::ao::gpu::{assign_packed, batch_bytes, GpuSweep, SliceSync, SweepInputs, BATCH_BYTES};
 use sweeplab::ao::gradient::central_gradient;
 use sweeplab::ao::histogram::LocalHistograms;
 use sweeplab::ao::packing::PackingScheme;
@@ -182,6 +182,81 @@ fn a_stencil_past_the_loop_cap_is_split_and_still_equals_brute_force() {
     assert!(c.worst <= 1.0, "a bin off by {:.2} tolerances", c.worst);
     assert_eq!(c.search_mismatches, 0);
     assert_validation_clean(&ctx);
+}
+
+/// The batch follows the device's `maxStorageBufferRange`: with the limit
+/// forced down to 64 KiB, a volume whose unpacked histograms take 1.6 MB
+/// (every batch buffer is bound whole) is swept in batches that each fit, and
+/// still equals brute force. Sized from the default budget alone, it would be
+/// one batch (and `GpuSweep::new` refuses a binding over the limit).
+#[test]
+fn a_small_storage_buffer_range_splits_the_sweep_into_batches_that_fit() {
+    let mut ctx = validated_context();
+    let limit = 64 << 10;
+    ctx.limits.max_storage_buffer_range = limit;
+    let volume = test_volume(UVec3::new(11, 9, 8), Vec3::ONE, 11);
+    let (bins, packed_dim) = (256, 8);
+    let bytes = batch_bytes(&ctx, bins, packed_dim);
+    let per_voxel = 2 * (bins + 1) * 4;
+    assert!(volume.voxel_count() * per_voxel > limit as usize, "the unbatched sweep must exceed the limit");
+    assert!(bytes <= limit as usize && bytes >= per_voxel * 11, "batch of {bytes} bytes for a {limit}-byte range");
+    let c = compare(&ctx, &volume, 2, 8, Metric::L2, bytes, SliceSync::Barrier);
+    assert!(c.batches > 1, "one batch under a {limit}-byte range");
+    assert!(c.worst <= 1.0, "a bin off by {:.2} tolerances", c.worst);
+    assert_eq!(c.search_mismatches, 0);
+    // The default budget alone: refused, not bound past the limit.
+    let h = LocalHistograms::new(&volume, 2, 8);
+    let packing = packing_of(&h, packed_dim);
+    let codebook = codebook_of(&h, &packing, 6, Metric::L2);
+    let search = CodebookSearch::new(&codebook, Metric::L2);
+    let inputs = SweepInputs {
+        volume: &volume,
+        stencil: h.stencil(),
+        bins,
+        packing: &packing,
+        codebook: &codebook,
+        search: &search,
+        metric: Metric::L2,
+        max_batch_bytes: BATCH_BYTES,
+    };
+    let e = GpuSweep::new(&ctx, &inputs).err().expect("a binding past maxStorageBufferRange").to_string();
+    assert!(e.contains("maxStorageBufferRange") && e.contains("ao unpacked histograms"), "{e}");
+    assert_validation_clean(&ctx);
+}
+
+/// `ao.backend = "gpu"` end to end at the device's real limit: a volume
+/// whose unpacked histograms (70,560 voxels x 2,056 bytes at b = 8, 145 MB)
+/// exceed lavapipe's 128 MiB `maxStorageBufferRange` in one batch. Before the
+/// batches followed the limit, the validation layer reported
+/// VUID-VkWriteDescriptorSet-descriptorType-00333 here; now clean, and the
+/// result equals the CPU backend's.
+#[test]
+fn the_gpu_backend_past_one_storage_buffer_range_is_validation_clean_and_equals_the_cpu() {
+    use sweeplab::ao::{preprocess_on, AoSettings, Backend, TrainingSet};
+    let ctx = validated_context();
+    let volume = test_volume(UVec3::new(42, 42, 40), Vec3::ONE, 13);
+    let unbatched = volume.voxel_count() as u64 * 2 * 257 * 4;
+    let range = u64::from(ctx.limits.max_storage_buffer_range);
+    if unbatched <= range {
+        eprintln!("skipped: this device's maxStorageBufferRange ({range}) holds the whole volume");
+        return;
+    }
+    let settings = AoSettings {
+        radius: 1,
+        packed_dim: 8,
+        clusters: 8,
+        training: TrainingSet::Random { count: 512, seed: 3 },
+        cache: false,
+        backend: Some(Backend::Gpu),
+        ..AoSettings::default()
+    };
+    let gpu = preprocess_on(&volume, &settings, Some(&ctx), &mut |_| {}).unwrap();
+    assert_validation_clean(&ctx);
+    let cpu =
+        preprocess_on(&volume, &AoSettings { backend: Some(Backend::Cpu), ..settings }, None, &mut |_| {}).unwrap();
+    assert_eq!(gpu.packed_codebook, cpu.packed_codebook, "the same training");
+    let differing = gpu.cluster_ids.iter().zip(&cpu.cluster_ids).filter(|(g, c)| g != c).count();
+    assert!(differing * 1000 <= volume.voxel_count(), "{differing} voxels assigned differently");
 }
 
 /// The barrier between binning the entering slice and the stencil reading

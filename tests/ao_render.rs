@@ -72,7 +72,7 @@ fn a_tf_change_recomputes_the_lookup_on_the_gpu_without_preprocessing() {
 
     profiler.reset();
     renderer.update_environment(&gpu, &mut profiler).unwrap();
-    let before = renderer.environment().unwrap().read().unwrap();
+    let before = renderer.environment().unwrap().read(&ctx).unwrap();
     let lut = scene.transfer.bake(TransferLut::DEFAULT_SIZE);
     let cpu_before = cpu_environment(&pre.codebook, bins, &lut, mass, glow);
     assert_eq!(before.len(), 2 * pre.clusters as usize, "lookup and glow block");
@@ -91,7 +91,7 @@ fn a_tf_change_recomputes_the_lookup_on_the_gpu_without_preprocessing() {
     renderer.update_environment(&gpu, &mut profiler).unwrap();
     let report = profiler.resolve(0).unwrap();
     println!("TF change: {:.3} ms GPU for {} clusters, {bins} bins", report.pass_ms("ao_environment"), pre.clusters);
-    let after = renderer.environment().unwrap().read().unwrap();
+    let after = renderer.environment().unwrap().read(&ctx).unwrap();
     let d = max_difference(&after, &cpu_environment(&pre.codebook, bins, &edited, mass, glow));
     assert!(d < 1e-5, "GPU lookup after the TF change differs from the CPU sums by {d}");
     let changed = max_difference(&after, &before);

@@ -105,9 +105,26 @@ macro_rules! xvfb_or_skip {
     };
 }
 
+/// The environment of every viewer run: validation with synchronization
+/// validation across submissions (the layer's QueueSubmit check: the setting
+/// `VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT` of
+/// layers up to 1.3.2xx, `syncval_submit_time_validation` of later ones), and
+/// lavapipe chosen by name: on a desktop the default device is the GPU, which
+/// cannot present to Xvfb.
+fn viewer_env(cmd: &mut Command) -> &mut Command {
+    cmd.env("SWEEPLAB_VALIDATE", "1")
+        .env(
+            "VK_LAYER_ENABLES",
+            "VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT,\
+             VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT",
+        )
+        .env("VK_LAYER_SYNCVAL_SUBMIT_TIME_VALIDATION", "true")
+        .env("SWEEPLAB_DEVICE", "llvmpipe")
+}
+
 fn sweeplab(args: &[&str], display: Option<&str>) -> Output {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_sweeplab"));
-    cmd.args(args).env("SWEEPLAB_VALIDATE", "1").env_remove("WAYLAND_DISPLAY");
+    viewer_env(cmd.args(args)).env_remove("WAYLAND_DISPLAY");
     match display {
         Some(d) => cmd.env("DISPLAY", d),
         None => cmd.env_remove("DISPLAY"),
@@ -118,7 +135,7 @@ fn sweeplab(args: &[&str], display: Option<&str>) -> Output {
 /// `sweeplab` run in `dir` (where `S` and `P` write) on `display`.
 fn sweeplab_in(dir: &Path, args: &[&str], display: &str) -> Output {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_sweeplab"));
-    cmd.args(args).current_dir(dir).env("SWEEPLAB_VALIDATE", "1").env("DISPLAY", display);
+    viewer_env(cmd.args(args).current_dir(dir)).env("DISPLAY", display);
     cmd.output().expect("run sweeplab")
 }
 

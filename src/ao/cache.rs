@@ -31,7 +31,7 @@ use crate::scene::{Volume, VoxelData};
 const MAGIC: &[u8; 8] = b"SWLAOC\r\n";
 /// Bump whenever the layout *or the algorithm* changes, so old results read as
 /// stale.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Why a cache file was not used.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -28,6 +28,7 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::staging::{device_buffer_with_data, read_device_buffer};
 use crate::vk::{Buffer, Context, Profiler};
 
 /// The update's name: debug label and profiler scope of both passes.
@@ -166,14 +167,15 @@ impl GpuEnvironment {
         mass: f64,
         glow: Option<GlowMapping>,
     ) -> Result<GpuEnvironment, RenderError> {
-        let codebook = Buffer::with_data(ctx, "ao codebook", codebook, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let codebook = device_buffer_with_data(ctx, "ao codebook", codebook, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let entries = env_entries(clusters, glow.is_some());
+        // Device-local: every frame's shader reads it; tests read it back by a copy.
         let env = Buffer::new(
             ctx,
             "ao environment",
             entries * 16,
-            vk::BufferUsageFlags::STORAGE_BUFFER,
-            MemoryLocation::GpuToCpu,
+            vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC,
+            MemoryLocation::GpuOnly,
         )?;
         let bin_weights = Buffer::new(
             ctx,
@@ -256,26 +258,21 @@ impl GpuEnvironment {
             rec.dispatch(self.clusters.div_ceil(64), 1, 1);
             profiler.end(rec, detail)?;
             profiler.end(rec, scope)?;
-            // The frames that follow read the lookup in their shaders, the
-            // host reads it in tests.
+            // The frames that follow read the lookup in their shaders (tests
+            // read it back through `read`, which orders its own copy).
             rec.barrier(&Barrier::memory(
                 "ao_environment_write_to_render_read",
                 Access::COMPUTE_WRITE,
                 Access::COMPUTE_READ,
-            ));
-            rec.barrier(&Barrier::memory(
-                "ao_environment_write_to_host_read",
-                Access::COMPUTE_WRITE,
-                Access::HOST_READ,
             ));
             Ok(())
         })?;
         Ok(())
     }
 
-    /// The lookup as last computed.
-    pub fn read(&self) -> Result<Vec<[f32; 4]>, RenderError> {
-        Ok(self.env.read((self.env.size / 16) as usize)?)
+    /// The lookup as last computed (a copy through a read-back buffer).
+    pub fn read(&self, ctx: &Context) -> Result<Vec<[f32; 4]>, RenderError> {
+        Ok(read_device_buffer(ctx, &self.env, (self.env.size / 16) as usize)?)
     }
 
     pub fn codebook_bytes(&self) -> u64 {

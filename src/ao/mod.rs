@@ -144,11 +144,11 @@ pub fn preprocess_on(
     let metric = settings.metric;
     let histograms = LocalHistograms::new(volume, settings.radius, settings.bits);
     let bins = histograms.bins();
-    if backend == Backend::Gpu {
+    if let (Backend::Gpu, Some(ctx)) = (backend, gpu) {
         // Refuse what the GPU cannot run before any work.
         let lmax = metric == Metric::Lmax;
         let (dim, clusters) = (settings.packed_dim as usize, settings.clusters as usize);
-        gpu::sweep::supported_plan(volume, histograms.stencil(), bins, dim, clusters, lmax)?;
+        gpu::sweep::supported_plan(ctx, volume, histograms.stencil(), bins, dim, clusters, lmax)?;
     }
     let mut timings = StepTimings::default();
 

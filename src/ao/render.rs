@@ -21,6 +21,7 @@ use crate::scene::Scene;
 use crate::shaders::ao_render as shader;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::staging::{device_buffer_with_data, Uploads};
 use crate::vk::{Buffer, Profiler, Recorder};
 
 /// The pass's name: debug label, profiler scope and technique name.
@@ -67,7 +68,8 @@ impl AoRenderer {
                 pre.dims
             )));
         }
-        let ids = Buffer::with_data(gpu.ctx, "ao cluster ids", &pre.cluster_ids, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let ids =
+            device_buffer_with_data(gpu.ctx, "ao cluster ids", &pre.cluster_ids, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let environment = GpuEnvironment::new(
             gpu.ctx,
             &pre.codebook,
@@ -92,12 +94,13 @@ impl AoRenderer {
             return Err(RenderError::Invalid(format!("ao: {} lookup entries for {expected}", env.len())));
         }
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
+        let mut uploads = Uploads::new(gpu.ctx);
+        let env = uploads.buffer("ao environment per voxel", env, usage)?;
+        let placeholder_ids = uploads.buffer("ao cluster ids placeholder", &[0u32], usage)?;
+        uploads.finish()?;
         Ok(AoRenderer {
             mode: settings.mode,
-            lookup: Lookup::PerVoxel {
-                env: Buffer::with_data(gpu.ctx, "ao environment per voxel", env, usage)?,
-                placeholder_ids: Buffer::with_data(gpu.ctx, "ao cluster ids placeholder", &[0u32], usage)?,
-            },
+            lookup: Lookup::PerVoxel { env, placeholder_ids },
             params: params(settings, entries as u32),
         })
     }

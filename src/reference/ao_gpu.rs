@@ -18,6 +18,7 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::staging::{copy_buffer, device_buffer_with_data, readback_buffer};
 use crate::vk::{Buffer, Profiler};
 
 /// The pass's name: debug label and profiler scope.
@@ -87,13 +88,16 @@ pub fn reference_gpu(
     let directions: Vec<[f32; 4]> = direction_pairs(params.pairs).iter().map(|w| [w[0], w[1], w[2], 0.0]).collect();
     let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
     let uniform = Buffer::with_data(ctx, "ao reference params", &[uniform], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
-    let directions = Buffer::with_data(ctx, "ao reference directions", &directions, usage)?;
+    let directions = device_buffer_with_data(ctx, "ao reference directions", &directions, usage)?;
     let entries = 2 * volume.voxel_count();
     let bytes = entries as u64 * 16;
+    // Device-local working sums; the last written goes to the host by a copy.
+    let sums_usage = usage | vk::BufferUsageFlags::TRANSFER_SRC;
     let sums = [
-        Buffer::new(ctx, "ao reference sums a", bytes, usage, MemoryLocation::GpuToCpu)?,
-        Buffer::new(ctx, "ao reference sums b", bytes, usage, MemoryLocation::GpuToCpu)?,
+        Buffer::new(ctx, "ao reference sums a", bytes, sums_usage, MemoryLocation::GpuOnly)?,
+        Buffer::new(ctx, "ao reference sums b", bytes, sums_usage, MemoryLocation::GpuOnly)?,
     ];
+    let readback = readback_buffer(ctx, "ao reference sums readback", bytes)?;
     let mut pipeline = ComputePipeline::new(
         ctx,
         &ComputePipelineDesc { name: PASS, shader: &shader::INTERFACE, specialization: &[], max_sets: 2 },
@@ -136,8 +140,14 @@ pub fn reference_gpu(
             rec.dispatch(d.x.div_ceil(4), d.y.div_ceil(4), d.z.div_ceil(4));
         }
         profiler.end(rec, scope)?;
-        rec.barrier(&Barrier::memory("ao_reference_sums_write_to_host_read", Access::COMPUTE_WRITE, Access::HOST_READ));
+        rec.barrier(&Barrier::memory(
+            "ao_reference_sums_write_to_readback_copy",
+            Access::COMPUTE_WRITE,
+            Access::TRANSFER_READ,
+        ));
+        copy_buffer(rec, &sums[((chunks - 1) % 2) as usize], &readback, bytes);
+        rec.barrier(&Barrier::memory("readback_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
         Ok(())
     })?;
-    Ok(sums[((chunks - 1) % 2) as usize].read(entries)?)
+    Ok(readback.read(entries)?)
 }

@@ -317,6 +317,13 @@ fn frame_loop<'c>(
                     selected_light,
                 };
                 let (edits, platform) = panel.build(input, &view)?;
+                if panel.has_pending_uploads() {
+                    // The font atlas is written in place: the other frame in
+                    // flight may still sample it (rare: the first frames and
+                    // new glyphs).
+                    frames.wait_all()?;
+                    panel.upload_textures()?;
+                }
                 state.handle_platform_output(window, platform);
                 ui_edits = edits;
             }

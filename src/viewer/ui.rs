@@ -85,6 +85,8 @@ pub struct Ui {
     pixels_per_point: f32,
     /// Textures egui let go of, freed once no frame in flight can use them.
     pending_free: Vec<egui::TextureId>,
+    /// Texture writes waiting until no frame in flight reads them.
+    pending_set: Vec<(egui::TextureId, egui::epaint::ImageDelta)>,
     /// Host time of the last panel (layout and tessellation).
     pub cpu_ms: f64,
     state: PanelState,
@@ -121,13 +123,14 @@ impl Ui {
             primitives: Vec::new(),
             pixels_per_point: 1.0,
             pending_free: Vec::new(),
+            pending_set: Vec::new(),
             cpu_ms: 0.0,
             state: PanelState::default(),
         })
     }
 
-    /// Lays the panel out for `input` and uploads new textures (egui-ash-renderer
-    /// waits for its own upload submission, only when egui's textures change).
+    /// Lays the panel out for `input`; new or changed textures (the font atlas)
+    /// wait in [`Self::has_pending_uploads`] until [`Self::upload_textures`].
     pub fn build(
         &mut self,
         input: egui::RawInput,
@@ -139,14 +142,26 @@ impl Ui {
         let output = self.egui.run(input, |ctx| panel(ctx, view, state, &mut edits));
         self.pixels_per_point = output.pixels_per_point;
         self.primitives = self.egui.tessellate(output.shapes, output.pixels_per_point);
-        if !output.textures_delta.set.is_empty() {
-            self.renderer
-                .set_textures(self.queue, self.upload_pool, &output.textures_delta.set)
-                .map_err(|e| VkError::Presentation(format!("egui textures: {e}")))?;
-        }
+        self.pending_set.extend(output.textures_delta.set);
         self.pending_free.extend(output.textures_delta.free);
         self.cpu_ms = started.elapsed().as_secs_f64() * 1e3;
         Ok((edits, output.platform_output))
+    }
+
+    /// Texture writes egui asked for: the font atlas may be updated in place,
+    /// and the other frame in flight may still be sampling it, so the caller
+    /// waits for every frame in flight before [`Self::upload_textures`].
+    pub fn has_pending_uploads(&self) -> bool {
+        !self.pending_set.is_empty()
+    }
+
+    /// Writes the pending textures (egui-ash-renderer's own submission, which
+    /// it waits for); no frame in flight may read them (the caller waited).
+    pub fn upload_textures(&mut self) -> Result<(), VkError> {
+        let set = std::mem::take(&mut self.pending_set);
+        self.renderer
+            .set_textures(self.queue, self.upload_pool, &set)
+            .map_err(|e| VkError::Presentation(format!("egui textures: {e}")))
     }
 
     /// Textures to free once every frame in flight is done (the caller waits).

@@ -14,6 +14,7 @@ pub mod memory;
 pub mod pipeline;
 pub mod profiler;
 pub mod resources;
+pub mod staging;
 pub mod surface;
 pub mod swapchain;
 pub mod validation;

@@ -19,6 +19,7 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::staging::{copy_buffer, readback_buffer, Uploads};
 use crate::vk::{Buffer, Context, Profiler, Recorder, VkError};
 
 /// The pass's name: pipeline, debug label and profiler scope.
@@ -86,16 +87,14 @@ pub struct AssignPass {
     _order_distances: Buffer,
 }
 
-fn storage(ctx: &Context, name: &str, bytes: usize, location: MemoryLocation) -> Result<Buffer, VkError> {
-    Buffer::new(ctx, name, bytes as u64, vk::BufferUsageFlags::STORAGE_BUFFER, location)
-}
-
 impl AssignPass {
-    /// Uploads the codebook and its sorted lists; `packed` holds the histograms
+    /// Stages the codebook and its sorted lists in `uploads` (the caller
+    /// finishes them before recording); `packed` holds the histograms
     /// (stride [`packed_stride`]), `states` one [`SearchState`] per histogram,
     /// `hints` the start codewords.
     pub fn new(
         ctx: &Context,
+        uploads: &mut Uploads,
         codebook: &Codebook,
         search: &CodebookSearch,
         metric: Metric,
@@ -109,10 +108,10 @@ impl AssignPass {
             words[c * stride..c * stride + codebook.dim].copy_from_slice(codebook.word(c));
         }
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
-        let codewords = Buffer::with_data(ctx, "ao codewords", &words, usage)?;
+        let codewords = uploads.buffer("ao codewords", &words, usage)?;
         let order: Vec<u32> = search.order().iter().map(|&j| j as u32).collect();
-        let order = Buffer::with_data(ctx, "ao codeword order", &order, usage)?;
-        let order_distances = Buffer::with_data(ctx, "ao codeword order distances", search.order_distances(), usage)?;
+        let order = uploads.buffer("ao codeword order", &order, usage)?;
+        let order_distances = uploads.buffer("ao codeword order distances", search.order_distances(), usage)?;
         let metric_id = Metric::ALL.iter().position(|&m| m == metric).unwrap_or(0) as u32;
         let desc = ComputePipelineDesc {
             name: ASSIGN_PASS,
@@ -197,18 +196,34 @@ pub fn assign_packed(
         padded[i * stride..i * stride + dim].copy_from_slice(v);
     }
     let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
-    let packed = Buffer::with_data(ctx, "ao assign vectors", &padded, usage)?;
-    let states = storage(ctx, "ao search states", count.max(1) * size_of::<SearchState>(), MemoryLocation::GpuToCpu)?;
+    let mut uploads = Uploads::new(ctx);
+    let packed = uploads.buffer("ao assign vectors", &padded, usage)?;
+    let states_bytes = count.max(1) * size_of::<SearchState>();
+    let states = Buffer::new(
+        ctx,
+        "ao search states",
+        states_bytes as u64,
+        usage | vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::GpuOnly,
+    )?;
+    let readback = readback_buffer(ctx, "ao search states readback", states_bytes as u64)?;
     let hint_values = hints.map_or_else(|| vec![0u32; count.max(1)], |h| h.to_vec());
-    let hint_buffer = Buffer::with_data(ctx, "ao search hints", &hint_values, usage)?;
-    let pass = AssignPass::new(ctx, codebook, &search, metric, &plan, [&packed, &states, &hint_buffer])?;
+    let hint_buffer = uploads.buffer("ao search hints", &hint_values, usage)?;
+    let pass = AssignPass::new(ctx, &mut uploads, codebook, &search, metric, &plan, [&packed, &states, &hint_buffer])?;
+    uploads.finish()?;
     let mut profiler = Profiler::new(ctx, 4)?;
     submit_and_wait(ctx, "ao assign packed", |rec| {
         let range = AssignRange { first: 0, count, hint_first: 0, has_hints: hints.is_some() };
         pass.record(rec, &mut profiler, range)?;
-        rec.barrier(&Barrier::memory("search_state_write_to_host_read", Access::COMPUTE_WRITE, Access::HOST_READ));
+        rec.barrier(&Barrier::memory(
+            "search_state_write_to_readback_copy",
+            Access::COMPUTE_WRITE,
+            Access::TRANSFER_READ,
+        ));
+        copy_buffer(rec, &states, &readback, states_bytes as u64);
+        rec.barrier(&Barrier::memory("readback_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
         Ok(())
     })?;
-    let states: Vec<SearchState> = states.read(count)?;
+    let states: Vec<SearchState> = readback.read(count)?;
     Ok(states.iter().map(|s| (s.best, s.best_raw)).collect())
 }

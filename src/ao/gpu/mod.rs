@@ -9,7 +9,7 @@ pub mod plan;
 pub mod sweep;
 
 pub use assign::{assign_packed, SearchState};
-pub use sweep::{supported_plan, BatchOutput, GpuSweep, PassTimes, SliceSync, SweepInputs, BATCH_BYTES};
+pub use sweep::{batch_bytes, supported_plan, BatchOutput, GpuSweep, PassTimes, SliceSync, SweepInputs, BATCH_BYTES};
 
 use super::histogram::LocalHistograms;
 use super::packing::PackingScheme;
@@ -43,7 +43,7 @@ pub fn assign_volume(
         codebook,
         search: &search,
         metric,
-        max_batch_bytes: BATCH_BYTES,
+        max_batch_bytes: batch_bytes(ctx, bins, packing.packed_dim),
     };
     let mut sweep = GpuSweep::new(ctx, &inputs)?;
     let total = volume.voxel_count();

@@ -28,8 +28,9 @@ use bytemuck::{Pod, Zeroable};
 use gpu_allocator::MemoryLocation;
 
 use super::assign::{AssignPass, AssignRange, SearchState};
-use super::plan::{unpacked_stride, SweepPlan};
+use super::plan::{packed_stride, unpacked_stride, SweepPlan};
 use crate::ao::error::AoError;
+use crate::ao::gradient::gradient_scale;
 use crate::ao::histogram::SphereStencil;
 use crate::ao::packing::PackingScheme;
 use crate::ao::quantize::Codebook;
@@ -41,21 +42,27 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::staging::{copy_buffer, readback_buffer, Uploads};
 use crate::vk::{Buffer, Context, Profiler, VkError};
 
 pub const BIN_PASS: &str = "ao_histogram_bin";
 pub const STENCIL_PASS: &str = "ao_histogram_stencil";
 pub const PACK_PASS: &str = "ao_histogram_pack";
 
-/// Unpacked histograms one batch holds at most, bytes.
+/// Unpacked histograms one batch holds at most, bytes, before the device's
+/// limits ([`batch_bytes`]) lower it.
 pub const BATCH_BYTES: usize = 192 << 20;
+
+/// The share of the smallest device-local heap the batch buffers may take
+/// (the volume, the other buffers and other programs need the rest).
+const HEAP_SHARE: u64 = 4;
 
 /// Mirrors the `Sweep` push constants (glsl/ao_histogram_common.glsl).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct SweepPush {
-    spacing: [f32; 3],
-    d_min: f32,
+    gradient_scale: [f32; 3],
+    pad_scale: f32,
     dims: [i32; 3],
     bins: i32,
     extent: [i32; 3],
@@ -75,7 +82,7 @@ macro_rules! assert_sweep_push_layout {
         crate::assert_gpu_layout!(
             SweepPush,
             $shader::layout::SWEEP,
-            [spacing, d_min, dims, bins, extent, ring_slices, slice, first_row, rows, first_entry, entry_count,
+            [gradient_scale, pad_scale, dims, bins, extent, ring_slices, slice, first_row, rows, first_entry, entry_count,
              part_voxel, packed_stride, pad]
         );
     )*};
@@ -135,16 +142,51 @@ pub struct SweepInputs<'a> {
     pub codebook: &'a Codebook,
     pub search: &'a CodebookSearch<'a>,
     pub metric: Metric,
-    /// Unpacked histograms one batch may hold, bytes ([`BATCH_BYTES`]).
+    /// Unpacked histograms one batch may hold, bytes ([`batch_bytes`] on
+    /// the sweep's device).
     pub max_batch_bytes: usize,
 }
 
 /// GPU time per pass, summed over the sweep's submissions (ms).
 pub type PassTimes = BTreeMap<String, f64>;
 
-/// The sweep's plan for these settings at the default batch size, or why the
-/// GPU cannot run them (checked before any preprocessing work).
+/// Bytes per voxel of the batch buffers: unpacked histograms, packed
+/// histograms, search states.
+fn batch_bytes_per_voxel(bins: usize, packed_dim: usize) -> [usize; 3] {
+    [unpacked_stride(bins) * 4, 2 * packed_stride(packed_dim) * 4, 2 * size_of::<SearchState>()]
+}
+
+/// The unpacked histograms one batch holds on `ctx`, bytes: at most
+/// [`BATCH_BYTES`], every batch buffer (unpacked, packed, search states)
+/// within `maxStorageBufferRange` (each is bound whole), and the three
+/// together within a quarter of the smallest device-local heap. The batch is
+/// at least one x row ([`SweepPlan::new`]); [`GpuSweep::new`] refuses a row
+/// that breaks the range.
+pub fn batch_bytes(ctx: &Context, bins: usize, packed_dim: usize) -> usize {
+    let per_voxel = batch_bytes_per_voxel(bins, packed_dim);
+    let range = ctx.limits.max_storage_buffer_range as usize;
+    let by_range = per_voxel.iter().map(|&b| range / b).min().unwrap_or(0);
+    let by_memory = (device_local_heap(ctx) / HEAP_SHARE) as usize / per_voxel.iter().sum::<usize>();
+    let voxels = (BATCH_BYTES / per_voxel[0]).min(by_range).min(by_memory);
+    voxels * per_voxel[0]
+}
+
+/// The smallest device-local heap's size, bytes.
+fn device_local_heap(ctx: &Context) -> u64 {
+    // SAFETY: the physical device belongs to this instance.
+    let memory = unsafe { ctx.instance.get_physical_device_memory_properties(ctx.physical_device) };
+    memory.memory_heaps[..memory.memory_heap_count as usize]
+        .iter()
+        .filter(|h| h.flags.contains(vk::MemoryHeapFlags::DEVICE_LOCAL))
+        .map(|h| h.size)
+        .min()
+        .unwrap_or(u64::MAX)
+}
+
+/// The sweep's plan for these settings on `ctx` ([`batch_bytes`]), or why
+/// the GPU cannot run them (checked before any preprocessing work).
 pub fn supported_plan(
+    ctx: &Context,
     volume: &Volume,
     stencil: &SphereStencil,
     bins: usize,
@@ -152,9 +194,14 @@ pub fn supported_plan(
     clusters: usize,
     lmax: bool,
 ) -> Result<SweepPlan, AoError> {
-    let plan = SweepPlan::new(volume.dims, bins, packed_dim, stencil.voxel_count(), clusters, lmax, BATCH_BYTES)
+    let max_batch_bytes = batch_bytes(ctx, bins, packed_dim);
+    let plan = SweepPlan::new(volume.dims, bins, packed_dim, stencil.voxel_count(), clusters, lmax, max_batch_bytes)
         .map_err(AoError::GpuLimit)?;
-    check_indices(volume, plan)
+    let plan = check_indices(volume, plan)?;
+    for (name, bytes) in binding_sizes(volume, stencil, &plan, clusters, packed_dim) {
+        within_storage_range(ctx, name, bytes)?;
+    }
+    Ok(plan)
 }
 
 /// Shaders index the volume, and the batch's histograms, in i32.
@@ -164,6 +211,47 @@ fn check_indices(volume: &Volume, plan: SweepPlan) -> Result<SweepPlan, AoError>
         return Err(AoError::GpuLimit(format!("{} voxels overflow the shaders' 32-bit indices", volume.dims)));
     }
     Ok(plan)
+}
+
+/// Every storage buffer the sweep binds whole, with its size in bytes (the
+/// packing shares are at most bins + packed_dim entries).
+fn binding_sizes(
+    volume: &Volume,
+    stencil: &SphereStencil,
+    plan: &SweepPlan,
+    clusters: usize,
+    packed_dim: usize,
+) -> Vec<(&'static str, usize)> {
+    let [ex, ey, ez] = stencil.extent.to_array().map(|v| v as usize);
+    let [nx, ny, _] = volume.dims.to_array().map(|v| v as usize);
+    let bins = plan.bins;
+    let ring_slices = 2 * ez + 1;
+    let [unpacked, packed, states] = batch_bytes_per_voxel(bins, packed_dim).map(|b| b * plan.batch_voxels);
+    vec![
+        ("ao normalized values", volume.voxel_count() * 4),
+        ("ao binned slice ring", 2 * ring_slices * (nx + 2 * ex) * (ny + 2 * ey) * 4),
+        ("ao stencil directions", stencil.voxel_count() * 16),
+        ("ao packing shares", (bins + packed_dim) * size_of::<Share>()),
+        ("ao unpacked histograms", unpacked),
+        ("ao packed histograms", packed),
+        ("ao search states", states),
+        ("ao search hints", nx * ny * 2 * 4),
+        ("ao codewords", clusters * plan.packed_stride * 4),
+        ("ao codeword order", clusters * clusters * 4),
+    ]
+}
+
+/// A storage buffer of `bytes` is bound whole: it must fit the device's
+/// `maxStorageBufferRange`.
+fn within_storage_range(ctx: &Context, name: &str, bytes: usize) -> Result<(), AoError> {
+    let range = ctx.limits.max_storage_buffer_range;
+    if bytes as u64 > range as u64 {
+        return Err(AoError::GpuLimit(format!(
+            "{name} would take {bytes} bytes in one storage buffer, over this device's maxStorageBufferRange \
+             ({range}); lower ao.bits, ao.clusters or ao.radius, or use ao.backend = \"cpu\""
+        )));
+    }
+    Ok(())
 }
 
 pub struct GpuSweep<'c> {
@@ -179,6 +267,8 @@ pub struct GpuSweep<'c> {
     profiler: Profiler,
     unpacked: Buffer,
     states: Buffer,
+    /// Host-visible copies of `unpacked` and `states`, written after each batch.
+    readback: [Buffer; 2],
     _values: Buffer,
     _ring: Buffer,
     _stencil_directions: Buffer,
@@ -208,13 +298,14 @@ impl<'c> GpuSweep<'c> {
         )
         .map_err(AoError::GpuLimit)
         .and_then(|p| check_indices(volume, p))?;
+        for (name, bytes) in binding_sizes(volume, stencil, &plan, inputs.codebook.len(), packing.packed_dim) {
+            within_storage_range(ctx, name, bytes)?;
+        }
         let e = stencil.extent;
         let ring_slices = 2 * e.z + 1;
         let (px, py) = (dims.x + 2 * e.x, dims.y + 2 * e.y);
-        let spacing = volume.spacing;
         let push = SweepPush {
-            spacing: spacing.to_array(),
-            d_min: spacing.min_element(),
+            gradient_scale: gradient_scale(volume.spacing),
             dims: dims.as_ivec3().to_array(),
             bins: bins as i32,
             extent: e.as_ivec3().to_array(),
@@ -223,21 +314,24 @@ impl<'c> GpuSweep<'c> {
             ..SweepPush::zeroed()
         };
 
+        // Every buffer a shader reads or writes is device-local; the inputs
+        // arrive through staging (one submission), the results leave through
+        // read-back copies after each batch.
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
-        let device_buffer =
-            |name: &str, bytes: usize| Buffer::new(ctx, name, bytes.max(4) as u64, usage, MemoryLocation::GpuOnly);
-        let readback = |name: &str, bytes: usize, extra: vk::BufferUsageFlags| {
-            Buffer::new(ctx, name, bytes.max(4) as u64, usage | extra, MemoryLocation::GpuToCpu)
+        let device_buffer = |name: &str, bytes: usize, extra: vk::BufferUsageFlags| {
+            Buffer::new(ctx, name, bytes.max(4) as u64, usage | extra, MemoryLocation::GpuOnly)
         };
+        let mut uploads = Uploads::new(ctx);
         let values: Vec<f32> = (0..volume.voxel_count()).map(|i| volume.data.normalized(i)).collect();
-        let values = Buffer::with_data(ctx, "ao normalized values", &values, usage)?;
-        let ring = device_buffer("ao binned slice ring", 2 * (ring_slices * px * py) as usize * 4)?;
+        let values = uploads.buffer("ao normalized values", &values, usage)?;
+        let none = vk::BufferUsageFlags::empty();
+        let ring = device_buffer("ao binned slice ring", 2 * (ring_slices * px * py) as usize * 4, none)?;
         let directions: Vec<[f32; 4]> =
             stencil.directions.iter().zip(&stencil.weights).map(|(d, &w)| [d.x, d.y, d.z, w as f32]).collect();
         let offsets: Vec<i32> =
             stencil.offsets.iter().map(|o| ((o.z + e.z as i32) * py as i32 + o.y) * px as i32 + o.x).collect();
-        let stencil_directions = Buffer::with_data(ctx, "ao stencil directions", &directions, usage)?;
-        let stencil_offsets = Buffer::with_data(ctx, "ao stencil offsets", &offsets, usage)?;
+        let stencil_directions = uploads.buffer("ao stencil directions", &directions, usage)?;
+        let stencil_offsets = uploads.buffer("ao stencil offsets", &offsets, usage)?;
         let mut share_starts = vec![0u32];
         let mut shares = Vec::new();
         for row in &packing.shares {
@@ -247,14 +341,20 @@ impl<'c> GpuSweep<'c> {
         if shares.is_empty() {
             shares.push(Share::zeroed());
         }
-        let share_starts = Buffer::with_data(ctx, "ao packing row starts", &share_starts, usage)?;
-        let shares = Buffer::with_data(ctx, "ao packing shares", &shares, usage)?;
+        let share_starts = uploads.buffer("ao packing row starts", &share_starts, usage)?;
+        let shares = uploads.buffer("ao packing shares", &shares, usage)?;
         let batch = plan.batch_voxels;
-        let fill = vk::BufferUsageFlags::TRANSFER_DST;
-        let unpacked = readback("ao unpacked histograms", batch * unpacked_stride(bins) * 4, fill)?;
-        let packed = device_buffer("ao packed histograms", batch * 2 * plan.packed_stride * 4)?;
-        let states = readback("ao search states", batch * 2 * size_of::<SearchState>(), vk::BufferUsageFlags::empty())?;
-        let hints = device_buffer("ao search hints", (dims.x * dims.y * 2) as usize * 4)?;
+        let (fill, copy_out) = (vk::BufferUsageFlags::TRANSFER_DST, vk::BufferUsageFlags::TRANSFER_SRC);
+        let unpacked_bytes = batch * unpacked_stride(bins) * 4;
+        let unpacked = device_buffer("ao unpacked histograms", unpacked_bytes, fill | copy_out)?;
+        let packed = device_buffer("ao packed histograms", batch * 2 * plan.packed_stride * 4, none)?;
+        let states_bytes = batch * 2 * size_of::<SearchState>();
+        let states = device_buffer("ao search states", states_bytes, copy_out)?;
+        let hints = device_buffer("ao search hints", (dims.x * dims.y * 2) as usize * 4, none)?;
+        let readback = [
+            readback_buffer(ctx, "ao unpacked histograms readback", unpacked_bytes as u64)?,
+            readback_buffer(ctx, "ao search states readback", states_bytes as u64)?,
+        ];
 
         let pipeline = |name: &str, shader, specialization: &[(u32, u32)]| {
             ComputePipeline::new(ctx, &ComputePipelineDesc { name, shader, specialization, max_sets: 1 })
@@ -279,8 +379,16 @@ impl<'c> GpuSweep<'c> {
             (ao_histogram_pack::SHARES, Resource::StorageBuffer(&shares)),
             (ao_histogram_pack::PACKED, Resource::StorageBuffer(&packed)),
         ])?;
-        let assign =
-            AssignPass::new(ctx, inputs.codebook, inputs.search, inputs.metric, &plan, [&packed, &states, &hints])?;
+        let assign = AssignPass::new(
+            ctx,
+            &mut uploads,
+            inputs.codebook,
+            inputs.search,
+            inputs.metric,
+            &plan,
+            [&packed, &states, &hints],
+        )?;
+        uploads.finish()?;
         let most_parts = plan.batches.iter().map(|b| b.parts.len()).max().unwrap_or(1) as u32;
         let profiler = Profiler::new(ctx, 4 * most_parts + 4)?;
         Ok(GpuSweep {
@@ -296,6 +404,7 @@ impl<'c> GpuSweep<'c> {
             profiler,
             unpacked,
             states,
+            readback,
             _values: values,
             _ring: ring,
             _stencil_directions: stencil_directions,
@@ -329,8 +438,8 @@ impl<'c> GpuSweep<'c> {
             let output = BatchOutput {
                 bins: self.plan.bins,
                 normalization: self.normalization,
-                unpacked: self.unpacked.mapped(voxels.len() * unpacked_stride(self.plan.bins))?,
-                states: self.states.mapped(2 * voxels.len())?,
+                unpacked: self.readback[0].mapped(voxels.len() * unpacked_stride(self.plan.bins))?,
+                states: self.readback[1].mapped(2 * voxels.len())?,
                 voxels,
             };
             consume(&output)?;
@@ -339,7 +448,9 @@ impl<'c> GpuSweep<'c> {
     }
 
     fn record_batch(&mut self, b: usize, sync: SliceSync) -> Result<(), VkError> {
-        let GpuSweep { ctx, plan, push, bin, stencil, pack, sets, assign, profiler, unpacked, .. } = self;
+        let GpuSweep {
+            ctx, plan, push, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, ..
+        } = self;
         let (nx, e_z, padded) =
             (plan.dims.x, push.extent[2], [push.dims[0] + 2 * push.extent[0], push.dims[1] + 2 * push.extent[1]]);
         submit_and_wait(ctx, "ao histogram sweep", |rec| {
@@ -425,7 +536,12 @@ impl<'c> GpuSweep<'c> {
                     Access::COMPUTE_READ_WRITE,
                 ));
             }
-            rec.barrier(&Barrier::memory("sweep_write_to_host_read", Access::COMPUTE_WRITE, Access::HOST_READ));
+            // The batch's histograms and search results go to the host.
+            rec.barrier(&Barrier::memory("sweep_write_to_readback_copy", Access::COMPUTE_WRITE, Access::TRANSFER_READ));
+            let voxels = plan.batches[b].voxels.len();
+            copy_buffer(rec, unpacked, &readback[0], (voxels * unpacked_stride(plan.bins) * 4) as u64);
+            copy_buffer(rec, states, &readback[1], (2 * voxels * size_of::<SearchState>()) as u64);
+            rec.barrier(&Barrier::memory("readback_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
             Ok(())
         })
     }

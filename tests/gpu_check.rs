@@ -1,0 +1,84 @@
+//! `tools/gpu_check.sh` end to end on lavapipe at tiny sizes, so that the
+//! one command for a GPU machine cannot rot: every part runs and passes, the
+//! report (JSON and Markdown) lists each with its exit status and time, and a
+//! failing part is recorded while the parts after it still run. About a
+//! minute on 2 cores.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::Value) {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let status = Command::new("bash")
+        .arg(root.join("tools/gpu_check.sh"))
+        .arg(out)
+        .env("GPU_CHECK_BIN", env!("CARGO_BIN_EXE_sweeplab"))
+        .env("GPU_CHECK_SIZE", "16")
+        .env("GPU_CHECK_BENCH_SIZE", "32")
+        .env("GPU_CHECK_TECHNIQUES", techniques)
+        .env("GPU_CHECK_AO_SET", "ao.clusters=16")
+        .env("GPU_CHECK_SYNC_ARGS", "--quick --min-rounds 6 --max-rounds 6 --max-minutes 0.2 --line-widths 1,4")
+        .env("GPU_CHECK_IPSVI_ARGS", "--line-widths 1,4 --repeat 1")
+        .env(
+            "GPU_CHECK_LIGHTS_ARGS",
+            "--size 16x16 --scales 4 --light-counts 2 --scaling-counts 1 --error-scales 4 --incremental-passes 1 \
+             --repeat 1",
+        )
+        .env("GPU_CHECK_BENCHES", if benches { "1" } else { "0" })
+        .env_remove("SWEEPLAB_VALIDATE")
+        .status()
+        .expect("run tools/gpu_check.sh");
+    let report = std::fs::read_to_string(out.join("report.json")).expect("report.json written");
+    let report: serde_json::Value =
+        serde_json::from_str(&report).unwrap_or_else(|e| panic!("report.json: {e}\n{report}"));
+    assert!(out.join("report.md").exists(), "report.md written");
+    (status.success(), report)
+}
+
+fn parts_of(report: &serde_json::Value) -> Vec<(String, i64, String)> {
+    report["parts"]
+        .as_array()
+        .expect("parts")
+        .iter()
+        .map(|p| {
+            let name = p["name"].as_str().unwrap().to_string();
+            (name, p["rc"].as_i64().unwrap(), p["validation"].as_str().unwrap().to_string())
+        })
+        .collect()
+}
+
+#[test]
+fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
+    let out = std::env::temp_dir().join(format!("sweeplab-gpu-check-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let all = "dvr,phong,reference,ipsvi,half-angle,lightvolume,ao";
+    let (ok, report) = run_check(&out, all, true);
+    let parts = parts_of(&report);
+    let names: Vec<&str> = parts.iter().map(|p| p.0.as_str()).collect();
+    let mut expected = vec!["devices".to_string()];
+    expected.extend(all.split(',').map(|t| format!("compare-{t}")));
+    expected.extend(["bench-sync", "bench-ipsvi-breakdown", "bench-lights"].map(String::from));
+    assert_eq!(names, expected);
+    for (name, rc, validation) in &parts {
+        assert_eq!(*rc, 0, "{name} failed: {report:#}");
+        if name.starts_with("compare-") {
+            assert_eq!(validation, "clean", "{name} ran with validation on");
+        }
+    }
+    assert!(ok, "the script exits 0 when every part passed");
+    assert_eq!(report["failed_parts"], 0);
+    assert!(out.join("compare/ipsvi.json").exists() && out.join("bench-sync").is_dir());
+    let markdown = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(markdown.contains("| compare-ao | 0 |"), "{markdown}");
+
+    // A part that fails is recorded, and the check goes on.
+    let failing = out.join("failing");
+    let (ok, report) = run_check(&failing, "no-such-technique,dvr", false);
+    let parts = parts_of(&report);
+    assert!(!ok, "the script's exit status says a part failed");
+    assert_eq!(report["failed_parts"], 1);
+    assert_ne!(parts[1].1, 0, "{:?}", parts[1]);
+    assert_eq!(parts[2], ("compare-dvr".to_string(), 0, "clean".to_string()));
+    assert_eq!(parts.len(), 3);
+    std::fs::remove_dir_all(&out).ok();
+}

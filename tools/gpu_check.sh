@@ -1,0 +1,161 @@
+#!/usr/bin/env bash
+# One command for a machine with a GPU driver and nothing else (no compiler,
+# no network): lists the devices, renders every technique against its ground
+# truth with validation on, runs `bench sync`, `bench ipsvi --breakdown` and a
+# short `bench lights`, and writes one report (report.json + report.md) into
+# OUT. A part that fails is recorded (exit status, time, log tail) and the
+# next one runs. See docs/bench-on-your-gpu.md.
+#
+#   tools/gpu_check.sh OUT            (from a bundle made by tools/gpu_check_prepare.sh,
+#                                      or from a checkout with a release build)
+#
+# Sizes and choices (environment):
+#   GPU_CHECK_BIN          sweeplab binary (default: bundle's bin/, else target/release/)
+#   GPU_CHECK_DEVICE       device index or name substring (default: the engine's choice)
+#   GPU_CHECK_SCENE        scene file (default: tests/scenes/cornell-box.toml)
+#   GPU_CHECK_HALF_ANGLE_SCENE  half-angle's scene (one light outside the volume; default
+#                          tests/scenes/slab-under-sphere.toml: the Cornell box's light is inside)
+#   GPU_CHECK_SIZE         image side of the comparisons (default 256)
+#   GPU_CHECK_BENCH_SIZE   image side of bench sync and bench ipsvi --breakdown (default 512)
+#   GPU_CHECK_TECHNIQUES   comma-separated (default: every technique)
+#   GPU_CHECK_SYNC_ARGS    extra arguments of bench sync (default: a bounded run)
+#   GPU_CHECK_IPSVI_ARGS   extra arguments of bench ipsvi --breakdown (default: none)
+#   GPU_CHECK_LIGHTS_ARGS  arguments of bench lights (default: a short run)
+#   GPU_CHECK_AO_SET       --set value for the ao comparison (default: none)
+#   GPU_CHECK_BENCHES      0: the comparisons only (default 1)
+set -u
+
+out=${1:?usage: tools/gpu_check.sh OUT_DIR}
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/.." && pwd)
+mkdir -p "$out/logs" "$out/compare" || exit 1
+out=$(cd "$out" && pwd)
+
+# The carried Vulkan loader and validation layer (tools/gpu_check_prepare.sh
+# unpacks them into vulkan/ beside tools/): used in place of the system's.
+carried="$root/vulkan"
+if [ -d "$carried/usr/lib/x86_64-linux-gnu" ]; then
+    export LD_LIBRARY_PATH="$carried/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+    export VK_LAYER_PATH="$carried/usr/share/vulkan/explicit_layer.d"
+    export VK_ADD_LAYER_PATH="$VK_LAYER_PATH"
+    vulkan_from="carried ($carried)"
+else
+    vulkan_from="system"
+fi
+
+bin=${GPU_CHECK_BIN:-}
+if [ -z "$bin" ]; then
+    if [ -x "$root/bin/sweeplab" ]; then bin="$root/bin/sweeplab"; else bin="$root/target/release/sweeplab"; fi
+fi
+scene=${GPU_CHECK_SCENE:-$root/tests/scenes/cornell-box.toml}
+half_angle_scene=${GPU_CHECK_HALF_ANGLE_SCENE:-$root/tests/scenes/slab-under-sphere.toml}
+ipsvi_args=${GPU_CHECK_IPSVI_ARGS:-}
+size=${GPU_CHECK_SIZE:-256}
+bench_size=${GPU_CHECK_BENCH_SIZE:-512}
+techniques=${GPU_CHECK_TECHNIQUES:-dvr,phong,reference,ipsvi,half-angle,lightvolume,ao}
+sync_args=${GPU_CHECK_SYNC_ARGS:---line-widths 1,4,16,32 --max-rounds 12 --max-minutes 1.5}
+lights_args=${GPU_CHECK_LIGHTS_ARGS:---scales 4 --light-counts 2 --scaling-counts 1,4 --error-scales 4 --incremental-passes 1 --repeat 1}
+device_args=()
+[ -n "${GPU_CHECK_DEVICE:-}" ] && device_args=(--device "$GPU_CHECK_DEVICE")
+# The AO preprocessing's cache stays with the report.
+export XDG_CACHE_HOME="$out/cache"
+
+parts_json="$out/.parts.jsonl"
+: > "$parts_json"
+started_all=$(date +%s.%N)
+
+json_string() {
+    # A JSON string literal of $1 (backslash, quote, control characters).
+    printf '%s' "$1" | sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/\t/\\t/g' -e 's/\r//g' | awk 'BEGIN{ORS="\\n"} {print}' |
+        sed -e 's/\\n$//' -e 's/^/"/' -e 's/$/"/'
+}
+
+# part NAME COMMAND...: runs it with its log in logs/NAME.log, records the result.
+part() {
+    local name=$1
+    shift
+    local log="$out/logs/$name.log"
+    local t0 t1 rc
+    t0=$(date +%s.%N)
+    echo "== $name: $*" >&2
+    "$@" > "$log" 2>&1
+    rc=$?
+    t1=$(date +%s.%N)
+    local seconds
+    seconds=$(awk -v a="$t0" -v b="$t1" 'BEGIN{printf "%.1f", b - a}')
+    local validation="not run"
+    if grep -q "^validation: clean" "$log"; then validation="clean"; elif grep -qi "validation:" "$log"; then
+        validation="messages"
+    fi
+    echo "   rc $rc, ${seconds} s, validation $validation" >&2
+    printf '{"name": %s, "command": %s, "rc": %d, "seconds": %s, "validation": %s, "log": %s, "tail": %s}\n' \
+        "$(json_string "$name")" "$(json_string "$*")" "$rc" "$seconds" "$(json_string "$validation")" \
+        "$(json_string "logs/$name.log")" "$(json_string "$(tail -n 8 "$log")")" >> "$parts_json"
+}
+
+part devices "$bin" devices
+IFS=',' read -r -a list <<< "$techniques"
+for t in "${list[@]}"; do
+    extra=()
+    [ "$t" = ao ] && [ -n "${GPU_CHECK_AO_SET:-}" ] && extra=(--set "$GPU_CHECK_AO_SET")
+    s=$scene
+    [ "$t" = half-angle ] && s=$half_angle_scene
+    part "compare-$t" "$bin" compare --scene "$s" --technique "$t" --size "${size}x${size}" --validate \
+        "${device_args[@]}" "${extra[@]}" --json "$out/compare/$t.json" --out "$out/compare/$t.png" \
+        --reference-out "$out/compare/$t-reference.png"
+done
+if [ "${GPU_CHECK_BENCHES:-1}" = 1 ]; then
+    # shellcheck disable=SC2086 # the argument strings are word lists
+    part bench-sync "$bin" bench sync --scene "$scene" --size "${bench_size}x${bench_size}" "${device_args[@]}" \
+        --out "$out/bench-sync" $sync_args
+    # shellcheck disable=SC2086
+    part bench-ipsvi-breakdown "$bin" bench ipsvi --breakdown --scene "$scene" --sizes "$bench_size" "${device_args[@]}" \
+        --out "$out/bench-ipsvi" $ipsvi_args
+    # shellcheck disable=SC2086
+    part bench-lights "$bin" bench lights --scene "$scene" "${device_args[@]}" --out "$out/bench-lights" $lights_args
+fi
+
+total=$(awk -v a="$started_all" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b - a}')
+device=$(grep -m1 -E '^\s*(\*|0)' "$out/logs/devices.log" 2>/dev/null | sed 's/^[ *]*//')
+failed=$(grep -c '"rc": [1-9]' "$parts_json")
+{
+    printf '{\n  "tool": "tools/gpu_check.sh",\n  "date": %s,\n  "host": %s,\n  "device": %s,\n' \
+        "$(json_string "$(date -u +%Y-%m-%dT%H:%M:%SZ)")" "$(json_string "$(uname -srm)")" "$(json_string "$device")"
+    printf '  "vulkan": %s,\n  "sizes": {"compare": %d, "bench": %d},\n  "total_seconds": %s,\n  "failed_parts": %d,\n' \
+        "$(json_string "$vulkan_from")" "$size" "$bench_size" "$total" "$failed"
+    printf '  "parts": [\n'
+    sed -e 's/^/    /' -e '$!s/$/,/' "$parts_json"
+    printf '  ]\n}\n'
+} > "$out/report.json"
+{
+    echo "# GPU check"
+    echo
+    echo "- device: ${device:-unknown} (Vulkan loader and layer: $vulkan_from)"
+    echo "- host: $(uname -srm); $(date -u +%Y-%m-%dT%H:%M:%SZ)"
+    echo "- comparisons at ${size}x${size}, benches at ${bench_size}; total ${total} s; failed parts: $failed"
+    echo
+    echo "| part | exit | seconds | validation | log |"
+    echo "|---|---|---|---|---|"
+    while IFS= read -r line; do
+        name=$(sed -E 's/.*"name": "([^"]*)".*/\1/' <<< "$line")
+        rc=$(sed -E 's/.*"rc": ([0-9]+).*/\1/' <<< "$line")
+        secs=$(sed -E 's/.*"seconds": ([0-9.]+).*/\1/' <<< "$line")
+        val=$(sed -E 's/.*"validation": "([^"]*)".*/\1/' <<< "$line")
+        echo "| $name | $rc | $secs | $val | logs/$name.log |"
+    done < "$parts_json"
+    echo
+    echo "Errors against the ground truth: compare/*.json; benches: bench-sync/, bench-ipsvi/, bench-lights/."
+    for f in "$out"/compare/*.json; do
+        [ -e "$f" ] || continue
+        echo
+        echo "### $(basename "$f" .json)"
+        echo
+        echo '```'
+        head -c 1500 "$f"
+        echo
+        echo '```'
+    done
+} > "$out/report.md"
+rm -f "$parts_json"
+echo "report: $out/report.md ($failed failed parts, ${total} s)" >&2
+[ "$failed" -eq 0 ]
