@@ -57,6 +57,10 @@ layout(constant_id = 10) const bool WRITE_TEXEL_RAY = true;
 // included, takes part in runs and every run end stores (Listing 4.1); else
 // only samples with non-zero opacity ("non-empty").
 layout(constant_id = 11) const bool EVERY_SAMPLE = false;
+// ipsvi.empty_runs_move_depth (texel-ray writes): a run whose samples were all
+// empty stores its texel's light as it is at the new depth, without the
+// texel-ray march (which would cross the medium on the texel's own ray).
+layout(constant_id = 12) const bool EMPTY_RUNS_MOVE_DEPTH = false;
 const uint TERMINATION_OFF = 0u;
 const uint TERMINATION_PLAIN = 1u;
 const uint TERMINATION_EXIT_POINTS = 2u;
@@ -325,7 +329,7 @@ vec4 texel_ray_light(ivec2 k, float z, out vec3 q) {
 // attenuated light: measured 1.6e-2 RMSE on the engine at 256x256, 7.6e-3 with
 // the nearest sample, 2.7e-3 for light rays. Readers farther along march back
 // to the nearest sample exactly.)
-void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel) {
+void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel, bool empty) {
     if (STEP < STEP_STORES) return;
     if (CLAIMS && STEP >= STEP_CLAIM_CHECK) {
         // Only the claimed winner stores; compared on record and pixel.
@@ -336,7 +340,7 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel) {
     if (WRITE_TEXEL_RAY && PIECEWISE) {
         // Breakdown steps before the march store the texel's state as it is.
         uint old_code;
-        if (STEP >= STEP_FULL) l = texel_ray_light(k, depth, p);
+        if (STEP >= STEP_FULL && !(EMPTY_RUNS_MOVE_DEPTH && empty)) l = texel_ray_light(k, depth, p);
         else l = state_load(k, old_code);
     }
     float s = frame.shadow_step * frame.voxel_length;
@@ -406,6 +410,7 @@ void shade_pixel(uint index) {
     vec3 run_p = vec3(0.0);
     float run_depth = 0.0;
     vec4 run_light = vec4(0.0);
+    bool run_empty = true; // every sample of the run had zero opacity
     if (v.samples > 0) {
         bool ert = may_stop();
         float keep_going = stop_distance(px);
@@ -420,7 +425,8 @@ void shade_pixel(uint index) {
                 } else if (VIEW_SAMPLES) {
                     vec3 c = cache_coord(p);
                     ivec2 k = sample_texel(c);
-                    if (run.x >= 0 && k != run) store_sample(run, run_p, run_depth, run_light, index);
+                    if (run.x >= 0 && k != run) store_sample(run, run_p, run_depth, run_light, index, run_empty);
+                    run_empty = (run_empty || k != run) && !shaded;
                     bool writer = k != run || !run_keeps_nearest() || c.z < run_depth;
                     // An empty sample (every-sample) needs its light only where it
                     // may write it as it is (texel-ray writes march their own).
@@ -445,7 +451,7 @@ void shade_pixel(uint index) {
             if (ert && view_ray_opaque(T) && v.t_enter + (float(i) + 1.0) * v.h >= keep_going) break;
         }
     }
-    if (VIEW_SAMPLES && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index);
+    if (VIEW_SAMPLES && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index, run_empty);
     // Cleared to the background: the first light replaces it by what shows through.
     if (first_light) C += (T - 1.0) * frame.background;
     ivec2 ip = ivec2(px) + ivec2(0, int(block.out_row));

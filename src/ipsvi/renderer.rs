@@ -365,6 +365,7 @@ impl<'a> IpsviRenderer<'a> {
             (9, (slots > 1) as u32),
             (10, (view_samples && settings.write_value == WriteValue::TexelRay) as u32),
             (11, (view_samples && settings.write_rule == WriteRule::EverySample) as u32),
+            (12, (view_samples && settings.empty_runs_move_depth) as u32),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",

@@ -46,6 +46,11 @@ pub struct IpsviSettings {
     /// those with non-zero opacity or every sample (the paper's).
     #[serde(deserialize_with = "from_name")]
     pub write_rule: WriteRule,
+    /// view-samples with texel-ray writes: a run whose samples were all empty
+    /// (only with `write_rule = "every-sample"`) stores its texel's light
+    /// unchanged at the new depth, without marching the texel's own ray there.
+    /// Cheaper; drops what medium that ray crosses over about one line.
+    pub empty_runs_move_depth: bool,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
@@ -107,6 +112,7 @@ impl Default for IpsviSettings {
             cache_write: CacheWrite::Farthest,
             write_value: WriteValue::TexelRay,
             write_rule: WriteRule::NonEmpty,
+            empty_runs_move_depth: false,
             sync: SyncStrategy::BarrierGlobal,
             merge_sweeps: false,
             single_dispatch_baseline: false,
