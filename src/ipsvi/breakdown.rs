@@ -13,25 +13,25 @@ pub enum BreakdownStep {
     /// Ray casting of the block's pixels only: no cache read (unshadowed light),
     /// no cache write.
     Lines,
-    /// + bilinear cache reads at every sample (no piecewise integration).
+    /// Adds bilinear cache reads at every sample (no piecewise integration).
     CacheReads,
-    /// + piecewise integration back to the cache front.
+    /// Adds piecewise integration back to the cache front.
     Piecewise,
-    /// + the invocations after the pixels: view samples carry the previous
+    /// Adds the invocations after the pixels: view samples carry the previous
     /// blocks' writes into the history pair; light rays advance their texels
     /// (all of light-rays' writes).
     Carry,
-    /// + the two sample stores (value, depth and stamp) at every run end, racy,
+    /// Adds the two sample stores (value, depth and stamp) at every run end, racy,
     /// storing the light the writing sample read as it is.
     Stores,
-    /// + the claim pass of `farthest`/`nearest` (the next block's medium march
+    /// Adds the claim pass of `farthest`/`nearest` (the next block's medium march
     /// and its atomics); stores still racy.
     ClaimPass,
-    /// + the claim check: only the claimed winner stores.
+    /// Adds the claim check: only the claimed winner stores.
     ClaimCheck,
-    /// + the writing sample's own one-step light segment composited in.
+    /// Adds the writing sample's own one-step light segment composited in.
     OwnSegment,
-    /// + the texel-ray march of `write_value = "texel-ray"`: the IPSVI frame.
+    /// Adds the texel-ray march of `write_value = "texel-ray"`: the IPSVI frame.
     #[default]
     Full,
     /// Nothing: every invocation returns at once. The sync study's empty
