@@ -23,11 +23,22 @@ layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-c
 layout(constant_id = 2) const bool VIEW_SAMPLES = false;  // cache_update = "view-samples"
 layout(constant_id = 3) const bool CLAIMS = false;        // cache_write = "farthest" or "nearest": one writer per texel
 layout(constant_id = 4) const bool NEAREST = false;       // "nearest": the sample closest to the light wins
-// Cost breakdown (src/ipsvi/breakdown.rs): 0 ray casting only, 1 + cache reads,
-// 2 + piecewise integration, 3 + cache writes = IPSVI; 4 nothing at all (the
-// sync study's empty workload: the sweep's dispatches and barriers alone).
-layout(constant_id = 5) const uint STEP = 3u;
-const uint STEP_EMPTY = 4u;
+// Cost breakdown (src/ipsvi/breakdown.rs), cumulative: 0 ray casting only,
+// 1 + cache reads, 2 + piecewise integration, 3 + the history carry (light
+// rays: the texel advance), 4 + racy sample stores of the read light, 5 + the
+// claim pass, 6 + the claim check, 7 + the writer's own light segment, 8 + the
+// texel-ray march = IPSVI; 9 nothing at all (the sync study's empty workload:
+// the sweep's dispatches and barriers alone).
+layout(constant_id = 5) const uint STEP = 8u;
+const uint STEP_READS = 1u;
+const uint STEP_PIECEWISE = 2u;
+const uint STEP_CARRY = 3u;
+const uint STEP_STORES = 4u;
+const uint STEP_CLAIM_PASS = 5u;
+const uint STEP_CLAIM_CHECK = 6u;
+const uint STEP_OWN_SEGMENT = 7u;
+const uint STEP_FULL = 8u;
+const uint STEP_EMPTY = 9u;
 // Fixed per renderer, so the compiler drops what a frame never runs.
 layout(constant_id = 6) const bool PIECEWISE = true;  // piecewise integration (section 4.4)
 // When view rays stop: 0 never, 1 once opaque ("plain"), 2 once opaque and past
@@ -42,6 +53,14 @@ layout(constant_id = 9) const bool MERGED = false;
 // write stores the light on the written texel's own ray at the sample's depth,
 // not the light the sample read bilinearly at its own position.
 layout(constant_id = 10) const bool WRITE_TEXEL_RAY = true;
+// ipsvi.write_rule = "every-sample" (view samples): every sample, empty ones
+// included, takes part in runs and every run end stores (Listing 4.1); else
+// only samples with non-zero opacity ("non-empty").
+layout(constant_id = 11) const bool EVERY_SAMPLE = false;
+// ipsvi.empty_runs_move_depth (texel-ray writes): a run whose samples were all
+// empty stores its texel's light as it is at the new depth, without the
+// texel-ray march (which would cross the medium on the texel's own ray).
+layout(constant_id = 12) const bool EMPTY_RUNS_MOVE_DEPTH = false;
 const uint TERMINATION_OFF = 0u;
 const uint TERMINATION_PLAIN = 1u;
 const uint TERMINATION_EXIT_POINTS = 2u;
@@ -194,7 +213,7 @@ Footprint bilinear_footprint(vec2 c) {
 vec4 light_at(vec3 p) {
     vec3 c = cache_coord(p);
     Footprint fp = bilinear_footprint(c.xy);
-    bool piecewise = PIECEWISE && STEP >= 2u;
+    bool piecewise = PIECEWISE && STEP >= STEP_PIECEWISE;
     vec4 cached = vec4(0.0);
     float front = 0.0;
     for (int j = 0; j < 4; ++j) {
@@ -249,7 +268,7 @@ ivec2 sample_texel(vec3 c) { return clamp(ivec2(floor(c.xy)), ivec2(0), ivec2(sw
 // piecewise integration the path from p back to their (equally weighted) depth.
 vec4 light_from_samples(vec3 p, vec3 c) {
     Footprint fp = bilinear_footprint(c.xy);
-    bool piecewise = PIECEWISE && STEP >= 2u;
+    bool piecewise = PIECEWISE && STEP >= STEP_PIECEWISE;
     vec4 sum = vec4(0.0);
     float front = 0.0;
     for (int j = 0; j < 4; ++j) {
@@ -310,21 +329,26 @@ vec4 texel_ray_light(ivec2 k, float z, out vec3 q) {
 // attenuated light: measured 1.6e-2 RMSE on the engine at 256x256, 7.6e-3 with
 // the nearest sample, 2.7e-3 for light rays. Readers farther along march back
 // to the nearest sample exactly.)
-void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel) {
-    if (STEP < 3u) return;
-    if (CLAIMS) {
+void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel, bool empty) {
+    if (STEP < STEP_STORES) return;
+    if (CLAIMS && STEP >= STEP_CLAIM_CHECK) {
         // Only the claimed winner stores; compared on record and pixel.
         uint64_t mask = (uint64_t(0xFFFFFu) << 44) | uint64_t(0x1FFFFu);
         uint64_t key = keys[key_index(KEY_HALF_IN, k)];
         if ((key & mask) != (claim_key(block_index, 0.0, pixel) & mask)) return;
     }
-    if (WRITE_TEXEL_RAY && PIECEWISE) l = texel_ray_light(k, depth, p);
+    if (WRITE_TEXEL_RAY && PIECEWISE) {
+        // Breakdown steps before the march store the texel's state as it is.
+        uint old_code;
+        if (STEP >= STEP_FULL && !(EMPTY_RUNS_MOVE_DEPTH && empty)) l = texel_ray_light(k, depth, p);
+        else l = state_load(k, old_code);
+    }
     float s = frame.shadow_step * frame.voxel_length;
     vec3 back = to_light(p);
-    vec4 seg = light_segment(p - back * s, back, s, 4u, EMISSIVE);
+    if (STEP >= STEP_OWN_SEGMENT) l = through_segment(l, light_segment(p - back * s, back, s, 4u, EMISSIVE));
     vec2 io = ray_in_box(cache_ray(uvec2(k)));
     uint code = io.x <= io.y ? depth_code(depth + s, io) : FRONT_ENTRY;
-    imageStore(samples_out, slot_texel(k), through_segment(l, seg));
+    imageStore(samples_out, slot_texel(k), l);
     imageStore(stamps_out, slot_texel(k), uvec4((block.stamp << 16) | code));
 }
 
@@ -358,7 +382,7 @@ void claim_pixel(BlockParams next, uint index) {
         vec3 p = sample_point(v, i);
         vec4 m = medium(p);
         float alpha = 1.0 - exp(-m.a * v.hv);
-        if (alpha > 0.0) {
+        if (alpha > 0.0 || EVERY_SAMPLE) {
             vec3 c = cache_coord(p);
             ivec2 k = sample_texel(c);
             if (run.x >= 0 && k != run) atomicMax(keys[key_index(KEY_HALF_NEXT, run)], claim_key(block_index + 1u, run_depth, index));
@@ -386,6 +410,7 @@ void shade_pixel(uint index) {
     vec3 run_p = vec3(0.0);
     float run_depth = 0.0;
     vec4 run_light = vec4(0.0);
+    bool run_empty = true; // every sample of the run had zero opacity
     if (v.samples > 0) {
         bool ert = may_stop();
         float keep_going = stop_distance(px);
@@ -393,16 +418,21 @@ void shade_pixel(uint index) {
             vec3 p = sample_point(v, i);
             vec4 m = medium(p);
             float alpha = 1.0 - exp(-m.a * v.hv);
-            if (alpha > 0.0) {
-                vec4 l;
+            bool shaded = alpha > 0.0;
+            vec4 l = vec4(0.0, 0.0, 0.0, 1.0);
+            if (shaded || (VIEW_SAMPLES && EVERY_SAMPLE && STEP >= STEP_READS)) {
                 if (STEP == 0u) {
-                    l = vec4(0.0, 0.0, 0.0, 1.0);
                 } else if (VIEW_SAMPLES) {
                     vec3 c = cache_coord(p);
                     ivec2 k = sample_texel(c);
-                    if (run.x >= 0 && k != run) store_sample(run, run_p, run_depth, run_light, index);
-                    l = light_from_samples(p, c);
-                    if (k != run || !run_keeps_nearest() || c.z < run_depth) {
+                    if (run.x >= 0 && k != run) store_sample(run, run_p, run_depth, run_light, index, run_empty);
+                    run_empty = (run_empty || k != run) && !shaded;
+                    bool writer = k != run || !run_keeps_nearest() || c.z < run_depth;
+                    // An empty sample (every-sample) needs its light only where it
+                    // may write it as it is (texel-ray writes march their own).
+                    if (shaded || (writer && !(WRITE_TEXEL_RAY && PIECEWISE)))
+                        l = light_from_samples(p, c);
+                    if (writer) {
                         run_p = p;
                         run_depth = c.z;
                         run_light = l;
@@ -411,6 +441,8 @@ void shade_pixel(uint index) {
                 } else {
                     l = light_at(p);
                 }
+            }
+            if (shaded) {
                 vec3 direct = light.radiance.rgb * light_shape(light, toward_light(light, p)) * l.a;
                 vec3 S = m.rgb * (direct + l.rgb * sweep.light_scale + (first_light ? vec3(frame.emission) : vec3(0.0)));
                 C += T * alpha * S;
@@ -419,7 +451,7 @@ void shade_pixel(uint index) {
             if (ert && view_ray_opaque(T) && v.t_enter + (float(i) + 1.0) * v.h >= keep_going) break;
         }
     }
-    if (VIEW_SAMPLES && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index);
+    if (VIEW_SAMPLES && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index, run_empty);
     // Cleared to the background: the first light replaces it by what shows through.
     if (first_light) C += (T - 1.0) * frame.background;
     ivec2 ip = ivec2(px) + ivec2(0, int(block.out_row));
@@ -498,7 +530,7 @@ void main() {
     uint texels = block.region.z * block.region.w;
     if (id < block.pixel_count) {
         shade_pixel(id);
-    } else if (STEP < 3u) {
+    } else if (STEP < STEP_CARRY) {
         return;
     } else if (id < block.pixel_count + texels) {
         uint texel = id - block.pixel_count;
@@ -507,7 +539,7 @@ void main() {
         } else {
             advance_texel(texel);
         }
-    } else if (CLAIMS) {
+    } else if (CLAIMS && STEP >= STEP_CLAIM_PASS) {
         uint claim = id - block.pixel_count - texels;
         if (claim < block.claim_count) claim_pixel(blocks[block_index + 1u], claim);
     }

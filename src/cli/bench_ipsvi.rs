@@ -11,13 +11,22 @@ use sweeplab::bench::{
 };
 use sweeplab::half_angle::HalfAngleSettings;
 use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
-use sweeplab::ipsvi::{EarlyTermination, IpsviSettings, SyncStrategy};
+use sweeplab::ipsvi::{CacheUpdate, EarlyTermination, IpsviSettings, SyncStrategy, WriteRule};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::GpuScene;
 use sweeplab::scene::OpticalModel;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
+
+/// The write rules a configuration is measured with: both for view samples
+/// (so the plot shows which rule serves each budget), light rays' own otherwise.
+fn write_rules(base: &IpsviSettings) -> Vec<WriteRule> {
+    match base.cache_update {
+        CacheUpdate::ViewSamples => WriteRule::ALL.to_vec(),
+        CacheUpdate::LightRays => vec![base.write_rule],
+    }
+}
 
 fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSettings> {
     let mut out = Vec::new();
@@ -28,6 +37,9 @@ fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSetti
             }
         };
         push(base.clone());
+        for write_rule in write_rules(base) {
+            push(IpsviSettings { write_rule, ..base.clone() });
+        }
         for &lw in &args.line_widths {
             push(IpsviSettings { line_width: lw, ..base.clone() });
             push(IpsviSettings { line_width: lw, piecewise: false, ..base.clone() });
@@ -45,13 +57,16 @@ fn configurations(args: &BenchIpsviArgs, base: &IpsviSettings) -> Vec<IpsviSetti
             for piecewise in [true, false] {
                 for early_termination in [EarlyTermination::Plain, EarlyTermination::Off, EarlyTermination::ExitPoints]
                 {
-                    out.push(IpsviSettings {
-                        line_width: lw,
-                        cache_size: c,
-                        piecewise,
-                        early_termination,
-                        ..base.clone()
-                    });
+                    for write_rule in write_rules(base) {
+                        out.push(IpsviSettings {
+                            line_width: lw,
+                            cache_size: c,
+                            piecewise,
+                            early_termination,
+                            write_rule,
+                            ..base.clone()
+                        });
+                    }
                 }
             }
         }
@@ -106,11 +121,12 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
 
         for s in &configs {
             let label = format!(
-                "{size}x{size} lw={} cache={} pi={} ert={}",
+                "{size}x{size} lw={} cache={} pi={} ert={} rule={}",
                 s.line_width,
                 s.cache_size,
                 s.piecewise,
-                s.early_termination.name()
+                s.early_termination.name(),
+                s.write_rule.name()
             );
             let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
             ctx.memory.reset_peak();
@@ -125,6 +141,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
             row.set("technique", "ipsvi").set("width", size).set("height", size);
             row.set("line_width", s.line_width).set("cache_size", s.cache_size);
             row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
+            row.set("cache_update", s.cache_update.name()).set("write_rule", s.write_rule.name());
             row.set("gpu_ms", gpu_ms).set("rmse", stats.rmse).set("max_abs", stats.max_abs).set("psnr", stats.psnr);
             row.set("lines", lines).set("dispatches", frame.dispatches).set("barriers", frame.barriers);
             row.set("gpu_memory_bytes", profile.gpu_memory_bytes);
@@ -158,16 +175,22 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         for (k, &i) in idx.iter().enumerate() {
             table.rows[i].set("pareto", front.contains(&k));
         }
+        // One series per line width and write rule: which IPSVI to pick at each budget.
+        let rules = write_rules(&base);
         let series: Vec<Series> = args
             .line_widths
             .iter()
-            .map(|&lw| {
+            .flat_map(|&lw| rules.iter().map(move |&rule| (lw, rule)))
+            .map(|(lw, rule)| {
                 let pts = idx
                     .iter()
-                    .filter(|&&i| table.rows[i].get_f64("line_width") == Some(lw as f64))
+                    .filter(|&&i| {
+                        table.rows[i].get_f64("line_width") == Some(lw as f64)
+                            && table.rows[i].text("write_rule") == rule.name()
+                    })
                     .map(|&i| (table.rows[i].get_f64("gpu_ms").unwrap(), table.rows[i].get_f64("rmse").unwrap()))
                     .collect();
-                Series::new(format!("line width {lw}"), pts)
+                Series::new(format!("line width {lw}, {}", rule.name()), pts)
             })
             .chain(std::iter::once(Series::new(
                 "half-angle (model i)",
@@ -277,9 +300,10 @@ fn print_summary(table: &BenchTable) {
         };
         let describe = |r: &BenchRow| {
             format!(
-                "lw={} cache={} {:.0} ms, rmse {:.3e}",
+                "lw={} cache={} {} {:.0} ms, rmse {:.3e}",
                 r.text("line_width"),
                 r.text("cache_size"),
+                r.text("write_rule"),
                 r.get_f64("gpu_ms").unwrap_or(f64::NAN),
                 r.get_f64("rmse").unwrap_or(f64::NAN)
             )

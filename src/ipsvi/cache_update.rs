@@ -1,6 +1,7 @@
 //! How the illumination cache is fed (`ipsvi.cache_update`) and, when view
 //! samples feed it, how the many samples of a line that write one texel are
-//! resolved (`ipsvi.cache_write`) and what a write stores (`ipsvi.write_value`).
+//! resolved (`ipsvi.cache_write`), what a write stores (`ipsvi.write_value`)
+//! and which samples take part in writes (`ipsvi.write_rule`).
 //! docs/ipsvi.md compares the modes.
 
 use crate::scene::suggest::nearest;
@@ -45,6 +46,36 @@ pub enum WriteValue {
     /// the light is not blurred again by every line that writes the texel
     /// (engine.vti 512x512: RMSE 7.3e-3 against 1.44e-2; docs/ipsvi.md).
     TexelRay,
+}
+
+/// Which view samples take part in the runs that end in a cache write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WriteRule {
+    /// Only samples with non-zero opacity read the cache and form runs; a
+    /// texel an empty stretch of a view ray crosses keeps its older state.
+    NonEmpty,
+    /// The paper's (Listing 4.1): every sample, empty ones included, takes part
+    /// in runs, and every run end stores. An empty run passes the light on
+    /// unchanged but moves the texel's depth to the current line, so the next
+    /// line's piecewise march is about one line long.
+    EverySample,
+}
+
+impl WriteRule {
+    pub const ALL: [WriteRule; 2] = [WriteRule::NonEmpty, WriteRule::EverySample];
+    pub fn name(self) -> &'static str {
+        match self {
+            WriteRule::NonEmpty => "non-empty",
+            WriteRule::EverySample => "every-sample",
+        }
+    }
+}
+
+impl FromStr for WriteRule {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        parse(s, &WriteRule::ALL, WriteRule::name)
+    }
 }
 
 impl WriteValue {
@@ -127,6 +158,10 @@ mod tests {
         for w in WriteValue::ALL {
             assert_eq!(w.name().parse::<WriteValue>().unwrap(), w);
         }
+        for w in WriteRule::ALL {
+            assert_eq!(w.name().parse::<WriteRule>().unwrap(), w);
+        }
+        assert!("every-samples".parse::<WriteRule>().unwrap_err().contains("`every-sample`"));
         assert!("texel_ray".parse::<WriteValue>().unwrap_err().contains("`texel-ray`"));
         let e = "view-sample".parse::<CacheUpdate>().unwrap_err();
         assert!(e.contains("did you mean `view-samples`"), "{e}");

@@ -5,9 +5,8 @@
 //! cache initialised at once, one dispatch per step of all sweeps
 //! (`super::merged_steps`), then their colour accumulations summed.
 
-use super::breakdown::BreakdownStep;
 use super::cache_region::{plane_region, TexelRect};
-use super::cache_update::{CacheUpdate, CacheWrite, WriteValue};
+use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
 use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_FIRST_LIGHT};
 use super::line_group::{lavapipe_threads, line_group_size, median_pixels};
@@ -365,6 +364,8 @@ impl<'a> IpsviRenderer<'a> {
             (8, line_group),
             (9, (slots > 1) as u32),
             (10, (view_samples && settings.write_value == WriteValue::TexelRay) as u32),
+            (11, (view_samples && settings.write_rule == WriteRule::EverySample) as u32),
+            (12, (view_samples && settings.empty_runs_move_depth) as u32),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
@@ -709,12 +710,13 @@ fn block_params(
                 });
             }
             let count = out.len() - first_record;
-            if settings.breakdown_step != BreakdownStep::Full {
+            if !settings.breakdown_step.writes_history() {
                 // Nothing written: no texel or claim invocations either.
                 for r in &mut out[first_record..] {
                     r.region = [0; 4];
                 }
-            } else if claims {
+            }
+            if claims && settings.breakdown_step.claims() {
                 for r in first_record..first_record + count - 1 {
                     out[r].claim_count = out[r + 1].pixel_count;
                 }

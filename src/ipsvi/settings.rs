@@ -2,7 +2,7 @@
 //! read when the scene is read ([`crate::scene::settings_table`]).
 
 use super::breakdown::BreakdownStep;
-use super::cache_update::{CacheUpdate, CacheWrite, WriteValue};
+use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
 use super::sync_strategy::SyncStrategy;
 use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
 use serde::Deserialize;
@@ -42,6 +42,15 @@ pub struct IpsviSettings {
     /// on the texel's own ray (default) or the sample's own light (the paper's).
     #[serde(deserialize_with = "from_name")]
     pub write_value: WriteValue,
+    /// view-samples: which samples take part in the runs that write the cache,
+    /// those with non-zero opacity or every sample (the paper's).
+    #[serde(deserialize_with = "from_name")]
+    pub write_rule: WriteRule,
+    /// view-samples with texel-ray writes: a run whose samples were all empty
+    /// (only with `write_rule = "every-sample"`) stores its texel's light
+    /// unchanged at the new depth, without marching the texel's own ray there.
+    /// Cheaper; drops what medium that ray crosses over about one line.
+    pub empty_runs_move_depth: bool,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
@@ -102,6 +111,8 @@ impl Default for IpsviSettings {
             cache_update: CacheUpdate::ViewSamples,
             cache_write: CacheWrite::Farthest,
             write_value: WriteValue::TexelRay,
+            write_rule: WriteRule::NonEmpty,
+            empty_runs_move_depth: false,
             sync: SyncStrategy::BarrierGlobal,
             merge_sweeps: false,
             single_dispatch_baseline: false,
