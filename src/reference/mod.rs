@@ -11,6 +11,7 @@ pub mod ao_gpu;
 pub mod ao_unclustered;
 pub mod cpu;
 pub mod early_termination;
+pub mod filter_bound;
 pub mod gpu;
 pub mod lights;
 pub mod medium;
@@ -21,4 +22,5 @@ pub mod sources;
 pub mod validate;
 
 pub use cpu::{render_cpu, render_pixel_cpu, CpuRenderKind, CpuRenderer, EARLY_TERMINATION_TRANSMITTANCE};
+pub use filter_bound::{filter_bound_image, FilterBound};
 pub use validate::CpuRenderError;

@@ -56,6 +56,10 @@ pub struct Context {
     pub int64_atomics: bool,
     /// Reports on long waits for a submission ([`super::wait_report`]).
     wait_reporter: Mutex<Option<Arc<WaitReporter>>>,
+    /// Specialization constants every pipeline gets beside its own: those a
+    /// shared include declares (volume_fetch.glsl's filter), set by the layer
+    /// that owns them before it creates pipelines.
+    shared_specialization: Mutex<Vec<(u32, u32)>>,
 }
 
 struct Candidate {
@@ -296,6 +300,7 @@ impl Context {
             memory,
             int64_atomics,
             wait_reporter: Mutex::new(None),
+            shared_specialization: Mutex::new(Vec::new()),
         })
     }
 
@@ -307,6 +312,19 @@ impl Context {
 
     pub(super) fn wait_reporter(&self) -> Option<Arc<WaitReporter>> {
         self.wait_reporter.lock().unwrap_or_else(|p| p.into_inner()).clone()
+    }
+
+    /// Sets the shared specialization constant `id` to `value` for every
+    /// pipeline created from now on (a shader that does not declare it ignores it).
+    pub fn set_shared_specialization(&self, id: u32, value: u32) {
+        let mut shared = self.shared_specialization.lock().unwrap_or_else(|p| p.into_inner());
+        shared.retain(|(i, _)| *i != id);
+        shared.push((id, value));
+    }
+
+    /// The shared specialization constants, (constant_id, value).
+    pub fn shared_specialization(&self) -> Vec<(u32, u32)> {
+        self.shared_specialization.lock().unwrap_or_else(|p| p.into_inner()).clone()
     }
 
     /// Validation messages collected so far (empty when validation is off).
