@@ -8,6 +8,7 @@ use super::frame_params::{gpu_lights, GpuLight};
 use crate::scene::{Scene, TransferLut, VolumeFilter, VoxelData};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
+use crate::vk::limits::{Limit, Need};
 use crate::vk::resources::{ImageDesc, Sampler};
 use crate::vk::{Buffer, Context, Image, VkError};
 use ash::vk;
@@ -51,6 +52,15 @@ impl<'a> GpuScene<'a> {
                 v.dims
             )));
         }
+        let dims = v.dims.max_element() as u64;
+        let limits = crate::vk::limits::DeviceLimits::from_vk(&ctx.limits);
+        let need = Need::new(
+            Limit::ImageDimension3D,
+            dims,
+            format!("volume {} ({}x{}x{})", v.name, v.dims.x, v.dims.y, v.dims.z),
+            "the volume's size (resample it, or pick a smaller synthetic size)",
+        );
+        limits.check(&ctx.info.name, &[need]).map_err(VkError::from)?;
         let filter = effective_filter(scene)?;
         // Every pipeline created on this context from now on filters this way
         // (a context renders one uploaded scene at a time).

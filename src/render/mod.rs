@@ -3,6 +3,7 @@
 //! image-space geometry, the plain ray cast, and the [`RenderTechnique`] trait
 //! each technique implements in its own module. [`registry`] lists them.
 
+pub mod device_fit;
 pub mod error;
 pub mod frame_params;
 pub mod frame_result;

@@ -4,6 +4,7 @@
 use super::barriers::Barrier;
 use super::context::Context;
 use super::error::{VkError, VkResultExt};
+use super::limits::{Limit, LimitExceeded, Need};
 use super::pipeline::ComputePipeline;
 use super::resources::{color_layers, Buffer, Image};
 use super::wait_report::{wait_for_fence, WaitReport};
@@ -25,6 +26,9 @@ pub struct Recorder<'a> {
     /// Debug labels open now: a split closes them in the old command buffer and
     /// reopens them in the new one (labels do not span command buffers well).
     open_labels: Vec<String>,
+    /// The first dispatch over `maxComputeWorkGroupCount`: not recorded, and
+    /// the submission refused ([`Recorder::check_limits`]).
+    over_limit: Option<LimitExceeded>,
 }
 
 impl<'a> Recorder<'a> {
@@ -39,6 +43,7 @@ impl<'a> Recorder<'a> {
             pool,
             timeline: None,
             open_labels: Vec::new(),
+            over_limit: None,
         }
     }
 
@@ -108,6 +113,7 @@ impl<'a> Recorder<'a> {
         if self.pool == vk::CommandPool::null() {
             return Err(VkError::Presentation("a command buffer submitted by its caller cannot be split".into()));
         }
+        self.check_limits()?;
         let device = &self.ctx.device;
         let timeline = match self.timeline {
             Some(t) => t,
@@ -206,9 +212,38 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn dispatch(&mut self, x: u32, y: u32, z: u32) {
+        let counts = [x.max(1), y.max(1), z.max(1)];
+        let max = self.ctx.limits.max_compute_work_group_count;
+        if let Some(axis) = (0..3).find(|&a| counts[a] > max[a]) {
+            // Recording it would be invalid usage; the submission is refused instead.
+            if self.over_limit.is_none() {
+                let pass = self.open_labels.last().cloned().unwrap_or_else(|| "a dispatch".into());
+                self.over_limit = Some(LimitExceeded {
+                    device: self.ctx.info.name.clone(),
+                    need: Need::new(
+                        Limit::WorkGroupCount(axis),
+                        counts[axis] as u64,
+                        format!("pass {pass}"),
+                        "the image size (--size) or the technique's cache or slice sizes",
+                    ),
+                    available: max[axis] as u64,
+                });
+            }
+            return;
+        }
         // SAFETY: a compute pipeline and its descriptor set are bound by the caller.
-        unsafe { self.ctx.device.cmd_dispatch(self.cb, x.max(1), y.max(1), z.max(1)) };
+        unsafe { self.ctx.device.cmd_dispatch(self.cb, counts[0], counts[1], counts[2]) };
         self.dispatch_count += 1;
+    }
+
+    /// Err where a dispatch recorded so far was over a device limit: checked
+    /// before every submission, so nothing runs. A caller that submits the
+    /// command buffer itself ([`Recorder::for_command_buffer`]) calls it first.
+    pub fn check_limits(&self) -> Result<(), VkError> {
+        match &self.over_limit {
+            Some(e) => Err(VkError::Limit(e.clone())),
+            None => Ok(()),
+        }
     }
 
     pub fn copy_buffer_to_image(&self, src: &Buffer, dst: &Image) {
@@ -388,6 +423,7 @@ pub fn submit_and_wait_or<R, E: From<VkError>>(
     let result = record(&mut rec);
     guard.timeline = rec.timeline;
     let result = result?;
+    rec.check_limits()?;
     rec.end_label();
     // SAFETY: rec.cb is recording.
     unsafe { device.end_command_buffer(rec.cb) }.call("vkEndCommandBuffer")?;

@@ -134,7 +134,17 @@ fn create_instance(
     unsafe { entry.create_instance(&info, None) }.call("vkCreateInstance")
 }
 
-fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
+/// The queue flags a context needs: compute, and graphics too for a window
+/// (the viewer blits and draws its panel on the same queue).
+fn queue_needs(window: bool) -> vk::QueueFlags {
+    if window {
+        vk::QueueFlags::COMPUTE | vk::QueueFlags::GRAPHICS
+    } else {
+        vk::QueueFlags::COMPUTE
+    }
+}
+
+fn candidates(instance: &ash::Instance, window: bool) -> Result<Vec<Candidate>, VkError> {
     // SAFETY: instance is valid; enumeration has no other preconditions.
     let physical = unsafe { instance.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
     let mut out = Vec::new();
@@ -146,8 +156,7 @@ fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
         let props = props2.properties;
         // SAFETY: pd comes from this instance.
         let families = unsafe { instance.get_physical_device_queue_family_properties(pd) };
-        let queue_family =
-            families.iter().position(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE)).map(|i| i as u32);
+        let queue_family = families.iter().position(|f| f.queue_flags.contains(queue_needs(window))).map(|i| i as u32);
         let valid_bits = queue_family.map(|q| families[q as usize].timestamp_valid_bits).unwrap_or(0);
         let info = DeviceInfo {
             index,
@@ -181,7 +190,7 @@ fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
 pub fn list_devices() -> Result<Vec<DeviceInfo>, VkError> {
     let entry = load_entry()?;
     let instance = create_instance(&entry, false, false, &[])?;
-    let result = candidates(&instance).map(|c| c.into_iter().map(|c| c.info).collect());
+    let result = candidates(&instance, false).map(|c| c.into_iter().map(|c| c.info).collect());
     // SAFETY: no object created from this instance survives.
     unsafe { instance.destroy_instance(None) };
     result
@@ -245,7 +254,8 @@ impl Context {
             msg
         };
 
-        let all = candidates(&instance).map_err(cleanup_instance)?;
+        let window = !surface_extensions.is_empty();
+        let all = candidates(&instance, window).map_err(cleanup_instance)?;
         let chosen = match choose(&all, options.device.as_deref()) {
             Ok(c) => c,
             Err(e) => return Err(cleanup_instance(e)),
@@ -256,7 +266,7 @@ impl Context {
             None => {
                 return Err(cleanup_instance(VkError::MissingFeature {
                     device: cand.info.name.clone(),
-                    missing: "a compute queue".into(),
+                    missing: if window { "a queue with graphics and compute" } else { "a compute queue" }.into(),
                 }))
             }
         };

@@ -10,6 +10,7 @@ pub mod device_info;
 pub mod error;
 pub mod events;
 pub mod interface;
+pub mod limits;
 pub mod memory;
 pub mod pipeline;
 pub mod profiler;

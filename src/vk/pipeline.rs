@@ -5,6 +5,7 @@ use super::context::Context;
 use super::descriptors::{DescriptorAllocator, Resource};
 use super::error::{VkError, VkResultExt};
 use super::interface::{Binding, ShaderInterface};
+use super::limits::{Limit, LimitExceeded, Need};
 use ash::vk;
 use std::io::Cursor;
 use std::sync::Arc;
@@ -51,6 +52,19 @@ impl ComputePipeline {
     fn create(ctx: &Context, desc: &ComputePipelineDesc, spirv: &[u8]) -> Result<ComputePipeline, VkError> {
         let device = &ctx.device;
         let shader = desc.shader;
+        if shader.push_constant_bytes > ctx.limits.max_push_constants_size {
+            let need = Need::new(
+                Limit::PushConstants,
+                shader.push_constant_bytes as u64,
+                format!("shader {}", shader.name),
+                "none (the shader's push-constant block)",
+            );
+            return Err(VkError::Limit(LimitExceeded {
+                device: ctx.info.name.clone(),
+                need,
+                available: ctx.limits.max_push_constants_size as u64,
+            }));
+        }
         let words = ash::util::read_spv(&mut Cursor::new(spirv))
             .map_err(|_| VkError::Call { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
         let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
