@@ -99,8 +99,7 @@ fn dispatches_over_the_work_group_count_are_refused_before_submission() {
         rec.end_label();
         Ok(())
     })
-    .err()
-    .expect("over the limit")
+    .expect_err("over the limit")
     .to_string();
     assert!(e.contains("maxComputeWorkGroupCount[0] = 5") && e.contains("has 4") && e.contains("wide pass"), "{e}");
     let s = scene(three_spheres(16));
