@@ -10,6 +10,7 @@ use super::resources::{color_layers, Buffer, Image};
 use super::wait_report::{wait_for_fence, WaitReport};
 use ash::vk;
 use bytemuck::Pod;
+use std::cell::Cell;
 use std::ffi::CString;
 use std::time::Duration;
 
@@ -29,6 +30,11 @@ pub struct Recorder<'a> {
     /// The first dispatch over `maxComputeWorkGroupCount`: not recorded, and
     /// the submission refused ([`Recorder::check_limits`]).
     over_limit: Option<LimitExceeded>,
+    /// Transfer commands (copies, clears, fills) and executed secondaries so
+    /// far, and whether the last command was one: the profiler writes a scope's
+    /// timestamps at the compute stage only around compute work.
+    transfers: Cell<u32>,
+    last_was_transfer: Cell<bool>,
 }
 
 impl<'a> Recorder<'a> {
@@ -44,6 +50,8 @@ impl<'a> Recorder<'a> {
             timeline: None,
             open_labels: Vec::new(),
             over_limit: None,
+            transfers: Cell::new(0),
+            last_was_transfer: Cell::new(false),
         }
     }
 
@@ -143,6 +151,7 @@ impl<'a> Recorder<'a> {
     /// Executes secondary command buffer `index` of `secondary` (recorded once,
     /// replayed every frame).
     pub fn execute(&mut self, secondary: &SecondaryCommands, index: usize) {
+        self.note_transfer();
         // SAFETY: the secondary was recorded for this device and is executable; it
         // is not in use by another submission (every frame waits on its fence).
         unsafe { self.ctx.device.cmd_execute_commands(self.cb, &[secondary.buffers[index]]) };
@@ -234,6 +243,25 @@ impl<'a> Recorder<'a> {
         // SAFETY: a compute pipeline and its descriptor set are bound by the caller.
         unsafe { self.ctx.device.cmd_dispatch(self.cb, counts[0], counts[1], counts[2]) };
         self.dispatch_count += 1;
+        self.last_was_transfer.set(false);
+    }
+
+    /// Counts a command that is not a dispatch (a copy, clear, fill or executed
+    /// secondary); callers that record such commands on `cb` themselves call it
+    /// so that profiler scopes around them wait for them.
+    pub fn note_transfer(&self) {
+        self.transfers.set(self.transfers.get() + 1);
+        self.last_was_transfer.set(true);
+    }
+
+    /// Transfer commands recorded so far ([`Recorder::note_transfer`]).
+    pub fn transfers(&self) -> u32 {
+        self.transfers.get()
+    }
+
+    /// Whether the last command recorded was a transfer rather than a dispatch.
+    pub fn last_was_transfer(&self) -> bool {
+        self.last_was_transfer.get()
     }
 
     /// Err where a dispatch recorded so far was over a device limit: checked
@@ -247,6 +275,7 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn copy_buffer_to_image(&self, src: &Buffer, dst: &Image) {
+        self.note_transfer();
         let region = [vk::BufferImageCopy::default().image_subresource(color_layers()).image_extent(dst.extent())];
         // SAFETY: dst is in TRANSFER_DST_OPTIMAL (the caller's barrier) and src holds
         // at least extent * texel size bytes.
@@ -262,6 +291,7 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn copy_image_to_buffer(&self, src: &Image, layout: vk::ImageLayout, dst: &Buffer) {
+        self.note_transfer();
         let region = [vk::BufferImageCopy::default().image_subresource(color_layers()).image_extent(src.extent())];
         // SAFETY: src is in `layout` (GENERAL or TRANSFER_SRC) and dst is large enough.
         unsafe { self.ctx.device.cmd_copy_image_to_buffer(self.cb, src.raw, layout, dst.raw, &region) };
@@ -371,6 +401,7 @@ impl<'a> Recorder<'a> {
 
     /// Clears a colour image that is in TRANSFER_DST_OPTIMAL.
     pub fn clear_color_image(&self, image: &Image, rgba: [f32; 4]) {
+        self.note_transfer();
         let value = vk::ClearColorValue { float32: rgba };
         let range = [super::resources::color_range()];
         // SAFETY: the image is in TRANSFER_DST_OPTIMAL (the caller's barrier) and
@@ -387,6 +418,7 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn fill_buffer(&self, dst: &Buffer, value: u32) {
+        self.note_transfer();
         // SAFETY: dst was created with TRANSFER_DST usage.
         unsafe { self.ctx.device.cmd_fill_buffer(self.cb, dst.raw, 0, vk::WHOLE_SIZE, value) };
     }

@@ -2,6 +2,7 @@
 
 use super::device_info::{self, DeviceInfo};
 use super::error::{VkError, VkResultExt};
+use super::calibration::{self, Calibrator};
 use super::memory::GpuMemory;
 use super::validation::{self, ValidationLog};
 use super::wait_report::WaitReporter;
@@ -60,6 +61,9 @@ pub struct Context {
     /// shared include declares (volume_fetch.glsl's filter), set by the layer
     /// that owns them before it creates pipelines.
     shared_specialization: Mutex<Vec<(u32, u32)>>,
+    /// Device and host clocks read together, where the device can
+    /// ([`super::calibration`]).
+    pub calibrator: Option<Arc<Calibrator>>,
 }
 
 struct Candidate {
@@ -277,7 +281,7 @@ impl Context {
             }));
         }
         let swapchain = !surface_extensions.is_empty();
-        let (device, int64_atomics) = match create_device(&instance, cand, queue_family, swapchain) {
+        let (device, int64_atomics, calibration_ext) = match create_device(&entry, &instance, cand, queue_family, swapchain) {
             Ok(d) => d,
             Err(e) => return Err(cleanup_instance(e)),
         };
@@ -294,6 +298,7 @@ impl Context {
             }
         };
         let debug_utils = debug_instance.as_ref().map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
+        let calibrator = calibration_ext.map(|name| Arc::new(Calibrator::new(&instance, &device, name)));
         Ok(Context {
             entry,
             instance,
@@ -311,6 +316,7 @@ impl Context {
             int64_atomics,
             wait_reporter: Mutex::new(None),
             shared_specialization: Mutex::new(Vec::new()),
+            calibrator,
         })
     }
 
@@ -408,11 +414,12 @@ fn choose(all: &[Candidate], wanted: Option<&str>) -> Result<usize, VkError> {
 }
 
 fn create_device(
+    entry: &ash::Entry,
     instance: &ash::Instance,
     cand: &Candidate,
     queue_family: u32,
     swapchain: bool,
-) -> Result<(ash::Device, bool), VkError> {
+) -> Result<(ash::Device, bool, Option<&'static CStr>), VkError> {
     let mut have12 = vk::PhysicalDeviceVulkan12Features::default();
     let mut have13 = vk::PhysicalDeviceVulkan13Features::default();
     let mut have = vk::PhysicalDeviceFeatures2::default().push_next(&mut have12).push_next(&mut have13);
@@ -449,7 +456,13 @@ fn create_device(
     if !missing.is_empty() {
         return Err(VkError::MissingFeature { device: cand.info.name.clone(), missing: missing.join(", ") });
     }
-    let extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
+    let mut extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
+    // Calibrated timestamps put GPU scopes on the host's timeline (the trace).
+    let calibration_ext =
+        calibration::extension_to_enable(entry, instance, cand.physical_device, &device_extensions);
+    if let Some(name) = calibration_ext {
+        extensions.push(name.as_ptr());
+    }
     // 64-bit atomicMax of IPSVI's deterministic cache writes: enabled where the
     // device has it; IPSVI refuses to render without it (`Context::int64_atomics`).
     let int64_atomics = int64 == vk::TRUE && have12.shader_buffer_int64_atomics == vk::TRUE;
@@ -471,7 +484,7 @@ fn create_device(
         .push_next(&mut want13);
     // SAFETY: all pointers in `info` refer to locals that outlive the call.
     let device = unsafe { instance.create_device(cand.physical_device, &info, None) }.call("vkCreateDevice")?;
-    Ok((device, int64_atomics))
+    Ok((device, int64_atomics, calibration_ext))
 }
 
 impl Drop for Context {

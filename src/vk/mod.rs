@@ -3,6 +3,7 @@
 //! [`barriers`], and every pass gets a debug label and a profiler scope of one name.
 
 pub mod barriers;
+pub mod calibration;
 pub mod commands;
 pub mod context;
 pub mod descriptors;
