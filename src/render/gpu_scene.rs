@@ -100,7 +100,7 @@ impl<'a> GpuScene<'a> {
                 "volume_upload_write_to_shader_read",
                 &volume,
                 Access::TRANSFER_WRITE,
-                Access::COMPUTE_READ,
+                Access::COMPUTE_SAMPLED_READ,
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
             ));

@@ -22,7 +22,19 @@ pub struct ContextOptions {
     pub device: Option<String>,
     /// Khronos validation with synchronization validation, messages collected.
     pub validate: bool,
+    /// With `validate`: best-practices checks too (`--validate=best-practices`,
+    /// `SWEEPLAB_VALIDATE=best-practices`); the NVIDIA and AMD vendor checks
+    /// come from [`BEST_PRACTICES_LAYER_ENABLES`], which the process sets.
+    pub best_practices: bool,
 }
+
+/// `VK_LAYER_ENABLES` for best-practices runs: the layer's best practices with
+/// the NVIDIA and AMD vendor checks, and synchronization validation. Layers
+/// before VK_EXT_layer_settings (1.3.239 here) take vendor checks this way
+/// only; the binary sets it before creating the instance.
+pub const BEST_PRACTICES_LAYER_ENABLES: &str = "VK_VALIDATION_FEATURE_ENABLE_BEST_PRACTICES_EXT:\
+VALIDATION_CHECK_ENABLE_VENDOR_SPECIFIC_NVIDIA:VALIDATION_CHECK_ENABLE_VENDOR_SPECIFIC_AMD:\
+VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT";
 
 impl ContextOptions {
     /// Options with the environment overrides applied where the caller gave none.
@@ -31,8 +43,9 @@ impl ContextOptions {
             self.device = std::env::var(DEVICE_ENV).ok().filter(|s| !s.trim().is_empty());
         }
         if !self.validate {
-            self.validate =
-                std::env::var(VALIDATE_ENV).map(|v| v == "1" || v.eq_ignore_ascii_case("true")).unwrap_or(false);
+            let env = std::env::var(VALIDATE_ENV).unwrap_or_default();
+            self.best_practices |= env.eq_ignore_ascii_case("best-practices");
+            self.validate = env == "1" || env.eq_ignore_ascii_case("true") || self.best_practices;
         }
         self
     }
@@ -95,6 +108,7 @@ fn has_instance_extension(entry: &ash::Entry, layer: Option<&CStr>, name: &CStr)
 fn create_instance(
     entry: &ash::Entry,
     validate: bool,
+    best_practices: bool,
     debug_utils: bool,
     surface_extensions: &[&CStr],
 ) -> Result<ash::Instance, VkError> {
@@ -125,8 +139,10 @@ fn create_instance(
             validation_features_ext = true;
         }
     }
-    let enables = [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION];
-    let mut features = vk::ValidationFeaturesEXT::default().enabled_validation_features(&enables);
+    let sync_and_best_practices =
+        [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION, vk::ValidationFeatureEnableEXT::BEST_PRACTICES];
+    let enables = if best_practices { &sync_and_best_practices[..] } else { &sync_and_best_practices[..1] };
+    let mut features = vk::ValidationFeaturesEXT::default().enabled_validation_features(enables);
     let mut info = vk::InstanceCreateInfo::default()
         .application_info(&app)
         .enabled_layer_names(&layers)
@@ -193,7 +209,7 @@ fn candidates(instance: &ash::Instance, window: bool) -> Result<Vec<Candidate>, 
 /// Lists the Vulkan devices without creating one.
 pub fn list_devices() -> Result<Vec<DeviceInfo>, VkError> {
     let entry = load_entry()?;
-    let instance = create_instance(&entry, false, false, &[])?;
+    let instance = create_instance(&entry, false, false, false, &[])?;
     let result = candidates(&instance, false).map(|c| c.into_iter().map(|c| c.info).collect());
     // SAFETY: no object created from this instance survives.
     unsafe { instance.destroy_instance(None) };
@@ -218,7 +234,8 @@ impl Context {
     fn create(options: &ContextOptions, surface_extensions: &[&CStr]) -> Result<Context, VkError> {
         let entry = load_entry()?;
         let debug_utils_ext = has_instance_extension(&entry, None, ash::ext::debug_utils::NAME)? || options.validate;
-        let instance = create_instance(&entry, options.validate, debug_utils_ext, surface_extensions)?;
+        let instance =
+            create_instance(&entry, options.validate, options.best_practices, debug_utils_ext, surface_extensions)?;
 
         let (debug_instance, messenger, validation) = if debug_utils_ext {
             let di = ash::ext::debug_utils::Instance::new(&entry, &instance);
