@@ -1,12 +1,12 @@
 //! A Vulkan context for one command, and the validation verdict at its end.
 
 use super::args::GpuArgs;
+use super::args::ValidateMode;
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Duration;
 use sweeplab::bench::{Harness, RunInfo};
 use sweeplab::render::VolumeTexels;
-use super::args::ValidateMode;
 use sweeplab::vk::context::BEST_PRACTICES_LAYER_ENABLES;
 use sweeplab::vk::{Context, ContextOptions, WaitReport, WaitReporter};
 

@@ -1,8 +1,8 @@
 //! Instance, device selection, validation and the one compute queue.
 
+use super::calibration::{self, Calibrator};
 use super::device_info::{self, DeviceInfo};
 use super::error::{VkError, VkResultExt};
-use super::calibration::{self, Calibrator};
 use super::memory::GpuMemory;
 use super::validation::{self, ValidationLog};
 use super::wait_report::WaitReporter;
@@ -298,10 +298,11 @@ impl Context {
             }));
         }
         let swapchain = !surface_extensions.is_empty();
-        let (device, int64_atomics, calibration_ext) = match create_device(&entry, &instance, cand, queue_family, swapchain) {
-            Ok(d) => d,
-            Err(e) => return Err(cleanup_instance(e)),
-        };
+        let (device, int64_atomics, calibration_ext) =
+            match create_device(&entry, &instance, cand, queue_family, swapchain) {
+                Ok(d) => d,
+                Err(e) => return Err(cleanup_instance(e)),
+            };
         // SAFETY: the family was requested with one queue at creation.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
         // SAFETY: limits are plain data of a valid physical device.
@@ -475,8 +476,7 @@ fn create_device(
     }
     let mut extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
     // Calibrated timestamps put GPU scopes on the host's timeline (the trace).
-    let calibration_ext =
-        calibration::extension_to_enable(entry, instance, cand.physical_device, &device_extensions);
+    let calibration_ext = calibration::extension_to_enable(entry, instance, cand.physical_device, &device_extensions);
     if let Some(name) = calibration_ext {
         extensions.push(name.as_ptr());
     }

@@ -3,9 +3,9 @@
 //! the same words. Where the queue has no timestamps, labels are still written and
 //! the report says timestamps are unsupported instead of printing zeros.
 
+use super::calibration::Calibrator;
 use super::commands::Recorder;
 use super::context::Context;
-use super::calibration::Calibrator;
 use super::error::{VkError, VkResultExt};
 use ash::vk;
 use serde::Serialize;

@@ -10,8 +10,12 @@ use sweeplab::vk::{Context, ContextOptions};
 
 /// A context with validation and synchronization validation on.
 pub fn validated_context() -> Context {
-    Context::new(&ContextOptions { device: std::env::var("SWEEPLAB_DEVICE").ok(), validate: true, best_practices: false })
-        .expect("Vulkan context with validation")
+    Context::new(&ContextOptions {
+        device: std::env::var("SWEEPLAB_DEVICE").ok(),
+        validate: true,
+        best_practices: false,
+    })
+    .expect("Vulkan context with validation")
 }
 
 /// Fails the test with every message the validation layer reported.
