@@ -26,7 +26,7 @@ layout(std140, set = 0, binding = 0) uniform AoReferenceParams {
     uint steps;          // samples per ray
     float inv_pairs;     // 1 / direction pairs: the mean over a hemisphere's directions
 } params;
-layout(set = 0, binding = 1) uniform sampler3D volume_tex;
+#include "volume_fetch.glsl"
 // Unit directions (xyz; w unused), one per pair.
 layout(std430, set = 0, binding = 3) readonly buffer Directions { vec4 directions[]; };
 // Per voxel v: sums[2 v] forward, sums[2 v + 1] backward, (E rgb, O).
@@ -55,7 +55,7 @@ vec4 ray(vec3 x, vec3 w) {
         vec3 uvw = (x + step * t + 0.5) / vec3(params.dims.xyz);
         // Outside the volume is empty, as for the histograms.
         if (any(lessThan(uvw, vec3(0.0))) || any(greaterThan(uvw, vec3(1.0)))) break;
-        vec4 m = transfer_lut(textureLod(volume_tex, uvw, 0.0).r, params.lut_size);
+        vec4 m = transfer_lut(volume_at_uvw(uvw), params.lut_size);
         float alpha = 1.0 - exp(-m.a * h);
         c += T * alpha * m.rgb;
         T *= 1.0 - alpha;

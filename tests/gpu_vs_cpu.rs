@@ -1,16 +1,21 @@
 //! The GPU renderers against the CPU f64 renderers on the same discretization
-//! (docs/optical-model.md): differences are float rounding only, so the
-//! tolerances are tight. All runs with validation and synchronization validation.
+//! (docs/optical-model.md), in both volume filters (docs/filtering.md): with
+//! exact filtering differences are float rounding only, so the tolerances are
+//! tight; with 8-bit sub-texel weights (what NVIDIA, AMD and Intel filter
+//! with) the error model's bound (`FilterErrorModel`) is added to them. All
+//! runs with validation and synchronization validation.
 mod common;
 
 use common::*;
 use glam::Vec3;
+use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
+use sweeplab::reference::filter_bound_image;
 use sweeplab::reference::gpu::plan_for;
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::{noise, slab_under_sphere, three_spheres};
-use sweeplab::scene::{Falloff, Light, LightKind, OpticalModel, Scene};
+use sweeplab::scene::{Falloff, Light, LightKind, OpticalModel, Scene, VolumeFilter};
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
@@ -46,21 +51,72 @@ fn noise_scene(n: u32, size: u32) -> Scene {
 }
 
 /// Relative to the brightest reference value: float rounding of a few hundred
-/// compositing steps and hardware texture filtering, nothing else.
+/// compositing steps and exact hardware texture filtering, nothing else.
 const TIGHT: f64 = 2e-3;
+
+/// `scene` with `filter`.
+fn filtered(scene: &Scene, filter: VolumeFilter) -> Scene {
+    let mut scene = scene.clone();
+    scene.render.filter = filter;
+    scene
+}
+
+/// Checks `gpu` against `cpu` pixel by pixel: within `tight` plus the error
+/// model's bound for 8-bit weights at that pixel (zero with exact filtering),
+/// and the RMSE within `rmse` plus the bound's RMS.
+fn assert_within_model(
+    scene: &Scene,
+    kind: CpuRenderKind,
+    gpu: &LinearImage,
+    cpu: &LinearImage,
+    tight: f64,
+    rmse: f64,
+) {
+    let (w, h) = (scene.render.width, scene.render.height);
+    let bound = filter_bound_image(scene, kind, scene.render.filter, w, h).unwrap();
+    let mut worst = 0.0f64;
+    let mut squares = 0.0;
+    let mut bound_squares = 0.0;
+    for ((g, c), b) in gpu.pixels.iter().zip(&cpu.pixels).zip(&bound.pixels) {
+        for ch in 0..3 {
+            let d = (g[ch] as f64 - c[ch] as f64).abs();
+            worst = worst.max(d - b[ch] as f64);
+            squares += d * d;
+            bound_squares += (b[ch] as f64).powi(2);
+        }
+    }
+    let n = (gpu.pixels.len() * 3) as f64;
+    let (measured, allowed) = ((squares / n).sqrt(), rmse + (bound_squares / n).sqrt());
+    println!(
+        "{} {:?}: largest excess over the model {worst:.3e} (allowed {tight:.3e}), rmse {measured:.3e} (allowed {allowed:.3e}), largest bound {:.3e}",
+        scene.volume.name,
+        scene.render.filter,
+        bound.max_value()
+    );
+    assert!(
+        worst <= tight,
+        "{} {:?}: a pixel is {worst:.3e} past the model's bound plus {tight:.3e}",
+        scene.volume.name,
+        scene.render.filter
+    );
+    assert!(
+        measured <= allowed,
+        "{} {:?}: rmse {measured:.3e} above {allowed:.3e}",
+        scene.volume.name,
+        scene.render.filter
+    );
+}
 
 #[test]
 fn gpu_dvr_matches_cpu_f64_dvr_at_64x64() {
     for scene in [spheres_scene(48, 64), noise_scene(32, 64)] {
-        let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Dvr, CpuRenderKind::Dvr);
-        let stats = compare(&gpu, &cpu).unwrap();
-        let peak = cpu.max_value() as f64;
-        assert!(peak > 0.1, "the test image must show something ({peak})");
-        assert!(
-            stats.max_abs <= TIGHT * peak && stats.rmse <= 1e-4 * peak,
-            "{}: {stats:?} peak {peak}",
-            scene.volume.name
-        );
+        for filter in VolumeFilter::ALL {
+            let scene = filtered(&scene, filter);
+            let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Dvr, CpuRenderKind::Dvr);
+            let peak = cpu.max_value() as f64;
+            assert!(peak > 0.1, "the test image must show something ({peak})");
+            assert_within_model(&scene, CpuRenderKind::Dvr, &gpu, &cpu, TIGHT * peak, 1e-4 * peak);
+        }
     }
 }
 
@@ -100,11 +156,14 @@ fn gpu_reference_matches_cpu_reference_for_every_light_type_and_both_models() {
                 falloff: Falloff::None,
             },
         ];
-        let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Reference, CpuRenderKind::Reference(model));
-        let stats = compare(&gpu, &cpu).unwrap();
-        let peak = cpu.max_value() as f64;
-        assert!(peak > 0.05, "{model:?}: empty image");
-        assert!(stats.max_abs <= TIGHT * peak && stats.rmse <= 2e-4 * peak, "{model:?}: {stats:?} peak {peak}");
+        for filter in VolumeFilter::ALL {
+            let scene = filtered(&scene, filter);
+            let kind = CpuRenderKind::Reference(model);
+            let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Reference, kind);
+            let peak = cpu.max_value() as f64;
+            assert!(peak > 0.05, "{model:?}: empty image");
+            assert_within_model(&scene, kind, &gpu, &cpu, TIGHT * peak, 2e-4 * peak);
+        }
     }
 }
 
@@ -123,6 +182,12 @@ fn gpu_chromatic_reference_matches_cpu_chromatic_reference() {
     });
     scene.reference.chromatic = true;
     let kind = CpuRenderKind::Reference(OpticalModel::SingleScattering);
+    // 8-bit weights here; the exact filter below, with its tight tolerance.
+    {
+        let scene = filtered(&scene, VolumeFilter::Gpu8Bit);
+        let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Reference, kind);
+        assert_within_model(&scene, kind, &gpu, &cpu, TIGHT * cpu.max_value() as f64, 2e-4 * cpu.max_value() as f64);
+    }
     let (gpu, cpu) = gpu_and_cpu(&scene, Technique::Reference, kind);
     let stats = compare(&gpu, &cpu).unwrap();
     let peak = cpu.max_value() as f64;
@@ -164,4 +229,26 @@ fn gpu_reference_agrees_where_one_invocation_would_pass_the_loop_cap() {
     let stats = compare(&gpu, &cpu).unwrap();
     let peak = cpu.max_value() as f64;
     assert!(stats.max_abs <= TIGHT * peak, "{stats:?} peak {peak}");
+}
+
+/// The switch is load-bearing: `render.filter = "gpu-8bit"` moves the GPU
+/// image by far more than float rounding (the exact filter's distance to the
+/// CPU), yet within the error model's bound at every pixel.
+#[test]
+fn gpu_8bit_filter_changes_the_image_within_the_model() {
+    let exact = spheres_scene(48, 48);
+    let coarse = filtered(&exact, VolumeFilter::Gpu8Bit);
+    let (exact_gpu, cpu) = gpu_and_cpu(&exact, Technique::Dvr, CpuRenderKind::Dvr);
+    let (coarse_gpu, _) = gpu_and_cpu(&coarse, Technique::Dvr, CpuRenderKind::Dvr);
+    let rounding = compare(&exact_gpu, &cpu).unwrap().max_abs;
+    let moved = compare(&coarse_gpu, &exact_gpu).unwrap().max_abs;
+    println!("8-bit weights move the image by {moved:.3e}; exact filtering is {rounding:.3e} from the CPU");
+    assert!(
+        moved > 20.0 * rounding && moved > 1e-4,
+        "the filter switch changes nothing: {moved:.3e} against {rounding:.3e}"
+    );
+    let bound = filter_bound_image(&coarse, CpuRenderKind::Dvr, VolumeFilter::Gpu8Bit, 48, 48).unwrap();
+    for ((c, e), b) in coarse_gpu.pixels.iter().zip(&exact_gpu.pixels).zip(&bound.pixels) {
+        assert!((c[0] - e[0]).abs() <= b[0] + 2.0 * rounding as f32, "{c:?} {e:?} bound {b:?}");
+    }
 }

@@ -54,7 +54,12 @@ fn cpu_ms_per_update(ctx: &Context, scene: &sweeplab::scene::Scene, lights: &[Li
 fn cpu_time_per_added_light_coherent_and_sequential() {
     let path = data_dir().join("engine.vti");
     let scene = scene_for_volume_file(&path, &[]).unwrap();
-    let ctx = Context::new(&ContextOptions { device: std::env::var("SWEEPLAB_DEVICE").ok(), validate: false }).unwrap();
+    let ctx = Context::new(&ContextOptions {
+        device: std::env::var("SWEEPLAB_DEVICE").ok(),
+        validate: false,
+        best_practices: false,
+    })
+    .unwrap();
     let mut slopes = Vec::new();
     // LV_COST_COHERENT_ONLY=1: the coherent slope alone (quicker, for comparing builds).
     let modes: &[bool] = if std::env::var("LV_COST_COHERENT_ONLY").is_ok() { &[true] } else { &[true, false] };

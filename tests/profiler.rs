@@ -86,3 +86,28 @@ fn capacity_overflow_is_an_error_not_a_panic() {
     });
     assert!(overflow.is_err());
 }
+
+/// Calibrated timestamps (lavapipe has VK_EXT_calibrated_timestamps) put the
+/// frame on the host's CLOCK_MONOTONIC: its scopes lie between the host time
+/// read before recording and after resolving, and the trace uses that clock.
+#[test]
+fn calibrated_timestamps_put_gpu_scopes_on_the_host_timeline() {
+    use sweeplab::vk::calibration::host_monotonic_ns;
+    let ctx = validated_context();
+    assert!(ctx.calibrator.is_some(), "lavapipe has calibrated timestamps");
+    let scene = chunked_scene();
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 1024).unwrap();
+    let before = host_monotonic_ns() as f64;
+    let out = render(&gpu, Technique::Reference, 16, 16, &mut profiler).unwrap();
+    let after = host_monotonic_ns() as f64;
+    let origin = out.profile.host_origin_ns.expect("a host origin from the calibration");
+    let last_end = out.profile.scopes.iter().map(|s| origin + s.start_ns + s.duration_ns).fold(0.0, f64::max);
+    // A microsecond of slack for the calibration's own deviation.
+    assert!(origin >= before - 1e3 && last_end <= after + 1e3, "{before} <= {origin} .. {last_end} <= {after}");
+    let trace = out.profile.chrome_trace();
+    assert_eq!(trace["otherData"]["clock"], "CLOCK_MONOTONIC");
+    let ts = trace["traceEvents"][0]["ts"].as_f64().unwrap();
+    assert!((ts * 1e3 - origin).abs() < 1e3, "trace ts {ts} us against origin {origin} ns");
+    assert_validation_clean(&ctx);
+}

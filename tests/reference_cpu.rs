@@ -67,6 +67,7 @@ fn tiny_scene(volume: Volume, transfer: TransferFunction, lights: Vec<Light>) ->
             emission: 0.0,
             // Closed forms are written for midpoint samples.
             jitter: false,
+            filter: VolumeFilter::Exact,
         },
         reference: ReferenceSettings {
             model: OpticalModel::SingleScattering,

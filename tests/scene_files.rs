@@ -617,6 +617,8 @@ fn technique_values_out_of_range_name_key_value_and_range() {
     assert_mentions(&e, &["cache_update", "did you mean `view-samples`"]);
     let e = error_of(&format!("{MINIMAL}[ipsvi]\ncache_write = \"farest\"\n"), &[]);
     assert_mentions(&e, &["cache_write", "did you mean `farthest`"]);
+    let e = error_of(&format!("{MINIMAL}[render]\nfilter = \"gpu-8-bit\"\n"), &[]);
+    assert_mentions(&e, &["render.filter", "did you mean `gpu-8bit`"]);
     let e = error_of(&format!("{MINIMAL}[ipsvi]\nalbedo = 0.5\n"), &[]);
     assert_mentions(&e, &["ipsvi.albedo = 0.5 needs ipsvi.cache_update = \"light-rays\""]);
     // Wrong types and unknown names name the key too.

@@ -290,6 +290,15 @@ pub struct DevicesArgs {
     pub json: bool,
 }
 
+/// What `--validate` checks.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ValidateMode {
+    /// Validation and synchronization validation.
+    Sync,
+    /// Also best practices, with the NVIDIA and AMD vendor checks.
+    BestPractices,
+}
+
 /// Options every GPU command shares.
 #[derive(Args, Debug, Clone)]
 pub struct GpuArgs {
@@ -297,9 +306,11 @@ pub struct GpuArgs {
     #[arg(long)]
     pub device: Option<String>,
     /// Khronos validation with synchronization validation; any message fails the
-    /// run (also SWEEPLAB_VALIDATE=1).
-    #[arg(long)]
-    pub validate: bool,
+    /// run (also SWEEPLAB_VALIDATE=1). `--validate=best-practices` adds the
+    /// best-practices checks with NVIDIA and AMD vendor checks, counted per
+    /// message id (also SWEEPLAB_VALIDATE=best-practices).
+    #[arg(long, num_args = 0..=1, require_equals = true, default_missing_value = "sync", value_enum)]
+    pub validate: Option<ValidateMode>,
     /// Store the volume as r32 float (exact trilinear filtering on lavapipe,
     /// which filters 8-bit volumes with 8-bit weights).
     #[arg(long)]

@@ -1,18 +1,35 @@
 //! A Vulkan context for one command, and the validation verdict at its end.
 
 use super::args::GpuArgs;
+use super::args::ValidateMode;
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Duration;
 use sweeplab::bench::{Harness, RunInfo};
 use sweeplab::render::VolumeTexels;
+use sweeplab::vk::context::BEST_PRACTICES_LAYER_ENABLES;
 use sweeplab::vk::{Context, ContextOptions, WaitReport, WaitReporter};
 
 pub fn open(gpu: &GpuArgs) -> anyhow::Result<Context> {
-    let options = ContextOptions { device: gpu.device.clone(), validate: gpu.validate }.with_env();
+    let options = context_options(gpu);
+    if options.best_practices && std::env::var_os("VK_LAYER_ENABLES").is_none() {
+        // Before any Vulkan call and before this process starts threads that read
+        // the environment: the layer's vendor checks are enabled this way only.
+        std::env::set_var("VK_LAYER_ENABLES", BEST_PRACTICES_LAYER_ENABLES);
+    }
     let ctx = Context::new(&options).context("cannot start Vulkan")?;
     eprintln!("{}", ctx.summary());
     Ok(ctx)
+}
+
+/// The context options of `--device` and `--validate`, environment applied.
+pub fn context_options(gpu: &GpuArgs) -> ContextOptions {
+    ContextOptions {
+        device: gpu.device.clone(),
+        validate: gpu.validate.is_some(),
+        best_practices: gpu.validate == Some(ValidateMode::BestPractices),
+    }
+    .with_env()
 }
 
 /// A submission that runs longer than this prints that it is still running.
@@ -56,7 +73,24 @@ pub fn finish(ctx: &Context) -> ExitCode {
     for m in &messages {
         eprintln!("{m}");
     }
-    ExitCode::from(2)
+    // Best-practices advice is counted, not failed; anything else fails the run.
+    let (advice, other): (Vec<&String>, Vec<&String>) = messages.iter().partition(|m| m.contains("BestPractices"));
+    if !advice.is_empty() {
+        let mut ids: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
+        for m in &advice {
+            let id = m.split("[ ").nth(1).and_then(|r| r.split(' ').next()).unwrap_or("?");
+            *ids.entry(id).or_default() += 1;
+        }
+        eprintln!("best practices: {} message(s)", advice.len());
+        for (id, n) in ids {
+            eprintln!("  {n:>5}  {id}");
+        }
+    }
+    if other.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(2)
+    }
 }
 
 /// What produced a bench's results: the device of `ctx`, this host and

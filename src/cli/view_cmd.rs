@@ -8,7 +8,6 @@ use std::process::ExitCode;
 use sweeplab::techniques::Technique;
 use sweeplab::viewer::{self, SceneSource, Script, ViewerOptions};
 use sweeplab::vk::swapchain::PRESENT_MODES;
-use sweeplab::vk::ContextOptions;
 
 pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
     let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
@@ -43,7 +42,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
     };
     let options = ViewerOptions {
         technique,
-        context: ContextOptions { device: args.gpu.device.clone(), validate: args.gpu.validate },
+        context: super::session::context_options(&args.gpu),
         texels: session::volume_texels(&args.gpu),
         present_mode,
         frames: args.frames,
@@ -72,7 +71,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
         write_json(path, &serde_json::to_value(&report)?)?;
     }
     if validation.is_empty() {
-        if args.gpu.validate || std::env::var("SWEEPLAB_VALIDATE").is_ok_and(|v| v == "1") {
+        if args.gpu.validate.is_some() || std::env::var("SWEEPLAB_VALIDATE").is_ok_and(|v| v == "1") {
             eprintln!("validation: clean");
         }
         return Ok(ExitCode::SUCCESS);

@@ -10,6 +10,7 @@ pub mod ao;
 pub mod ao_gpu;
 pub mod ao_unclustered;
 pub mod cpu;
+pub mod filter_bound;
 pub mod gpu;
 pub mod medium;
 mod parallel;
@@ -19,4 +20,5 @@ pub mod sources;
 pub mod validate;
 
 pub use cpu::{render_cpu, render_pixel_cpu, CpuRenderKind, CpuRenderer, EARLY_TERMINATION_TRANSMITTANCE};
+pub use filter_bound::{filter_bound_image, FilterBound};
 pub use validate::CpuRenderError;

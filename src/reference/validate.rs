@@ -23,6 +23,8 @@ pub enum CpuRenderError {
     ChromaticModel { model: crate::scene::OpticalModel },
     #[error("pixel ({x}, {y}) is outside the {width}x{height} image")]
     PixelOutOfRange { x: u32, y: u32, width: u32, height: u32 },
+    #[error("{0}")]
+    Unsupported(String),
 }
 
 pub fn check_scene(scene: &Scene, kind: CpuRenderKind) -> Result<(), CpuRenderError> {

@@ -1,11 +1,14 @@
 //! The scene on the GPU, uploaded once and shared by every technique of a run:
 //! the volume (3D image, linear sampler), the baked transfer LUT and the lights.
+//! Uploading also picks how every pipeline created afterwards on its context
+//! filters the volume (`render.filter`, volume_fetch.glsl, docs/filtering.md).
 
 use super::error::RenderError;
 use super::frame_params::{gpu_lights, GpuLight};
-use crate::scene::{Scene, TransferLut, VoxelData};
+use crate::scene::{Scene, TransferLut, VolumeFilter, VoxelData};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
+use crate::vk::limits::{Limit, Need};
 use crate::vk::resources::{ImageDesc, Sampler};
 use crate::vk::{Buffer, Context, Image, VkError};
 use ash::vk;
@@ -21,6 +24,17 @@ pub struct GpuScene<'a> {
     pub lut_size: usize,
     /// At least one record, so the binding is valid with no lights.
     pub lights: Buffer,
+    /// How the pipelines created after this upload filter the volume: the
+    /// scene's `render.filter`, or `SWEEPLAB_FILTER` where set.
+    pub filter: VolumeFilter,
+}
+
+/// volume_fetch.glsl's `VOLUME_FILTER` constant id (no shader uses it for anything else).
+pub const VOLUME_FILTER_CONSTANT_ID: u32 = 900;
+
+/// The filter a scene is rendered with: `SWEEPLAB_FILTER` over `render.filter`.
+pub fn effective_filter(scene: &Scene) -> Result<VolumeFilter, RenderError> {
+    Ok(VolumeFilter::from_env().map_err(RenderError::Invalid)?.unwrap_or(scene.render.filter))
 }
 
 impl<'a> GpuScene<'a> {
@@ -38,6 +52,19 @@ impl<'a> GpuScene<'a> {
                 v.dims
             )));
         }
+        let dims = v.dims.max_element() as u64;
+        let limits = crate::vk::limits::DeviceLimits::from_vk(&ctx.limits);
+        let need = Need::new(
+            Limit::ImageDimension3D,
+            dims,
+            format!("volume {} ({}x{}x{})", v.name, v.dims.x, v.dims.y, v.dims.z),
+            "the volume's size (resample it, or pick a smaller synthetic size)",
+        );
+        limits.check(&ctx.info.name, &[need]).map_err(VkError::from)?;
+        let filter = effective_filter(scene)?;
+        // Every pipeline created on this context from now on filters this way
+        // (a context renders one uploaded scene at a time).
+        ctx.set_shared_specialization(VOLUME_FILTER_CONSTANT_ID, filter.shader_constant());
         let (format, bytes) = volume_texels(ctx, &v.data, texels)?;
         let extent = vk::Extent3D { width: v.dims.x, height: v.dims.y, depth: v.dims.z };
         let volume = Image::new(
@@ -73,7 +100,7 @@ impl<'a> GpuScene<'a> {
                 "volume_upload_write_to_shader_read",
                 &volume,
                 Access::TRANSFER_WRITE,
-                Access::COMPUTE_READ,
+                Access::COMPUTE_SAMPLED_READ,
                 vk::ImageLayout::TRANSFER_DST_OPTIMAL,
                 vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL,
             ));
@@ -98,6 +125,7 @@ impl<'a> GpuScene<'a> {
             lut,
             lut_size: lut_table.texels.len(),
             lights,
+            filter,
         })
     }
 }
@@ -107,7 +135,10 @@ impl<'a> GpuScene<'a> {
 pub enum VolumeTexels {
     /// r8 / r16 unorm or r32 float, as the data comes. Hardware filtering of the
     /// narrow formats may use few sub-texel bits (lavapipe filters r8 with 8-bit
-    /// weights: about 1e-2 off the exact trilinear value on hard edges).
+    /// weights; NVIDIA, AMD and Intel filter every format so): up to 3/512 of
+    /// the largest neighbour difference off the exact trilinear value, about
+    /// 1e-2 at hard edges (docs/filtering.md; `render.filter = "gpu-8bit"`
+    /// shows it on any device).
     #[default]
     Native,
     /// Always r32 float: exact trilinear filtering on lavapipe, for comparisons

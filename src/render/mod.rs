@@ -4,6 +4,7 @@
 //! each technique implements in its own module. `render` knows no technique:
 //! the catalogue above them (`crate::techniques`) lists them.
 
+pub mod device_fit;
 pub mod early_termination;
 pub mod error;
 pub mod frame_params;

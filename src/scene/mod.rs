@@ -21,6 +21,7 @@ pub mod technique_settings;
 pub mod transfer;
 pub mod user_terms;
 pub mod volume;
+pub mod volume_filter;
 pub mod warnings;
 
 pub use camera::{Camera, Projection, RayBasis};
@@ -29,6 +30,7 @@ pub use light::{Falloff, Light, LightKind};
 pub use technique_settings::TechniqueSettings;
 pub use transfer::{ControlPoint, TransferFunction, TransferLut};
 pub use volume::{Volume, VoxelData};
+pub use volume_filter::VolumeFilter;
 
 use glam::Vec3;
 
@@ -56,6 +58,8 @@ pub struct RenderSettings {
     /// Each pixel's view samples at its own phase within their steps
     /// (reference::ray_start) instead of at the midpoints.
     pub jitter: bool,
+    /// How the GPU filters the volume between texels (docs/filtering.md).
+    pub filter: VolumeFilter,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -17,7 +17,7 @@ use super::scene_file::SceneError;
 use super::scene_spec::{CameraPlacement, CameraSpec, ProjectionSpec, SceneSpec, TransferSpec, VolumeSource};
 use super::synthetic::SyntheticKind;
 use super::transfer::{ControlPoint, TransferError, TransferFunction};
-use super::{OpticalModel, PhongSettings, ReferenceSettings, RenderSettings, TechniqueSettings};
+use super::{OpticalModel, PhongSettings, ReferenceSettings, RenderSettings, TechniqueSettings, VolumeFilter};
 
 pub const MAX_IMAGE_SIZE: u32 = 16384;
 pub const MAX_SYNTHETIC_SIZE: u32 = 512;
@@ -160,11 +160,20 @@ struct RenderSection {
     background: [f32; 3],
     emission: f32,
     jitter: bool,
+    filter: String,
 }
 
 impl Default for RenderSection {
     fn default() -> Self {
-        RenderSection { width: 512, height: 512, step: 0.5, background: [0.0; 3], emission: 0.1, jitter: true }
+        RenderSection {
+            width: 512,
+            height: 512,
+            step: 0.5,
+            background: [0.0; 3],
+            emission: 0.1,
+            jitter: true,
+            filter: VolumeFilter::Exact.name().to_string(),
+        }
     }
 }
 
@@ -555,6 +564,7 @@ impl Checker<'_> {
             background: self.colour("render.background", s.background)?,
             emission: self.non_negative("render.emission", s.emission)?,
             jitter: s.jitter,
+            filter: s.filter.parse().map_err(|e: String| self.err("render.filter", e))?,
         })
     }
 

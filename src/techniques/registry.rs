@@ -157,6 +157,9 @@ pub fn profiled_frame(
         return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
     }
     technique.check(gpu.scene)?;
+    let limits = crate::vk::limits::DeviceLimits::from_vk(&gpu.ctx.limits);
+    crate::render::device_fit::check(&limits, &gpu.ctx.info.name, technique.0, gpu.scene, width, height)
+        .map_err(crate::vk::VkError::from)?;
     gpu.ctx.memory.reset_peak();
     profiler.reset();
     let frame = frame(profiler)?;

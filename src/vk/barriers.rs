@@ -39,12 +39,26 @@ impl Access {
     pub const CLEAR_WRITE: Access =
         Access { stage: vk::PipelineStageFlags2::ALL_TRANSFER, access: vk::AccessFlags2::TRANSFER_WRITE };
     pub const HOST_READ: Access = Access { stage: vk::PipelineStageFlags2::HOST, access: vk::AccessFlags2::HOST_READ };
-    /// Any device access: for resources kept from one submission to the next,
-    /// where the earlier frame's last use varies.
+    /// A sampled read in a compute shader of an image in
+    /// SHADER_READ_ONLY_OPTIMAL (the volume): SHADER_READ, the access that
+    /// layout expects (best practices' ImageBarrierAccessLayout).
+    pub const COMPUTE_SAMPLED_READ: Access =
+        Access { stage: vk::PipelineStageFlags2::COMPUTE_SHADER, access: vk::AccessFlags2::SHADER_READ };
+    /// Any access the engine makes to its resources (compute shaders and
+    /// transfers, the viewer's blit included): for resources kept from one
+    /// submission to the next, where the earlier frame's last use varies. Not
+    /// ALL_COMMANDS, which drains every stage on a GPU (best practices'
+    /// pipeline-stage-flags).
     pub const ANY: Access = Access {
-        stage: vk::PipelineStageFlags2::ALL_COMMANDS,
+        stage: vk::PipelineStageFlags2::from_raw(
+            vk::PipelineStageFlags2::COMPUTE_SHADER.as_raw() | vk::PipelineStageFlags2::ALL_TRANSFER.as_raw(),
+        ),
         access: vk::AccessFlags2::from_raw(
-            vk::AccessFlags2::MEMORY_READ.as_raw() | vk::AccessFlags2::MEMORY_WRITE.as_raw(),
+            vk::AccessFlags2::SHADER_READ.as_raw()
+                | vk::AccessFlags2::SHADER_WRITE.as_raw()
+                | vk::AccessFlags2::UNIFORM_READ.as_raw()
+                | vk::AccessFlags2::TRANSFER_READ.as_raw()
+                | vk::AccessFlags2::TRANSFER_WRITE.as_raw(),
         ),
     };
 }

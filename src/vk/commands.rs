@@ -4,11 +4,13 @@
 use super::barriers::Barrier;
 use super::context::Context;
 use super::error::{VkError, VkResultExt};
+use super::limits::{Limit, LimitExceeded, Need};
 use super::pipeline::ComputePipeline;
 use super::resources::{color_layers, Buffer, Image};
 use super::wait_report::{wait_for_fence, WaitReport};
 use ash::vk;
 use bytemuck::Pod;
+use std::cell::Cell;
 use std::ffi::CString;
 use std::time::Duration;
 
@@ -25,6 +27,14 @@ pub struct Recorder<'a> {
     /// Debug labels open now: a split closes them in the old command buffer and
     /// reopens them in the new one (labels do not span command buffers well).
     open_labels: Vec<String>,
+    /// The first dispatch over `maxComputeWorkGroupCount`: not recorded, and
+    /// the submission refused ([`Recorder::check_limits`]).
+    over_limit: Option<LimitExceeded>,
+    /// Transfer commands (copies, clears, fills) and executed secondaries so
+    /// far, and whether the last command was one: the profiler writes a scope's
+    /// timestamps at the compute stage only around compute work.
+    transfers: Cell<u32>,
+    last_was_transfer: Cell<bool>,
 }
 
 impl<'a> Recorder<'a> {
@@ -39,6 +49,9 @@ impl<'a> Recorder<'a> {
             pool,
             timeline: None,
             open_labels: Vec::new(),
+            over_limit: None,
+            transfers: Cell::new(0),
+            last_was_transfer: Cell::new(false),
         }
     }
 
@@ -108,6 +121,7 @@ impl<'a> Recorder<'a> {
         if self.pool == vk::CommandPool::null() {
             return Err(VkError::Presentation("a command buffer submitted by its caller cannot be split".into()));
         }
+        self.check_limits()?;
         let device = &self.ctx.device;
         let timeline = match self.timeline {
             Some(t) => t,
@@ -137,6 +151,7 @@ impl<'a> Recorder<'a> {
     /// Executes secondary command buffer `index` of `secondary` (recorded once,
     /// replayed every frame).
     pub fn execute(&mut self, secondary: &SecondaryCommands, index: usize) {
+        self.note_transfer();
         // SAFETY: the secondary was recorded for this device and is executable; it
         // is not in use by another submission (every frame waits on its fence).
         unsafe { self.ctx.device.cmd_execute_commands(self.cb, &[secondary.buffers[index]]) };
@@ -206,12 +221,61 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn dispatch(&mut self, x: u32, y: u32, z: u32) {
+        let counts = [x.max(1), y.max(1), z.max(1)];
+        let max = self.ctx.limits.max_compute_work_group_count;
+        if let Some(axis) = (0..3).find(|&a| counts[a] > max[a]) {
+            // Recording it would be invalid usage; the submission is refused instead.
+            if self.over_limit.is_none() {
+                let pass = self.open_labels.last().cloned().unwrap_or_else(|| "a dispatch".into());
+                self.over_limit = Some(LimitExceeded {
+                    device: self.ctx.info.name.clone(),
+                    need: Need::new(
+                        Limit::WorkGroupCount(axis),
+                        counts[axis] as u64,
+                        format!("pass {pass}"),
+                        "the image size (--size) or the technique's cache or slice sizes",
+                    ),
+                    available: max[axis] as u64,
+                });
+            }
+            return;
+        }
         // SAFETY: a compute pipeline and its descriptor set are bound by the caller.
-        unsafe { self.ctx.device.cmd_dispatch(self.cb, x.max(1), y.max(1), z.max(1)) };
+        unsafe { self.ctx.device.cmd_dispatch(self.cb, counts[0], counts[1], counts[2]) };
         self.dispatch_count += 1;
+        self.last_was_transfer.set(false);
+    }
+
+    /// Counts a command that is not a dispatch (a copy, clear, fill or executed
+    /// secondary); callers that record such commands on `cb` themselves call it
+    /// so that profiler scopes around them wait for them.
+    pub fn note_transfer(&self) {
+        self.transfers.set(self.transfers.get() + 1);
+        self.last_was_transfer.set(true);
+    }
+
+    /// Transfer commands recorded so far ([`Recorder::note_transfer`]).
+    pub fn transfers(&self) -> u32 {
+        self.transfers.get()
+    }
+
+    /// Whether the last command recorded was a transfer rather than a dispatch.
+    pub fn last_was_transfer(&self) -> bool {
+        self.last_was_transfer.get()
+    }
+
+    /// Err where a dispatch recorded so far was over a device limit: checked
+    /// before every submission, so nothing runs. A caller that submits the
+    /// command buffer itself ([`Recorder::for_command_buffer`]) calls it first.
+    pub fn check_limits(&self) -> Result<(), VkError> {
+        match &self.over_limit {
+            Some(e) => Err(VkError::Limit(e.clone())),
+            None => Ok(()),
+        }
     }
 
     pub fn copy_buffer_to_image(&self, src: &Buffer, dst: &Image) {
+        self.note_transfer();
         let region = [vk::BufferImageCopy::default().image_subresource(color_layers()).image_extent(dst.extent())];
         // SAFETY: dst is in TRANSFER_DST_OPTIMAL (the caller's barrier) and src holds
         // at least extent * texel size bytes.
@@ -227,6 +291,7 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn copy_image_to_buffer(&self, src: &Image, layout: vk::ImageLayout, dst: &Buffer) {
+        self.note_transfer();
         let region = [vk::BufferImageCopy::default().image_subresource(color_layers()).image_extent(src.extent())];
         // SAFETY: src is in `layout` (GENERAL or TRANSFER_SRC) and dst is large enough.
         unsafe { self.ctx.device.cmd_copy_image_to_buffer(self.cb, src.raw, layout, dst.raw, &region) };
@@ -336,6 +401,7 @@ impl<'a> Recorder<'a> {
 
     /// Clears a colour image that is in TRANSFER_DST_OPTIMAL.
     pub fn clear_color_image(&self, image: &Image, rgba: [f32; 4]) {
+        self.note_transfer();
         let value = vk::ClearColorValue { float32: rgba };
         let range = [super::resources::color_range()];
         // SAFETY: the image is in TRANSFER_DST_OPTIMAL (the caller's barrier) and
@@ -352,6 +418,7 @@ impl<'a> Recorder<'a> {
     }
 
     pub fn fill_buffer(&self, dst: &Buffer, value: u32) {
+        self.note_transfer();
         // SAFETY: dst was created with TRANSFER_DST usage.
         unsafe { self.ctx.device.cmd_fill_buffer(self.cb, dst.raw, 0, vk::WHOLE_SIZE, value) };
     }
@@ -388,6 +455,7 @@ pub fn submit_and_wait_or<R, E: From<VkError>>(
     let result = record(&mut rec);
     guard.timeline = rec.timeline;
     let result = result?;
+    rec.check_limits()?;
     rec.end_label();
     // SAFETY: rec.cb is recording.
     unsafe { device.end_command_buffer(rec.cb) }.call("vkEndCommandBuffer")?;

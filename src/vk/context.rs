@@ -1,5 +1,6 @@
 //! Instance, device selection, validation and the one compute queue.
 
+use super::calibration::{self, Calibrator};
 use super::device_info::{self, DeviceInfo};
 use super::error::{VkError, VkResultExt};
 use super::memory::GpuMemory;
@@ -21,7 +22,19 @@ pub struct ContextOptions {
     pub device: Option<String>,
     /// Khronos validation with synchronization validation, messages collected.
     pub validate: bool,
+    /// With `validate`: best-practices checks too (`--validate=best-practices`,
+    /// `SWEEPLAB_VALIDATE=best-practices`); the NVIDIA and AMD vendor checks
+    /// come from [`BEST_PRACTICES_LAYER_ENABLES`], which the process sets.
+    pub best_practices: bool,
 }
+
+/// `VK_LAYER_ENABLES` for best-practices runs: the layer's best practices with
+/// the NVIDIA and AMD vendor checks, and synchronization validation. Layers
+/// before VK_EXT_layer_settings (1.3.239 here) take vendor checks this way
+/// only; the binary sets it before creating the instance.
+pub const BEST_PRACTICES_LAYER_ENABLES: &str = "VK_VALIDATION_FEATURE_ENABLE_BEST_PRACTICES_EXT:\
+VALIDATION_CHECK_ENABLE_VENDOR_SPECIFIC_NVIDIA:VALIDATION_CHECK_ENABLE_VENDOR_SPECIFIC_AMD:\
+VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT";
 
 impl ContextOptions {
     /// Options with the environment overrides applied where the caller gave none.
@@ -30,8 +43,9 @@ impl ContextOptions {
             self.device = std::env::var(DEVICE_ENV).ok().filter(|s| !s.trim().is_empty());
         }
         if !self.validate {
-            self.validate =
-                std::env::var(VALIDATE_ENV).map(|v| v == "1" || v.eq_ignore_ascii_case("true")).unwrap_or(false);
+            let env = std::env::var(VALIDATE_ENV).unwrap_or_default();
+            self.best_practices |= env.eq_ignore_ascii_case("best-practices");
+            self.validate = env == "1" || env.eq_ignore_ascii_case("true") || self.best_practices;
         }
         self
     }
@@ -56,6 +70,13 @@ pub struct Context {
     pub int64_atomics: bool,
     /// Reports on long waits for a submission ([`super::wait_report`]).
     wait_reporter: Mutex<Option<Arc<WaitReporter>>>,
+    /// Specialization constants every pipeline gets beside its own: those a
+    /// shared include declares (volume_fetch.glsl's filter), set by the layer
+    /// that owns them before it creates pipelines.
+    shared_specialization: Mutex<Vec<(u32, u32)>>,
+    /// Device and host clocks read together, where the device can
+    /// ([`super::calibration`]).
+    pub calibrator: Option<Arc<Calibrator>>,
 }
 
 struct Candidate {
@@ -87,6 +108,7 @@ fn has_instance_extension(entry: &ash::Entry, layer: Option<&CStr>, name: &CStr)
 fn create_instance(
     entry: &ash::Entry,
     validate: bool,
+    best_practices: bool,
     debug_utils: bool,
     surface_extensions: &[&CStr],
 ) -> Result<ash::Instance, VkError> {
@@ -117,8 +139,10 @@ fn create_instance(
             validation_features_ext = true;
         }
     }
-    let enables = [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION];
-    let mut features = vk::ValidationFeaturesEXT::default().enabled_validation_features(&enables);
+    let sync_and_best_practices =
+        [vk::ValidationFeatureEnableEXT::SYNCHRONIZATION_VALIDATION, vk::ValidationFeatureEnableEXT::BEST_PRACTICES];
+    let enables = if best_practices { &sync_and_best_practices[..] } else { &sync_and_best_practices[..1] };
+    let mut features = vk::ValidationFeaturesEXT::default().enabled_validation_features(enables);
     let mut info = vk::InstanceCreateInfo::default()
         .application_info(&app)
         .enabled_layer_names(&layers)
@@ -130,7 +154,17 @@ fn create_instance(
     unsafe { entry.create_instance(&info, None) }.call("vkCreateInstance")
 }
 
-fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
+/// The queue flags a context needs: compute, and graphics too for a window
+/// (the viewer blits and draws its panel on the same queue).
+fn queue_needs(window: bool) -> vk::QueueFlags {
+    if window {
+        vk::QueueFlags::COMPUTE | vk::QueueFlags::GRAPHICS
+    } else {
+        vk::QueueFlags::COMPUTE
+    }
+}
+
+fn candidates(instance: &ash::Instance, window: bool) -> Result<Vec<Candidate>, VkError> {
     // SAFETY: instance is valid; enumeration has no other preconditions.
     let physical = unsafe { instance.enumerate_physical_devices() }.call("vkEnumeratePhysicalDevices")?;
     let mut out = Vec::new();
@@ -142,8 +176,7 @@ fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
         let props = props2.properties;
         // SAFETY: pd comes from this instance.
         let families = unsafe { instance.get_physical_device_queue_family_properties(pd) };
-        let queue_family =
-            families.iter().position(|f| f.queue_flags.contains(vk::QueueFlags::COMPUTE)).map(|i| i as u32);
+        let queue_family = families.iter().position(|f| f.queue_flags.contains(queue_needs(window))).map(|i| i as u32);
         let valid_bits = queue_family.map(|q| families[q as usize].timestamp_valid_bits).unwrap_or(0);
         let info = DeviceInfo {
             index,
@@ -176,8 +209,8 @@ fn candidates(instance: &ash::Instance) -> Result<Vec<Candidate>, VkError> {
 /// Lists the Vulkan devices without creating one.
 pub fn list_devices() -> Result<Vec<DeviceInfo>, VkError> {
     let entry = load_entry()?;
-    let instance = create_instance(&entry, false, false, &[])?;
-    let result = candidates(&instance).map(|c| c.into_iter().map(|c| c.info).collect());
+    let instance = create_instance(&entry, false, false, false, &[])?;
+    let result = candidates(&instance, false).map(|c| c.into_iter().map(|c| c.info).collect());
     // SAFETY: no object created from this instance survives.
     unsafe { instance.destroy_instance(None) };
     result
@@ -201,7 +234,8 @@ impl Context {
     fn create(options: &ContextOptions, surface_extensions: &[&CStr]) -> Result<Context, VkError> {
         let entry = load_entry()?;
         let debug_utils_ext = has_instance_extension(&entry, None, ash::ext::debug_utils::NAME)? || options.validate;
-        let instance = create_instance(&entry, options.validate, debug_utils_ext, surface_extensions)?;
+        let instance =
+            create_instance(&entry, options.validate, options.best_practices, debug_utils_ext, surface_extensions)?;
 
         let (debug_instance, messenger, validation) = if debug_utils_ext {
             let di = ash::ext::debug_utils::Instance::new(&entry, &instance);
@@ -241,7 +275,8 @@ impl Context {
             msg
         };
 
-        let all = candidates(&instance).map_err(cleanup_instance)?;
+        let window = !surface_extensions.is_empty();
+        let all = candidates(&instance, window).map_err(cleanup_instance)?;
         let chosen = match choose(&all, options.device.as_deref()) {
             Ok(c) => c,
             Err(e) => return Err(cleanup_instance(e)),
@@ -252,7 +287,7 @@ impl Context {
             None => {
                 return Err(cleanup_instance(VkError::MissingFeature {
                     device: cand.info.name.clone(),
-                    missing: "a compute queue".into(),
+                    missing: if window { "a queue with graphics and compute" } else { "a compute queue" }.into(),
                 }))
             }
         };
@@ -263,10 +298,11 @@ impl Context {
             }));
         }
         let swapchain = !surface_extensions.is_empty();
-        let (device, int64_atomics) = match create_device(&instance, cand, queue_family, swapchain) {
-            Ok(d) => d,
-            Err(e) => return Err(cleanup_instance(e)),
-        };
+        let (device, int64_atomics, calibration_ext) =
+            match create_device(&entry, &instance, cand, queue_family, swapchain) {
+                Ok(d) => d,
+                Err(e) => return Err(cleanup_instance(e)),
+            };
         // SAFETY: the family was requested with one queue at creation.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
         // SAFETY: limits are plain data of a valid physical device.
@@ -280,6 +316,7 @@ impl Context {
             }
         };
         let debug_utils = debug_instance.as_ref().map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
+        let calibrator = calibration_ext.map(|name| Arc::new(Calibrator::new(&instance, &device, name)));
         Ok(Context {
             entry,
             instance,
@@ -296,6 +333,8 @@ impl Context {
             memory,
             int64_atomics,
             wait_reporter: Mutex::new(None),
+            shared_specialization: Mutex::new(Vec::new()),
+            calibrator,
         })
     }
 
@@ -307,6 +346,19 @@ impl Context {
 
     pub(super) fn wait_reporter(&self) -> Option<Arc<WaitReporter>> {
         self.wait_reporter.lock().unwrap_or_else(|p| p.into_inner()).clone()
+    }
+
+    /// Sets the shared specialization constant `id` to `value` for every
+    /// pipeline created from now on (a shader that does not declare it ignores it).
+    pub fn set_shared_specialization(&self, id: u32, value: u32) {
+        let mut shared = self.shared_specialization.lock().unwrap_or_else(|p| p.into_inner());
+        shared.retain(|(i, _)| *i != id);
+        shared.push((id, value));
+    }
+
+    /// The shared specialization constants, (constant_id, value).
+    pub fn shared_specialization(&self) -> Vec<(u32, u32)> {
+        self.shared_specialization.lock().unwrap_or_else(|p| p.into_inner()).clone()
     }
 
     /// Validation messages collected so far (empty when validation is off).
@@ -380,11 +432,12 @@ fn choose(all: &[Candidate], wanted: Option<&str>) -> Result<usize, VkError> {
 }
 
 fn create_device(
+    entry: &ash::Entry,
     instance: &ash::Instance,
     cand: &Candidate,
     queue_family: u32,
     swapchain: bool,
-) -> Result<(ash::Device, bool), VkError> {
+) -> Result<(ash::Device, bool, Option<&'static CStr>), VkError> {
     let mut have12 = vk::PhysicalDeviceVulkan12Features::default();
     let mut have13 = vk::PhysicalDeviceVulkan13Features::default();
     let mut have = vk::PhysicalDeviceFeatures2::default().push_next(&mut have12).push_next(&mut have13);
@@ -421,7 +474,12 @@ fn create_device(
     if !missing.is_empty() {
         return Err(VkError::MissingFeature { device: cand.info.name.clone(), missing: missing.join(", ") });
     }
-    let extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
+    let mut extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
+    // Calibrated timestamps put GPU scopes on the host's timeline (the trace).
+    let calibration_ext = calibration::extension_to_enable(entry, instance, cand.physical_device, &device_extensions);
+    if let Some(name) = calibration_ext {
+        extensions.push(name.as_ptr());
+    }
     // 64-bit atomicMax of IPSVI's deterministic cache writes: enabled where the
     // device has it; IPSVI refuses to render without it (`Context::int64_atomics`).
     let int64_atomics = int64 == vk::TRUE && have12.shader_buffer_int64_atomics == vk::TRUE;
@@ -443,7 +501,7 @@ fn create_device(
         .push_next(&mut want13);
     // SAFETY: all pointers in `info` refer to locals that outlive the call.
     let device = unsafe { instance.create_device(cand.physical_device, &info, None) }.call("vkCreateDevice")?;
-    Ok((device, int64_atomics))
+    Ok((device, int64_atomics, calibration_ext))
 }
 
 impl Drop for Context {

@@ -32,6 +32,8 @@ pub enum VkError {
     Presentation(String),
     #[error("profiler misuse: {0}")]
     Profiler(String),
+    #[error(transparent)]
+    Limit(#[from] super::limits::LimitExceeded),
 }
 
 /// Adds the name of the failing call to a raw `vk::Result`.

@@ -3,6 +3,7 @@
 //! [`barriers`], and every pass gets a debug label and a profiler scope of one name.
 
 pub mod barriers;
+pub mod calibration;
 pub mod commands;
 pub mod context;
 pub mod descriptors;
@@ -10,6 +11,7 @@ pub mod device_info;
 pub mod error;
 pub mod events;
 pub mod interface;
+pub mod limits;
 pub mod memory;
 pub mod pipeline;
 pub mod profiler;

@@ -5,6 +5,7 @@ use super::context::Context;
 use super::descriptors::{DescriptorAllocator, Resource};
 use super::error::{VkError, VkResultExt};
 use super::interface::{Binding, ShaderInterface};
+use super::limits::{Limit, LimitExceeded, Need};
 use ash::vk;
 use std::io::Cursor;
 use std::sync::Arc;
@@ -51,6 +52,19 @@ impl ComputePipeline {
     fn create(ctx: &Context, desc: &ComputePipelineDesc, spirv: &[u8]) -> Result<ComputePipeline, VkError> {
         let device = &ctx.device;
         let shader = desc.shader;
+        if shader.push_constant_bytes > ctx.limits.max_push_constants_size {
+            let need = Need::new(
+                Limit::PushConstants,
+                shader.push_constant_bytes as u64,
+                format!("shader {}", shader.name),
+                "none (the shader's push-constant block)",
+            );
+            return Err(VkError::Limit(LimitExceeded {
+                device: ctx.info.name.clone(),
+                need,
+                available: ctx.limits.max_push_constants_size as u64,
+            }));
+        }
         let words = ash::util::read_spv(&mut Cursor::new(spirv))
             .map_err(|_| VkError::Call { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
         let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
@@ -71,7 +85,9 @@ impl ComputePipeline {
         let set_layout_info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings);
         // SAFETY: valid device and create info.
         let set_layout = unsafe { device.create_descriptor_set_layout(&set_layout_info, None) }
-            .call("vkCreateDescriptorSetLayout")?;
+            .call("vkCreateDescriptorSetLayout")
+            // SAFETY (in the closure): the module was just created and is unused.
+            .inspect_err(|_| unsafe { device.destroy_shader_module(module, None) })?;
         let ranges = [vk::PushConstantRange::default()
             .stage_flags(vk::ShaderStageFlags::COMPUTE)
             .offset(0)
@@ -82,15 +98,28 @@ impl ComputePipeline {
             layout_info = layout_info.push_constant_ranges(&ranges);
         }
         // SAFETY: valid device and create info.
-        let layout = unsafe { device.create_pipeline_layout(&layout_info, None) }.call("vkCreatePipelineLayout")?;
+        let layout = unsafe { device.create_pipeline_layout(&layout_info, None) }
+            .call("vkCreatePipelineLayout")
+            // SAFETY (in the closure): module and set layout were just created and are unused.
+            .inspect_err(|_| unsafe {
+                device.destroy_shader_module(module, None);
+                device.destroy_descriptor_set_layout(set_layout, None);
+            })?;
 
-        let entries: Vec<vk::SpecializationMapEntry> = desc
-            .specialization
+        // The pipeline's own constants, then the context's shared ones it does
+        // not set itself (constant ids must be unique).
+        let mut constants = desc.specialization.to_vec();
+        for (id, value) in ctx.shared_specialization() {
+            if !constants.iter().any(|(own, _)| *own == id) {
+                constants.push((id, value));
+            }
+        }
+        let entries: Vec<vk::SpecializationMapEntry> = constants
             .iter()
             .enumerate()
             .map(|(i, (id, _))| vk::SpecializationMapEntry { constant_id: *id, offset: (i * 4) as u32, size: 4 })
             .collect();
-        let data: Vec<u8> = desc.specialization.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
+        let data: Vec<u8> = constants.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
         let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
         let stage = vk::PipelineShaderStageCreateInfo::default()
             .stage(vk::ShaderStageFlags::COMPUTE)
@@ -102,9 +131,34 @@ impl ComputePipeline {
         let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), &info, None) };
         // SAFETY: the module is no longer needed once pipelines are created.
         unsafe { device.destroy_shader_module(module, None) };
-        let raw = created.map_err(|(_, r)| VkError::Call { call: "vkCreateComputePipelines", result: r })?[0];
+        let raw = match created {
+            Ok(pipelines) => pipelines[0],
+            Err((pipelines, result)) => {
+                // SAFETY: nothing uses the layouts or any handle the failed call
+                // returned (null where it created none; destroying null is a no-op).
+                unsafe {
+                    for p in pipelines {
+                        device.destroy_pipeline(p, None);
+                    }
+                    device.destroy_pipeline_layout(layout, None);
+                    device.destroy_descriptor_set_layout(set_layout, None);
+                }
+                return Err(VkError::Call { call: "vkCreateComputePipelines", result });
+            }
+        };
         ctx.set_name(raw, desc.name);
-        let descriptors = DescriptorAllocator::new(ctx, shader.bindings, desc.max_sets.max(1))?;
+        let descriptors = match DescriptorAllocator::new(ctx, shader.bindings, desc.max_sets.max(1)) {
+            Ok(d) => d,
+            Err(e) => {
+                // SAFETY: the pipeline and its layouts were just created and never used.
+                unsafe {
+                    device.destroy_pipeline(raw, None);
+                    device.destroy_pipeline_layout(layout, None);
+                    device.destroy_descriptor_set_layout(set_layout, None);
+                }
+                return Err(e);
+            }
+        };
         Ok(ComputePipeline {
             raw,
             layout,

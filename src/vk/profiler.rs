@@ -3,6 +3,7 @@
 //! the same words. Where the queue has no timestamps, labels are still written and
 //! the report says timestamps are unsupported instead of printing zeros.
 
+use super::calibration::Calibrator;
 use super::commands::Recorder;
 use super::context::Context;
 use super::error::{VkError, VkResultExt};
@@ -35,6 +36,9 @@ struct OpenScope {
     end_query: Option<u32>,
     /// Scopes marked `detail` are only recorded when per-dispatch detail is on.
     detail: bool,
+    /// The recorder's dispatch and transfer counts at the begin timestamp.
+    dispatches_at_begin: u32,
+    transfers_at_begin: u32,
 }
 
 pub struct Profiler {
@@ -51,6 +55,7 @@ pub struct Profiler {
     device_name: String,
     /// See [`Profiler::set_flush_after_timestamps`].
     flush_after_timestamps: bool,
+    calibrator: Option<std::sync::Arc<Calibrator>>,
 }
 
 /// One timed scope of the last frame.
@@ -85,6 +90,9 @@ pub struct ProfileReport {
     pub gpu_memory_bytes: u64,
     pub passes: Vec<PassTiming>,
     pub scopes: Vec<ScopeTiming>,
+    /// The host's `CLOCK_MONOTONIC` (ns) at the frame's first timestamp, from
+    /// calibrated timestamps; `None` where the device has none.
+    pub host_origin_ns: Option<f64>,
 }
 
 impl Profiler {
@@ -116,6 +124,7 @@ impl Profiler {
             device: ctx.device.clone(),
             device_name: ctx.info.name.clone(),
             flush_after_timestamps: false,
+            calibrator: ctx.calibrator.clone(),
         };
         p.reset();
         Ok(p)
@@ -157,7 +166,7 @@ impl Profiler {
         }
     }
 
-    fn write(&mut self, rec: &mut Recorder) -> Result<Option<u32>, VkError> {
+    fn write(&mut self, rec: &mut Recorder, stage: vk::PipelineStageFlags2) -> Result<Option<u32>, VkError> {
         if !self.timestamps {
             return Ok(None);
         }
@@ -169,9 +178,11 @@ impl Profiler {
         }
         let q = self.next_query;
         self.next_query += 1;
-        // SAFETY: q is a reset query of our pool; cb is recording. ALL_COMMANDS waits
-        // for earlier work, so a scope spans exactly the commands inside it.
-        unsafe { self.device.cmd_write_timestamp2(rec.cb, vk::PipelineStageFlags2::ALL_COMMANDS, self.pool, q) };
+        // SAFETY: q is a reset query of our pool; cb is recording. `stage` is
+        // COMPUTE_SHADER around compute work (written once earlier dispatches
+        // finish their compute stage) and ALL_COMMANDS around anything else
+        // (waits for all earlier work): see `begin_stage` and `end_stage`.
+        unsafe { self.device.cmd_write_timestamp2(rec.cb, stage, self.pool, q) };
         if self.flush_after_timestamps {
             // SAFETY: cb is recording; a dependency with no barriers orders nothing.
             unsafe { self.device.cmd_pipeline_barrier2(rec.cb, &vk::DependencyInfo::default()) };
@@ -195,7 +206,7 @@ impl Profiler {
         let depth = self.stack.len() as u32;
         let begin_query = if active {
             rec.begin_label(name);
-            self.write(rec)?
+            self.write(rec, begin_stage(rec))?
         } else {
             None
         };
@@ -207,6 +218,8 @@ impl Profiler {
             begin_query,
             end_query: None,
             detail: !active,
+            dispatches_at_begin: rec.dispatch_count,
+            transfers_at_begin: rec.transfers(),
         });
         self.stack.push(index);
         Ok(ScopeToken { index })
@@ -225,7 +238,9 @@ impl Profiler {
         }
         self.stack.pop();
         if !self.scopes[token.index].detail {
-            let q = self.write(rec)?;
+            let s = &self.scopes[token.index];
+            let stage = end_stage(rec, s.dispatches_at_begin, s.transfers_at_begin);
+            let q = self.write(rec, stage)?;
             self.scopes[token.index].end_query = q;
             rec.end_label();
         }
@@ -252,6 +267,16 @@ impl Profiler {
             .call("vkGetQueryPoolResults")?;
         }
         let origin = values.first().copied().unwrap_or(0) & self.valid_mask;
+        let host_origin_ns = match &self.calibrator {
+            Some(c) if self.timestamps && self.next_query > 0 => {
+                let cal = c.calibrate()?;
+                // Device ticks from the frame's first timestamp to the calibration
+                // (within the valid bits; the calibration comes after the frame).
+                let ticks = (cal.device_ticks & self.valid_mask).wrapping_sub(origin) & self.valid_mask;
+                Some(cal.host_ns as f64 - ticks as f64 * self.period_ns)
+            }
+            _ => None,
+        };
         let to_ns = |ticks: u64| ticks as f64 * self.period_ns;
         let mut scopes = Vec::new();
         let mut index_map = vec![None; self.scopes.len()];
@@ -302,7 +327,30 @@ impl Profiler {
             gpu_memory_bytes,
             passes,
             scopes,
+            host_origin_ns,
         })
+    }
+}
+
+/// A scope's begin timestamp: at the compute stage (written once earlier
+/// dispatches finish computing) unless a transfer came last, which only
+/// ALL_COMMANDS waits for.
+fn begin_stage(rec: &Recorder) -> vk::PipelineStageFlags2 {
+    if rec.last_was_transfer() {
+        vk::PipelineStageFlags2::ALL_COMMANDS
+    } else {
+        vk::PipelineStageFlags2::COMPUTE_SHADER
+    }
+}
+
+/// A scope's end timestamp: at the compute stage where the scope recorded
+/// dispatches and nothing else the recorder knows of; ALL_COMMANDS otherwise
+/// (copies, clears, secondaries, or commands recorded on `cb` directly).
+fn end_stage(rec: &Recorder, dispatches_at_begin: u32, transfers_at_begin: u32) -> vk::PipelineStageFlags2 {
+    if rec.dispatch_count > dispatches_at_begin && rec.transfers() == transfers_at_begin {
+        vk::PipelineStageFlags2::COMPUTE_SHADER
+    } else {
+        vk::PipelineStageFlags2::ALL_COMMANDS
     }
 }
 
@@ -398,14 +446,20 @@ impl ProfileReport {
             .map(|s| {
                 serde_json::json!({
                     "name": s.name, "cat": "gpu", "ph": "X", "pid": 1, "tid": s.depth,
-                    "ts": s.start_ns / 1000.0, "dur": s.duration_ns / 1000.0,
+                    "ts": (self.host_origin_ns.unwrap_or(0.0) + s.start_ns) / 1000.0, "dur": s.duration_ns / 1000.0,
                     "args": {"path": s.path}
                 })
             })
             .collect();
         serde_json::json!({
             "displayTimeUnit": "ms",
-            "otherData": {"device": self.device, "timestamps_supported": self.timestamps_supported},
+            "otherData": {
+                "device": self.device,
+                "timestamps_supported": self.timestamps_supported,
+                // ts is CLOCK_MONOTONIC in us where the device calibrates its
+                // timestamps against it, else from the frame's first timestamp.
+                "clock": if self.host_origin_ns.is_some() { "CLOCK_MONOTONIC" } else { "frame" }
+            },
             "traceEvents": events
         })
     }
@@ -434,6 +488,7 @@ mod tests {
             gpu_ms_total: 0.0,
             gpu_memory_bytes: 0,
             passes: vec![],
+            host_origin_ns: None,
             scopes: vec![
                 scope("sweep", None, 0.0, 10_000.0),
                 scope("line", Some(0), 1_000.0, 2_000.0),

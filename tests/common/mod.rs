@@ -11,8 +11,12 @@ use sweeplab::vk::{Context, ContextOptions};
 
 /// A context with validation and synchronization validation on.
 pub fn validated_context() -> Context {
-    Context::new(&ContextOptions { device: std::env::var("SWEEPLAB_DEVICE").ok(), validate: true })
-        .expect("Vulkan context with validation")
+    Context::new(&ContextOptions {
+        device: std::env::var("SWEEPLAB_DEVICE").ok(),
+        validate: true,
+        best_practices: false,
+    })
+    .expect("Vulkan context with validation")
 }
 
 /// Fails the test with every message the validation layer reported.
@@ -107,6 +111,7 @@ pub fn scene_with(volume: Volume, lights: Vec<Light>, width: u32, height: u32) -
             // samples, and some compare sample positions across techniques;
             // tests that want jitter turn it on.
             jitter: false,
+            filter: VolumeFilter::Exact,
         },
         reference: ReferenceSettings {
             model: OpticalModel::SingleScattering,
@@ -160,4 +165,16 @@ pub fn assert_ipsvi_line_barrier_load_bearing(
         messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
         "{what}: missing line barrier not reported: {messages:?}"
     );
+}
+
+/// The RMS over pixels and channels of the 8-bit filter error model's per-pixel
+/// bound (docs/filtering.md) for `scene` rendered as `kind` at `size`^2 with its
+/// own `render.filter`: zero with exact filtering. A technique compared with
+/// the reference on the GPU, both filtered so, may move by this twice (each
+/// image by at most its bound; the technique's sensitivity to the medium is
+/// taken as the reference's, the same optical model on the same medium).
+pub fn filter_bound_rms(scene: &Scene, kind: sweeplab::reference::CpuRenderKind, size: u32) -> f64 {
+    let bound = sweeplab::reference::filter_bound_image(scene, kind, scene.render.filter, size, size).unwrap();
+    let squares: f64 = bound.pixels.iter().map(|p| (p[0] as f64).powi(2)).sum();
+    (squares / bound.pixels.len() as f64).sqrt()
 }
