@@ -52,6 +52,17 @@ pub enum Verdict {
     BelowBaseline,
 }
 
+impl Verdict {
+    /// How a report reads it: `cost`, `within noise`, `below baseline`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Cost => "cost",
+            Verdict::WithinNoise => "within noise",
+            Verdict::BelowBaseline => "below baseline",
+        }
+    }
+}
+
 impl Estimate {
     pub fn half_width(&self) -> f64 {
         (self.hi - self.lo) / 2.0

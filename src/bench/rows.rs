@@ -12,6 +12,7 @@ use serde::ser::{SerializeMap, SerializeSeq};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::error::BenchError;
+use super::estimate::{Estimate, Verdict};
 use super::pareto::pareto_front;
 use super::run_info::RunInfo;
 
@@ -241,6 +242,29 @@ impl BenchRow {
         match self.entries.iter_mut().find(|(k, _)| *k == key) {
             Some((_, existing)) => *existing = value,
             None => self.entries.push((key, value)),
+        }
+        self
+    }
+
+    /// Sets `key` to the estimate and `key_lo`, `key_hi` to its 95 % interval;
+    /// nothing where there is no estimate.
+    pub fn set_estimate(&mut self, key: &str, estimate: Option<Estimate>) -> &mut Self {
+        if let Some(e) = estimate {
+            self.set(key, e.value).set(format!("{key}_lo"), e.lo).set(format!("{key}_hi"), e.hi);
+        }
+        self
+    }
+
+    /// A cost against a baseline: `key_lo`, `key_hi` and `key_verdict`
+    /// always, `key` itself only where the interval lies above 0, so a
+    /// difference within noise is never read as a (negative) cost.
+    pub fn set_cost(&mut self, key: &str, estimate: Option<Estimate>) -> &mut Self {
+        if let Some(e) = estimate {
+            if e.verdict() == Verdict::Cost {
+                self.set(key, e.value);
+            }
+            self.set(format!("{key}_lo"), e.lo).set(format!("{key}_hi"), e.hi);
+            self.set(format!("{key}_verdict"), e.verdict().name());
         }
         self
     }

@@ -299,6 +299,21 @@ pub enum ValidateMode {
     BestPractices,
 }
 
+/// How a bench's configurations share the rounds beyond `--repeat`.
+#[derive(Args, Debug, Clone)]
+pub struct RoundsArgs {
+    /// Go on past --repeat rounds, up to this many, until every configuration's
+    /// 95 % interval is within --target-ci of its median (default: --repeat).
+    #[arg(long)]
+    pub max_rounds: Option<u32>,
+    /// The relative half-width --max-rounds aims at.
+    #[arg(long, default_value_t = 0.05)]
+    pub target_ci: f64,
+    /// Seed of the shuffled round orders (default: from the clock; recorded with the results).
+    #[arg(long)]
+    pub seed: Option<u64>,
+}
+
 /// Options every GPU command shares.
 #[derive(Args, Debug, Clone)]
 pub struct GpuArgs {

@@ -1,11 +1,11 @@
 //! A Vulkan context for one command, and the validation verdict at its end.
 
-use super::args::GpuArgs;
 use super::args::ValidateMode;
+use super::args::{GpuArgs, RoundsArgs};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Duration;
-use sweeplab::bench::{Harness, RunInfo};
+use sweeplab::bench::{Harness, Interleaved, Protocol, RunInfo};
 use sweeplab::render::VolumeTexels;
 use sweeplab::vk::context::BEST_PRACTICES_LAYER_ENABLES;
 use sweeplab::vk::{Context, ContextOptions, WaitReport, WaitReporter};
@@ -104,6 +104,20 @@ pub fn volume_texels(gpu: &GpuArgs) -> VolumeTexels {
         VolumeTexels::Float32
     } else {
         VolumeTexels::Native
+    }
+}
+
+/// `--repeat` timed rounds of every configuration, shuffled, after a warm-up
+/// round; with `--max-rounds`, more until `--target-ci` is met.
+pub fn interleaved(repeat: u32, rounds: &RoundsArgs) -> anyhow::Result<Interleaved> {
+    let seed = rounds.seed.unwrap_or_else(Protocol::seed_from_clock);
+    if !(rounds.target_ci.is_finite() && rounds.target_ci > 0.0) {
+        anyhow::bail!("--target-ci: {} is not a fraction above 0 (e.g. 0.05 for 5 %)", rounds.target_ci);
+    }
+    match rounds.max_rounds {
+        None => Interleaved::fixed(repeat, seed).map_err(|e| anyhow::anyhow!("--repeat: {e}")),
+        Some(max) => Interleaved::adaptive(1, repeat, max, rounds.target_ci, seed)
+            .map_err(|e| anyhow::anyhow!("--repeat/--max-rounds: {e}")),
     }
 }
 

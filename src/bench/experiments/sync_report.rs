@@ -11,21 +11,9 @@ use crate::bench::rows::{BenchRow, BenchTable};
 use crate::bench::{plot_histogram, plot_lines, AxisScale, BenchError, Chart, Distribution, Point, Series};
 use std::path::Path;
 
-/// Sets `key` (value) and `key_lo`, `key_hi` where the estimate exists.
-fn set_estimate(row: &mut BenchRow, key: &str, e: Option<Estimate>) {
-    if let Some(e) = e {
-        row.set(key, e.value).set(format!("{key}_lo"), e.lo).set(format!("{key}_hi"), e.hi);
-    }
-}
-
 /// How a sync cost reads: `cost`, `within noise`, `below baseline`.
 fn verdict_word(e: Option<Estimate>) -> &'static str {
-    match e.map(|e| e.verdict()) {
-        Some(crate::bench::Verdict::Cost) => "cost",
-        Some(crate::bench::Verdict::WithinNoise) => "within noise",
-        Some(crate::bench::Verdict::BelowBaseline) => "below baseline",
-        None => "",
-    }
+    e.map_or("", |e| e.verdict().name())
 }
 
 /// One row per strategy and workload.
@@ -40,24 +28,24 @@ pub fn strategy_table(report: &SyncReport) -> BenchTable {
 fn strategy_row(r: &StrategyRow) -> BenchRow {
     let mut row = BenchRow::new();
     row.set("workload", r.workload.name()).set("strategy", r.strategy.as_str()).set("racy", r.racy);
-    set_estimate(&mut row, "boundary_us", r.boundary_us);
+    row.set_estimate("boundary_us", r.boundary_us);
     if let Some(v) = r.r_squared {
         row.set("r_squared", v);
     }
     if let Some(v) = r.intercept_ms {
         row.set("intercept_ms", v);
     }
-    set_estimate(&mut row, "sync_us", r.sync_us);
+    row.set_estimate("sync_us", r.sync_us);
     if r.strategy != BASELINE {
         row.set("sync_verdict", verdict_word(r.sync_us));
     }
-    set_estimate(&mut row, "boundary_cpu_us", r.boundary_cpu_us);
-    set_estimate(&mut row, "sync_cpu_us", r.sync_cpu_us);
+    row.set_estimate("boundary_cpu_us", r.boundary_cpu_us);
+    row.set_estimate("sync_cpu_us", r.sync_cpu_us);
     if let Some(g) = &r.line_gaps {
         row.set("gap_median_us", g.gap_median_us).set("gap_q1_us", g.gap_q1_us).set("gap_q3_us", g.gap_q3_us);
         row.set("line_median_us", g.line_median_us);
-        set_estimate(&mut row, "gap_sync_us", g.gap_sync_us);
-        set_estimate(&mut row, "timestamp_perturbation_ms", g.perturbation_ms);
+        row.set_estimate("gap_sync_us", g.gap_sync_us);
+        row.set_estimate("timestamp_perturbation_ms", g.perturbation_ms);
     }
     row
 }
@@ -77,9 +65,9 @@ fn configuration_row(c: &ConfigRow) -> BenchRow {
     row.set("line_width", c.line_width).set("line_timestamps", c.line_timestamps);
     row.set("lines", c.lines).set("blocks", c.blocks).set("dispatches", c.dispatches).set("barriers", c.barriers);
     row.set("frames", c.frames).set("frames_per_run", c.frames_per_run);
-    set_estimate(&mut row, "gpu_ms", c.gpu_ms);
-    set_estimate(&mut row, "cpu_ms", c.cpu_ms);
-    set_estimate(&mut row, "wall_ms", c.wall_ms);
+    row.set_estimate("gpu_ms", c.gpu_ms);
+    row.set_estimate("cpu_ms", c.cpu_ms);
+    row.set_estimate("wall_ms", c.wall_ms);
     row.set("hazards_ignored", c.hazards_ignored);
     if let Some(e) = c.rmse_vs_barrier_global {
         row.set("rmse_vs_barrier_global", e);
@@ -161,8 +149,8 @@ pub fn side_by_side(reports: &[SyncReport]) -> BenchTable {
             row.set("commit", report.run.git_commit.as_str()).set("date", report.run.date.as_str());
             row.set("size", format!("{}x{}", report.width, report.height)).set("rounds", report.rounds_of(r.workload));
             row.set("workload", r.workload.name()).set("strategy", r.strategy.as_str());
-            set_estimate(&mut row, "boundary_us", r.boundary_us);
-            set_estimate(&mut row, "sync_us", r.sync_us);
+            row.set_estimate("boundary_us", r.boundary_us);
+            row.set_estimate("sync_us", r.sync_us);
             if r.strategy != BASELINE {
                 row.set("sync_verdict", verdict_word(r.sync_us));
             }
