@@ -8,6 +8,7 @@ use std::time::Duration;
 use sweeplab::bench::{Harness, Interleaved, Protocol, RunInfo};
 use sweeplab::render::VolumeTexels;
 use sweeplab::vk::context::BEST_PRACTICES_LAYER_ENABLES;
+use sweeplab::vk::validation_verdict::ValidationVerdict;
 use sweeplab::vk::{Context, ContextOptions, WaitReport, WaitReporter};
 
 pub fn open(gpu: &GpuArgs) -> anyhow::Result<Context> {
@@ -62,34 +63,14 @@ fn long_wait_line(r: &WaitReport) -> String {
 
 /// Prints the validation messages, if any, and turns them into a failing exit code.
 pub fn finish(ctx: &Context) -> ExitCode {
-    let messages = ctx.take_validation_messages();
-    if messages.is_empty() {
-        if ctx.validation_enabled() {
-            eprintln!("validation: clean");
-        }
-        return ExitCode::SUCCESS;
+    let verdict = ValidationVerdict::of(ctx.take_validation_messages());
+    for line in verdict.report_lines(ctx.validation_enabled()) {
+        eprintln!("{line}");
     }
-    eprintln!("validation: {} message(s)", messages.len());
-    for m in &messages {
-        eprintln!("{m}");
-    }
-    // Best-practices advice is counted, not failed; anything else fails the run.
-    let (advice, other): (Vec<&String>, Vec<&String>) = messages.iter().partition(|m| m.contains("BestPractices"));
-    if !advice.is_empty() {
-        let mut ids: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
-        for m in &advice {
-            let id = m.split("[ ").nth(1).and_then(|r| r.split(' ').next()).unwrap_or("?");
-            *ids.entry(id).or_default() += 1;
-        }
-        eprintln!("best practices: {} message(s)", advice.len());
-        for (id, n) in ids {
-            eprintln!("  {n:>5}  {id}");
-        }
-    }
-    if other.is_empty() {
-        ExitCode::SUCCESS
-    } else {
+    if verdict.failed() {
         ExitCode::from(2)
+    } else {
+        ExitCode::SUCCESS
     }
 }
 

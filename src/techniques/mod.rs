@@ -4,6 +4,7 @@
 //! `scene` and `render` know no technique; each technique folder builds on
 //! them; front ends (CLI, viewer, benches) come here.
 
+pub mod comparison;
 pub mod registry;
 pub mod scenes;
 pub mod tables;

@@ -20,6 +20,7 @@ pub mod staging;
 pub mod surface;
 pub mod swapchain;
 pub mod validation;
+pub mod validation_verdict;
 pub mod wait_report;
 
 pub use barriers::Barrier;
