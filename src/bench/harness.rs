@@ -3,6 +3,7 @@
 //! as their median, minimum and maximum with the output of the last timed run
 //! (its image and profile).
 
+use super::estimate::{median_estimate, Estimate};
 use super::progress::Progress;
 use super::stats::median;
 use std::io::Write;
@@ -49,6 +50,12 @@ impl<T> Measurement<T> {
     /// Median of the samples (upper median for an even count); NaN for none.
     pub fn median(&self) -> f64 {
         median(&self.samples)
+    }
+
+    /// The median with its 95 % interval; `None` below
+    /// [`MIN_SAMPLES`](super::estimate::MIN_SAMPLES) samples.
+    pub fn estimate(&self) -> Option<Estimate> {
+        median_estimate(&self.samples).ok()
     }
 
     /// NaN for no samples.
@@ -170,6 +177,10 @@ mod tests {
     fn min_and_max_of_the_samples() {
         let m = Harness::new(0, 5).unwrap().measure(from(&[7.0, 2.5, 9.0, 4.0, 3.0])).unwrap();
         assert_eq!((m.min(), m.median(), m.max()), (2.5, 4.0, 9.0));
+        assert_eq!(m.estimate(), None, "five samples give no 95 % interval");
+        let six = Harness::new(0, 6).unwrap().measure(from(&[7.0, 2.5, 9.0, 4.0, 3.0, 5.0])).unwrap();
+        let e = six.estimate().unwrap();
+        assert!(e.lo <= six.median() && six.median() <= e.hi, "{e:?}");
     }
 
     #[test]

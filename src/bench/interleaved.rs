@@ -12,6 +12,7 @@ use super::estimate::{median_estimate, paired_difference, Estimate, MIN_SAMPLES}
 use super::harness::Sample;
 use super::progress::Progress;
 use super::protocol::{Next, Phase, Protocol, ProtocolError};
+use super::run_info::RunInfo;
 use super::stats::median;
 use std::cell::RefCell;
 use std::io::Write;
@@ -81,7 +82,7 @@ impl Interleaved {
     /// size) and give medians without intervals, which the reports say.
     pub fn fixed(rounds: u32, seed: u64) -> Result<Interleaved, ProtocolError> {
         if rounds == 0 {
-            return Err(ProtocolError::TooFewRounds { min: 0, needed: 1 });
+            return Err(ProtocolError::NoRounds);
         }
         let protocol = Protocol { warm_up_rounds: 1, min_rounds: rounds, max_rounds: rounds, seed };
         Ok(Interleaved { protocol, target_ci: 0.0 })
@@ -104,6 +105,21 @@ impl Interleaved {
     /// estimate should weigh a configuration by.
     pub fn most_runs(&self) -> u32 {
         self.protocol.warm_up_rounds + self.protocol.max_rounds
+    }
+
+    /// `run` with these rounds and their seed as inputs, so a result says how
+    /// it was measured and the shuffles can be replayed.
+    pub fn recorded_in(&self, run: RunInfo) -> RunInfo {
+        let p = &self.protocol;
+        let rounds = if p.min_rounds == p.max_rounds {
+            format!("{} (after {} warm-up)", p.min_rounds, p.warm_up_rounds)
+        } else {
+            format!(
+                "{}..={} until the 95 % intervals are within {} (after {} warm-up)",
+                p.min_rounds, p.max_rounds, self.target_ci, p.warm_up_rounds
+            )
+        };
+        run.input("rounds", rounds).input("seed", p.seed)
     }
 
     /// Whether intervals can come out of these rounds.
@@ -238,8 +254,17 @@ mod tests {
         assert!(timings[0].median().is_finite());
         assert_eq!(timings[0].estimate(), None);
         assert_eq!(timings[1].paired_difference(&timings[0]), None);
-        assert!(Interleaved::fixed(0, 1).is_err());
+        assert_eq!(Interleaved::fixed(0, 1), Err(ProtocolError::NoRounds));
+        assert!(ProtocolError::NoRounds.to_string().contains("use 1 or more"));
         assert!(Interleaved::adaptive(1, 5, 10, 0.1, 1).is_err(), "adaptive rounds need intervals");
+    }
+
+    #[test]
+    fn the_rounds_and_seed_are_recorded_as_inputs() {
+        let fixed = Interleaved::fixed(6, 42).unwrap().recorded_in(RunInfo::default());
+        assert_eq!(fixed.inputs, [("rounds".into(), "6 (after 1 warm-up)".into()), ("seed".into(), "42".into())]);
+        let adaptive = Interleaved::adaptive(1, 6, 20, 0.05, 7).unwrap().recorded_in(RunInfo::default());
+        assert!(adaptive.inputs[0].1.starts_with("6..=20 until"), "{:?}", adaptive.inputs);
     }
 
     #[test]

@@ -16,6 +16,8 @@ use serde::Serialize;
 /// Why a protocol cannot be made.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ProtocolError {
+    #[error("0 timed rounds measure nothing; use 1 or more")]
+    NoRounds,
     #[error("{min} round(s) cannot give a 95 % interval of a median: use at least {needed}")]
     TooFewRounds { min: u32, needed: usize },
     #[error("the most rounds ({max}) is below the fewest ({min})")]

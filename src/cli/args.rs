@@ -91,7 +91,8 @@ pub struct BenchStabilityArgs {
     /// Techniques, comma-separated; empty (the default): all.
     #[arg(long, value_delimiter = ',')]
     pub techniques: Vec<String>,
-    /// Timed frames per cell after one untimed warm-up frame; the median GPU time is reported.
+    /// Timed frames per cell after one untimed warm-up frame; the median GPU
+    /// time is reported, with its 95 % interval from 6 frames on.
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
 }
@@ -172,9 +173,12 @@ pub struct BenchTable1Args {
     /// Square image sizes (the paper's: 64,128,256,512,1024). Comma-separated.
     #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![64, 128, 256, 512, 1024])]
     pub sizes: Vec<u32>,
-    /// Frames per configuration; the median is reported.
-    #[arg(long, default_value_t = 2)]
+    /// Timed rounds per data set and size after one warm-up round, every line
+    /// width once a round in a shuffled order; 6 or more give 95 % intervals.
+    #[arg(long, default_value_t = 6)]
     pub repeat: u32,
+    #[command(flatten)]
+    pub rounds: RoundsArgs,
     /// Extra scene overrides applied to every data set.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,

@@ -7,8 +7,10 @@ pub mod error;
 pub mod lights;
 pub mod lights_bench;
 pub mod stability;
+pub mod stability_bench;
 pub mod stability_cases;
 pub mod sync;
 pub mod sync_report;
+pub mod table1_bench;
 
 pub use error::ExperimentError;

@@ -10,6 +10,7 @@ use std::path::Path;
 
 use super::stability_cases::StabilityCase;
 use crate::bench::harness::{Harness, Sample};
+use crate::bench::Estimate;
 use crate::ipsvi::CacheUpdate;
 use crate::linear_image::LinearImage;
 use crate::metrics::compare;
@@ -134,8 +135,18 @@ pub struct Cell {
     /// PSNR against the CPU reference of the model, where it rendered.
     pub psnr_db: Option<f64>,
     pub bound_db: f64,
-    /// GPU time of the (last timed) frame.
+    /// Median GPU time of the timed frames.
     pub gpu_ms: Option<f64>,
+    /// That median with its 95 % interval (6 or more timed frames).
+    pub gpu_ms_interval: Option<Estimate>,
+}
+
+impl Cell {
+    /// A cell with `verdict` and no measurement (yet).
+    pub fn unmeasured(case: &StabilityCase, variant: Variant, verdict: Verdict) -> Cell {
+        let bound_db = bound_db(variant.technique);
+        Cell { case: case.name, variant, verdict, psnr_db: None, bound_db, gpu_ms: None, gpu_ms_interval: None }
+    }
 }
 
 /// A case's scene and its warnings, or why it did not load.
@@ -166,7 +177,7 @@ fn gpu_frame(
     t: Technique,
     size: u32,
     harness: Harness,
-) -> Result<(LinearImage, f64), String> {
+) -> Result<(LinearImage, f64, Option<Estimate>), String> {
     t.check(scene).map_err(|e| e.to_string())?;
     let gpu = GpuScene::upload_with(ctx, scene, VolumeTexels::Float32).map_err(|e| e.to_string())?;
     let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY).map_err(|e| e.to_string())?;
@@ -176,8 +187,8 @@ fn gpu_frame(
             Ok::<_, RenderError>(Sample::timed(out.profile.gpu_ms_total, out.image))
         })
         .map_err(|e| e.to_string())?;
-    let ms = measured.median();
-    Ok((measured.last, ms))
+    let (ms, interval) = (measured.median(), measured.estimate());
+    Ok((measured.last, ms, interval))
 }
 
 /// One cell: `variant` on the case's `scene` at `size` x `size`.
@@ -191,8 +202,7 @@ pub fn run_cell(
     harness: Harness,
 ) -> Cell {
     let t = variant.technique;
-    let mut cell =
-        Cell { case: case.name, variant, verdict: Verdict::Ok, psnr_db: None, bound_db: bound_db(t), gpu_ms: None };
+    let mut cell = Cell::unmeasured(case, variant, Verdict::Ok);
     let warning = match check_warnings(case, warnings) {
         Ok(w) => w,
         Err(e) => {
@@ -225,12 +235,12 @@ pub fn run_cell(
         (Err(e), Some((_, word))) => Verdict::Failed(format!("refusal does not name {word:?} and {t}: {e}")),
         (Err(e), None) => Verdict::Failed(e),
         (Ok(_), Some(_)) => Verdict::Failed("should be refused, rendered".into()),
-        (Ok((image, ms)), None) if !image.all_finite() => {
-            cell.gpu_ms = Some(ms);
+        (Ok((image, ms, interval)), None) if !image.all_finite() => {
+            (cell.gpu_ms, cell.gpu_ms_interval) = (Some(ms), interval);
             Verdict::Failed("render let a non-finite frame through".into())
         }
-        (Ok((image, ms)), None) => {
-            cell.gpu_ms = Some(ms);
+        (Ok((image, ms, interval)), None) => {
+            (cell.gpu_ms, cell.gpu_ms_interval) = (Some(ms), interval);
             match render_cpu(&scene, model_kind(t, &scene), size, size) {
                 Err(e) => Verdict::Failed(format!("CPU reference: {e}")),
                 Ok(reference) => {
@@ -290,7 +300,7 @@ pub fn convergence(ctx: &Context, base: &Scene, variant: Variant, size: u32) -> 
     for &h in &CONVERGENCE_STEPS {
         scene.render.step_voxels = h;
         scene.reference.step_voxels = h;
-        let (image, _) = gpu_frame(ctx, &scene, t, size, Harness::once_after(0))?;
+        let (image, _, _) = gpu_frame(ctx, &scene, t, size, Harness::once_after(0))?;
         errors.push(compare(&image, &limit).map_err(|e| e.to_string())?.rmse / peak);
     }
     let orders: Vec<f64> = errors.windows(2).map(|e| (e[0] / e[1]).log2()).collect();
