@@ -125,9 +125,13 @@ pub struct BenchAoArgs {
     /// Direction pairs of the ground truth per voxel.
     #[arg(long, default_value_t = 32)]
     pub reference_pairs: u32,
-    /// Timed runs per measurement after an untimed warm-up; the median is reported.
-    #[arg(long, default_value_t = 3)]
+    /// Timed rounds after a warm-up round: every configuration's frame and
+    /// update (and Blinn-Phong's frame) once per round, in shuffled order.
+    /// 6 or more give 95 % intervals.
+    #[arg(long, default_value_t = 6)]
     pub repeat: u32,
+    #[command(flatten)]
+    pub rounds: RoundsArgs,
 }
 
 #[derive(Args, Debug)]

@@ -42,7 +42,7 @@ pub fn run(args: &BenchAoArgs) -> anyhow::Result<ExitCode> {
         clusters: args.clusters.clone(),
         metrics: args.metrics.clone(),
         reference_pairs: args.reference_pairs,
-        repeat: args.repeat,
+        rounds: session::interleaved(args.repeat, &args.rounds)?,
         data_set: data_set_name(args),
     };
     let scene = load_scene(args)?;
