@@ -534,3 +534,72 @@ impl IpsviReport {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan() -> IpsviPlan {
+        IpsviPlan {
+            sizes: vec![16],
+            line_widths: vec![1, 4],
+            cache_sizes: vec![64],
+            one_at_a_time: false,
+            half_angle_slices: vec![1.0],
+            interleaved: Interleaved::fixed(1, 0).unwrap(),
+            volume_texels: VolumeTexels::Native,
+            group_bytes: DEFAULT_GROUP_BYTES,
+        }
+    }
+
+    #[test]
+    fn the_grid_crosses_every_list_and_one_at_a_time_varies_one_factor() {
+        let base = IpsviSettings { cache_update: CacheUpdate::ViewSamples, ..IpsviSettings::default() };
+        // 2 line widths x 1 cache x piecewise on/off x 3 early terminations x 2 write rules.
+        assert_eq!(plan().configurations(&base).unwrap().len(), 24);
+        let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..base.clone() };
+        assert_eq!(plan().configurations(&rays).unwrap().len(), 12, "light rays have one write rule");
+        let one = IpsviPlan { one_at_a_time: true, ..plan() }.configurations(&base).unwrap();
+        assert!(one.contains(&base) && one.len() < 24, "{one:?}");
+        assert!(one.iter().enumerate().all(|(i, s)| !one[..i].contains(s)), "no configuration twice");
+    }
+
+    #[test]
+    fn bad_lists_name_their_flag_before_any_gpu_work() {
+        let e = |r: Result<(), ExperimentError>| r.unwrap_err().to_string();
+        assert!(e(IpsviPlan { sizes: vec![0], ..plan() }.check()).starts_with("--sizes: a 0x0 image is empty"));
+        assert!(e(IpsviPlan { sizes: vec![], ..plan() }.check()).starts_with("--sizes"));
+        assert!(e(IpsviPlan { sizes: vec![64, 20000], ..plan() }.check()).contains("20000"));
+        let slices = e(IpsviPlan { half_angle_slices: vec![0.5, 100.0], ..plan() }.check());
+        assert!(slices.starts_with("--half-angle-slices") && slices.contains("slice_step = 100"), "{slices}");
+        let widths = IpsviPlan { line_widths: vec![1, 0], ..plan() }.configurations(&IpsviSettings::default());
+        let widths = widths.unwrap_err().to_string();
+        assert!(widths.starts_with("--line-widths") && widths.contains("line_width = 0"), "{widths}");
+        assert!(plan().check().is_ok());
+    }
+
+    #[test]
+    fn groups_hold_what_the_budget_allows_and_at_least_one_configuration() {
+        let scene = crate::techniques::scene_from_toml_str(
+            "[volume]\nsynthetic = \"cornell-box\"\nsize = 8\n[[lights]]\ntype = \"directional\"\ndirection = [0.0, -1.0, 0.0]\n",
+            Path::new(""),
+            "tiny",
+            &[],
+        )
+        .unwrap();
+        let configs = plan().configurations(&IpsviSettings::default()).unwrap();
+        assert_eq!(groups(&scene, &configs, &plan()), vec![(0..configs.len()).collect::<Vec<_>>()]);
+        let alone = groups(&scene, &configs, &IpsviPlan { group_bytes: 1, ..plan() });
+        assert_eq!(alone, (0..configs.len()).map(|i| vec![i]).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn the_run_names_its_seed_and_rounds() {
+        let fixed = run_inputs(RunInfo::host(), &Interleaved::fixed(6, 42).unwrap());
+        assert!(fixed.inputs.contains(&("seed".into(), "42".into())), "{:?}", fixed.inputs);
+        assert!(fixed.inputs.contains(&("rounds".into(), "6".into())), "{:?}", fixed.inputs);
+        let adaptive = run_inputs(RunInfo::host(), &Interleaved::adaptive(1, 6, 20, 0.05, 7).unwrap());
+        assert!(adaptive.inputs.iter().any(|(k, v)| k == "rounds" && v.starts_with("6..=20")), "{:?}", adaptive.inputs);
+        assert_eq!(after_first_frames(&Interleaved::fixed(6, 1).unwrap()).protocol.warm_up_rounds, 0);
+    }
+}

@@ -331,3 +331,41 @@ impl BreakdownReport {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn timings(rounds: &[f64]) -> Timings<Counts> {
+        Timings { rounds: rounds.iter().map(|&r| Some(r)).collect(), last: Counts { dispatches: 1, barriers: 0 } }
+    }
+
+    #[test]
+    fn a_step_within_noise_has_no_cost_and_a_real_one_has() {
+        let below = timings(&[10.0, 11.0, 9.0, 10.0, 12.0, 10.0]);
+        let same = timings(&[10.5, 10.0, 9.5, 10.5, 11.0, 10.2]);
+        let (estimate, cost) = step_cost(&same, Some(&below));
+        assert_eq!(estimate.map(|e| e.verdict()), Some(crate::bench::Verdict::WithinNoise));
+        assert_eq!(cost, None, "never a cost, let alone a negative one, within noise");
+        let more = timings(&[12.0, 13.0, 11.0, 12.0, 14.0, 12.0]);
+        assert_eq!(step_cost(&more, Some(&below)).1, Some(2.0));
+        // Fewer than six rounds: the difference of medians, only when above 0.
+        assert_eq!(step_cost(&timings(&[3.0]), Some(&timings(&[1.0]))), (None, Some(2.0)));
+        assert_eq!(step_cost(&timings(&[1.0]), Some(&timings(&[3.0]))), (None, None));
+    }
+
+    #[test]
+    fn the_line_widths_are_checked_by_name() {
+        let plan = BreakdownPlan {
+            sizes: vec![16],
+            line_widths: vec![1, 99],
+            interleaved: Interleaved::fixed(1, 0).unwrap(),
+            volume_texels: VolumeTexels::Native,
+        };
+        let e = plan.check(&IpsviSettings::default()).unwrap_err().to_string();
+        assert!(e.starts_with("--line-widths") && e.contains("line_width"), "{e}");
+        let e = BreakdownPlan { sizes: vec![0], ..plan.clone() }.check(&IpsviSettings::default()).unwrap_err();
+        assert!(e.to_string().starts_with("--sizes"), "{e}");
+        assert_eq!(configurations(&IpsviSettings::default()).len(), 3, "view samples twice, light rays once");
+    }
+}
