@@ -271,9 +271,13 @@ pub struct BenchIpsviArgs {
     /// Square image sizes. Comma-separated.
     #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![256, 512])]
     pub sizes: Vec<u32>,
-    /// Runs per configuration; the median GPU time is reported.
-    #[arg(long, default_value_t = 3)]
+    /// Timed rounds: per image size every configuration runs once a round, in a
+    /// shuffled order, after a warm-up frame; the median GPU time is reported,
+    /// with its 95 % interval and paired ratios from 6 rounds up.
+    #[arg(long, default_value_t = 6)]
     pub repeat: u32,
+    #[command(flatten)]
+    pub rounds: RoundsArgs,
     /// Only the baseline settings and one factor varied at a time (no full grid).
     #[arg(long)]
     pub one_at_a_time: bool,

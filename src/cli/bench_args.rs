@@ -1,11 +1,8 @@
 //! Checks of the bench commands' list arguments, made before any GPU work so a
 //! typo in the fifth value costs nothing but the message.
 
-use anyhow::{bail, Context as _};
-use sweeplab::half_angle::HalfAngleSettings;
-use sweeplab::ipsvi::IpsviSettings;
+use anyhow::bail;
 use sweeplab::scene::scene_schema::MAX_IMAGE_SIZE;
-use sweeplab::scene::settings_table::SettingsTable;
 
 /// Square image sizes: at least one, each 1..=MAX_IMAGE_SIZE.
 pub fn check_sizes(flag: &str, sizes: &[u32]) -> anyhow::Result<()> {
@@ -33,24 +30,6 @@ pub fn side_length(text: &str) -> Result<u32, String> {
         .map_err(|_| format!("{text:?} is not a side length: a whole number in 1..={MAX_IMAGE_SIZE}, e.g. 256"))
 }
 
-/// Every IPSVI configuration a bench will run, checked as the scene file would be.
-pub fn check_ipsvi(flags: &str, configurations: &[IpsviSettings]) -> anyhow::Result<()> {
-    for c in configurations {
-        c.validate().with_context(|| flags.to_string())?;
-    }
-    Ok(())
-}
-
-/// Half-angle slice spacings, checked as `half_angle.slice_step` would be.
-pub fn check_slice_steps(flag: &str, steps: &[f32]) -> anyhow::Result<()> {
-    for &step in steps {
-        HalfAngleSettings { slice_step: Some(step), ..HalfAngleSettings::default() }
-            .validate()
-            .with_context(|| flag.to_string())?;
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -71,10 +50,5 @@ mod tests {
             let e = format!("{:#}", check_sizes("--sizes", bad).unwrap_err());
             assert!(e.starts_with("--sizes"), "{e}");
         }
-        let zero = IpsviSettings { line_width: 0, ..IpsviSettings::default() };
-        let e = format!("{:#}", check_ipsvi("--line-widths/--cache-sizes", &[zero]).unwrap_err());
-        assert!(e.contains("--line-widths") && e.contains("line_width = 0"), "{e}");
-        let e = format!("{:#}", check_slice_steps("--half-angle-slices", &[0.5, 100.0]).unwrap_err());
-        assert!(e.contains("--half-angle-slices") && e.contains("slice_step = 100"), "{e}");
     }
 }

@@ -4,6 +4,8 @@
 pub mod ao_bench;
 pub mod dispatch_probe;
 pub mod error;
+pub mod ipsvi_bench;
+pub mod ipsvi_breakdown;
 pub mod lights;
 pub mod lights_bench;
 pub mod stability;

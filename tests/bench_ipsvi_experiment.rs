@@ -1,0 +1,97 @@
+//! The `bench ipsvi` experiments called as library code at 8x8 with six
+//! rounds: every file written, intervals on the times and ratios, no
+//! published step cost at or below 0.
+mod common;
+
+use common::cli::{bench_rows, temp_dir};
+use common::{directional, sphere_volume};
+use glam::Vec3;
+use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
+use sweeplab::bench::experiments::ipsvi_breakdown::{self, BreakdownPlan};
+use sweeplab::bench::{Interleaved, OutFolder, RunInfo};
+use sweeplab::render::VolumeTexels;
+use sweeplab::vk::{Context, ContextOptions};
+
+fn scene() -> sweeplab::scene::Scene {
+    common::scene_with(sphere_volume(12, 0.4), vec![directional(Vec3::new(0.3, -1.0, 0.2), 1.0)], 8, 8)
+}
+
+#[test]
+fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
+    let dir = temp_dir("ipsvi-experiment");
+    let plan = IpsviPlan {
+        sizes: vec![8],
+        line_widths: vec![1, 4],
+        cache_sizes: vec![64],
+        one_at_a_time: true,
+        half_angle_slices: vec![1.0],
+        interleaved: Interleaved::fixed(6, 11).unwrap(),
+        volume_texels: VolumeTexels::Native,
+        group_bytes: DEFAULT_GROUP_BYTES,
+    };
+    let ctx = common::validated_context();
+    let out = OutFolder::prepare(&dir).unwrap();
+    let report = ipsvi_bench::run(&ctx, &scene(), &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
+    common::assert_validation_clean(&ctx);
+    out.finish().unwrap();
+    for file in ["ipsvi.csv", "ipsvi.md", "ipsvi_8_error_vs_time.png", "ipsvi_8_error_vs_time.svg"] {
+        assert!(dir.join(file).is_file(), "{file} missing");
+    }
+    let rows = bench_rows(&dir.join("ipsvi.json"));
+    assert_eq!(rows.len(), report.table.rows.len());
+    let ipsvi: Vec<_> = rows.iter().filter(|r| r["technique"] == "ipsvi").collect();
+    assert!(!ipsvi.is_empty());
+    for r in rows.iter().filter(|r| r["technique"] != "reference") {
+        let (lo, v, hi) =
+            (r["gpu_ms_lo"].as_f64().unwrap(), r["gpu_ms"].as_f64().unwrap(), r["gpu_ms_hi"].as_f64().unwrap());
+        assert!(lo <= v && v <= hi, "{r}");
+    }
+    for r in &ipsvi {
+        let (lo, hi) = (r["time_over_dvr_lo"].as_f64().unwrap(), r["time_over_dvr_hi"].as_f64().unwrap());
+        assert!(lo > 0.0 && lo <= hi, "{r}");
+    }
+    let text = std::fs::read_to_string(dir.join("ipsvi.md")).unwrap();
+    assert!(text.contains("- seed: `11`") && text.contains("- rounds: `6`"), "{text}");
+}
+
+#[test]
+fn the_breakdown_at_8x8_with_six_rounds_publishes_no_cost_within_noise() {
+    let dir = temp_dir("breakdown-experiment");
+    let plan = BreakdownPlan {
+        sizes: vec![8],
+        line_widths: vec![1, 2],
+        interleaved: Interleaved::fixed(6, 5).unwrap(),
+        volume_texels: VolumeTexels::Native,
+    };
+    // Without validation: step b has no barriers between blocks by design.
+    let ctx = Context::new(&ContextOptions {
+        device: std::env::var("SWEEPLAB_DEVICE").ok(),
+        validate: false,
+        best_practices: false,
+    })
+    .unwrap();
+    let out = OutFolder::prepare(&dir).unwrap();
+    let report = ipsvi_breakdown::run(&ctx, &scene(), &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
+    out.finish().unwrap();
+    let rows = bench_rows(&dir.join("ipsvi_breakdown.json"));
+    assert_eq!(rows.len(), 28);
+    for r in &rows {
+        let verdict = r["step_ms_verdict"].as_str().unwrap();
+        assert!(["cost", "within noise", "below baseline"].contains(&verdict), "{r}");
+        assert_eq!(r["step_ms"].is_number(), verdict == "cost", "{r}");
+        assert!(r["step_ms"].as_f64().is_none_or(|v| v > 0.0) && r["step_ms_lo"].is_number(), "{r}");
+    }
+    for bar in &report.bars {
+        assert!(bar.segments.iter().all(|(_, v)| *v >= 0.0), "{bar:?}");
+        let zero = bar.segments.iter().any(|(_, v)| *v == 0.0);
+        assert_eq!(zero, bar.label.contains("within noise"), "{bar:?}");
+    }
+    let widths = bench_rows(&dir.join("ipsvi_line_widths.json"));
+    for r in widths.iter().filter(|r| r["line_width"] == 1) {
+        assert_eq!(
+            (r["speedup_over_lw1_lo"].as_f64(), r["speedup_over_lw1_hi"].as_f64()),
+            (Some(1.0), Some(1.0)),
+            "{r}"
+        );
+    }
+}
