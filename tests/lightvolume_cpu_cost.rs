@@ -58,6 +58,7 @@ fn cpu_time_per_added_light_coherent_and_sequential() {
         device: std::env::var("SWEEPLAB_DEVICE").ok(),
         validate: false,
         best_practices: false,
+        ..Default::default()
     })
     .unwrap();
     let mut slopes = Vec::new();

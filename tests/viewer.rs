@@ -585,3 +585,46 @@ fn the_image_is_drawn_beside_the_panel_and_the_panel_hides() {
     let differing = back.pixels().zip(hidden.pixels()).filter(|(a, b)| levels(a, b) > 1).count();
     assert!(differing > 200 * 160 / 20, "H did not bring the panel back ({differing} pixels differ)");
 }
+
+/// What the context created during frame `f` (pipelines, descriptor pools, images).
+fn created(f: &serde_json::Value) -> (u64, u64, u64) {
+    let c = &f["created"];
+    (c["pipelines"].as_u64().unwrap(), c["descriptor_pools"].as_u64().unwrap(), c["images"].as_u64().unwrap())
+}
+
+#[test]
+fn unchanged_frames_create_no_pipeline_or_pool_and_a_resize_only_what_has_the_size() {
+    let x = xvfb_or_skip!();
+    let dir = temp_dir("creations");
+    let script = dir.join("script.txt");
+    std::fs::write(&script, "4 resize 40x32\n").unwrap();
+    // Techniques each frame renders anew (dvr, half-angle) and sessions that
+    // keep their resources (the light volume, IPSVI).
+    for technique in ["dvr", "half-angle", "lightvolume", "ipsvi"] {
+        let frames = view_log(&x, technique, technique, "32x32", "7", &["--script", script.to_str().unwrap()]);
+        assert_eq!(frames.len(), 7);
+        let c: Vec<(u64, u64, u64)> = frames.iter().map(created).collect();
+        assert!(c[0].0 > 0, "{technique}: the first frame compiles its pipelines: {c:?}");
+        for (i, f) in frames.iter().enumerate().skip(1) {
+            assert_eq!(c[i].0, 0, "{technique}: frame {i} created pipelines: {c:?}");
+            // Two frames in flight: the second frame's pools are new, then
+            // each frame takes a pool the frame before last gave back. A
+            // resize may need a pool (sets bind the sized images).
+            if i >= 2 && f["swapchain_recreated"] != true {
+                assert_eq!(c[i].1, 0, "{technique}: frame {i} created descriptor pools: {c:?}");
+            }
+            if f["swapchain_recreated"] == true {
+                assert_eq!((f["width"].as_u64(), f["height"].as_u64()), (Some(40), Some(32)), "{technique}");
+            }
+        }
+        let resized = frames.iter().position(|f| f["width"] == 40).expect("the resize reached the swapchain");
+        // A session's resources have the image size: re-created at the
+        // resize only, and nothing after it.
+        if ["lightvolume", "ipsvi"].contains(&technique) {
+            assert!(c[resized].2 > 0, "{technique}: the resize re-creates the sized images: {c:?}");
+            for (i, ci) in c.iter().enumerate().skip(1).filter(|(i, _)| *i != resized) {
+                assert_eq!(*ci, (0, 0, 0), "{technique}: unchanged frame {i} created something: {c:?}");
+            }
+        }
+    }
+}

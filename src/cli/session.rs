@@ -29,6 +29,7 @@ pub fn context_options(gpu: &GpuArgs) -> ContextOptions {
         device: gpu.device.clone(),
         validate: gpu.validate.is_some(),
         best_practices: gpu.validate == Some(ValidateMode::BestPractices),
+        ..Default::default()
     }
     .with_env()
 }

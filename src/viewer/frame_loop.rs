@@ -141,6 +141,8 @@ fn frame_loop<'c>(
     let mut selected_light = 0usize;
     // The volume is loaded once and kept across edits.
     let histogram = live.scene.volume.histogram(tf_editor::HISTOGRAM_BINS);
+    // What the context created between two frame records.
+    let mut counted = ctx.creation_counts();
     'scene: loop {
         enabled.resize(live.scene.lights.len(), true);
         // Switched-off lights are left out of the uploaded scene.
@@ -347,6 +349,9 @@ fn frame_loop<'c>(
             };
             recreate |= submitted.recreate;
             let now = Instant::now();
+            let counts = ctx.creation_counts();
+            let created = counts.since(&counted);
+            counted = counts;
             let technique_profile = submitted.uploaded_profile.as_ref();
             log.report.frames.push(FrameRecord {
                 index: frame_index,
@@ -364,6 +369,7 @@ fn frame_loop<'c>(
                 secondaries_recorded: session.secondaries_recorded(),
                 decision: session.last_decision(),
                 swapchain_recreated: recreated,
+                created,
             });
             last_present = now;
             if let Some(pixels) = submitted.pixels {

@@ -3,6 +3,7 @@
 //! update decision. The GPU figures are filled in once the frame's slot
 //! fence was waited. Written as JSON by `--log-json`.
 
+use crate::vk::creation_counts::CreationCounts;
 use serde::Serialize;
 
 #[derive(Clone, Debug, Default, Serialize)]
@@ -36,6 +37,10 @@ pub struct FrameRecord {
     pub decision: Option<String>,
     /// The swapchain was recreated before this frame.
     pub swapchain_recreated: bool,
+    /// Pipelines, descriptor pools and images the context created since the
+    /// previous frame's record (the first: since the context began): an
+    /// unchanged frame creates no pipeline and no pool.
+    pub created: CreationCounts,
 }
 
 #[derive(Clone, Debug, Default, Serialize)]

@@ -1,9 +1,13 @@
 //! Instance, device selection, validation and the one compute queue.
 
 use super::calibration::{self, Calibrator};
+use super::creation_counts::{CreationCounters, CreationCounts};
+use super::descriptor_pool_shelf::PoolShelf;
 use super::device_info::{self, DeviceInfo};
 use super::error::{VkError, VkResultExt};
 use super::memory::GpuMemory;
+use super::pipeline_cache::{CacheDevice, PipelineCache, PipelineCacheDir};
+use super::pipeline_store::PipelineStore;
 use super::validation::{self, ValidationLog};
 use super::wait_report::WaitReporter;
 use ash::vk;
@@ -26,6 +30,8 @@ pub struct ContextOptions {
     /// `SWEEPLAB_VALIDATE=best-practices`); the NVIDIA and AMD vendor checks
     /// come from [`BEST_PRACTICES_LAYER_ENABLES`], which the process sets.
     pub best_practices: bool,
+    /// Where the driver's pipeline cache is kept between runs ([`super::pipeline_cache`]).
+    pub pipeline_cache: PipelineCacheDir,
 }
 
 /// `VK_LAYER_ENABLES` for best-practices runs: the layer's best practices with
@@ -77,6 +83,14 @@ pub struct Context {
     /// Device and host clocks read together, where the device can
     /// ([`super::calibration`]).
     pub calibrator: Option<Arc<Calibrator>>,
+    /// The driver's pipeline cache, loaded from and saved to its file.
+    pub pipeline_cache: PipelineCache,
+    /// Pipelines compiled once and handed out again ([`super::pipeline_store`]).
+    pub pipelines: PipelineStore,
+    /// Descriptor pools handed on ([`super::descriptor_pool_shelf`]).
+    pub descriptor_pools: Arc<PoolShelf>,
+    /// What this context created so far ([`super::creation_counts`]).
+    pub counters: CreationCounters,
 }
 
 struct Candidate {
@@ -305,18 +319,35 @@ impl Context {
             };
         // SAFETY: the family was requested with one queue at creation.
         let queue = unsafe { device.get_device_queue(queue_family, 0) };
-        // SAFETY: limits are plain data of a valid physical device.
-        let limits = unsafe { instance.get_physical_device_properties(cand.physical_device) }.limits;
+        // SAFETY: properties are plain data of a valid physical device.
+        let properties = unsafe { instance.get_physical_device_properties(cand.physical_device) };
+        let limits = properties.limits;
+        let pipeline_cache =
+            match PipelineCache::open(&device, &CacheDevice::of(&properties), options.pipeline_cache.resolve()) {
+                Ok(c) => c,
+                Err(e) => {
+                    // SAFETY: nothing was created on the device yet.
+                    unsafe { device.destroy_device(None) };
+                    return Err(cleanup_instance(e));
+                }
+            };
+        if let Some(note) = &pipeline_cache.note {
+            eprintln!("sweeplab: {note}; starting with an empty cache");
+        }
         let memory = match GpuMemory::new(&instance, &device, cand.physical_device) {
             Ok(m) => Arc::new(m),
             Err(e) => {
-                // SAFETY: nothing was created on the device yet.
-                unsafe { device.destroy_device(None) };
+                // SAFETY: only the pipeline cache was created on the device.
+                unsafe {
+                    device.destroy_pipeline_cache(pipeline_cache.raw, None);
+                    device.destroy_device(None);
+                }
                 return Err(cleanup_instance(e));
             }
         };
         let debug_utils = debug_instance.as_ref().map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
         let calibrator = calibration_ext.map(|name| Arc::new(Calibrator::new(&instance, &device, name)));
+        let descriptor_pools = Arc::new(PoolShelf::new(&device));
         Ok(Context {
             entry,
             instance,
@@ -335,7 +366,23 @@ impl Context {
             wait_reporter: Mutex::new(None),
             shared_specialization: Mutex::new(Vec::new()),
             calibrator,
+            descriptor_pools,
+            pipeline_cache,
+            pipelines: PipelineStore::default(),
+            counters: CreationCounters::default(),
         })
+    }
+
+    /// What this context created so far (pipelines, descriptor pools, images).
+    pub fn creation_counts(&self) -> CreationCounts {
+        self.counters.read()
+    }
+
+    /// Writes the pipeline cache to its file now (the context also does when
+    /// it drops, if it compiled a pipeline); the bytes written, `None` where
+    /// the cache is off.
+    pub fn save_pipeline_cache(&self) -> Result<Option<usize>, VkError> {
+        self.pipeline_cache.save(&self.device)
     }
 
     /// Sets (or with `None` clears) what reports on long waits for a
@@ -514,6 +561,16 @@ impl Drop for Context {
                 eprintln!("sweeplab: GPU resources outlive the Vulkan context; leaking the device instead of destroying it under them");
                 return;
             }
+            // Kept pipelines and pools go before the device; the cache is
+            // saved only where something was compiled into it.
+            self.pipelines.clear();
+            self.descriptor_pools.clear();
+            if self.counters.read().pipelines > 0 {
+                if let Err(e) = self.pipeline_cache.save(&self.device) {
+                    eprintln!("sweeplab: the pipeline cache was not saved: {e}");
+                }
+            }
+            self.device.destroy_pipeline_cache(self.pipeline_cache.raw, None);
             self.memory.destroy_allocator();
             self.device.destroy_device(None);
             if let Some(di) = &self.debug_instance {

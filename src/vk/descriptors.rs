@@ -3,10 +3,12 @@
 //! against the shader's reflected interface.
 
 use super::context::Context;
+use super::descriptor_pool_shelf::{PoolShape, PoolShelf};
 use super::error::{VkError, VkResultExt};
 use super::interface::Binding;
 use super::resources::{Buffer, Image, Sampler};
 use ash::vk;
+use std::sync::Arc;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BindingKind {
@@ -82,26 +84,38 @@ pub fn check_set(shader: &'static str, layout: &[Binding], given: &[(Binding, Bi
 
 pub struct DescriptorAllocator {
     pool: vk::DescriptorPool,
+    shape: PoolShape,
+    shelf: Arc<PoolShelf>,
     device: ash::Device,
 }
 
 impl DescriptorAllocator {
+    /// A pool for `max_sets` sets of `bindings`: a shelved one of that shape
+    /// where there is one ([`super::descriptor_pool_shelf`]), else a new one.
     pub fn new(ctx: &Context, bindings: &[Binding], max_sets: u32) -> Result<Self, VkError> {
-        let mut sizes: Vec<vk::DescriptorPoolSize> = Vec::new();
+        let mut sizes: Vec<(vk::DescriptorType, u32)> = Vec::new();
         for binding in bindings {
             let ty = binding.kind.vk_type();
-            match sizes.iter_mut().find(|s| s.ty == ty) {
-                Some(s) => s.descriptor_count += max_sets,
-                None => sizes.push(vk::DescriptorPoolSize { ty, descriptor_count: max_sets }),
+            match sizes.iter_mut().find(|s| s.0 == ty) {
+                Some(s) => s.1 += max_sets,
+                None => sizes.push((ty, max_sets)),
             }
         }
         if sizes.is_empty() {
-            sizes.push(vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: 1 });
+            sizes.push((vk::DescriptorType::STORAGE_BUFFER, 1));
         }
+        let shape = PoolShape { max_sets, sizes };
+        let shelf = ctx.descriptor_pools.clone();
+        if let Some(pool) = shelf.take(&shape) {
+            return Ok(DescriptorAllocator { pool, shape, shelf, device: ctx.device.clone() });
+        }
+        let sizes: Vec<vk::DescriptorPoolSize> =
+            shape.sizes.iter().map(|&(ty, descriptor_count)| vk::DescriptorPoolSize { ty, descriptor_count }).collect();
         let info = vk::DescriptorPoolCreateInfo::default().max_sets(max_sets).pool_sizes(&sizes);
         // SAFETY: valid device and create info.
         let pool = unsafe { ctx.device.create_descriptor_pool(&info, None) }.call("vkCreateDescriptorPool")?;
-        Ok(DescriptorAllocator { pool, device: ctx.device.clone() })
+        ctx.counters.descriptor_pool_created();
+        Ok(DescriptorAllocator { pool, shape, shelf, device: ctx.device.clone() })
     }
 
     /// Allocates a set of `layout` and writes `resources` into the bindings they
@@ -164,8 +178,12 @@ impl DescriptorAllocator {
 
 impl Drop for DescriptorAllocator {
     fn drop(&mut self) {
-        // SAFETY: sets from this pool are no longer used by pending GPU work.
-        unsafe { self.device.destroy_descriptor_pool(self.pool, None) };
+        // Sets from this pool are no longer used by pending GPU work (an
+        // allocator is dropped with its pipeline, after the work using it).
+        if self.shelf.give_back(self.shape.clone(), self.pool).is_err() {
+            // SAFETY: as above; a pool that failed to reset is not shelved.
+            unsafe { self.device.destroy_descriptor_pool(self.pool, None) };
+        }
     }
 }
 

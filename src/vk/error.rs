@@ -32,6 +32,8 @@ pub enum VkError {
     Presentation(String),
     #[error("profiler misuse: {0}")]
     Profiler(String),
+    #[error("pipeline cache {path}: {message}")]
+    PipelineCache { path: String, message: String },
     #[error(transparent)]
     Limit(#[from] super::limits::LimitExceeded),
 }

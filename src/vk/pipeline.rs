@@ -1,11 +1,15 @@
 //! Compute pipelines from embedded SPIR-V, with specialization constants (shader
-//! variants) and push constants, and their one descriptor-set layout.
+//! variants) and push constants, and their one descriptor-set layout. Each is
+//! compiled once per context ([`super::pipeline_store`]) through the context's
+//! pipeline cache ([`super::pipeline_cache`]); each ComputePipeline has its own
+//! descriptor pool.
 
 use super::context::Context;
 use super::descriptors::{DescriptorAllocator, Resource};
 use super::error::{VkError, VkResultExt};
 use super::interface::{Binding, ShaderInterface};
 use super::limits::{Limit, LimitExceeded, Need};
+use super::pipeline_store::{PipelineKey, PipelineObjects};
 use ash::vk;
 use std::io::Cursor;
 use std::sync::Arc;
@@ -30,7 +34,9 @@ pub struct ComputePipeline {
     pub bindings: &'static [Binding],
     pub push_constant_bytes: u32,
     pub descriptors: DescriptorAllocator,
-    device: ash::Device,
+    /// Shared with the context's store ([`super::pipeline_store`]); dropped
+    /// after the GPU work using it completed, like every ComputePipeline.
+    _objects: Arc<PipelineObjects>,
     _keep_alive: Arc<super::memory::GpuMemory>,
 }
 
@@ -50,7 +56,6 @@ impl ComputePipeline {
     }
 
     fn create(ctx: &Context, desc: &ComputePipelineDesc, spirv: &[u8]) -> Result<ComputePipeline, VkError> {
-        let device = &ctx.device;
         let shader = desc.shader;
         if shader.push_constant_bytes > ctx.limits.max_push_constants_size {
             let need = Need::new(
@@ -65,47 +70,6 @@ impl ComputePipeline {
                 available: ctx.limits.max_push_constants_size as u64,
             }));
         }
-        let words = ash::util::read_spv(&mut Cursor::new(spirv))
-            .map_err(|_| VkError::Call { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
-        let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
-        // SAFETY: words is valid SPIR-V compiled by build.rs.
-        let module = unsafe { device.create_shader_module(&module_info, None) }.call("vkCreateShaderModule")?;
-
-        let layout_bindings: Vec<vk::DescriptorSetLayoutBinding> = shader
-            .bindings
-            .iter()
-            .map(|b| {
-                vk::DescriptorSetLayoutBinding::default()
-                    .binding(b.index)
-                    .descriptor_type(b.kind.vk_type())
-                    .descriptor_count(1)
-                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
-            })
-            .collect();
-        let set_layout_info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings);
-        // SAFETY: valid device and create info.
-        let set_layout = unsafe { device.create_descriptor_set_layout(&set_layout_info, None) }
-            .call("vkCreateDescriptorSetLayout")
-            // SAFETY (in the closure): the module was just created and is unused.
-            .inspect_err(|_| unsafe { device.destroy_shader_module(module, None) })?;
-        let ranges = [vk::PushConstantRange::default()
-            .stage_flags(vk::ShaderStageFlags::COMPUTE)
-            .offset(0)
-            .size(shader.push_constant_bytes.max(4))];
-        let set_layouts = [set_layout];
-        let mut layout_info = vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts);
-        if shader.push_constant_bytes > 0 {
-            layout_info = layout_info.push_constant_ranges(&ranges);
-        }
-        // SAFETY: valid device and create info.
-        let layout = unsafe { device.create_pipeline_layout(&layout_info, None) }
-            .call("vkCreatePipelineLayout")
-            // SAFETY (in the closure): module and set layout were just created and are unused.
-            .inspect_err(|_| unsafe {
-                device.destroy_shader_module(module, None);
-                device.destroy_descriptor_set_layout(set_layout, None);
-            })?;
-
         // The pipeline's own constants, then the context's shared ones it does
         // not set itself (constant ids must be unique).
         let mut constants = desc.specialization.to_vec();
@@ -114,60 +78,23 @@ impl ComputePipeline {
                 constants.push((id, value));
             }
         }
-        let entries: Vec<vk::SpecializationMapEntry> = constants
-            .iter()
-            .enumerate()
-            .map(|(i, (id, _))| vk::SpecializationMapEntry { constant_id: *id, offset: (i * 4) as u32, size: 4 })
-            .collect();
-        let data: Vec<u8> = constants.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
-        let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
-        let stage = vk::PipelineShaderStageCreateInfo::default()
-            .stage(vk::ShaderStageFlags::COMPUTE)
-            .module(module)
-            .name(c"main")
-            .specialization_info(&spec);
-        let info = [vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout)];
-        // SAFETY: module and layout are valid; the shader matches the layout.
-        let created = unsafe { device.create_compute_pipelines(vk::PipelineCache::null(), &info, None) };
-        // SAFETY: the module is no longer needed once pipelines are created.
-        unsafe { device.destroy_shader_module(module, None) };
-        let raw = match created {
-            Ok(pipelines) => pipelines[0],
-            Err((pipelines, result)) => {
-                // SAFETY: nothing uses the layouts or any handle the failed call
-                // returned (null where it created none; destroying null is a no-op).
-                unsafe {
-                    for p in pipelines {
-                        device.destroy_pipeline(p, None);
-                    }
-                    device.destroy_pipeline_layout(layout, None);
-                    device.destroy_descriptor_set_layout(set_layout, None);
-                }
-                return Err(VkError::Call { call: "vkCreateComputePipelines", result });
-            }
-        };
-        ctx.set_name(raw, desc.name);
-        let descriptors = match DescriptorAllocator::new(ctx, shader.bindings, desc.max_sets.max(1)) {
-            Ok(d) => d,
-            Err(e) => {
-                // SAFETY: the pipeline and its layouts were just created and never used.
-                unsafe {
-                    device.destroy_pipeline(raw, None);
-                    device.destroy_pipeline_layout(layout, None);
-                    device.destroy_descriptor_set_layout(set_layout, None);
-                }
-                return Err(e);
-            }
-        };
+        let key = PipelineKey { spirv: spirv.as_ptr() as usize, name: desc.name.to_string(), constants };
+        let (objects, created) = ctx.pipelines.get_or_create(key.clone(), || create_objects(ctx, desc, spirv, &key))?;
+        if created {
+            ctx.counters.pipeline_created();
+        } else {
+            ctx.counters.pipeline_reused();
+        }
+        let descriptors = DescriptorAllocator::new(ctx, shader.bindings, desc.max_sets.max(1))?;
         Ok(ComputePipeline {
-            raw,
-            layout,
-            set_layout,
+            raw: objects.raw,
+            layout: objects.layout,
+            set_layout: objects.set_layout,
             shader: shader.name,
             bindings: shader.bindings,
             push_constant_bytes: shader.push_constant_bytes,
             descriptors,
-            device: device.clone(),
+            _objects: objects,
             _keep_alive: ctx.memory.clone(),
         })
     }
@@ -176,17 +103,6 @@ impl ComputePipeline {
     /// resource into the binding it names; every binding of the shader needs one.
     pub fn create_set(&mut self, resources: &[(Binding, Resource)]) -> Result<vk::DescriptorSet, VkError> {
         self.descriptors.create_set(self.shader, self.set_layout, self.bindings, resources)
-    }
-}
-
-impl Drop for ComputePipeline {
-    fn drop(&mut self) {
-        // SAFETY: pipelines are dropped after the GPU work using them completed.
-        unsafe {
-            self.device.destroy_pipeline(self.raw, None);
-            self.device.destroy_pipeline_layout(self.layout, None);
-            self.device.destroy_descriptor_set_layout(self.set_layout, None);
-        }
     }
 }
 
@@ -205,4 +121,92 @@ pub fn parity_pair(ctx: &Context, desc: &ComputePipelineDesc) -> Result<[Compute
             problem: format!("has {} build(s), not the two of a ping-pong pair", builds.len()),
         }),
     }
+}
+
+/// Compiles `spirv` with `key`'s constants into a pipeline and its layouts,
+/// through the context's pipeline cache.
+fn create_objects(
+    ctx: &Context,
+    desc: &ComputePipelineDesc,
+    spirv: &[u8],
+    key: &PipelineKey,
+) -> Result<PipelineObjects, VkError> {
+    let device = &ctx.device;
+    let shader = desc.shader;
+    let words = ash::util::read_spv(&mut Cursor::new(spirv))
+        .map_err(|_| VkError::Call { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
+    let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
+    // SAFETY: words is valid SPIR-V compiled by build.rs.
+    let module = unsafe { device.create_shader_module(&module_info, None) }.call("vkCreateShaderModule")?;
+
+    let layout_bindings: Vec<vk::DescriptorSetLayoutBinding> = shader
+        .bindings
+        .iter()
+        .map(|b| {
+            vk::DescriptorSetLayoutBinding::default()
+                .binding(b.index)
+                .descriptor_type(b.kind.vk_type())
+                .descriptor_count(1)
+                .stage_flags(vk::ShaderStageFlags::COMPUTE)
+        })
+        .collect();
+    let set_layout_info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings);
+    // SAFETY: valid device and create info.
+    let set_layout = unsafe { device.create_descriptor_set_layout(&set_layout_info, None) }
+        .call("vkCreateDescriptorSetLayout")
+        // SAFETY (in the closure): the module was just created and is unused.
+        .inspect_err(|_| unsafe { device.destroy_shader_module(module, None) })?;
+    let ranges = [vk::PushConstantRange::default()
+        .stage_flags(vk::ShaderStageFlags::COMPUTE)
+        .offset(0)
+        .size(shader.push_constant_bytes.max(4))];
+    let set_layouts = [set_layout];
+    let mut layout_info = vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts);
+    if shader.push_constant_bytes > 0 {
+        layout_info = layout_info.push_constant_ranges(&ranges);
+    }
+    // SAFETY: valid device and create info.
+    let layout = unsafe { device.create_pipeline_layout(&layout_info, None) }
+        .call("vkCreatePipelineLayout")
+        // SAFETY (in the closure): module and set layout were just created and are unused.
+        .inspect_err(|_| unsafe {
+            device.destroy_shader_module(module, None);
+            device.destroy_descriptor_set_layout(set_layout, None);
+        })?;
+
+    let entries: Vec<vk::SpecializationMapEntry> = key
+        .constants
+        .iter()
+        .enumerate()
+        .map(|(i, (id, _))| vk::SpecializationMapEntry { constant_id: *id, offset: (i * 4) as u32, size: 4 })
+        .collect();
+    let data: Vec<u8> = key.constants.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
+    let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
+    let stage = vk::PipelineShaderStageCreateInfo::default()
+        .stage(vk::ShaderStageFlags::COMPUTE)
+        .module(module)
+        .name(c"main")
+        .specialization_info(&spec);
+    let info = [vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout)];
+    // SAFETY: module and layout are valid; the shader matches the layout.
+    let created = unsafe { device.create_compute_pipelines(ctx.pipeline_cache.raw, &info, None) };
+    // SAFETY: the module is no longer needed once pipelines are created.
+    unsafe { device.destroy_shader_module(module, None) };
+    let raw = match created {
+        Ok(pipelines) => pipelines[0],
+        Err((pipelines, result)) => {
+            // SAFETY: nothing uses the layouts or any handle the failed call
+            // returned (null where it created none; destroying null is a no-op).
+            unsafe {
+                for p in pipelines {
+                    device.destroy_pipeline(p, None);
+                }
+                device.destroy_pipeline_layout(layout, None);
+                device.destroy_descriptor_set_layout(set_layout, None);
+            }
+            return Err(VkError::Call { call: "vkCreateComputePipelines", result });
+        }
+    };
+    ctx.set_name(raw, desc.name);
+    Ok(PipelineObjects { raw, layout, set_layout, device: device.clone() })
 }

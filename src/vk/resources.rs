@@ -181,6 +181,7 @@ impl Image {
             .initial_layout(vk::ImageLayout::UNDEFINED);
         // SAFETY: valid device and create info.
         let raw = unsafe { ctx.device.create_image(&info, None) }.call("vkCreateImage")?;
+        ctx.counters.image_created();
         // SAFETY: raw was just created on this device.
         let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
         let allocation = match ctx.memory.allocate(name, requirements, MemoryLocation::GpuOnly, false, true) {

@@ -15,6 +15,7 @@ pub fn validated_context() -> Context {
         device: std::env::var("SWEEPLAB_DEVICE").ok(),
         validate: true,
         best_practices: false,
+        ..Default::default()
     })
     .expect("Vulkan context with validation")
 }
