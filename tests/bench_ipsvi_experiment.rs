@@ -68,6 +68,7 @@ fn the_breakdown_at_8x8_with_six_rounds_publishes_no_cost_within_noise() {
         device: std::env::var("SWEEPLAB_DEVICE").ok(),
         validate: false,
         best_practices: false,
+        ..Default::default()
     })
     .unwrap();
     let out = OutFolder::prepare(&dir).unwrap();
