@@ -17,6 +17,7 @@ pub mod ipsvi;
 pub mod lightvolume;
 pub mod linear_image;
 pub mod metrics;
+pub mod output_paths;
 pub mod reference;
 pub mod render;
 pub mod scene;

@@ -175,7 +175,7 @@ pub struct BenchTable1Args {
     #[arg(long, default_value = "bench-table1")]
     pub out: PathBuf,
     /// Square image sizes (the paper's: 64,128,256,512,1024). Comma-separated.
-    #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![64, 128, 256, 512, 1024])]
+    #[arg(long, value_delimiter = ',', value_parser = sweeplab::bench::experiments::image_sizes::side_length, default_values_t = vec![64, 128, 256, 512, 1024])]
     pub sizes: Vec<u32>,
     /// Timed rounds per data set and size after one warm-up round, every line
     /// width once a round in a shuffled order; 6 or more give 95 % intervals.
@@ -269,7 +269,7 @@ pub struct BenchIpsviArgs {
     #[arg(long, value_delimiter = ',', default_values_t = vec![64, 128, 256, 512, 1024])]
     pub cache_sizes: Vec<u32>,
     /// Square image sizes. Comma-separated.
-    #[arg(long, value_delimiter = ',', value_parser = super::bench_args::side_length, default_values_t = vec![256, 512])]
+    #[arg(long, value_delimiter = ',', value_parser = sweeplab::bench::experiments::image_sizes::side_length, default_values_t = vec![256, 512])]
     pub sizes: Vec<u32>,
     /// Timed rounds: per image size every configuration runs once a round, in a
     /// shuffled order, after a warm-up frame; the median GPU time is reported,

@@ -10,7 +10,6 @@ use sweeplab::bench::OutFolder;
 use sweeplab::ipsvi::IpsviSettings;
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
-    session::harness(1, args.repeat)?;
     let plan = BreakdownPlan {
         sizes: args.sizes.clone(),
         line_widths: args.line_widths.clone(),

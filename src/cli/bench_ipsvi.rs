@@ -14,7 +14,6 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     if args.breakdown {
         return super::bench_breakdown::run(args);
     }
-    session::harness(1, args.repeat)?;
     let plan = IpsviPlan {
         sizes: args.sizes.clone(),
         line_widths: args.line_widths.clone(),

@@ -3,7 +3,7 @@
 //! the convergence of each technique over the step, and a heat map.
 
 use super::args::BenchStabilityArgs;
-use super::{bench_args, session};
+use super::session;
 use std::process::ExitCode;
 use sweeplab::bench::experiments::stability_bench::{self, StabilityPlan};
 use sweeplab::bench::OutFolder;
@@ -11,7 +11,7 @@ use sweeplab::bench::OutFolder;
 pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     // One untimed frame per cell first: llvmpipe compiles shader variants on first use.
     let harness = session::harness(1, args.repeat)?;
-    bench_args::check_sizes("--size", &[args.size])?;
+    sweeplab::bench::experiments::image_sizes::check_sizes("--size", &[args.size])?;
     let dir = std::env::temp_dir().join(format!("sweeplab-bench-stability-{}", std::process::id()));
     let plan = StabilityPlan::choose(args.size, &args.cases, &args.techniques, harness, dir)?;
     let out_folder = OutFolder::prepare(&args.out)?;

@@ -3,7 +3,7 @@
 
 use super::args::BenchTable1Args;
 use super::render_cmd::PROFILER_CAPACITY;
-use super::{bench_args, session};
+use super::session;
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::experiments::table1_bench::{self, Table1Plan};
@@ -11,7 +11,7 @@ use sweeplab::bench::OutFolder;
 
 pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     let interleaved = session::interleaved(args.repeat, &args.rounds)?;
-    bench_args::check_sizes("--sizes", &args.sizes)?;
+    sweeplab::bench::experiments::image_sizes::check_sizes("--sizes", &args.sizes)?;
     let plan = Table1Plan::paper(args.sizes.clone(), interleaved, args.set.clone());
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;

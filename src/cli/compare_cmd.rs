@@ -2,11 +2,12 @@
 
 use super::args::CompareArgs;
 use super::render_cmd::{write_json, PROFILER_CAPACITY};
-use super::{output_paths, scene_args, session};
+use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::{plot_error_map, ErrorMap};
 use sweeplab::metrics::pixel_errors;
+use sweeplab::output_paths;
 use sweeplab::techniques::comparison::{compare_with_reference, comparison_scene, ReferenceSource};
 use sweeplab::techniques::Technique;
 

@@ -1,7 +1,6 @@
 mod ao_progress;
 pub mod args;
 mod bench_ao;
-mod bench_args;
 mod bench_breakdown;
 mod bench_ipsvi;
 mod bench_lights;
@@ -11,7 +10,6 @@ mod bench_table1;
 mod compare_cmd;
 mod devices_cmd;
 pub mod error_report;
-mod output_paths;
 mod render_cmd;
 mod report_cmd;
 mod scene_args;

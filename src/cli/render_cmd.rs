@@ -1,8 +1,9 @@
 use super::args::RenderArgs;
-use super::{output_paths, scene_args, session};
+use super::{scene_args, session};
 use anyhow::Context as _;
 use std::path::Path;
 use std::process::ExitCode;
+use sweeplab::output_paths;
 use sweeplab::render::GpuScene;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;

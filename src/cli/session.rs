@@ -45,21 +45,8 @@ pub fn report_long_waits(ctx: &Context) {
     ctx.set_wait_reporter(Some(WaitReporter {
         after: LONG_WAIT,
         every: LONG_WAIT,
-        report: Box::new(|r: &WaitReport| eprintln!("{}", long_wait_line(r))),
+        report: Box::new(|r: &WaitReport| eprintln!("{}", r.progress_line())),
     }));
-}
-
-/// A running submission as progress: "frame: 2 s on the device so far (402
-/// dispatches, 417 barriers)". How far it has got is not known (that would
-/// need timestamps inside the frame), so it says how long and how big.
-fn long_wait_line(r: &WaitReport) -> String {
-    format!(
-        "{}: {:.0} s on the device so far ({} dispatches, {} barriers)",
-        r.name,
-        r.elapsed.as_secs_f64(),
-        r.dispatches,
-        r.barriers
-    )
 }
 
 /// Prints the validation messages, if any, and turns them into a failing exit code.
@@ -106,15 +93,4 @@ pub fn interleaved(repeat: u32, rounds: &RoundsArgs) -> anyhow::Result<Interleav
 /// `--repeat` timed runs after `warm_up` untimed ones; 0 repeats is refused.
 pub fn harness(warm_up: u32, repeat: u32) -> anyhow::Result<Harness> {
     Harness::new(warm_up, repeat).map_err(|e| anyhow::anyhow!("--repeat: {e}"))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_long_wait_reads_as_progress() {
-        let r = WaitReport { name: "frame", elapsed: Duration::from_millis(2040), dispatches: 402, barriers: 417 };
-        assert_eq!(long_wait_line(&r), "frame: 2 s on the device so far (402 dispatches, 417 barriers)");
-    }
 }

@@ -21,6 +21,21 @@ pub struct WaitReport<'a> {
     pub barriers: u32,
 }
 
+impl WaitReport<'_> {
+    /// A running submission as progress: "frame: 2 s on the device so far (402
+    /// dispatches, 417 barriers)". How far it has got is not known (that would
+    /// need timestamps inside the frame), so it says how long and how big.
+    pub fn progress_line(&self) -> String {
+        format!(
+            "{}: {:.0} s on the device so far ({} dispatches, {} barriers)",
+            self.name,
+            self.elapsed.as_secs_f64(),
+            self.dispatches,
+            self.barriers
+        )
+    }
+}
+
 /// Reports after `after` of waiting, then every `every`.
 pub struct WaitReporter {
     pub after: Duration,
@@ -51,5 +66,16 @@ pub(super) fn wait_for_fence(ctx: &Context, fence: vk::Fence, report: WaitReport
             }
             Err(e) => return Err(e).call("vkWaitForFences"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_long_wait_reads_as_progress() {
+        let r = WaitReport { name: "frame", elapsed: Duration::from_millis(2040), dispatches: 402, barriers: 417 };
+        assert_eq!(r.progress_line(), "frame: 2 s on the device so far (402 dispatches, 417 barriers)");
     }
 }

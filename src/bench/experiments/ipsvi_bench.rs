@@ -7,6 +7,7 @@
 //! time, with a 95 % interval from 6 rounds up. The Pareto front of (GPU time,
 //! RMSE) is marked per size and charted.
 
+use crate::bench::experiments::image_sizes::check_sizes;
 use crate::bench::protocol::{Phase, Protocol};
 use crate::bench::{
     ipsvi_frame, pareto_front, plot_error_vs_time, technique_frame, AxisScale, BenchError, BenchRow, BenchTable, Chart,
@@ -18,7 +19,6 @@ use crate::ipsvi::{CacheUpdate, EarlyTermination, IpsviSettings, SyncStrategy, W
 use crate::linear_image::LinearImage;
 use crate::metrics::compare;
 use crate::render::{GpuScene, RenderTechnique, VolumeTexels};
-use crate::scene::scene_schema::MAX_IMAGE_SIZE;
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::{OpticalModel, Scene};
 use crate::techniques::{render, Technique};
@@ -51,21 +51,6 @@ pub struct IpsviPlan {
     /// (300 renderers, 60 of them with a 1024-texel cache) would hold about
     /// 5 GB at once.
     pub group_bytes: u64,
-}
-
-/// Square image sizes: at least one, each 1..=MAX_IMAGE_SIZE.
-pub fn check_sizes(flag: &str, sizes: &[u32]) -> Result<(), ExperimentError> {
-    let invalid = |m: String| Err(ExperimentError::Invalid(format!("{flag}: {m}")));
-    if sizes.is_empty() {
-        return invalid("give at least one size (comma-separated, e.g. 256,512)".into());
-    }
-    if sizes.contains(&0) {
-        return invalid(format!("a 0x0 image is empty (sizes are 1..={MAX_IMAGE_SIZE})"));
-    }
-    match sizes.iter().find(|&&s| s > MAX_IMAGE_SIZE) {
-        Some(bad) => invalid(format!("{bad} is not an image size (1..={MAX_IMAGE_SIZE})")),
-        None => Ok(()),
-    }
 }
 
 /// Every IPSVI configuration, checked as the scene file's `[ipsvi]` would be.

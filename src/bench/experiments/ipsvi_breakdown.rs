@@ -10,7 +10,8 @@
 //! run in one [`Interleaved`] measurement (about forty renderers at the
 //! scene's cache size, a few hundred MB at 512x512).
 
-use super::ipsvi_bench::{after_first_frames, check_ipsvi, check_sizes, run_inputs};
+use super::image_sizes::check_sizes;
+use super::ipsvi_bench::{after_first_frames, check_ipsvi, run_inputs};
 use crate::bench::estimate::Estimate;
 use crate::bench::protocol::Phase;
 use crate::bench::{

@@ -4,6 +4,7 @@
 pub mod ao_bench;
 pub mod dispatch_probe;
 pub mod error;
+pub mod image_sizes;
 pub mod ipsvi_bench;
 pub mod ipsvi_breakdown;
 pub mod lights;

@@ -1,25 +1,26 @@
-//! Checks of the bench commands' list arguments, made before any GPU work so a
-//! typo in the fifth value costs nothing but the message.
+//! The image sizes a bench is given: square side lengths, checked before any
+//! GPU work with the flag named.
 
-use anyhow::bail;
-use sweeplab::scene::scene_schema::MAX_IMAGE_SIZE;
+use super::ExperimentError;
+use crate::scene::scene_schema::MAX_IMAGE_SIZE;
 
 /// Square image sizes: at least one, each 1..=MAX_IMAGE_SIZE.
-pub fn check_sizes(flag: &str, sizes: &[u32]) -> anyhow::Result<()> {
+pub fn check_sizes(flag: &str, sizes: &[u32]) -> Result<(), ExperimentError> {
+    let invalid = |m: String| Err(ExperimentError::Invalid(format!("{flag}: {m}")));
     if sizes.is_empty() {
-        bail!("{flag}: give at least one size (comma-separated, e.g. 256,512)");
+        return invalid("give at least one size (comma-separated, e.g. 256,512)".into());
     }
     if sizes.contains(&0) {
-        bail!("{flag}: a 0x0 image is empty (sizes are 1..={MAX_IMAGE_SIZE})");
+        return invalid(format!("a 0x0 image is empty (sizes are 1..={MAX_IMAGE_SIZE})"));
     }
-    if let Some(bad) = sizes.iter().find(|&&s| s > MAX_IMAGE_SIZE) {
-        bail!("{flag}: {bad} is not an image size (1..={MAX_IMAGE_SIZE})");
+    match sizes.iter().find(|&&s| s > MAX_IMAGE_SIZE) {
+        Some(bad) => invalid(format!("{bad} is not an image size (1..={MAX_IMAGE_SIZE})")),
+        None => Ok(()),
     }
-    Ok(())
 }
 
-/// clap's parser of one `--sizes` value: the side length of a square image.
-/// `64x64` is answered with what to write instead (`64`).
+/// One `--sizes` value: the side length of a square image. `64x64` is
+/// answered with what to write instead (`64`).
 pub fn side_length(text: &str) -> Result<u32, String> {
     let text = text.trim();
     if let Some((w, h)) = text.to_lowercase().split_once('x') {
@@ -47,7 +48,7 @@ mod tests {
     fn bad_values_name_the_flag() {
         assert!(check_sizes("--sizes", &[64, 512]).is_ok());
         for bad in [&[][..], &[0], &[64, 20000]] {
-            let e = format!("{:#}", check_sizes("--sizes", bad).unwrap_err());
+            let e = check_sizes("--sizes", bad).unwrap_err().to_string();
             assert!(e.starts_with("--sizes"), "{e}");
         }
     }

@@ -1,12 +1,21 @@
-//! Output paths checked before any GPU work: images are PNG (the only format the
+//! Output paths checked before any GPU work by every front end: images are PNG (the only format the
 //! image writer is built with), and every file goes into a folder that exists,
 //! so a typo costs nothing but the message.
 
-use anyhow::bail;
 use std::path::Path;
 
+/// A file a command was asked to write that it cannot write; the message
+/// names the flag and says what to give instead.
+#[derive(Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct OutputPathError(String);
+
+macro_rules! bail {
+    ($($t:tt)*) => { return Err(OutputPathError(format!($($t)*))) };
+}
+
 /// A PNG image to write for `flag`.
-pub fn check_png(flag: &str, path: &Path) -> anyhow::Result<()> {
+pub fn check_png(flag: &str, path: &Path) -> Result<(), OutputPathError> {
     // A folder (or a path ending in a separator) first: "name the file *.png"
     // would not tell that a folder was given.
     let text = path.to_string_lossy();
@@ -25,7 +34,7 @@ pub fn check_png(flag: &str, path: &Path) -> anyhow::Result<()> {
 }
 
 /// A file to write for `flag`: its folder must exist and it must not be a folder.
-pub fn check_file(flag: &str, path: &Path) -> anyhow::Result<()> {
+pub fn check_file(flag: &str, path: &Path) -> Result<(), OutputPathError> {
     if path.is_dir() {
         bail!("{flag} {}: expects a file, got a directory", path.display());
     }
