@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Ground truth of the ambient occlusion and environment colour (issue 10,
+// Ground truth of the ambient occlusion and environment colour (see
 // src/reference/ao.rs): per voxel and hemisphere, what the paper's clustered
 // histograms discard: rays from the voxel to the sphere radius r along a fixed
 // set of direction pairs (w and -w), the medium attenuating along each ray.
