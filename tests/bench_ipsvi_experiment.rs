@@ -10,7 +10,6 @@ use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_B
 use sweeplab::bench::experiments::ipsvi_breakdown::{self, BreakdownPlan};
 use sweeplab::bench::{Interleaved, OutFolder, RunInfo};
 use sweeplab::render::VolumeTexels;
-use sweeplab::vk::{Context, ContextOptions};
 
 fn scene() -> sweeplab::scene::Scene {
     common::scene_with(sphere_volume(12, 0.4), vec![directional(Vec3::new(0.3, -1.0, 0.2), 1.0)], 8, 8)
@@ -64,13 +63,7 @@ fn the_breakdown_at_8x8_with_six_rounds_publishes_no_cost_within_noise() {
         volume_texels: VolumeTexels::Native,
     };
     // Without validation: step b has no barriers between blocks by design.
-    let ctx = Context::new(&ContextOptions {
-        device: std::env::var("SWEEPLAB_DEVICE").ok(),
-        validate: false,
-        best_practices: false,
-        ..Default::default()
-    })
-    .unwrap();
+    let ctx = common::unvalidated_context();
     let out = OutFolder::prepare(&dir).unwrap();
     let report = ipsvi_breakdown::run(&ctx, &scene(), &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
     out.finish().unwrap();

@@ -13,7 +13,7 @@ use sweeplab::render::GpuScene;
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::Light;
 use sweeplab::techniques::scene_for_volume_file;
-use sweeplab::vk::{Context, ContextOptions, Profiler};
+use sweeplab::vk::{Context, Profiler};
 
 /// Entire updates per measurement; the least of `ROUNDS` measurements counts.
 const UPDATES: usize = 6;
@@ -54,13 +54,7 @@ fn cpu_ms_per_update(ctx: &Context, scene: &sweeplab::scene::Scene, lights: &[Li
 fn cpu_time_per_added_light_coherent_and_sequential() {
     let path = data_dir().join("engine.vti");
     let scene = scene_for_volume_file(&path, &[]).unwrap();
-    let ctx = Context::new(&ContextOptions {
-        device: std::env::var("SWEEPLAB_DEVICE").ok(),
-        validate: false,
-        best_practices: false,
-        ..Default::default()
-    })
-    .unwrap();
+    let ctx = common::unvalidated_context();
     let mut slopes = Vec::new();
     // LV_COST_COHERENT_ONLY=1: the coherent slope alone (quicker, for comparing builds).
     let modes: &[bool] = if std::env::var("LV_COST_COHERENT_ONLY").is_ok() { &[true] } else { &[true, false] };

@@ -8,12 +8,11 @@
 //! block of repeats sees one state of the machine, the next block another,
 //! and that drift reads as a difference between configurations.
 
-use super::estimate::{median_estimate, paired_difference, Estimate, MIN_SAMPLES};
+use super::estimate::{median_estimate, median_of, paired_difference, Estimate, MIN_SAMPLES};
 use super::harness::Sample;
 use super::progress::Progress;
 use super::protocol::{Next, Phase, Protocol, ProtocolError};
 use super::run_info::RunInfo;
-use super::stats::median;
 use std::cell::RefCell;
 use std::io::Write;
 
@@ -36,9 +35,12 @@ impl<T> Timings<T> {
         self.rounds.iter().filter(|r| r.is_none()).count()
     }
 
-    /// The median of the counted times (NaN for none).
+    /// The median of the counted times (the mean of the middle two for an
+    /// even count, as in [`Timings::estimate`]; NaN for none).
     pub fn median(&self) -> f64 {
-        median(&self.samples())
+        let mut sorted = self.samples();
+        sorted.sort_by(f64::total_cmp);
+        median_of(&sorted)
     }
 
     /// The median with its 95 % interval; `None` below [`MIN_SAMPLES`] counted runs.

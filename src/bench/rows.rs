@@ -13,6 +13,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::error::BenchError;
 use super::estimate::{Estimate, Verdict};
+use super::interleaved::Timings;
 use super::pareto::pareto_front;
 use super::run_info::RunInfo;
 
@@ -253,6 +254,13 @@ impl BenchRow {
             self.set(key, e.value).set(format!("{key}_lo"), e.lo).set(format!("{key}_hi"), e.hi);
         }
         self
+    }
+
+    /// A measured time: `key` the median of its counted runs, `key_lo` and
+    /// `key_hi` its 95 % interval where there are enough runs for one.
+    pub fn set_timing<T>(&mut self, key: &str, timings: &Timings<T>) -> &mut Self {
+        self.set(key, timings.median());
+        self.set_estimate(key, timings.estimate())
     }
 
     /// A cost against a baseline: `key_lo`, `key_hi` and `key_verdict`
@@ -611,6 +619,24 @@ fn markdown_cell(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_timing_has_its_interval_only_from_six_runs_and_a_cost_within_noise_has_no_value() {
+        let six = Timings { rounds: [3.0, 1.0, 2.0, 6.0, 5.0, 4.0].map(Some).to_vec(), last: () };
+        let mut row = BenchRow::new();
+        row.set_timing("ms", &six);
+        assert_eq!((row.get_f64("ms"), row.get_f64("ms_lo"), row.get_f64("ms_hi")), (Some(3.5), Some(1.0), Some(6.0)));
+        let two = Timings { rounds: vec![Some(1.0), Some(3.0)], last: () };
+        let mut row = BenchRow::new();
+        row.set_timing("ms", &two);
+        assert_eq!((row.get_f64("ms"), row.get("ms_lo")), (Some(2.0), None));
+        let mut row = BenchRow::new();
+        row.set_cost("step", Some(Estimate { value: -0.5, lo: -2.0, hi: 1.0, n: 6 }));
+        assert_eq!(row.get("step"), None, "no value for a difference within noise");
+        assert_eq!((row.get_f64("step_lo"), row.text("step_verdict")), (Some(-2.0), "within noise".to_string()));
+        row.set_cost("cost", Some(Estimate { value: 2.0, lo: 1.0, hi: 3.0, n: 6 }));
+        assert_eq!((row.get_f64("cost"), row.text("cost_verdict")), (Some(2.0), "cost".to_string()));
+    }
 
     #[test]
     fn readable_numbers_keep_four_significant_digits() {

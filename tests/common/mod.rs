@@ -20,6 +20,18 @@ pub fn validated_context() -> Context {
     .expect("Vulkan context with validation")
 }
 
+/// A context without validation, for what validation would disturb (racy
+/// configurations by design, CPU-time measurements).
+pub fn unvalidated_context() -> Context {
+    Context::new(&ContextOptions {
+        device: std::env::var("SWEEPLAB_DEVICE").ok(),
+        validate: false,
+        best_practices: false,
+        ..Default::default()
+    })
+    .expect("Vulkan context")
+}
+
 /// Fails the test with every message the validation layer reported.
 pub fn assert_validation_clean(ctx: &Context) {
     let messages = ctx.take_validation_messages();

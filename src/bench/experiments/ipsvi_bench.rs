@@ -275,7 +275,7 @@ pub fn run(
             if g == 0 {
                 let stats = compare(&dvr_group.last.image, &reference.image)?;
                 let mut row = size_row("dvr", size);
-                row.set("gpu_ms", dvr_group.median()).set_estimate("gpu_ms", dvr_group.estimate());
+                row.set_timing("gpu_ms", &dvr_group);
                 set_errors(&mut row, &stats).set("dispatches", dvr.dispatches).set("gpu_memory_bytes", dvr_bytes);
                 table.push(row);
             }
@@ -288,7 +288,7 @@ pub fn run(
                 row.set("line_width", s.line_width).set("cache_size", s.cache_size);
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
                 row.set("cache_update", s.cache_update.name()).set("write_rule", s.write_rule.name());
-                row.set("gpu_ms", gpu_ms).set_estimate("gpu_ms", t.estimate());
+                row.set_timing("gpu_ms", t);
                 set_errors(&mut row, &stats);
                 row.set("lines", lines).set("dispatches", t.last.dispatches).set("barriers", t.last.barriers);
                 row.set("gpu_memory_bytes", prepared.memory);
@@ -306,7 +306,7 @@ pub fn run(
                     let stats = compare(&t.last.image, truth)?;
                     let mut row = size_row("half-angle", size);
                     row.set("slice_step_voxels", step);
-                    row.set("gpu_ms", t.median()).set_estimate("gpu_ms", t.estimate());
+                    row.set_timing("gpu_ms", t);
                     set_errors(&mut row, &stats).set("dispatches", t.last.dispatches);
                     row.set("gpu_memory_bytes", prepared.memory).set("reference_model", "single-scattering");
                     half_angle_rows.push(row);

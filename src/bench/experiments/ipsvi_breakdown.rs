@@ -241,7 +241,7 @@ impl BreakdownReport {
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name()).set("step", *label);
             row.set("write_rule", s.write_rule.name());
-            row.set("gpu_ms", t.median()).set_estimate("gpu_ms", t.estimate());
+            row.set_timing("gpu_ms", t);
             match estimate {
                 Some(_) => {
                     row.set_cost("step_ms", estimate);
@@ -281,7 +281,7 @@ impl BreakdownReport {
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name());
             row.set("line_width", line_width).set("write_rule", s.write_rule.name());
-            row.set("gpu_ms", t.median()).set_estimate("gpu_ms", t.estimate()).set("dispatches", t.last.dispatches);
+            row.set_timing("gpu_ms", t).set("dispatches", t.last.dispatches);
             if let Some(lw1) = lw1 {
                 row.set("speedup_over_lw1", lw1.median() / t.median());
                 row.set_estimate("speedup_over_lw1", lw1.paired_ratio(t));
