@@ -11,25 +11,18 @@ use sweeplab::vk::{Context, ContextOptions};
 
 /// A context with validation and synchronization validation on.
 pub fn validated_context() -> Context {
-    Context::new(&ContextOptions {
-        device: std::env::var("SWEEPLAB_DEVICE").ok(),
-        validate: true,
-        best_practices: false,
-        ..Default::default()
-    })
-    .expect("Vulkan context with validation")
+    context(true)
 }
 
 /// A context without validation, for what validation would disturb (racy
 /// configurations by design, CPU-time measurements).
 pub fn unvalidated_context() -> Context {
-    Context::new(&ContextOptions {
-        device: std::env::var("SWEEPLAB_DEVICE").ok(),
-        validate: false,
-        best_practices: false,
-        ..Default::default()
-    })
-    .expect("Vulkan context")
+    context(false)
+}
+
+fn context(validate: bool) -> Context {
+    let options = ContextOptions { device: std::env::var("SWEEPLAB_DEVICE").ok(), validate, ..Default::default() };
+    Context::new(&options).expect("Vulkan context")
 }
 
 /// Fails the test with every message the validation layer reported.
