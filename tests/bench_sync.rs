@@ -63,7 +63,7 @@ fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("validation: clean"), "{}", stderr(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
-    for line in ["empty workload (6 rounds)", "sweep workload (6 rounds)", "barrier-global: ", "events: "] {
+    for line in ["empty workload (6 rounds", "sweep workload (6 rounds", "barrier-global: ", "events: "] {
         assert!(stdout.contains(line), "verdict lacks {line:?}: {stdout}");
     }
     assert!(!stdout.contains("per boundary over no barriers; per-line gaps: -"), "{stdout}");
@@ -217,5 +217,59 @@ fn the_dispatch_probe_runs_every_case() {
         assert_eq!(r.dispatches, 4);
     }
     assert!(rows.iter().any(|r| !r.case.barrier), "the dispatches alone are a case too");
+    common::assert_validation_clean(&ctx);
+}
+
+/// Where frames are long (here: every frame, with no shortest run), the
+/// warm-up runs one frame per set of shaders: every arm and line width of a
+/// workload shares the line pipelines, so one frame per workload compiles
+/// them all. The timed rounds still run every configuration.
+#[test]
+fn a_warm_up_of_long_frames_runs_each_set_of_shaders_once() {
+    use std::time::Duration;
+    use sweeplab::bench::experiments::sync::{self, Eta, SyncObserver, SyncPlan, SyncReport, Workload};
+    use sweeplab::bench::experiments::ExperimentError;
+    use sweeplab::bench::{Protocol, RunInfo};
+    use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
+    use sweeplab::render::GpuScene;
+    struct Quiet;
+    impl SyncObserver for Quiet {
+        fn round(&mut self, _: &SyncReport, _: Eta) -> Result<(), ExperimentError> {
+            Ok(())
+        }
+    }
+    let ctx = validated_context();
+    let mut scene = sweeplab::techniques::default_scene(&[]).unwrap();
+    (scene.render.width, scene.render.height) = (12, 12);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let base = scene.settings.get::<IpsviSettings>();
+    let plan = |min_run: Duration, workloads: &[Workload]| SyncPlan {
+        width: 12,
+        height: 12,
+        strategies: vec![SyncStrategy::BarrierGlobal],
+        line_widths: vec![1, 2],
+        workloads: workloads.to_vec(),
+        line_timestamps: true,
+        protocol: Protocol::new(1, 6, 6, 3).unwrap(),
+        precision: Default::default(),
+        time_budget: None,
+        min_run,
+    };
+    let warm_up_frames = |report: &SyncReport, w: Workload| {
+        report.workloads.iter().find(|r| r.workload == w).map(|r| r.warm_up_frames).unwrap()
+    };
+    let long = sync::run(&ctx, &gpu, &base, &plan(Duration::ZERO, &Workload::ALL), RunInfo::collect(&ctx), &mut Quiet)
+        .unwrap();
+    let per_workload = long.configurations.len() / 2;
+    for w in Workload::ALL {
+        assert_eq!(warm_up_frames(&long, w), 1, "one set of shaders per workload");
+        assert_eq!(long.rounds_of(w), 6);
+    }
+    assert!(long.configurations.iter().all(|c| c.frames == 6 && c.frames_per_run == 1), "{:?}", long.configurations);
+    // Short frames: every configuration warms up and counts its frames per run.
+    let short_plan = plan(Duration::from_secs(1), &[Workload::Empty]);
+    let short = sync::run(&ctx, &gpu, &base, &short_plan, RunInfo::collect(&ctx), &mut Quiet).unwrap();
+    assert_eq!(warm_up_frames(&short, Workload::Empty), 2 * per_workload, "two frames each");
+    drop(gpu);
     common::assert_validation_clean(&ctx);
 }

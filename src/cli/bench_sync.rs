@@ -20,9 +20,6 @@ use sweeplab::render::GpuScene;
 const QUICK_SIZE: &str = "64x64";
 const QUICK_LINE_WIDTHS: [u32; 4] = [1, 4, 16, 32];
 const QUICK_MINUTES: f64 = 1.5;
-/// `--quick` rounds of the empty workload take about a second on lavapipe:
-/// as many as fit in its minute and a half.
-const QUICK_MAX_ROUNDS: u32 = 90;
 const DEFAULT_SIZE: &str = "256x256";
 
 fn parse_list<T: std::str::FromStr<Err = String>>(flag: &str, values: &[String]) -> anyhow::Result<Vec<T>> {
@@ -51,8 +48,7 @@ fn plan(args: &BenchSyncArgs, width: u32, height: u32) -> anyhow::Result<SyncPla
     }
     let minutes = if args.quick { args.max_minutes.min(QUICK_MINUTES) } else { args.max_minutes };
     let seed = args.seed.unwrap_or_else(Protocol::seed_from_clock);
-    let max_rounds = if args.quick { args.max_rounds.max(QUICK_MAX_ROUNDS) } else { args.max_rounds };
-    let protocol = Protocol::new(args.warm_up, args.min_rounds, max_rounds, seed).context("--min-rounds")?;
+    let protocol = Protocol::new(args.warm_up, args.min_rounds, args.max_rounds, seed).context("--min-rounds")?;
     Ok(SyncPlan {
         width,
         height,
@@ -63,6 +59,7 @@ fn plan(args: &BenchSyncArgs, width: u32, height: u32) -> anyhow::Result<SyncPla
         protocol,
         precision: sync::Precision { relative: args.target_ci, absolute_us: args.target_ci_us },
         time_budget: Some(Duration::from_secs_f64(minutes * 60.0)),
+        min_run: sync::MIN_RUN,
     })
 }
 

@@ -73,6 +73,11 @@ pub struct ExitPoints {
 }
 
 impl ExitPoints {
+    /// The pre-pass's pipelines.
+    pub fn pipelines(&self) -> [vk::Pipeline; 3] {
+        [self.depths_pipeline.raw, self.sweep_pipelines[0].raw, self.sweep_pipelines[1].raw]
+    }
+
     /// For the light of `main_plan` (the full-resolution sweep).
     pub fn new(
         gpu: &GpuScene,

@@ -460,6 +460,18 @@ impl<'a> IpsviRenderer<'a> {
         self.line_group
     }
 
+    /// Every pipeline a frame dispatches (shared with other renderers of the
+    /// same shaders and specialization through the context's store): a bench
+    /// warms up a renderer whose pipelines have all run already without a frame.
+    pub fn pipelines(&self) -> Vec<vk::Pipeline> {
+        let mut all = vec![self.init.raw, self.lines[0].raw, self.lines[1].raw];
+        all.extend(self.merged.iter().map(|m| m.sum.raw));
+        if let Some(e) = &self.exit_points {
+            all.extend(e.pipelines());
+        }
+        all
+    }
+
     /// Secondary command buffers recorded so far (`secondary`: one per sweep,
     /// on the first frame that replays them; none for the other strategies).
     pub fn recorded_secondaries(&self) -> usize {

@@ -33,8 +33,10 @@ use crate::metrics::compare;
 use crate::render::GpuScene;
 use crate::scene::settings_table::SettingsTable as _;
 use crate::vk::{Context, Profiler};
+use ash::vk;
 use serde::{Deserialize, Serialize};
 use std::cell::{Cell, RefCell};
+use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
 /// Scopes a frame needs with a timestamp around every line dispatch.
@@ -42,7 +44,7 @@ const PROFILER_CAPACITY: u32 = 1 << 16;
 
 /// Short frames (the empty workload) are run several times per run, so that
 /// a run lasts at least this long and scheduler jitter averages out.
-const MIN_RUN_MS: f64 = 25.0;
+pub const MIN_RUN: Duration = Duration::from_millis(25);
 const MAX_FRAMES_PER_RUN: u32 = 32;
 
 /// What each line dispatch does.
@@ -149,6 +151,8 @@ pub struct SyncPlan {
     /// Rounds stop once the next would end past this (never before the
     /// protocol's fewest rounds).
     pub time_budget: Option<Duration>,
+    /// Frames shorter than this are averaged, several to a run ([`MIN_RUN`]).
+    pub min_run: Duration,
 }
 
 /// A configuration: workload, arm, line width, and whether its frames carry
@@ -276,11 +280,17 @@ pub struct WorkloadRounds {
     pub orders: Vec<Vec<usize>>,
     /// Seconds of its timed rounds.
     pub seconds: f64,
+    /// Frames its warm-up ran (configurations whose shaders had all run
+    /// already, in a workload of long frames, run none).
+    #[serde(default)]
+    pub warm_up_frames: usize,
 }
 
-/// Of the time budget, the share the empty workload gets when the sweep
-/// follows: its frames are short, so it reaches many rounds in little time.
-const EMPTY_SHARE: f64 = 0.25;
+/// Of the time budget, the share a workload that runs first keeps for the
+/// ones after it. The sweep runs first: its fewest rounds take most of the
+/// budget and cannot be shortened, while the empty workload's rounds take
+/// about a second on lavapipe and narrow its intervals with what is left.
+const LATER_WORKLOADS_SHARE: f64 = 0.15;
 
 impl SyncReport {
     /// The strategy rows of `workload`.
@@ -316,8 +326,17 @@ impl SyncReport {
                 .boundary_us
                 .map(|e| format!("{} us ({}-{})", readable(e.value), readable(e.lo), readable(e.hi)))
                 .unwrap_or_else(|| "not measured".into());
+            let precision = if self.precise_in(w) {
+                "every interval as narrow as asked".to_string()
+            } else {
+                format!(
+                    "not every interval as narrow as asked (half-width <= {} % of the estimate or <= {} us)",
+                    readable(self.precision.relative * 100.0),
+                    readable(self.precision.absolute_us)
+                )
+            };
             out.push(format!(
-                "{} workload ({} rounds): a boundary with no barriers (the dispatch alone) costs {dispatch}",
+                "{} workload ({} rounds; {precision}): a boundary with no barriers (the dispatch alone) costs {dispatch}",
                 w.name(),
                 self.rounds_of(w)
             ));
@@ -457,14 +476,22 @@ pub fn run(
     }
     let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
     let mut measured = Measured { runs: vec![Vec::new(); configs.len()], workloads: Vec::new() };
-    for (n, &workload) in plan.workloads.iter().enumerate() {
+    let order = execution_order(&plan.workloads);
+    for (n, &workload) in order.iter().enumerate() {
         let members: Vec<usize> = (0..configs.len()).filter(|&i| configs[i].key.workload == workload).collect();
         let deadline = plan.time_budget.map(|budget| {
             let left = budget.saturating_sub(started.elapsed());
-            let last = n + 1 == plan.workloads.len();
-            Instant::now() + if last || workload != Workload::Empty { left } else { left.mul_f64(EMPTY_SHARE) }
+            let last = n + 1 == order.len();
+            let keep = if last { Duration::ZERO } else { budget.mul_f64(LATER_WORKLOADS_SHARE) };
+            Instant::now() + left.saturating_sub(keep)
         });
-        measured.workloads.push(WorkloadRounds { workload, rounds: 0, orders: Vec::new(), seconds: 0.0 });
+        measured.workloads.push(WorkloadRounds {
+            workload,
+            rounds: 0,
+            orders: Vec::new(),
+            seconds: 0.0,
+            warm_up_frames: 0,
+        });
         observer.warm_up(workload, members.len());
         let mut report_of = |configs: &[Configuration], so_far: &Measured| {
             summarize(plan, configs, so_far, &run_info, false, started.elapsed())
@@ -482,6 +509,14 @@ pub fn run(
         )?;
     }
     Ok(summarize(plan, &configs, &measured, &run_info, true, started.elapsed()))
+}
+
+/// The order the workloads run in: the sweep first (see
+/// [`LATER_WORKLOADS_SHARE`]); reports keep the plan's order.
+fn execution_order(workloads: &[Workload]) -> Vec<Workload> {
+    let mut order = workloads.to_vec();
+    order.sort_by_key(|w| *w != Workload::Sweep);
+    order
 }
 
 /// What the rounds measured so far: every configuration's runs (paired by
@@ -518,13 +553,14 @@ fn run_workload(
     let round_started: Cell<Option<Instant>> = Cell::new(None);
     let first_round: Cell<Option<Instant>> = Cell::new(None);
     let mut round_times: Vec<Duration> = Vec::new();
+    let warmed = RefCell::new(Warmed::default());
     let workload = configs.borrow()[members[0]].key.workload;
     plan.protocol.run(
         members.len(),
         |i, phase| {
             let config = &mut configs.borrow_mut()[members[i]];
             if phase == Phase::WarmUp {
-                return warm_up(ctx, config, profiler);
+                return warm_up(ctx, config, profiler, &mut warmed.borrow_mut(), plan.min_run);
             }
             // The first timed run starts the clock of the rounds.
             if round_started.get().is_none() {
@@ -546,6 +582,7 @@ fn run_workload(
                 w.rounds = rounds.count();
                 w.orders = rounds.orders.iter().map(|o| o.iter().map(|&i| members[i]).collect()).collect();
                 w.seconds = first_round.get().map(|t| t.elapsed().as_secs_f64()).unwrap_or(0.0);
+                w.warm_up_frames = warmed.borrow().frames;
                 report_of(&configs.borrow(), &m)
             };
             let mean = round_times.iter().sum::<Duration>() / round_times.len() as u32;
@@ -581,15 +618,45 @@ fn settings_for(base: &IpsviSettings, line_width: u32, sync: SyncStrategy, workl
     IpsviSettings { line_width, sync, breakdown_step: workload.breakdown_step(), merge_sweeps: false, ..base.clone() }
 }
 
+/// What one workload's warm-up has run so far.
+#[derive(Default)]
+struct Warmed {
+    /// Pipelines that have dispatched (llvmpipe compiles on the first dispatch).
+    pipelines: HashSet<vk::Pipeline>,
+    /// Whether a warmed frame was long enough to be a run on its own.
+    long_frames: bool,
+    frames: usize,
+}
+
 /// A warm-up frame (the first compiles the shaders); where it is short, a
-/// second one sets how many frames a run averages.
-fn warm_up(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Result<Run, ExperimentError> {
+/// second one sets how many frames a run averages. A configuration whose
+/// pipelines have all run, in a workload whose frames are long, needs
+/// neither: only its line width and sync differ from a warmed one's, so it
+/// skips the frame (the sweep's warm-up shrinks from one frame per
+/// configuration to one per set of shaders).
+fn warm_up(
+    ctx: &Context,
+    c: &mut Configuration,
+    profiler: &mut Profiler,
+    warmed: &mut Warmed,
+    min_run: Duration,
+) -> Result<Run, ExperimentError> {
+    let pipelines = c.renderer.pipelines();
+    if warmed.long_frames && pipelines.iter().all(|p| warmed.pipelines.contains(p)) {
+        c.frames_per_run = 1;
+        return Ok(Run::default());
+    }
+    let min_run_ms = min_run.as_secs_f64() * 1e3;
     let first = frame(ctx, c, profiler)?;
-    if first.wall_ms >= MIN_RUN_MS {
+    warmed.frames += 1;
+    warmed.pipelines.extend(pipelines);
+    if first.wall_ms >= min_run_ms {
+        warmed.long_frames = true;
         return Ok(first);
     }
     let second = frame(ctx, c, profiler)?;
-    c.frames_per_run = ((MIN_RUN_MS / second.wall_ms.max(1e-3)).ceil() as u32).clamp(1, MAX_FRAMES_PER_RUN);
+    warmed.frames += 1;
+    c.frames_per_run = ((min_run_ms / second.wall_ms.max(1e-3)).ceil() as u32).clamp(1, MAX_FRAMES_PER_RUN);
     Ok(second)
 }
 
@@ -804,4 +871,16 @@ fn line_gaps(configs: &[Configuration], rounds: &Measured, workload: Workload, a
         perturbation_ms: paired_difference(&rounds.series(plain, |r| r.gpu_ms), &rounds.series(stamped, |r| r.gpu_ms))
             .ok(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sweep_runs_first_so_the_empty_workload_gets_what_is_left() {
+        let both = execution_order(&[Workload::Empty, Workload::Sweep]);
+        assert_eq!(both, [Workload::Sweep, Workload::Empty]);
+        assert_eq!(execution_order(&[Workload::Empty]), [Workload::Empty]);
+    }
 }
