@@ -62,6 +62,7 @@ fn bench_ao_writes_a_row_per_configuration_with_its_figures() {
         table1.contains("101.6") || table1.contains("6096"),
         "the paper's head 256 brute force, in seconds: {table1}"
     );
+    assert_every_output_names_its_run(&out);
 }
 
 #[test]

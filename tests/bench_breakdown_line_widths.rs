@@ -18,6 +18,7 @@ fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
     assert!(o.status.success(), "{}", stderr(&o));
     let rows = bench_rows(&dir.join("ipsvi_line_widths.json"));
     assert_names_its_run(&dir.join("ipsvi_line_widths.csv"), &dir.join("ipsvi_line_widths.md"));
+    assert_every_output_names_its_run(&dir);
     for mode in ["view-samples", "light-rays"] {
         let row = |lw: u32| {
             rows.iter()

@@ -36,6 +36,7 @@ fn table1_gives_a_row_per_size_and_line_width_with_its_rounds_recorded() {
     let inputs = &table.run.as_ref().unwrap().inputs;
     assert!(inputs.iter().any(|(k, v)| k == "seed" && v == "5"), "{inputs:?}");
     assert!(folder.path().join("table1.json").is_file(), "saved as measured");
+    common::cli::assert_every_output_names_its_run(folder.path());
     assert_validation_clean(&ctx);
     let _ = std::fs::remove_dir_all(out("table1"));
 }
@@ -57,6 +58,7 @@ fn stability_rates_each_cell_and_each_convergence_row() {
     assert_eq!(report.map.cells, [[report.map.cells[0][0].clone()]]);
     report.write(folder.path()).unwrap();
     assert!(folder.path().join("stability.png").is_file() && folder.path().join("stability.md").is_file());
+    common::cli::assert_every_output_names_its_run(folder.path());
     assert!(!out("cases").exists(), "the cases' files are removed");
     assert_validation_clean(&ctx);
     let _ = std::fs::remove_dir_all(out("stability"));

@@ -37,6 +37,7 @@ fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
         assert!(dir.join(file).is_file(), "{file} missing");
     }
     let rows = bench_rows(&dir.join("ipsvi.json"));
+    common::cli::assert_every_output_names_its_run(&dir);
     assert_eq!(rows.len(), report.table.rows.len());
     let ipsvi: Vec<_> = rows.iter().filter(|r| r["technique"] == "ipsvi").collect();
     assert!(!ipsvi.is_empty());
@@ -68,6 +69,7 @@ fn the_breakdown_at_8x8_with_six_rounds_publishes_no_cost_within_noise() {
     let report = ipsvi_breakdown::run(&ctx, &scene(), &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
     out.finish().unwrap();
     let rows = bench_rows(&dir.join("ipsvi_breakdown.json"));
+    common::cli::assert_every_output_names_its_run(&dir);
     assert_eq!(rows.len(), 28);
     for r in &rows {
         let verdict = r["step_ms_verdict"].as_str().unwrap();

@@ -38,22 +38,6 @@ fn json(path: &Path) -> Value {
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
-const RUN_KEYS: [&str; 13] = [
-    "device",
-    "device_type",
-    "vendor_id",
-    "device_id",
-    "driver",
-    "driver_version",
-    "api_version",
-    "timestamp_period_ns",
-    "timestamp_valid_bits",
-    "host_cpu",
-    "sweeplab",
-    "date",
-    "command",
-];
-
 #[test]
 fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
     let dir = temp_dir("sync-study");
@@ -69,6 +53,7 @@ fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
     assert!(!stdout.contains("per boundary over no barriers; per-line gaps: -"), "{stdout}");
     let report = json(&dir.join("sync.json"));
     assert_eq!(report["complete"], true);
+    assert_every_output_names_its_run(&dir);
     let configs = report["configurations"].as_array().unwrap();
     // 2 workloads x (baseline, A/A control, 2 strategies) x 2 line widths, and
     // per workload 3 arms with per-line timestamps at line width 1.

@@ -145,6 +145,7 @@ fn heat_data() -> HeatMap {
     let cell = |level: HeatLevel, text: &str| HeatCell { level, text: text.into() };
     HeatMap {
         title: "Stability: case x technique".into(),
+        caption: None,
         rows: vec!["thin shell".into(), "l2 dense".into()],
         columns: vec!["dvr".into(), "ipsvi".into()],
         cells: vec![
@@ -241,6 +242,7 @@ fn each_heat_map_cell_is_drawn_in_its_level_colour_in_its_row_and_column() {
     let cell = |level: HeatLevel, text: &str| HeatCell { level, text: text.into() };
     let map = HeatMap {
         title: "t".into(),
+        caption: None,
         rows: vec!["first case".into(), "second".into()],
         columns: vec!["dvr".into(), "ipsvi".into()],
         cells: vec![
@@ -268,6 +270,7 @@ fn bad_shapes_and_sizes_are_refused() {
     use sweeplab::bench::BenchError;
     let map = HeatMap {
         title: "t".into(),
+        caption: None,
         rows: vec!["a".into(), "b".into()],
         columns: vec!["x".into()],
         cells: vec![vec![HeatCell { level: HeatLevel::Good, text: String::new() }]],

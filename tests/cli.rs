@@ -162,6 +162,7 @@ fn bench_lights_writes_table1_scaling_memory_and_error_rows_validation_clean() {
     }
     let rows = bench_rows(&out.join("lights.json"));
     assert_names_its_run(&out.join("lights.csv"), &out.join("lights.md"));
+    assert_every_output_names_its_run(&out);
     let part = |p: &str| rows.iter().filter(|r| r["part"] == p).collect::<Vec<_>>();
     let table1 = part("table1");
     assert_eq!(table1.len(), 2, "ours and the paper's DR*1/4 2-light row: {table1:?}");
@@ -306,6 +307,7 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
     }
     let rows = bench_rows(&out.join("ipsvi_breakdown.json"));
     assert_names_its_run(&out.join("ipsvi_breakdown.csv"), &out.join("ipsvi_breakdown.md"));
+    assert_every_output_names_its_run(&out);
     // View samples split the write path (e1-e5) under both write rules.
     for (mode, rule, count) in
         [("view-samples", "non-empty", 11), ("view-samples", "every-sample", 11), ("light-rays", "non-empty", 6)]
@@ -346,6 +348,7 @@ fn bench_stability_checks_its_lists_first_and_writes_the_table() {
         "--size", "8", "--out", out,
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    assert_every_output_names_its_run(std::path::Path::new(out));
     assert!(stderr(&o).contains("validation: clean"), "{}", stderr(&o));
     for file in ["stability.csv", "stability.md", "stability.png", "stability_convergence.csv"] {
         assert!(dir.join("stability").join(file).is_file(), "{file} missing");

@@ -60,8 +60,88 @@ pub fn bench_rows(path: &std::path::Path) -> Vec<serde_json::Value> {
 pub fn assert_names_its_run(csv: &std::path::Path, md: &std::path::Path) {
     let csv = std::fs::read_to_string(csv).unwrap();
     let md = std::fs::read_to_string(md).unwrap();
-    for key in ["device", "driver", "host_cpu", "sweeplab", "date", "command"] {
+    for key in RUN_KEYS {
         assert!(csv.contains(&format!("# {key}: ")), "CSV lacks {key}");
         assert!(md.contains(&format!("- {key}: ")), "Markdown lacks {key}");
+    }
+}
+
+/// What every bench output names (`RunInfo::lines`).
+pub const RUN_KEYS: [&str; 13] = [
+    "device",
+    "device_type",
+    "vendor_id",
+    "device_id",
+    "driver",
+    "driver_version",
+    "api_version",
+    "timestamp_period_ns",
+    "timestamp_valid_bits",
+    "host_cpu",
+    "sweeplab",
+    "date",
+    "command",
+];
+
+/// Every file a bench wrote into `dir` (and its sub-folders) names the run
+/// that produced it: CSV in `#` lines, Markdown in its header, JSON in a
+/// `run` object, each chart in its caption (read from the SVG written beside
+/// every PNG). A file of another kind fails: the check must see all outputs.
+pub fn assert_every_output_names_its_run(dir: &std::path::Path) {
+    fn files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                files(&path, out);
+            } else {
+                out.push(path);
+            }
+        }
+    }
+    fn run_object(v: &serde_json::Value) -> Option<&serde_json::Value> {
+        match v {
+            serde_json::Value::Object(m) => m.get("run").or_else(|| m.values().find_map(run_object)),
+            serde_json::Value::Array(a) => a.iter().find_map(run_object),
+            _ => None,
+        }
+    }
+    let mut all = Vec::new();
+    files(dir, &mut all);
+    assert!(!all.is_empty(), "{} holds no output", dir.display());
+    // The marker that makes the folder a bench's own (`OutFolder`).
+    all.retain(|p| p.file_name().is_some_and(|n| n != ".sweeplab-bench"));
+    for path in &all {
+        let name = path.display();
+        let text = || std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        match path.extension().and_then(|e| e.to_str()).unwrap_or("") {
+            "csv" => {
+                let t = text();
+                for key in RUN_KEYS {
+                    assert!(t.contains(&format!("# {key}: ")), "{name} lacks {key}");
+                }
+            }
+            "md" => {
+                let t = text();
+                for key in RUN_KEYS {
+                    assert!(t.contains(&format!("- {key}: ")), "{name} lacks {key}");
+                }
+            }
+            "json" => {
+                let v: serde_json::Value = serde_json::from_str(&text()).unwrap_or_else(|e| panic!("{name}: {e}"));
+                let run = run_object(&v).unwrap_or_else(|| panic!("{name} has no run object"));
+                for key in ["device", "vendor_id", "device_id", "driver_name", "api_version", "git_commit", "date"] {
+                    assert!(run[key].as_str().is_some_and(|s| !s.is_empty()), "{name}: run.{key} in {run}");
+                }
+            }
+            "svg" => {
+                let t = text();
+                assert!(
+                    t.contains(&format!("sweeplab {} at ", env!("CARGO_PKG_VERSION"))),
+                    "{name} has no run caption"
+                );
+            }
+            "png" => assert!(path.with_extension("svg").is_file(), "{name} has no SVG twin to read its caption from"),
+            other => panic!("{name}: an output of kind {other:?} the check does not know"),
+        }
     }
 }

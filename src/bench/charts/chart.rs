@@ -1,7 +1,7 @@
 //! What a chart shows besides its data: title, axis labels and scales, size.
 
 use super::scale::AxisScale;
-use crate::bench::BenchError;
+use crate::bench::{BenchError, RunInfo};
 
 const MIN_WIDTH: u32 = 320;
 const MIN_HEIGHT: u32 = 200;
@@ -49,6 +49,12 @@ impl Chart {
 
     pub fn caption(mut self, caption: impl Into<String>) -> Self {
         self.caption = Some(caption.into());
+        self
+    }
+
+    /// The caption of the run that measured what the chart shows, where known.
+    pub fn run_caption(mut self, run: Option<&RunInfo>) -> Self {
+        self.caption = run.map(RunInfo::caption);
         self
     }
 

@@ -10,7 +10,9 @@ use plotters::prelude::{BitMapBackend, DrawingArea, DrawingBackend, IntoDrawingA
 use super::style::{ensure_font, text, BACKGROUND};
 
 /// Height of the caption strip under a figure, pixels.
-const CAPTION_HEIGHT: u32 = 22;
+pub(super) const CAPTION_HEIGHT: u32 = 22;
+/// Text size of the caption.
+pub(super) const CAPTION_TEXT: f64 = 12.0;
 
 /// Draws `figure` on `root`, above its caption where it has one.
 fn draw_with_caption<DB: DrawingBackend>(
@@ -22,7 +24,7 @@ fn draw_with_caption<DB: DrawingBackend>(
         Some(caption) => {
             let (_, height) = figure.size();
             let (main, foot) = root.split_vertically(height.saturating_sub(CAPTION_HEIGHT));
-            foot.draw_text(caption, &text(12.0), (8, 4))?;
+            foot.draw_text(caption, &text(CAPTION_TEXT), (8, 4))?;
             figure.draw(&main, target)
         }
         None => figure.draw(root, target),

@@ -13,7 +13,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::Color;
 
 use super::chart::{check_size, MAX_SIDE};
-use super::figure::{render, write, Figure, Target};
+use super::figure::{render, write, Figure, Target, CAPTION_HEIGHT, CAPTION_TEXT};
 use super::legend::{Entry, Legend, Sample};
 use super::style::{rgb, text, text_size, FRAME};
 use crate::bench::BenchError;
@@ -66,6 +66,8 @@ pub struct HeatCell {
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeatMap {
     pub title: String,
+    /// A line under the map naming the run ([`crate::bench::RunInfo::caption`]).
+    pub caption: Option<String>,
     pub rows: Vec<String>,
     pub columns: Vec<String>,
     pub cells: Vec<Vec<HeatCell>>,
@@ -118,8 +120,10 @@ impl<'a> Layout<'a> {
         let legend = Legend { entries, text_size: TEXT };
         let grid_width = label_width + cell_width * map.columns.len() as u32;
         let title_width = text_size(&map.title, TEXT * 1.3).0;
-        let width = (grid_width.max(title_width).max(legend.width()) + 2 * PAD).max(200);
-        let height = top + cell_height * map.rows.len() as u32 + legend.height() + 2 * PAD;
+        let caption_width = map.caption.as_deref().map_or(0, |c| text_size(c, CAPTION_TEXT).0);
+        let width = (grid_width.max(title_width).max(legend.width()).max(caption_width) + 2 * PAD).max(200);
+        let caption_height = if map.caption.is_some() { CAPTION_HEIGHT } else { 0 };
+        let height = top + cell_height * map.rows.len() as u32 + legend.height() + 2 * PAD + caption_height;
         check_size(width.min(MAX_SIDE + 1), height.min(MAX_SIDE + 1), 1, 1)?;
         Ok(Layout { map, label_width, cell_width, cell_height, top, legend, width, height })
     }
@@ -128,6 +132,10 @@ impl<'a> Layout<'a> {
 impl Figure for Layout<'_> {
     fn size(&self) -> (u32, u32) {
         (self.width, self.height)
+    }
+
+    fn caption(&self) -> Option<&str> {
+        self.map.caption.as_deref()
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, _: Target) -> Result<(), BenchError> {

@@ -303,12 +303,15 @@ impl AoReport {
         };
         plot_lines(
             out.join("ao_error_vs_clusters.png"),
-            &Chart::new("AO: image RMSE against the unclustered histograms", "n_c", "RMSE").x_scale(AxisScale::Log10),
+            &Chart::new("AO: image RMSE against the unclustered histograms", "n_c", "RMSE")
+                .x_scale(AxisScale::Log10)
+                .run_caption(table.run.as_ref()),
             &by_metric("rmse_unclustered", "clusters"),
         )?;
         plot_error_vs_time(
             out.join("ao_error_vs_preprocessing.png"),
-            &Chart::new("AO: RMSE against the ground truth over preprocessing time", "preprocessing (s)", "RMSE"),
+            &Chart::new("AO: RMSE against the ground truth over preprocessing time", "preprocessing (s)", "RMSE")
+                .run_caption(table.run.as_ref()),
             &by_metric("rmse_truth", "preprocess_s"),
         )?;
         Ok(())

@@ -469,7 +469,8 @@ impl IpsviReport {
                 "RMSE vs ground truth",
             )
             .x_scale(AxisScale::Log10)
-            .y_scale(AxisScale::Log10);
+            .y_scale(AxisScale::Log10)
+            .run_caption(table.run.as_ref());
             plot_error_vs_time(out.join(format!("ipsvi_{size}_error_vs_time.png")), &chart, &series)?;
         }
         table.write_csv(out.join("ipsvi.csv"))?;

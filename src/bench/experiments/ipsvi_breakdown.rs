@@ -300,7 +300,8 @@ impl BreakdownReport {
         }
         let chart =
             Chart::new("One IPSVI frame, step by step", "bars: size, view samples or light rays", "GPU time (ms)")
-                .size(960, 600);
+                .size(960, 600)
+                .run_caption(self.table.run.as_ref());
         plot_stacked_bars(out.join("ipsvi_breakdown.png"), &chart, &self.bars)?;
         Ok(())
     }

@@ -129,9 +129,10 @@ pub fn run(
     let run = run.input("size", plan.size).input("repeat", plan.harness.repeat());
     let mut report = StabilityReport {
         table: BenchTable::with_run(run.clone()),
-        orders: BenchTable::with_run(run),
+        orders: BenchTable::with_run(run.clone()),
         map: HeatMap {
             title: format!("Stability: case x technique, {0}x{0}, PSNR against the model's reference", plan.size),
+            caption: Some(run.caption()),
             rows: cases.iter().map(|c| c.name.to_string()).collect(),
             columns: variants.iter().map(|v| v.label()).collect(),
             cells: Vec::new(),
@@ -297,7 +298,8 @@ mod tests {
         }
         let mut orders = BenchTable::new();
         orders.push(BenchRow::new().with("technique", "dvr").with("overall_order", 2.0).with("status", "ok"));
-        let map = HeatMap { title: String::new(), rows: Vec::new(), columns: Vec::new(), cells: Vec::new() };
+        let map =
+            HeatMap { title: String::new(), caption: None, rows: Vec::new(), columns: Vec::new(), cells: Vec::new() };
         let report = StabilityReport { table, orders, map, failed: 1, size: 8 };
         assert_eq!(
             report.summary_lines(),
