@@ -136,9 +136,12 @@ pub const SPEC_MINIMUM: DeviceLimits = DeviceLimits {
 /// vulkan.gpuinfo.org lists them per limit
 /// (`https://vulkan.gpuinfo.org/displaydevicelimit.php?name=<limit>`, the
 /// value most reports of that vendor's desktop GPUs give) and as the open
-/// drivers set them (Mesa `src/amd/vulkan/radv_physical_device.c`,
+/// drivers set them (Mesa `src/amd/vulkan/radv_physical_device.c`:
+/// `maxImageDimension3D = (1 << 11)`, `maxComputeWorkGroupCount = {65535,
+/// 65535, 65535}`, `maxStorageBufferRange = UINT32_MAX`;
 /// `src/intel/vulkan/anv_physical_device.c`). The Intel row is an integrated
-/// or Arc GPU on ANV, whose `maxImageDimension3D` of 2048 is the tightest.
+/// or Arc GPU on ANV. RADV and ANV both cap 3D images at 2048 per side, the
+/// tightest of the three; only NVIDIA's driver allows 16384.
 pub const DESKTOP: [(&str, DeviceLimits); 3] = [
     (
         "NVIDIA GeForce RTX 40x0 (proprietary driver)",
@@ -157,8 +160,8 @@ pub const DESKTOP: [(&str, DeviceLimits); 3] = [
         "AMD Radeon RX 7900 (RADV)",
         DeviceLimits {
             max_image_dimension_2d: 16384,
-            max_image_dimension_3d: 8192,
-            max_compute_work_group_count: [u32::MAX, 65535, 65535],
+            max_image_dimension_3d: 2048,
+            max_compute_work_group_count: [65535; 3],
             max_compute_work_group_invocations: 1024,
             max_compute_shared_memory_size: 65536,
             max_storage_buffer_range: u32::MAX,
