@@ -1,10 +1,13 @@
 //! The bench experiments called as a library, at tiny sizes: `bench table1`
-//! (one data set, all line widths interleaved) and `bench stability` (one
-//! case x technique and its convergence).
+//! (one data set, all line widths interleaved), `bench stability` (one
+//! case x technique and its convergence) and `bench lights` (each part's
+//! configurations in shared rounds).
 
 mod common;
 
+use common::cli::bench_rows;
 use common::{assert_validation_clean, validated_context};
+use sweeplab::bench::experiments::lights_bench::{self, LightsPlan};
 use sweeplab::bench::experiments::stability_bench::{self, StabilityPlan};
 use sweeplab::bench::experiments::table1_bench::{self, Table1Plan};
 use sweeplab::bench::{Harness, Interleaved, OutFolder, RunInfo};
@@ -62,4 +65,58 @@ fn stability_rates_each_cell_and_each_convergence_row() {
     assert!(!out("cases").exists(), "the cases' files are removed");
     assert_validation_clean(&ctx);
     let _ = std::fs::remove_dir_all(out("stability"));
+}
+
+#[test]
+fn lights_run_each_parts_configurations_in_shuffled_rounds_with_intervals_from_six() {
+    let ctx = validated_context();
+    let scene = sweeplab::techniques::default_scene(&[]).unwrap();
+    let plan = LightsPlan::smallest(Interleaved::fixed(6, 11).unwrap(), (8, 8));
+    let folder = OutFolder::prepare(&out("lights")).unwrap();
+    let report = lights_bench::run(&ctx, &scene, &plan, RunInfo::collect(&ctx), &folder, 4096).unwrap();
+    // Table 1's four updates, the point light at the centre and outside, two
+    // light counts by two propagations, the entire update beside one
+    // incremental run, DVR beside three light volume frames.
+    let sizes: Vec<usize> = report.orders().iter().map(|(_, order)| order.len() / 6).collect();
+    assert_eq!(sizes, [4, 2, 4, 2, 4], "{:?}", report.orders());
+    for ((label, order), n) in report.orders().iter().zip(sizes) {
+        let rounds: Vec<&[usize]> = order.chunks(n).collect();
+        for round in &rounds {
+            let mut sorted = round.to_vec();
+            sorted.sort();
+            assert_eq!(sorted, (0..n).collect::<Vec<_>>(), "{label}: each configuration once a round: {order:?}");
+        }
+        assert!(rounds.iter().any(|r| r != &rounds[0]), "{label}: one order every round, not shuffled: {order:?}");
+    }
+    let rows = bench_rows(&folder.path().join("lights.json"));
+    let has_interval = |r: &serde_json::Value, key: &str| {
+        let (lo, v, hi) = (r[format!("{key}_lo")].as_f64(), r[key].as_f64(), r[format!("{key}_hi")].as_f64());
+        matches!((lo, v, hi), (Some(lo), Some(v), Some(hi)) if lo <= v && v <= hi)
+    };
+    let part = |p: &'static str| rows.iter().filter(move |r| r["part"] == p);
+    let ours = part("table1").find(|r| r["source"] == "ours (lavapipe)").unwrap();
+    for key in ["sequential_ms", "coherent_ms", "state_change_ms", "toggle_ms", "sequential_over_coherent"] {
+        assert!(has_interval(ours, key), "{key}: {ours}");
+    }
+    for (p, key) in [
+        ("update", "gpu_ms"),
+        ("inside", "gpu_ms"),
+        ("scaling", "gpu_ms"),
+        ("incremental", "total_ms"),
+        ("incremental", "total_over_entire"),
+        ("error", "gpu_ms"),
+    ] {
+        assert!(part(p).all(|r| has_interval(r, key)), "{p} {key}: {:?}", part(p).collect::<Vec<_>>());
+    }
+    // The slopes (a tiny volume's may hold 0, and then so may a round's
+    // coherent slope, which leaves the slope ratio without an interval).
+    let fit: Vec<_> = part("scaling_fit").filter(|r| r["propagation"] != "sequential/coherent").collect();
+    assert!(fit.len() == 2 && fit.iter().all(|r| has_interval(r, "ms_per_added_light")), "{fit:?}");
+    assert!(fit.iter().all(|r| r["ms_per_added_light_verdict"].is_string()), "{fit:?}");
+    let centre = part("inside").next().unwrap();
+    assert!(has_interval(centre, "over_outside"), "{centre}");
+    let markdown = std::fs::read_to_string(folder.path().join("lights.md")).unwrap();
+    assert!(markdown.contains("6 (after 1 warm-up)") && markdown.contains("shuffled order"), "{markdown}");
+    assert_validation_clean(&ctx);
+    let _ = std::fs::remove_dir_all(out("lights"));
 }

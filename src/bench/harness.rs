@@ -1,12 +1,13 @@
-//! The measuring loop every bench shares: untimed warm-up runs (llvmpipe
+//! One configuration's repeats in a block: untimed warm-up runs (llvmpipe
 //! compiles shader variants on first use), then `repeat` timed runs, reported
-//! as their median, minimum and maximum with the output of the last timed run
-//! (its image and profile).
+//! as their median with the output of the last timed run (its image and
+//! profile). Only for what is not compared with anything else measured (`bench
+//! stability`'s cells); configurations that are compared share the shuffled
+//! rounds of [`Interleaved`](super::Interleaved). [`Sample`] is what one run
+//! gives either way.
 
 use super::estimate::{median_estimate, Estimate};
-use super::progress::Progress;
 use super::stats::median;
-use std::io::Write;
 
 /// Why a harness cannot be made.
 #[derive(Debug, PartialEq, Eq, thiserror::Error)]
@@ -57,16 +58,6 @@ impl<T> Measurement<T> {
     pub fn estimate(&self) -> Option<Estimate> {
         median_estimate(&self.samples).ok()
     }
-
-    /// NaN for no samples.
-    pub fn min(&self) -> f64 {
-        self.samples.iter().copied().fold(f64::NAN, f64::min)
-    }
-
-    /// NaN for no samples.
-    pub fn max(&self) -> f64 {
-        self.samples.iter().copied().fold(f64::NAN, f64::max)
-    }
 }
 
 /// Warm-up runs and timed repeats; at least one timed run.
@@ -93,11 +84,6 @@ impl Harness {
         self.repeat
     }
 
-    /// The same repeats after `warm_up` untimed runs.
-    pub fn with_warm_up(self, warm_up: u32) -> Harness {
-        Harness { warm_up, ..self }
-    }
-
     /// Runs `run` `warm_up` times untimed, then `repeat` times timed. The first
     /// error ends the measurement and is returned.
     pub fn measure<T, E>(&self, mut run: impl FnMut() -> Result<Sample<T>, E>) -> Result<Measurement<T>, E> {
@@ -117,22 +103,6 @@ impl Harness {
         }
         let last = last.expect("Harness::new refuses 0 repeats");
         Ok(Measurement { samples, left_out, last })
-    }
-
-    /// [`Harness::measure`] as one step of `progress`, labelled `label`.
-    pub fn measure_step<T, E, W: Write>(
-        &self,
-        progress: &mut Progress<W>,
-        label: &str,
-        run: impl FnMut() -> Result<Sample<T>, E>,
-    ) -> Result<Measurement<T>, E> {
-        progress.start_step(label);
-        let measured = self.measure(run);
-        match &measured {
-            Ok(_) => progress.finish_step(),
-            Err(_) => progress.fail_step("error"),
-        };
-        measured
     }
 }
 
@@ -170,14 +140,12 @@ mod tests {
         let m = Harness::new(2, 3).unwrap().measure(from(&[100.0, 100.0, 1.0, 2.0, 3.0])).unwrap();
         assert_eq!(m.samples, [1.0, 2.0, 3.0]);
         assert_eq!(m.last, 5, "the last output is the fifth call's");
-        assert_eq!((m.min(), m.max()), (1.0, 3.0));
     }
 
     #[test]
-    fn min_and_max_of_the_samples() {
-        let m = Harness::new(0, 5).unwrap().measure(from(&[7.0, 2.5, 9.0, 4.0, 3.0])).unwrap();
-        assert_eq!((m.min(), m.median(), m.max()), (2.5, 4.0, 9.0));
-        assert_eq!(m.estimate(), None, "five samples give no 95 % interval");
+    fn six_samples_give_an_interval_five_do_not() {
+        let five = Harness::new(0, 5).unwrap().measure(from(&[7.0, 2.5, 9.0, 4.0, 3.0])).unwrap();
+        assert_eq!((five.median(), five.estimate()), (4.0, None));
         let six = Harness::new(0, 6).unwrap().measure(from(&[7.0, 2.5, 9.0, 4.0, 3.0, 5.0])).unwrap();
         let e = six.estimate().unwrap();
         assert!(e.lo <= six.median() && six.median() <= e.hi, "{e:?}");
@@ -197,7 +165,7 @@ mod tests {
         assert_eq!(m.left_out, 2);
         assert_eq!(m.last, 5);
         let none = Harness::new(0, 2).unwrap().measure(|| Ok::<_, String>(Sample::left_out(()))).unwrap();
-        assert!(none.median().is_nan() && none.min().is_nan() && none.max().is_nan());
+        assert!(none.median().is_nan());
     }
 
     #[test]
@@ -215,21 +183,5 @@ mod tests {
         assert_eq!(calls, 3, "no run after the failing one");
         let warm_up_fails = Harness::new(1, 5).unwrap().measure(|| Err::<Sample<()>, _>("warm-up"));
         assert_eq!(warm_up_fails.unwrap_err(), "warm-up");
-    }
-
-    #[test]
-    fn a_measured_step_is_reported_as_done_or_failed() {
-        let mut out = Vec::new();
-        {
-            let mut progress = Progress::with_writer(2, &mut out, false);
-            let harness = Harness::new(0, 2).unwrap();
-            harness.measure_step(&mut progress, "first", from(&[1.0])).unwrap();
-            let failed = harness.measure_step(&mut progress, "second", || Err::<Sample<()>, _>("broken"));
-            assert!(failed.is_err());
-        }
-        let text = String::from_utf8(out).unwrap();
-        let lines: Vec<&str> = text.lines().collect();
-        assert!(lines[0].starts_with("[1/2] first ..."), "{text}");
-        assert!(lines[1].starts_with("[2/2] second ... failed"), "{text}");
     }
 }

@@ -1,9 +1,11 @@
 //! Benchmark reports shared by every `sweeplab bench ...` sweep: one [`BenchRow`]
 //! per run, written as CSV, JSON and a Markdown table; the Pareto front of
 //! (GPU time, error); charts as PNG and SVG ([`charts`], by plotters); and a progress line
-//! on stderr while the sweep runs. The measuring loop (warm-up, timed repeats,
-//! median) is [`Harness`]; [`frames`] times technique and IPSVI frames with it,
-//! and [`experiments`] holds what the bench commands measure.
+//! on stderr while the sweep runs. Configurations that are compared are
+//! measured side by side in the shuffled rounds of [`Interleaved`] (the
+//! [`protocol`]); [`Harness`] times one configuration's repeats in a block,
+//! for what is compared with nothing else; [`frames`] times technique and
+//! IPSVI frames, and [`experiments`] holds what the bench commands measure.
 
 pub mod charts;
 pub mod cpu_time;

@@ -23,7 +23,7 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
         scaling_scale: args.scaling_scale,
         error_scales: args.error_scales.clone(),
         incremental_passes: args.incremental_passes.clone(),
-        repeat: args.repeat,
+        rounds: session::interleaved(args.repeat, &args.rounds)?,
         image,
         volume_texels: session::volume_texels(&args.gpu),
     };

@@ -2,14 +2,21 @@
 //! updates paper, Sundén and Ropinski 2015): the lights of its Table 1 and
 //! Figure 10, a scene per measurement, the four updates of a Table 1 row and
 //! how each is timed, incremental mode until complete, and full frames for the
-//! error against the ground truth.
+//! error against the ground truth. Every part's configurations are measured
+//! side by side in shared shuffled rounds ([`Interleaved`]): each has its own
+//! renderer, made before the rounds, so one configuration's run leaves
+//! nothing another one's depends on (see [`LightsMeter::measure_updates`]).
 
-use crate::bench::harness::{Harness, Measurement, Sample};
+use crate::bench::harness::Sample;
+use crate::bench::interleaved::{Interleaved, Timings};
 use crate::bench::progress::Progress;
+use crate::bench::protocol::Phase;
 use crate::bench::ExperimentError;
 use crate::lightvolume::{CostEstimate, LightVolumeFrame, LightVolumeRenderer, LightVolumeSettings, UpdateKind};
-use crate::render::{GpuScene, RenderError, VolumeTexels};
+use crate::linear_image::LinearImage;
+use crate::render::{GpuScene, RenderError};
 use crate::scene::{Falloff, Light, LightKind, Scene};
+use crate::techniques::{render, Technique};
 use crate::vk::{Context, Profiler};
 use glam::{UVec3, Vec3};
 
@@ -151,11 +158,48 @@ pub fn resolution_label(scale: u32) -> String {
     }
 }
 
-/// What repeated updates of one kind cost.
+/// A light volume renderer of one configuration, made before the rounds,
+/// with the device-local memory it took.
+pub struct Volume<'s> {
+    pub renderer: LightVolumeRenderer<'s>,
+    /// The illumination volume(s), allocated with the renderer.
+    pub illumination_bytes: u64,
+    /// The slice buffers and slot buffer, allocated by its first update.
+    pub propagation_bytes: u64,
+    /// The lights the volume holds now: where a selective update starts.
+    holds: Vec<Option<Light>>,
+}
+
+/// One configuration of a part's updates: its volume (an index into the
+/// part's volumes), the update, and the two states a selective update moves
+/// between (`first` alone for an entire update).
+pub struct UpdateConfig {
+    pub volume: usize,
+    pub update: Update,
+    first: Vec<Option<Light>>,
+    second: Vec<Option<Light>>,
+}
+
+impl UpdateConfig {
+    /// `update` of `lights` (all on) on volume `volume`: a state change moves
+    /// the first light a little, a toggle switches it off.
+    pub fn new(volume: usize, update: Update, lights: &[Light]) -> UpdateConfig {
+        let first: Vec<Option<Light>> = lights.iter().copied().map(Some).collect();
+        let mut second = first.clone();
+        match update {
+            Update::StateChange => second[0] = Some(moved(&lights[0])),
+            Update::Toggle => second[0] = None,
+            Update::EntireSequential | Update::EntireCoherent => {}
+        }
+        UpdateConfig { volume, update, first, second }
+    }
+}
+
+/// What one configuration's updates cost, round by round.
 pub struct UpdateMeasurement {
     /// Update GPU ms of the timed updates of the expected kind; the last
     /// timed update's frame (counted or not).
-    pub timing: Measurement<LightVolumeFrame>,
+    pub timing: Timings<LightVolumeFrame>,
     pub grid: UVec3,
     pub illumination_bytes: u64,
     pub propagation_bytes: u64,
@@ -180,190 +224,254 @@ impl UpdateMeasurement {
 }
 
 /// Incremental mode from an empty volume: update GPU ms of each frame until
-/// the update was complete.
+/// the update was complete (one entry for an entire update).
 pub struct IncrementalRun {
     pub frame_ms: Vec<f64>,
     pub grid: UVec3,
 }
 
-/// Full frames (entire update + ray cast) of one light volume renderer.
-pub struct LightVolumeFrames {
-    /// Frame GPU ms; the last frame and its device-local memory peak.
-    pub timing: Measurement<(LightVolumeFrame, u64)>,
-    /// The entire update and the ray cast of each timed frame.
-    pub update_ms: Vec<f64>,
-    pub raycast_ms: Vec<f64>,
+/// Incremental mode's rounds: one entire update beside each renderer's run
+/// from an empty volume until complete.
+pub struct IncrementalRounds {
+    pub entire: Timings<IncrementalRun>,
+    /// Per renderer: the frames' total GPU ms (with the last run's frames),
+    /// and the most costly frame of each round.
+    pub runs: Vec<(Timings<IncrementalRun>, Timings<()>)>,
+}
+
+/// One full frame of the error rows: DVR, or a light volume frame (entire
+/// update + ray cast).
+pub struct FullFrame {
+    pub image: LinearImage,
+    pub dispatches: u32,
+    /// A light volume frame's update (without its image).
+    pub light_volume: Option<LightVolumeFrame>,
+}
+
+/// One configuration's full frames: the frame time, and for a light volume
+/// the entire update's and the ray cast's share of it, round by round.
+pub struct FullFrames {
+    pub timing: Timings<FullFrame>,
+    pub update_ms: Timings<()>,
+    pub raycast_ms: Timings<()>,
+}
+
+/// Per configuration, one value per timed run, collected beside a part's
+/// rounds where a run gives more than its time.
+struct Series(Vec<Vec<Option<f64>>>);
+
+impl Series {
+    fn new(configurations: usize) -> Series {
+        Series((0..configurations).map(|_| Vec::new()).collect())
+    }
+
+    fn push(&mut self, configuration: usize, phase: Phase, value: f64) {
+        if phase == Phase::Timed {
+            self.0[configuration].push(Some(value));
+        }
+    }
+
+    fn take(&mut self, configuration: usize) -> Timings<()> {
+        Timings { rounds: std::mem::take(&mut self.0[configuration]), last: () }
+    }
 }
 
 /// What every light volume measurement uses: the device, the profiler, the
-/// progress line and the harness (its warm-up is the experiment's own: see
-/// each measurement).
+/// progress line, the rounds every part shares among its configurations, and
+/// each part's timed runs in the order they ran.
 pub struct LightsMeter<'c> {
     pub ctx: &'c Context,
     pub profiler: Profiler,
     pub progress: Progress,
-    pub harness: Harness,
+    pub rounds: Interleaved,
+    /// (part, configuration of each timed run in order): shuffled rounds, never blocks.
+    pub orders: Vec<(String, Vec<usize>)>,
 }
 
 impl LightsMeter<'_> {
-    /// One update, timed by its own profiler scope.
-    fn timed_update(
+    /// `configurations` configurations in the shared rounds as one progress
+    /// step labelled `label`: `run(ctx, profiler, c, phase)` runs configuration
+    /// `c` once. The order of the timed runs is kept in [`LightsMeter::orders`].
+    fn rounds<T>(
         &mut self,
-        renderer: &mut LightVolumeRenderer,
-        state: &[Option<Light>],
-        entire: bool,
-    ) -> Result<(f64, LightVolumeFrame), RenderError> {
-        timed_update(self.ctx, renderer, &mut self.profiler, state, entire)
+        label: &str,
+        configurations: usize,
+        mut run: impl FnMut(&Context, &mut Profiler, usize, Phase) -> Result<Sample<T>, ExperimentError>,
+    ) -> Result<Vec<Timings<T>>, ExperimentError> {
+        let (ctx, profiler) = (self.ctx, &mut self.profiler);
+        let mut order = Vec::new();
+        let timings = self.rounds.measure(&mut self.progress, label, configurations, |c, phase| {
+            if phase == Phase::Timed {
+                order.push(c);
+            }
+            run(ctx, profiler, c, phase)
+        })?;
+        self.orders.push((label.to_string(), order));
+        Ok(timings)
     }
 
-    /// Measures `updates` on one renderer of `scene` (whose `[lightvolume]` table
-    /// they share): first an untimed entire update of all `lights` (it records
-    /// the passes, and llvmpipe compiles the shaders on first use), whose memory
-    /// is kept in each result.
+    /// A renderer of `gpu`'s scene, after one untimed entire update of all
+    /// `lights` (it records the passes and allocates the slice buffers, and
+    /// llvmpipe compiles the shaders on first use), with the memory each took.
+    pub fn volume<'s>(&mut self, gpu: &'s GpuScene<'s>, lights: &[Light]) -> Result<Volume<'s>, RenderError> {
+        let before = self.ctx.memory.device_local_bytes();
+        let mut renderer = LightVolumeRenderer::new(gpu)?;
+        let with_renderer = self.ctx.memory.device_local_bytes();
+        let all_on: Vec<Option<Light>> = lights.iter().copied().map(Some).collect();
+        timed_update(self.ctx, &mut renderer, &mut self.profiler, &all_on, true)?;
+        let with_passes = self.ctx.memory.device_local_bytes();
+        Ok(Volume {
+            renderer,
+            illumination_bytes: with_renderer - before,
+            propagation_bytes: with_passes - with_renderer,
+            holds: all_on,
+        })
+    }
+
+    /// `configs` in shared rounds, labelled `label`. An entire update re-measures
+    /// `first` from an invalidated volume; a selective one goes from whichever
+    /// of its two states the volume holds to the other (both directions timed,
+    /// as the paper's on/off), after an untimed update to `first` when the
+    /// volume holds another configuration's state. Updates that come out as
+    /// another kind (e.g. a re-base) are left out.
     pub fn measure_updates(
         &mut self,
-        scene: &Scene,
-        lights: &[Light],
-        updates: &[Update],
         label: &str,
-    ) -> Result<Vec<UpdateMeasurement>, RenderError> {
-        let gpu = GpuScene::upload(self.ctx, scene)?;
-        let before = self.ctx.memory.device_local_bytes();
-        let mut renderer = LightVolumeRenderer::new(&gpu)?;
-        let with_renderer = self.ctx.memory.device_local_bytes();
-        let first: Vec<Option<Light>> = lights.iter().copied().map(Some).collect();
-        self.timed_update(&mut renderer, &first, true)?;
-        let with_passes = self.ctx.memory.device_local_bytes();
+        volumes: &mut [Volume],
+        configs: &[UpdateConfig],
+    ) -> Result<Vec<UpdateMeasurement>, ExperimentError> {
+        let timings = self.rounds(label, configs.len(), |ctx, profiler, c, _| {
+            let config = &configs[c];
+            let volume = &mut volumes[config.volume];
+            let entire = config.update.expected_kind() != UpdateKind::Selective;
+            let to = if entire {
+                &config.first
+            } else if volume.holds == config.first {
+                &config.second
+            } else if volume.holds == config.second {
+                &config.first
+            } else {
+                timed_update(ctx, &mut volume.renderer, profiler, &config.first, false)?;
+                &config.second
+            };
+            let (ms, frame) = timed_update(ctx, &mut volume.renderer, profiler, to, entire)?;
+            volume.holds.clone_from(to);
+            Ok(if frame.update.plan.kind == config.update.expected_kind() {
+                Sample::timed(ms, frame)
+            } else {
+                Sample::left_out(frame)
+            })
+        })?;
         let mut out = Vec::new();
-        for &update in updates {
-            self.progress.start_step(&format!("{label}: {}", update.name()));
-            let mut second = first.clone();
-            match update {
-                Update::StateChange => second[0] = Some(moved(&lights[0])),
-                Update::Toggle => second[0] = None,
-                Update::EntireSequential | Update::EntireCoherent => {}
-            }
-            let timing = self.measure(&mut renderer, update, (&first, &second))?;
-            self.progress.finish_step();
-            if timing.left_out > 0 {
+        for (config, timing) in configs.iter().zip(timings) {
+            if timing.left_out() > 0 {
                 self.progress.message(&format!(
-                    "  {} of {} timed updates were {:?}, not {:?} ({}); left out",
-                    timing.left_out,
-                    self.harness.repeat(),
+                    "  {label}, {}: {} of {} timed updates were {:?}, not {:?} ({}); left out",
+                    config.update.name(),
+                    timing.left_out(),
+                    timing.rounds.len(),
                     timing.last.update.plan.kind,
-                    update.expected_kind(),
+                    config.update.expected_kind(),
                     timing.last.update.plan.reason
                 ));
             }
+            let volume = &volumes[config.volume];
             out.push(UpdateMeasurement {
                 timing,
-                grid: renderer.grid(),
-                illumination_bytes: with_renderer - before,
-                propagation_bytes: with_passes - with_renderer,
+                grid: volume.renderer.grid(),
+                illumination_bytes: volume.illumination_bytes,
+                propagation_bytes: volume.propagation_bytes,
             });
         }
         Ok(out)
     }
 
-    /// Timed updates of `update`. Entire updates re-measure `first`; selective
-    /// ones alternate between `first` and `second`, after an untimed change to
-    /// `second` (which records its passes). The renderer holds `first` before
-    /// and after. Updates that come out as another kind (e.g. a re-base) are left out.
-    fn measure(
+    /// Incremental mode in shared rounds, labelled `label`: an entire update
+    /// of `lights` on `entire` beside each of `incremental` (their
+    /// `[lightvolume]` tables set the passes per frame) run from an empty volume
+    /// until complete. The warm-up round records every pass and compiles the shaders.
+    pub fn incremental(
         &mut self,
-        renderer: &mut LightVolumeRenderer,
-        update: Update,
-        (first, second): (&[Option<Light>], &[Option<Light>]),
-    ) -> Result<Measurement<LightVolumeFrame>, RenderError> {
-        let selective = update.expected_kind() == UpdateKind::Selective;
-        let mut now_second = false;
-        if selective {
-            self.timed_update(renderer, second, false)?;
-            now_second = true;
-        }
-        let (ctx, profiler) = (self.ctx, &mut self.profiler);
-        let timing = self.harness.measure(|| {
-            let state = if now_second { first } else { second };
-            let (t, frame) = if selective {
-                now_second = !now_second;
-                timed_update(ctx, renderer, profiler, state, false)?
-            } else {
-                timed_update(ctx, renderer, profiler, first, true)?
-            };
-            Ok::<_, RenderError>(if frame.update.plan.kind == update.expected_kind() {
-                Sample::timed(t, frame)
-            } else {
-                Sample::left_out(frame)
-            })
-        })?;
-        if now_second {
-            self.timed_update(renderer, first, false)?;
-        }
-        Ok(timing)
-    }
-
-    /// GPU ms of one entire update of `lights` on `scene`, after an untimed one.
-    pub fn entire_update_ms(&mut self, scene: &Scene, lights: &[Option<Light>]) -> Result<f64, RenderError> {
-        let gpu = GpuScene::upload(self.ctx, scene)?;
-        let mut renderer = LightVolumeRenderer::new(&gpu)?;
-        let (ctx, profiler) = (self.ctx, &mut self.profiler);
-        let timing = Harness::once_after(1).measure(|| {
-            let (ms, _) = timed_update(ctx, &mut renderer, profiler, lights, true)?;
-            Ok::<_, RenderError>(Sample::timed(ms, ()))
-        })?;
-        Ok(timing.median())
-    }
-
-    /// Incremental mode on `scene` (its `[lightvolume]` table sets the passes
-    /// per frame): frames from an empty volume until the update is complete.
-    pub fn incremental(&mut self, scene: &Scene, lights: &[Option<Light>]) -> Result<IncrementalRun, ExperimentError> {
-        let gpu = GpuScene::upload(self.ctx, scene)?;
-        let mut renderer = LightVolumeRenderer::new(&gpu)?;
-        // Untimed: records every pass and compiles the shaders.
-        while self.timed_update(&mut renderer, lights, false)?.1.update.plan.kind != UpdateKind::Unchanged {}
-        renderer.invalidate();
-        let mut frame_ms = Vec::new();
-        loop {
-            let (ms, frame) = self.timed_update(&mut renderer, lights, false)?;
-            if frame.update.plan.kind == UpdateKind::Unchanged {
-                break;
+        label: &str,
+        entire: &mut LightVolumeRenderer,
+        incremental: &mut [LightVolumeRenderer],
+        lights: &[Option<Light>],
+    ) -> Result<IncrementalRounds, ExperimentError> {
+        let mut most = Series::new(1 + incremental.len());
+        let mut timings = self.rounds(label, 1 + incremental.len(), |ctx, profiler, c, phase| {
+            if c == 0 {
+                let (ms, _) = timed_update(ctx, entire, profiler, lights, true)?;
+                return Ok(Sample::timed(ms, IncrementalRun { frame_ms: vec![ms], grid: entire.grid() }));
             }
-            frame_ms.push(ms);
-            if frame_ms.len() > MAX_INCREMENTAL_FRAMES {
-                return Err(ExperimentError::NotConverged(MAX_INCREMENTAL_FRAMES));
-            }
-        }
-        Ok(IncrementalRun { frame_ms, grid: renderer.grid() })
+            let run = incremental_run(ctx, &mut incremental[c - 1], profiler, lights)?;
+            most.push(c, phase, run.frame_ms.iter().copied().fold(0.0, f64::max));
+            Ok(Sample::timed(run.frame_ms.iter().sum(), run))
+        })?;
+        let runs = timings.drain(1..).enumerate().map(|(i, t)| (t, most.take(i + 1))).collect();
+        let entire = timings.pop().expect("the entire update is configuration 0");
+        Ok(IncrementalRounds { entire, runs })
     }
 
-    /// Full frames of `all_on` on `scene`: an untimed one (it records the
-    /// passes and compiles the shaders), then each timed frame from an entire update.
-    pub fn lightvolume_frames(
+    /// Full frames in shared rounds, labelled `label`: DVR on `dvr`, then each
+    /// of `volumes` rendering `all_on`, every light volume frame from an entire update.
+    pub fn full_frames(
         &mut self,
-        scene: &Scene,
-        texels: VolumeTexels,
+        label: &str,
+        dvr: &GpuScene,
+        volumes: &mut [LightVolumeRenderer],
         all_on: &[Option<Light>],
         (width, height): (u32, u32),
-    ) -> Result<LightVolumeFrames, RenderError> {
-        let gpu = GpuScene::upload_with(self.ctx, scene, texels)?;
-        self.ctx.memory.reset_peak();
-        let mut renderer = LightVolumeRenderer::new(&gpu)?;
-        self.profiler.reset();
-        renderer.render(all_on, width, height, &mut self.profiler, false)?;
-        self.profiler.resolve(0)?;
-        let (ctx, profiler) = (self.ctx, &mut self.profiler);
-        let (mut update_ms, mut raycast_ms) = (Vec::new(), Vec::new());
-        let timing = self.harness.measure(|| {
+    ) -> Result<Vec<FullFrames>, ExperimentError> {
+        let n = 1 + volumes.len();
+        let (mut update_ms, mut raycast_ms) = (Series::new(n), Series::new(n));
+        let timings = self.rounds(label, n, |ctx, profiler, c, phase| {
+            if c == 0 {
+                let out = render(dvr, Technique::Dvr, width, height, profiler)?;
+                let frame = FullFrame { image: out.image, dispatches: out.dispatches, light_volume: None };
+                return Ok(Sample::timed(out.profile.gpu_ms_total, frame));
+            }
+            let renderer = &mut volumes[c - 1];
             renderer.invalidate();
             profiler.reset();
-            let frame = renderer.render(all_on, width, height, profiler, false)?;
+            let mut frame = renderer.render(all_on, width, height, profiler, false)?;
             let profile = profiler.resolve(ctx.memory.device_local_peak())?;
-            update_ms.push(profile.pass_ms(UpdateKind::Entire.scope_name()));
-            raycast_ms.push(profile.pass_ms("lightvolume_raycast"));
-            Ok::<_, RenderError>(Sample::timed(profile.gpu_ms_total, (frame, profile.gpu_memory_bytes)))
+            update_ms.push(c, phase, profile.pass_ms(UpdateKind::Entire.scope_name()));
+            raycast_ms.push(c, phase, profile.pass_ms("lightvolume_raycast"));
+            let image = frame
+                .image
+                .take()
+                .ok_or_else(|| ExperimentError::Invalid("light volume frame without an image".into()))?;
+            let dispatches = frame.dispatches;
+            Ok(Sample::timed(profile.gpu_ms_total, FullFrame { image, dispatches, light_volume: Some(frame) }))
         })?;
-        Ok(LightVolumeFrames { timing, update_ms, raycast_ms })
+        Ok(timings
+            .into_iter()
+            .enumerate()
+            .map(|(c, timing)| FullFrames { timing, update_ms: update_ms.take(c), raycast_ms: raycast_ms.take(c) })
+            .collect())
     }
+}
+
+/// Incremental mode from an empty volume: frames until the update is complete.
+fn incremental_run(
+    ctx: &Context,
+    renderer: &mut LightVolumeRenderer,
+    profiler: &mut Profiler,
+    lights: &[Option<Light>],
+) -> Result<IncrementalRun, ExperimentError> {
+    renderer.invalidate();
+    let mut frame_ms = Vec::new();
+    loop {
+        let (ms, frame) = timed_update(ctx, renderer, profiler, lights, false)?;
+        if frame.update.plan.kind == UpdateKind::Unchanged {
+            break;
+        }
+        frame_ms.push(ms);
+        if frame_ms.len() > MAX_INCREMENTAL_FRAMES {
+            return Err(ExperimentError::NotConverged(MAX_INCREMENTAL_FRAMES));
+        }
+    }
+    Ok(IncrementalRun { frame_ms, grid: renderer.grid() })
 }
 
 /// One update, timed by its own profiler scope.
