@@ -729,7 +729,8 @@ impl Report {
                 format!("Entire update, lights of one direction, {}", resolution_label(plan.scaling_scale)),
                 "lights",
                 "GPU time (ms)",
-            ),
+            )
+            .run_caption(Some(&self.run)),
             &scaling,
         )?;
         for &scale in &plan.scales {
@@ -744,7 +745,8 @@ impl Report {
             plot_lines(
                 out.join(format!("lights_table1_{scale}.png")),
                 &Chart::new(format!("Light volume updates, {label}"), "lights", "GPU time (ms)")
-                    .y_scale(AxisScale::Log10),
+                    .y_scale(AxisScale::Log10)
+                    .run_caption(Some(&self.run)),
                 &series,
             )?;
         }
@@ -756,7 +758,8 @@ impl Report {
             out.join("lights_error_vs_time.png"),
             &Chart::new("Light volume frames against the ground truth of their model", "GPU time (ms)", "RMSE")
                 .x_scale(AxisScale::Log10)
-                .y_scale(AxisScale::Log10),
+                .y_scale(AxisScale::Log10)
+                .run_caption(Some(&self.run)),
             &error,
         )?;
         Ok(())
