@@ -53,6 +53,14 @@ impl FrameImages {
         }
     }
 
+    /// Lets go of every kept image (another technique, with other images, is
+    /// chosen); frames and sessions that hold one keep it until they end.
+    pub fn release_all(&self) {
+        if let Some(kept) = &self.kept {
+            *kept.lock().unwrap_or_else(|e| e.into_inner()) = Kept::default();
+        }
+    }
+
     /// The image `name` of `desc`: last frame's where it had that description.
     pub fn image(&self, ctx: &Context, name: &str, desc: ImageDesc) -> Result<Arc<Image>, VkError> {
         let Some(kept) = &self.kept else {

@@ -217,6 +217,8 @@ fn frame_loop<'c>(
                 match edit {
                     UiEdit::Technique(t) => {
                         technique = t;
+                        // The old technique's images would only take memory.
+                        frame_images.release_all();
                         rebuild = true;
                     }
                     UiEdit::Set(set) => match live.set(&set) {
