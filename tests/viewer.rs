@@ -592,39 +592,63 @@ fn created(f: &serde_json::Value) -> (u64, u64, u64) {
     (c["pipelines"].as_u64().unwrap(), c["descriptor_pools"].as_u64().unwrap(), c["images"].as_u64().unwrap())
 }
 
+/// Every technique the viewer offers (`sweeplab render --help`'s list).
+const VIEWER_TECHNIQUES: [&str; 7] = ["dvr", "phong", "reference", "ipsvi", "half-angle", "lightvolume", "ao"];
+
 #[test]
-fn unchanged_frames_create_no_pipeline_or_pool_and_a_resize_only_what_has_the_size() {
+fn unchanged_frames_and_camera_moves_create_nothing_and_a_resize_only_what_has_the_size() {
     let x = xvfb_or_skip!();
     let dir = temp_dir("creations");
     let script = dir.join("script.txt");
-    std::fs::write(&script, "4 resize 40x32\n").unwrap();
-    // Techniques each frame renders anew (dvr, half-angle) and sessions that
-    // keep their resources (the light volume, IPSVI).
-    for technique in ["dvr", "half-angle", "lightvolume", "ipsvi"] {
-        let frames = view_log(&x, technique, technique, "32x32", "7", &["--script", script.to_str().unwrap()]);
-        assert_eq!(frames.len(), 7);
+    // A mouse orbit and a wheel zoom (camera moves), then a resize.
+    std::fs::write(&script, "2 orbit 20 -6\n3 zoom 1\n5 resize 40x32\n").unwrap();
+    for technique in VIEWER_TECHNIQUES {
+        let frames = view_log(&x, technique, technique, "32x32", "8", &["--script", script.to_str().unwrap()]);
+        assert_eq!(frames.len(), 8);
         let c: Vec<(u64, u64, u64)> = frames.iter().map(created).collect();
         assert!(c[0].0 > 0, "{technique}: the first frame compiles its pipelines: {c:?}");
+        assert!(c[0].2 > 0, "{technique}: the first frame creates the volume and the frame's images: {c:?}");
+        let resized = frames.iter().position(|f| f["width"] == 40).expect("the resize reached the swapchain");
+        assert!(resized > 3, "{technique}: the resize came after the camera moves: {c:?}");
         for (i, f) in frames.iter().enumerate().skip(1) {
             assert_eq!(c[i].0, 0, "{technique}: frame {i} created pipelines: {c:?}");
             // Two frames in flight: the second frame's pools are new, then
             // each frame takes a pool the frame before last gave back. A
             // resize may need a pool (sets bind the sized images).
-            if i >= 2 && f["swapchain_recreated"] != true {
+            if i >= 2 && i != resized {
                 assert_eq!(c[i].1, 0, "{technique}: frame {i} created descriptor pools: {c:?}");
             }
             if f["swapchain_recreated"] == true {
                 assert_eq!((f["width"].as_u64(), f["height"].as_u64()), (Some(40), Some(32)), "{technique}");
             }
-        }
-        let resized = frames.iter().position(|f| f["width"] == 40).expect("the resize reached the swapchain");
-        // A session's resources have the image size: re-created at the
-        // resize only, and nothing after it.
-        if ["lightvolume", "ipsvi"].contains(&technique) {
-            assert!(c[resized].2 > 0, "{technique}: the resize re-creates the sized images: {c:?}");
-            for (i, ci) in c.iter().enumerate().skip(1).filter(|(i, _)| *i != resized) {
-                assert_eq!(*ci, (0, 0, 0), "{technique}: unchanged frame {i} created something: {c:?}");
+            // Unchanged frames and the camera moves (frames 2 and 3) keep
+            // every image; the resize re-creates the sized ones only (the
+            // volume, and what has the volume's size, stay).
+            if i != resized {
+                assert_eq!(c[i].2, 0, "{technique}: frame {i} created images: {c:?}");
             }
         }
+        assert!(c[resized].2 > 0, "{technique}: the resize re-creates the sized images: {c:?}");
+        assert!(c[resized].2 < c[0].2, "{technique}: the resize re-created more than the sized images: {c:?}");
+    }
+}
+
+/// Kept images give the frame a fresh render gives: after a camera edit and
+/// frames rendered into the same images, the screenshot is the headless
+/// render of that camera.
+#[test]
+fn frames_rendered_into_kept_images_are_the_headless_render() {
+    let x = xvfb_or_skip!();
+    for technique in ["dvr", "reference", "lightvolume", "ao"] {
+        let dir = temp_dir(&format!("kept-{technique}"));
+        let script = dir.join("script.txt");
+        std::fs::write(&script, "1 set camera.azimuth=60\n").unwrap();
+        let (shot, reference) = (dir.join("view.png"), dir.join("render.png"));
+        let mut args = vec!["view", "--size", "40x32", "--technique", technique, "--frames", "4", "--no-ui"];
+        args.extend(["--script", script.to_str().unwrap(), "--screenshot", shot.to_str().unwrap()]);
+        assert_clean_run(&sweeplab(&args, Some(&x.display)));
+        let args = ["render", "--size", "40x32", "--technique", technique, "--set", "camera.azimuth=60"];
+        assert_clean_run(&sweeplab(&[&args[..], &["--out", reference.to_str().unwrap()]].concat(), None));
+        assert_screenshot_is_render(&shot, &reference);
     }
 }

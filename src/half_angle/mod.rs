@@ -19,7 +19,7 @@ use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
 use crate::render::light_space::{LightProjection, LightSpacePlane};
-use crate::render::{render_recorded, GpuScene, OutputImage, RecordedFrame, RenderError};
+use crate::render::{render_recorded, GpuScene, RecordedFrame, RenderError};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::{LightKind, Scene};
 use crate::shaders::half_angle_slice as shader;
@@ -125,8 +125,9 @@ fn check_slice_step(settings: &HalfAngleSettings, step: f32, extent_voxels: f32)
     Ok(())
 }
 
-fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Image, RenderError> {
-    Ok(Image::storage_2d(gpu.ctx, name, vk::Format::R32_SFLOAT, n, n, vk::ImageUsageFlags::TRANSFER_DST)?)
+fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Arc<Image>, RenderError> {
+    let usage = vk::ImageUsageFlags::TRANSFER_DST;
+    Ok(gpu.frame_images.storage_2d(gpu.ctx, name, vk::Format::R32_SFLOAT, (n, n), usage)?)
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
@@ -196,7 +197,7 @@ pub fn record(
         Buffer::with_data(ctx, "half-angle light buffer", &[light_params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let n = settings.light_buffer_size;
     let light = [r32f(gpu, "half-angle light a", n)?, r32f(gpu, "half-angle light b", n)?];
-    let eye = OutputImage::new(ctx, "half-angle eye buffer", width, height)?;
+    let eye = gpu.frame_images.output(ctx, "half-angle eye buffer", width, height)?;
     let desc =
         ComputePipelineDesc { name: "half_angle_slice", shader: &shader::INTERFACE, specialization: &[], max_sets: 1 };
     // Slice parity 0 reads light side a and writes b; parity 1 the opposite.
@@ -215,7 +216,7 @@ pub fn record(
     ])?;
     let bg = scene.render.background;
     let start = if sl.front_to_back { [0.0, 0.0, 0.0, 1.0] } else { [bg.x, bg.y, bg.z, 1.0] };
-    for (image, value) in [(&light[0], [1.0f32; 4]), (&light[1], [1.0; 4]), (&eye.image, start)] {
+    for (image, value) in [(&*light[0], [1.0f32; 4]), (&*light[1], [1.0; 4]), (&eye.image, start)] {
         rec.clear_for_compute(image, value, "slice_buffers_discard_to_clear", "slice_buffers_clear_to_first_slice");
     }
     let scope = profiler.begin(rec, "half_angle")?;
@@ -247,5 +248,5 @@ pub fn record(
     let [light_a, light_b] = light;
     let keep_alive: Vec<Box<dyn Any>> =
         vec![Box::new(frame), Box::new(light_buffer_params), Box::new(light_a), Box::new(light_b), Box::new(pipelines)];
-    Ok(RecordedFrame::counted(rec, Arc::new(eye), keep_alive))
+    Ok(RecordedFrame::counted(rec, eye, keep_alive))
 }

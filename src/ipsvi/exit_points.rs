@@ -18,6 +18,7 @@ use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec2;
+use std::sync::Arc;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -47,12 +48,12 @@ crate::assert_gpu_layout!(
     [anchor, line, previous, span_start, span_len, columns, zone]
 );
 
-fn image(gpu: &GpuScene, name: &str, format: vk::Format, width: u32, height: u32) -> Result<Image, VkError> {
-    Image::storage_2d(gpu.ctx, name, format, width, height, vk::ImageUsageFlags::empty())
+fn image(gpu: &GpuScene, name: &str, format: vk::Format, width: u32, height: u32) -> Result<Arc<Image>, VkError> {
+    gpu.frame_images.storage_2d(gpu.ctx, name, format, (width, height), vk::ImageUsageFlags::empty())
 }
 
 /// The 1x1 image bound where the main pass would read l_max when this mode is off.
-pub fn placeholder(gpu: &GpuScene) -> Result<Image, VkError> {
+pub fn placeholder(gpu: &GpuScene) -> Result<Arc<Image>, VkError> {
     image(gpu, "ipsvi lmax placeholder", vk::Format::R32_SFLOAT, 1, 1)
 }
 
@@ -60,10 +61,10 @@ pub struct ExitPoints {
     pub scale: u32,
     pub width: u32,
     pub height: u32,
-    depths: Image,
-    pair: [Image; 2],
+    depths: Arc<Image>,
+    pair: [Arc<Image>; 2],
     /// l_max per pre-pass pixel, read by the main pass.
-    pub lmax: Image,
+    pub lmax: Arc<Image>,
     plan: SweepPlan,
     depths_pipeline: ComputePipeline,
     depths_set: vk::DescriptorSet,

@@ -44,10 +44,10 @@ use std::sync::Arc;
 /// 1x1 (bound, never read). Merged sweeps stack one cache per sweep in rows
 /// (`slots`); keys likewise.
 struct Cache {
-    light: [Image; 2],
-    front: [Image; 2],
-    samples: [Image; 2],
-    stamps: [Image; 2],
+    light: [Arc<Image>; 2],
+    front: [Arc<Image>; 2],
+    samples: [Arc<Image>; 2],
+    stamps: [Arc<Image>; 2],
     claim_keys: Buffer,
 }
 
@@ -57,7 +57,7 @@ impl Cache {
         let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
         let claims = view_samples && settings.cache_write.claims();
         let sized = |name: &str, format, n: u32| {
-            Image::storage_2d(gpu.ctx, name, format, n, n * slots, vk::ImageUsageFlags::empty())
+            gpu.frame_images.storage_2d(gpu.ctx, name, format, (n, n * slots), vk::ImageUsageFlags::empty())
         };
         let image = |name: &str, format| sized(name, format, size);
         let sample_size = if view_samples { size } else { 1 };
@@ -174,7 +174,7 @@ pub struct IpsviRenderer<'a> {
     output: Arc<OutputImage>,
     cache: Cache,
     exit_points: Option<ExitPoints>,
-    placeholder: Option<Image>,
+    placeholder: Option<Arc<Image>>,
     init: ComputePipeline,
     init_set: vk::DescriptorSet,
     lines: [ComputePipeline; 2],
@@ -191,19 +191,18 @@ pub struct IpsviRenderer<'a> {
 /// shade the same pixel in one dispatch), added to the output by `ipsvi_sweep_sum`.
 struct MergedOutput {
     slots: u32,
-    accumulation: Image,
+    accumulation: Arc<Image>,
     sum: ComputePipeline,
     sum_set: vk::DescriptorSet,
 }
 
 impl MergedOutput {
     fn new(gpu: &GpuScene, output: &OutputImage, slots: u32) -> Result<MergedOutput, RenderError> {
-        let accumulation = Image::storage_2d(
+        let accumulation = gpu.frame_images.storage_2d(
             gpu.ctx,
             "ipsvi sweep accumulation",
             vk::Format::R32G32B32A32_SFLOAT,
-            output.width,
-            output.height * slots,
+            (output.width, output.height * slots),
             vk::ImageUsageFlags::TRANSFER_DST,
         )?;
         let mut sum = ComputePipeline::new(
@@ -265,7 +264,7 @@ impl<'a> IpsviRenderer<'a> {
         let steps = MarchSteps { shadow_step_voxels: settings.light_step_voxels, ..MarchSteps::render(scene) };
         let params = frame_params(scene, width, height, gpu.lut_size, steps);
         let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
-        let output = OutputImage::new(ctx, "ipsvi output", width, height)?;
+        let output = gpu.frame_images.output(ctx, "ipsvi output", width, height)?;
         let sweep_count = plans.iter().map(|p| p.sweeps.len() as u32).sum::<u32>();
         // One sweep has nothing to merge with: the unmerged frame, no sum pass.
         let slots = if settings.merge_sweeps && sweep_count > 1 { sweep_count } else { 1 };
@@ -441,7 +440,7 @@ impl<'a> IpsviRenderer<'a> {
             _blocks: blocks,
             _steps: steps,
             merged,
-            output: Arc::new(output),
+            output,
             cache,
             exit_points,
             placeholder,
@@ -497,7 +496,7 @@ impl<'a> IpsviRenderer<'a> {
                 let claims =
                     self.settings.cache_update == CacheUpdate::ViewSamples && self.settings.cache_write.claims();
                 let mut images = vec![l0, l1, f0, f1, s0, s1, t0, t1, &self.output.image];
-                images.extend(self.merged.as_ref().map(|m| &m.accumulation));
+                images.extend(self.merged.as_ref().map(|m| &*m.accumulation));
                 Box::new(ImageBarriers::new(&images, claims.then_some(&cache.claim_keys)))
             }
             SyncStrategy::Events => Box::new(SplitBarriers::new(self.ctx, self.dispatches.len())?),

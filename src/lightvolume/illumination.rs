@@ -6,18 +6,19 @@
 //! allocates them. The volume stays in GENERAL layout from the first clear on,
 //! so selective updates can add to what earlier frames left.
 
-use crate::render::RenderError;
+use crate::render::{FrameImages, RenderError};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Recorder, VkError};
 use ash::vk;
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
 
 const FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 
 pub struct IlluminationVolume {
-    pub image: Image,
-    pub low: Image,
+    pub image: Arc<Image>,
+    pub low: Arc<Image>,
     pub compensated: bool,
     pub size: UVec3,
 }
@@ -36,8 +37,8 @@ impl IlluminationReadback {
     }
 }
 
-fn volume_image(ctx: &Context, name: &str, size: UVec3) -> Result<Image, VkError> {
-    Image::new(
+fn volume_image(ctx: &Context, images: &FrameImages, name: &str, size: UVec3) -> Result<Arc<Image>, VkError> {
+    images.image(
         ctx,
         name,
         ImageDesc {
@@ -57,7 +58,15 @@ impl IlluminationVolume {
         UVec3::new(dims.x.div_ceil(s), dims.y.div_ceil(s), dims.z.div_ceil(s)).max(UVec3::ONE)
     }
 
-    pub fn new(ctx: &Context, dims: UVec3, scale: u32, compensated: bool) -> Result<IlluminationVolume, RenderError> {
+    /// Its images from `images` (kept across the viewer's scenes; the first
+    /// update of a new renderer clears them).
+    pub fn new(
+        ctx: &Context,
+        images: &FrameImages,
+        dims: UVec3,
+        scale: u32,
+        compensated: bool,
+    ) -> Result<IlluminationVolume, RenderError> {
         if !ctx.format_supports(FORMAT, vk::FormatFeatureFlags::STORAGE_IMAGE) {
             return Err(VkError::NoFormat {
                 kind: "illumination volume",
@@ -67,11 +76,11 @@ impl IlluminationVolume {
             .into());
         }
         let size = Self::size_for(dims, scale);
-        let image = volume_image(ctx, "lightvolume illumination", size)?;
+        let image = volume_image(ctx, images, "lightvolume illumination", size)?;
         let low = if compensated {
-            volume_image(ctx, "lightvolume illumination low words", size)?
+            volume_image(ctx, images, "lightvolume illumination low words", size)?
         } else {
-            volume_image(ctx, "lightvolume illumination low placeholder", UVec3::ONE)?
+            volume_image(ctx, images, "lightvolume illumination low placeholder", UVec3::ONE)?
         };
         Ok(IlluminationVolume { image, low, compensated, size })
     }

@@ -25,6 +25,7 @@ use ash::vk;
 use bytemuck::{Pod, Zeroable};
 use glam::UVec3;
 use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
 
 /// Mirrors `GroupEntry` in glsl/lightvolume_slice.comp.
 #[repr(C)]
@@ -198,7 +199,7 @@ pub struct Propagation {
     set: vk::DescriptorSet,
     /// Slice buffer sides a and b: x, y a slice texel, z the light's layer in
     /// its pass (a 3D image stands in for a 2D array: one layer per light).
-    slices: [Image; 2],
+    slices: [Arc<Image>; 2],
     slots: Buffer,
     entries: Buffer,
     _frame: Buffer,
@@ -239,7 +240,7 @@ impl Propagation {
         // Every slice of every group fits: lateral sizes are at most the largest axis.
         let side = grid.max_element();
         let slice_image = |name: &str| {
-            Image::new(
+            gpu.frame_images.image(
                 ctx,
                 name,
                 ImageDesc {

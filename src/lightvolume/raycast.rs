@@ -12,12 +12,13 @@ use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Recorder};
 use ash::vk;
+use std::sync::Arc;
 
 pub struct RayCast {
     pipeline: ComputePipeline,
     /// Set 0 writes the output, set 1 the chunk state image ([`ViewChunks::set_of`]).
     sets: [vk::DescriptorSet; 2],
-    state: Image,
+    state: Arc<Image>,
     chunks: ViewChunks,
 }
 
@@ -43,9 +44,9 @@ impl RayCast {
                 max_sets: 2,
             },
         )?;
-        let state = chunks.state_image(gpu.ctx, "lightvolume view chunk state", output.width, output.height)?;
+        let state = chunks.state_image(gpu, "lightvolume view chunk state", output.width, output.height)?;
         let mut sets = [vk::DescriptorSet::null(); 2];
-        for (i, (write, read)) in [(&output.image, &state), (&state, &output.image)].into_iter().enumerate() {
+        for (i, (write, read)) in [(&output.image, &*state), (&*state, &output.image)].into_iter().enumerate() {
             sets[i] = pipeline.create_set(&[
                 (shader::FRAME, Resource::UniformBuffer(frame)),
                 (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),

@@ -91,8 +91,13 @@ impl<'s> LightVolumeRenderer<'s> {
     pub fn new(gpu: &'s GpuScene<'s>) -> Result<Self, RenderError> {
         let settings = gpu.scene.settings.get::<LightVolumeSettings>().into_owned();
         settings.validate()?;
-        let illumination =
-            IlluminationVolume::new(gpu.ctx, gpu.scene.volume.dims, settings.scale, settings.compensated)?;
+        let illumination = IlluminationVolume::new(
+            gpu.ctx,
+            &gpu.frame_images,
+            gpu.scene.volume.dims,
+            settings.scale,
+            settings.compensated,
+        )?;
         let bx = gpu.scene.volume_box();
         Ok(LightVolumeRenderer {
             gpu,
@@ -251,10 +256,10 @@ impl<'s> LightVolumeRenderer<'s> {
         let (gpu, ctx) = (self.gpu, self.gpu.ctx);
         let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
         let frame = Buffer::with_data(ctx, "lightvolume view params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
-        let output = OutputImage::new(ctx, "lightvolume output", width, height)?;
+        let output = gpu.frame_images.output(ctx, "lightvolume output", width, height)?;
         let raycast = RayCast::new(gpu, &frame, &self.illumination, &output)?;
         let readback = output.readback_buffer(ctx)?;
-        self.view = Some(ViewPass { width, height, _frame: frame, output: Arc::new(output), raycast, readback });
+        self.view = Some(ViewPass { width, height, _frame: frame, output, raycast, readback });
         Ok(())
     }
 

@@ -7,7 +7,7 @@
 use crate::render::frame_params::{frame_params, FrameParams, MarchSteps};
 pub use crate::render::view_chunks::{ChunkSync, LOOP_BUDGET};
 use crate::render::{
-    render_recorded, FrameResult, GpuScene, OutputImage, RecordedFrame, RenderError, RenderTechnique, ResourceNeed,
+    render_recorded, FrameResult, GpuScene, RecordedFrame, RenderError, RenderTechnique, ResourceNeed,
 };
 use crate::scene::{OpticalModel, Scene};
 use crate::shaders::reference as shader;
@@ -17,7 +17,6 @@ use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Profiler, Recorder};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
-use std::sync::Arc;
 
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -139,8 +138,8 @@ pub fn record_with(
     let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::reference(scene));
     let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
     let accum = [
-        OutputImage::new(ctx, "reference accum a", width, height)?,
-        OutputImage::new(ctx, "reference accum b", width, height)?,
+        gpu.frame_images.output(ctx, "reference accum a", width, height)?,
+        gpu.frame_images.output(ctx, "reference accum b", width, height)?,
     ];
     if scene.reference.chromatic && scene.reference.model != OpticalModel::SingleScattering {
         return Err(RenderError::Invalid(
@@ -204,5 +203,5 @@ pub fn record_with(
     profiler.end(rec, scope)?;
     let [a, b] = accum;
     let (output, other) = if last_written == 0 { (a, b) } else { (b, a) };
-    Ok(RecordedFrame::counted(rec, Arc::new(output), vec![Box::new(other), Box::new(frame), Box::new(pipeline)]))
+    Ok(RecordedFrame::counted(rec, output, vec![Box::new(other), Box::new(frame), Box::new(pipeline)]))
 }

@@ -2,8 +2,13 @@
 //! the volume (3D image, linear sampler), the baked transfer LUT and the lights.
 //! Uploading also picks how every pipeline created afterwards on its context
 //! filters the volume (`render.filter`, volume_fetch.glsl, docs/filtering.md).
+//! The viewer uploads the volume once ([`UploadedVolume`]) and builds a scene
+//! on it for every edit (camera, lights, transfer function, settings): only the
+//! transfer LUT and the lights are uploaded again, and the frame's images are
+//! kept ([`FrameImages`]).
 
 use super::error::RenderError;
+use super::frame_images::FrameImages;
 use super::frame_params::{gpu_lights, GpuLight};
 use crate::scene::{Scene, TransferLut, VolumeFilter, VoxelData};
 use crate::vk::barriers::{Access, Barrier};
@@ -13,13 +18,14 @@ use crate::vk::resources::{ImageDesc, Sampler};
 use crate::vk::{Buffer, Context, Image, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
 
 pub struct GpuScene<'a> {
     pub ctx: &'a Context,
     pub scene: &'a Scene,
-    pub volume: Image,
+    pub volume: Arc<Image>,
     pub volume_format: vk::Format,
-    pub sampler: Sampler,
+    pub sampler: Arc<Sampler>,
     pub lut: Buffer,
     pub lut_size: usize,
     /// At least one record, so the binding is valid with no lights.
@@ -27,6 +33,17 @@ pub struct GpuScene<'a> {
     /// How the pipelines created after this upload filter the volume: the
     /// scene's `render.filter`, or `SWEEPLAB_FILTER` where set.
     pub filter: VolumeFilter,
+    /// Where the frames' images come from: each frame's own, or kept (the viewer).
+    pub frame_images: Arc<FrameImages>,
+}
+
+/// The volume on the GPU, to build scenes with the same volume on
+/// ([`GpuScene::on_volume`]) without uploading it again.
+#[derive(Clone)]
+pub struct UploadedVolume {
+    pub image: Arc<Image>,
+    pub format: vk::Format,
+    pub sampler: Arc<Sampler>,
 }
 
 /// volume_fetch.glsl's `VOLUME_FILTER` constant id (no shader uses it for anything else).
@@ -43,6 +60,53 @@ impl<'a> GpuScene<'a> {
     }
 
     pub fn upload_with(ctx: &'a Context, scene: &'a Scene, texels: VolumeTexels) -> Result<GpuScene<'a>, RenderError> {
+        let volume = UploadedVolume::upload(ctx, scene, texels)?;
+        GpuScene::on_volume(ctx, scene, &volume, FrameImages::each_frame_anew())
+    }
+
+    /// `scene` on a volume uploaded before (its voxels are the scene's): the
+    /// transfer LUT and the lights uploaded, the filter chosen, and the frames'
+    /// images taken from `frame_images`.
+    pub fn on_volume(
+        ctx: &'a Context,
+        scene: &'a Scene,
+        volume: &UploadedVolume,
+        frame_images: Arc<FrameImages>,
+    ) -> Result<GpuScene<'a>, RenderError> {
+        let filter = effective_filter(scene)?;
+        // Every pipeline created on this context from now on filters this way
+        // (a context renders one uploaded scene at a time).
+        ctx.set_shared_specialization(VOLUME_FILTER_CONSTANT_ID, filter.shader_constant());
+        let lut_table: TransferLut = scene.transfer.bake(TransferLut::DEFAULT_SIZE);
+        let lut = Buffer::with_data(ctx, "transfer lut", &lut_table.texels, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let mut lights_data = gpu_lights(scene);
+        if lights_data.is_empty() {
+            lights_data.push(GpuLight::default());
+        }
+        let lights = Buffer::with_data(ctx, "lights", &lights_data, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        Ok(GpuScene {
+            ctx,
+            scene,
+            volume: volume.image.clone(),
+            volume_format: volume.format,
+            sampler: volume.sampler.clone(),
+            lut,
+            lut_size: lut_table.texels.len(),
+            lights,
+            filter,
+            frame_images,
+        })
+    }
+
+    /// The volume this scene was built on, for another scene of the same volume.
+    pub fn uploaded_volume(&self) -> UploadedVolume {
+        UploadedVolume { image: self.volume.clone(), format: self.volume_format, sampler: self.sampler.clone() }
+    }
+}
+
+impl UploadedVolume {
+    /// Uploads `scene`'s volume (one submission, waited for).
+    pub fn upload(ctx: &Context, scene: &Scene, texels: VolumeTexels) -> Result<UploadedVolume, RenderError> {
         let v = &scene.volume;
         if v.data.len() != v.voxel_count() || v.voxel_count() == 0 {
             return Err(RenderError::Invalid(format!(
@@ -61,10 +125,8 @@ impl<'a> GpuScene<'a> {
             "the volume's size (resample it, or pick a smaller synthetic size)",
         );
         limits.check(&ctx.info.name, &[need]).map_err(VkError::from)?;
-        let filter = effective_filter(scene)?;
-        // Every pipeline created on this context from now on filters this way
-        // (a context renders one uploaded scene at a time).
-        ctx.set_shared_specialization(VOLUME_FILTER_CONSTANT_ID, filter.shader_constant());
+        // Refused before the upload, as `on_volume` would after it.
+        effective_filter(scene)?;
         let (format, bytes) = volume_texels(ctx, &v.data, texels)?;
         let extent = vk::Extent3D { width: v.dims.x, height: v.dims.y, depth: v.dims.z };
         let volume = Image::new(
@@ -107,26 +169,8 @@ impl<'a> GpuScene<'a> {
             Ok(())
         })?;
         drop(staging);
-
-        let lut_table: TransferLut = scene.transfer.bake(TransferLut::DEFAULT_SIZE);
-        let lut = Buffer::with_data(ctx, "transfer lut", &lut_table.texels, vk::BufferUsageFlags::STORAGE_BUFFER)?;
-        let mut lights_data = gpu_lights(scene);
-        if lights_data.is_empty() {
-            lights_data.push(GpuLight::default());
-        }
-        let lights = Buffer::with_data(ctx, "lights", &lights_data, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let sampler = Sampler::linear_clamp(ctx, "volume sampler")?;
-        Ok(GpuScene {
-            ctx,
-            scene,
-            volume,
-            volume_format: format,
-            sampler,
-            lut,
-            lut_size: lut_table.texels.len(),
-            lights,
-            filter,
-        })
+        Ok(UploadedVolume { image: Arc::new(volume), format, sampler: Arc::new(sampler) })
     }
 }
 

@@ -2,11 +2,13 @@
 //! frame parameters, the output image and its readback, the light-space and
 //! image-space geometry, the plain ray cast, and the [`RenderTechnique`] trait
 //! each technique implements in its own module. `render` knows no technique:
-//! the catalogue above them (`crate::techniques`) lists them.
+//! the catalogue above them (`crate::techniques`) lists them. The frame's
+//! images come from [`FrameImages`]: each frame's own, or kept (the viewer).
 
 pub mod device_fit;
 pub mod early_termination;
 pub mod error;
+pub mod frame_images;
 pub mod frame_params;
 pub mod frame_result;
 pub mod gpu_scene;
@@ -21,8 +23,9 @@ pub mod technique;
 pub mod view_chunks;
 
 pub use error::RenderError;
+pub use frame_images::FrameImages;
 pub use frame_result::FrameResult;
-pub use gpu_scene::{GpuScene, VolumeTexels};
+pub use gpu_scene::{GpuScene, UploadedVolume, VolumeTexels};
 pub use output::OutputImage;
 pub use recorded_frame::{render_recorded, RecordedFrame};
 pub use session::FrameSession;

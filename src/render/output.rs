@@ -32,7 +32,7 @@ impl OutputImage {
         rec.barrier(&Barrier::image(
             "output_discard_to_compute_write",
             &self.image,
-            Access::NONE,
+            rec.discard_after,
             Access::COMPUTE_WRITE,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::GENERAL,

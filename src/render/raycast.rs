@@ -8,7 +8,7 @@ use super::recorded_frame::{render_recorded, RecordedFrame};
 use super::technique::ResourceNeed;
 use super::view_chunks::ChunkSync;
 use super::view_chunks::ViewChunks;
-use super::{GpuScene, OutputImage, RenderError};
+use super::{GpuScene, RenderError};
 use crate::scene::Scene;
 use crate::shaders::raycast;
 use crate::vk::descriptors::Resource;
@@ -16,7 +16,6 @@ use crate::vk::interface::Binding;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Profiler, Recorder};
 use ash::vk;
-use std::sync::Arc;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Shading {
@@ -100,7 +99,7 @@ pub struct ChunkedMarch<'a> {
 }
 
 impl ChunkedMarch<'_> {
-    /// Creates the output and the state image, binds them with `shared` (the
+    /// Takes the output and the state image ([`super::FrameImages`]), binds them with `shared` (the
     /// bindings besides the two images, named `[output, state]` by
     /// `image_bindings`) and records the chunks into `rec` in one profiler
     /// scope. The caller adds what `shared` refers to to the frame's
@@ -116,11 +115,11 @@ impl ChunkedMarch<'_> {
     ) -> Result<RecordedFrame, RenderError> {
         let ctx = gpu.ctx;
         let (name, (width, height)) = (self.name, self.size);
-        let output = OutputImage::new(ctx, &format!("{name} output"), width, height)?;
-        let state = self.chunks.state_image(ctx, &format!("{name} view chunk state"), width, height)?;
+        let output = gpu.frame_images.output(ctx, &format!("{name} output"), width, height)?;
+        let state = self.chunks.state_image(gpu, &format!("{name} view chunk state"), width, height)?;
         // Set 0 writes the output and reads the state image, set 1 the opposite.
         let mut sets = [vk::DescriptorSet::null(); 2];
-        for (i, (write, read)) in [(&output.image, &state), (&state, &output.image)].into_iter().enumerate() {
+        for (i, (write, read)) in [(&output.image, &*state), (&*state, &output.image)].into_iter().enumerate() {
             let mut bindings = shared.to_vec();
             bindings.push((out_binding, Resource::StorageImage(write)));
             bindings.push((state_binding, Resource::StorageImage(read)));
@@ -131,7 +130,7 @@ impl ChunkedMarch<'_> {
         let scope = profiler.begin(rec, name)?;
         self.chunks.record(rec, &pipeline, sets, (width, height), self.sync);
         profiler.end(rec, scope)?;
-        Ok(RecordedFrame::counted(rec, Arc::new(output), vec![Box::new(state), Box::new(pipeline)]))
+        Ok(RecordedFrame::counted(rec, output, vec![Box::new(state), Box::new(pipeline)]))
     }
 }
 

@@ -10,13 +10,15 @@
 //! image a 1x1 placeholder the shader never reads.
 
 use super::error::RenderError;
+use super::gpu_scene::GpuScene;
 use super::technique::ResourceNeed;
 use crate::scene::Scene;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::pipeline::ComputePipeline;
-use crate::vk::{Context, Image, Recorder};
+use crate::vk::{Image, Recorder};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
+use std::sync::Arc;
 
 /// Loop iterations one invocation may run per dispatch: below llvmpipe's 65,535.
 pub const LOOP_BUDGET: u64 = 60_000;
@@ -109,9 +111,10 @@ impl ViewChunks {
     }
 
     /// The state image the chunks ping-pong with the output (RGBA32F).
-    pub fn state_image(&self, ctx: &Context, name: &str, width: u32, height: u32) -> Result<Image, RenderError> {
+    pub fn state_image(&self, gpu: &GpuScene, name: &str, width: u32, height: u32) -> Result<Arc<Image>, RenderError> {
         let [w, h] = self.state_extent(width, height);
-        Ok(Image::storage_2d(ctx, name, vk::Format::R32G32B32A32_SFLOAT, w, h, vk::ImageUsageFlags::empty())?)
+        let format = vk::Format::R32G32B32A32_SFLOAT;
+        Ok(gpu.frame_images.storage_2d(gpu.ctx, name, format, (w, h), vk::ImageUsageFlags::empty())?)
     }
 
     /// What [`ViewChunks::state_image`] allocates.

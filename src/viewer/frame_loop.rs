@@ -17,7 +17,7 @@ use super::script::{Action, Script};
 use super::tf_editor;
 use super::ui::{PanelView, PassHistory, Ui, UiEdit, PANEL_WIDTH};
 use super::window::{self, WindowEvents};
-use crate::render::{FrameSession, GpuScene, VolumeTexels};
+use crate::render::{FrameImages, FrameSession, GpuScene, UploadedVolume, VolumeTexels};
 use crate::scene::Light;
 use crate::techniques::{self, Technique};
 use crate::vk::error::VkResultExt;
@@ -143,12 +143,17 @@ fn frame_loop<'c>(
     let histogram = live.scene.volume.histogram(tf_editor::HISTOGRAM_BINS);
     // What the context created between two frame records.
     let mut counted = ctx.creation_counts();
+    // Uploaded once: every edit keeps the volume (`LiveScene`). The frames'
+    // images are kept across frames and edits, re-created where their size
+    // or format changes (a resize, a setting).
+    let volume = UploadedVolume::upload(ctx, &live.scene, options.texels)?;
+    let frame_images = FrameImages::kept();
     'scene: loop {
         enabled.resize(live.scene.lights.len(), true);
         // Switched-off lights are left out of the uploaded scene.
         let mut scene = live.scene.clone();
         scene.lights = scene.lights.iter().zip(&enabled).filter(|(_, &on)| on).map(|(l, _)| *l).collect();
-        let gpu = GpuScene::upload_with(ctx, &scene, options.texels)?;
+        let gpu = GpuScene::on_volume(ctx, &scene, &volume, frame_images.clone())?;
         let mut session = techniques::session(&gpu, technique)?;
         // Dropped first when the scene is left (edited, closed, or an error):
         // frames in flight use the scene's and the session's resources.
@@ -200,6 +205,11 @@ fn frame_loop<'c>(
                             }
                             rebuild |= !session.follows_lights();
                         }
+                        // As the mouse would: through `mouse_camera` below.
+                        Action::Orbit(dx, dy) => {
+                            events.orbit = (events.orbit.0 + *dx as f64, events.orbit.1 + *dy as f64);
+                        }
+                        Action::Zoom(lines) => events.zoom += lines,
                     }
                 }
             }
@@ -207,6 +217,8 @@ fn frame_loop<'c>(
                 match edit {
                     UiEdit::Technique(t) => {
                         technique = t;
+                        // The old technique's images would only take memory.
+                        frame_images.release_all();
                         rebuild = true;
                     }
                     UiEdit::Set(set) => match live.set(&set) {
@@ -512,6 +524,8 @@ fn present(
     unsafe { device.begin_command_buffer(slot.cb, &begin) }.call("vkBeginCommandBuffer")?;
     slot.profiler.reset();
     let mut rec = Recorder::for_command_buffer(ctx, slot.cb);
+    // The technique's images are kept: the frame before may still use them.
+    rec.discard_after = source.gpu.frame_images.discard_after();
     let started = Instant::now();
     // The technique renders the area beside the panel; the screenshot is the window.
     let (iw, ih) = (w - panel_px, h);

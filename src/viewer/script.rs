@@ -7,6 +7,8 @@
 //! 7 key S                                   # as if the key were pressed (S, P)
 //! 8 tf-point 1 0.6 0.9                      # drag transfer point 1 to scalar 0.6, opacity 0.9
 //! 9 drag-light 0 12 -4                      # Ctrl-drag light 0 by 12 pixels right, 4 up
+//! 10 orbit 20 -5                            # left-drag the camera 20 pixels right, 5 up
+//! 11 zoom 1.5                               # turn the wheel 1.5 lines
 //! ```
 
 use super::error::ViewerError;
@@ -28,6 +30,10 @@ pub enum Action {
         dx: f32,
         dy: f32,
     },
+    /// The left button dragging the camera by (`dx`, `dy`) pixels.
+    Orbit(f32, f32),
+    /// The wheel turned by this many lines.
+    Zoom(f32),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -41,7 +47,7 @@ pub struct Script {
     pub steps: Vec<Step>,
 }
 
-const ACTIONS: [&str; 5] = ["set", "resize", "key", "tf-point", "drag-light"];
+const ACTIONS: [&str; 7] = ["set", "resize", "key", "tf-point", "drag-light", "orbit", "zoom"];
 
 impl Script {
     pub fn parse(text: &str, origin: &str) -> Result<Script, ViewerError> {
@@ -85,6 +91,14 @@ impl Script {
                 "drag-light" => match index_and_pair(rest, f32::is_finite) {
                     Some((index, dx, dy)) => Action::DragLight { index, dx, dy },
                     None => return Err(at("drag-light needs INDEX DX DY (pixels)".into())),
+                },
+                "orbit" => match index_and_pair(&format!("0 {rest}"), f32::is_finite) {
+                    Some((_, dx, dy)) => Action::Orbit(dx, dy),
+                    None => return Err(at("orbit needs DX DY (pixels)".into())),
+                },
+                "zoom" => match rest.parse::<f32>().ok().filter(|z| z.is_finite()) {
+                    Some(lines) => Action::Zoom(lines),
+                    None => return Err(at("zoom needs LINES (wheel lines)".into())),
                 },
                 other => {
                     let near = crate::scene::suggest::nearest(other, ACTIONS)
@@ -146,5 +160,10 @@ mod tests {
         let s = Script::parse("4 drag-light 0 12 -4", "t").unwrap();
         assert_eq!(s.at(4).next(), Some(&Action::DragLight { index: 0, dx: 12.0, dy: -4.0 }));
         assert!(Script::parse("4 drag-light 0 12", "t").is_err());
+        let s = Script::parse("5 orbit 20 -5\n6 zoom 1.5", "t").unwrap();
+        assert_eq!(s.at(5).next(), Some(&Action::Orbit(20.0, -5.0)));
+        assert_eq!(s.at(6).next(), Some(&Action::Zoom(1.5)));
+        assert!(Script::parse("5 orbit 20", "t").is_err());
+        assert!(Script::parse("6 zoom far", "t").is_err());
     }
 }

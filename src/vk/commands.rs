@@ -1,7 +1,7 @@
 //! Command recording: a [`Recorder`] wraps one command buffer in the recording
 //! state; [`submit_and_wait`] owns begin, record, end, submit and the fence.
 
-use super::barriers::Barrier;
+use super::barriers::{Access, Barrier};
 use super::context::Context;
 use super::error::{VkError, VkResultExt};
 use super::limits::{Limit, LimitExceeded, Need};
@@ -35,6 +35,11 @@ pub struct Recorder<'a> {
     /// timestamps at the compute stage only around compute work.
     transfers: Cell<u32>,
     last_was_transfer: Cell<bool>,
+    /// What a discard of an image (`discard_for_compute`, `clear_for_compute`)
+    /// waits for: nothing where every image a frame discards is its own
+    /// (`Access::NONE`), any earlier access where the images are kept from
+    /// frames still in flight (`Access::ANY`, the viewer's `FrameImages`).
+    pub discard_after: Access,
 }
 
 impl<'a> Recorder<'a> {
@@ -52,6 +57,7 @@ impl<'a> Recorder<'a> {
             over_limit: None,
             transfers: Cell::new(0),
             last_was_transfer: Cell::new(false),
+            discard_after: Access::NONE,
         }
     }
 
@@ -307,11 +313,10 @@ impl<'a> Recorder<'a> {
         discard_to_clear: &'static str,
         clear_to_compute: &'static str,
     ) {
-        use super::barriers::Access;
         self.barrier(&Barrier::image(
             discard_to_clear,
             image,
-            Access::NONE,
+            self.discard_after,
             Access::CLEAR_WRITE,
             vk::ImageLayout::UNDEFINED,
             vk::ImageLayout::TRANSFER_DST_OPTIMAL,
@@ -330,12 +335,11 @@ impl<'a> Recorder<'a> {
     /// Hands images whose old contents do not matter to compute shaders: one
     /// image barrier each, UNDEFINED -> GENERAL, named `name` by the caller.
     pub fn discard_for_compute(&mut self, name: &'static str, images: &[&Image]) {
-        use super::barriers::Access;
         for image in images {
             self.barrier(&Barrier::image(
                 name,
                 image,
-                Access::NONE,
+                self.discard_after,
                 Access::COMPUTE_READ_WRITE,
                 vk::ImageLayout::UNDEFINED,
                 vk::ImageLayout::GENERAL,
@@ -375,7 +379,6 @@ impl<'a> Recorder<'a> {
         copy_to_compute: Option<&'static str>,
         copy_to_host: &'static str,
     ) {
-        use super::barriers::Access;
         let (general, source) = (vk::ImageLayout::GENERAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
         self.barrier(&Barrier::image(
             write_to_copy,
