@@ -126,7 +126,14 @@ pub fn write(report: &SyncReport, folder: &Path) -> Result<(), BenchError> {
     for r in &report.strategies {
         if let Some(g) = &r.line_gaps {
             let path = folder.join(format!("lines_{}_{}.json", r.workload.name(), r.strategy));
-            let json = serde_json::to_string_pretty(g)
+            // Named like every other output: the run, then what the gaps are of.
+            let named = serde_json::json!({
+                "run": &report.run,
+                "workload": r.workload.name(),
+                "strategy": &r.strategy,
+                "line_gaps": g,
+            });
+            let json = serde_json::to_string_pretty(&named)
                 .map_err(|e| BenchError::Write { path: path.clone(), source: std::io::Error::other(e) })?;
             write_text(&path, &json)?;
         }
