@@ -68,6 +68,17 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     assert!(ok, "the script exits 0 when every part passed");
     assert_eq!(report["failed_parts"], 0);
     assert!(out.join("compare/ipsvi.json").exists() && out.join("bench-sync").is_dir());
+    // The ground truth is rendered once per model: phong, reference and ao reuse dvr's
+    // (single scattering, one colour), ipsvi's model and the light volume's colour differ.
+    let compared = |t: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(out.join(format!("compare/{t}.json"))).unwrap()).unwrap()
+    };
+    for (t, cached) in [("dvr", false), ("phong", true), ("reference", true), ("ao", true), ("ipsvi", false)] {
+        assert_eq!(compared(t)["reference_cached"], cached, "{t}: {}", compared(t));
+    }
+    assert_eq!(compared("lightvolume")["reference_cached"], false, "chromatic: its own ground truth");
+    // The reference rendered afresh equals the one dvr's run stored.
+    assert_eq!(compared("reference")["rmse"], 0.0, "{}", compared("reference"));
     let markdown = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(markdown.contains("| compare-ao | 0 |"), "{markdown}");
 

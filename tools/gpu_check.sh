@@ -19,7 +19,8 @@
 #   GPU_CHECK_BENCH_SIZE   image side of bench sync and bench ipsvi --breakdown (default 512)
 #   GPU_CHECK_TECHNIQUES   comma-separated (default: every technique)
 #   GPU_CHECK_SYNC_ARGS    extra arguments of bench sync (default: a bounded run)
-#   GPU_CHECK_IPSVI_ARGS   extra arguments of bench ipsvi --breakdown (default: none)
+#   GPU_CHECK_IPSVI_ARGS   extra arguments of bench ipsvi --breakdown (default: 6 to 30 rounds
+#                          within 2 minutes, never fewer than 6)
 #   GPU_CHECK_LIGHTS_ARGS  arguments of bench lights (default: a short run)
 #   GPU_CHECK_AO_SET       --set value for the ao comparison (default: none)
 #   GPU_CHECK_BENCHES      0: the comparisons only (default 1)
@@ -49,7 +50,7 @@ if [ -z "$bin" ]; then
 fi
 scene=${GPU_CHECK_SCENE:-$root/tests/scenes/cornell-box.toml}
 half_angle_scene=${GPU_CHECK_HALF_ANGLE_SCENE:-$root/tests/scenes/slab-under-sphere.toml}
-ipsvi_args=${GPU_CHECK_IPSVI_ARGS:-}
+ipsvi_args=${GPU_CHECK_IPSVI_ARGS:---repeat 6 --max-rounds 30 --max-minutes 2}
 size=${GPU_CHECK_SIZE:-256}
 bench_size=${GPU_CHECK_BENCH_SIZE:-512}
 techniques=${GPU_CHECK_TECHNIQUES:-dvr,phong,reference,ipsvi,half-angle,lightvolume,ao}
@@ -100,9 +101,11 @@ for t in "${list[@]}"; do
     [ "$t" = ao ] && [ -n "${GPU_CHECK_AO_SET:-}" ] && extra=(--set "$GPU_CHECK_AO_SET")
     s=$scene
     [ "$t" = half-angle ] && s=$half_angle_scene
+    # The ground truths are kept in cache/ground-truth: a technique approximating the model
+    # (and scene) of one before it reuses that one's instead of rendering it again.
     part "compare-$t" "$bin" compare --scene "$s" --technique "$t" --size "${size}x${size}" --validate \
         "${device_args[@]}" "${extra[@]}" --json "$out/compare/$t.json" --out "$out/compare/$t.png" \
-        --reference-out "$out/compare/$t-reference.png"
+        --reference-out "$out/compare/$t-reference.png" --reference-cache "$out/cache/ground-truth"
 done
 if [ "${GPU_CHECK_BENCHES:-1}" = 1 ]; then
     # shellcheck disable=SC2086 # the argument strings are word lists

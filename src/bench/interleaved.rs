@@ -71,11 +71,14 @@ fn paired(baseline: &[Option<f64>], treatment: &[Option<f64>]) -> (Vec<f64>, Vec
 
 /// When the rounds stop, past the protocol's fewest: once every
 /// configuration's interval has a half-width of at most `target_ci` times
-/// its median (or at the protocol's most rounds).
+/// its median, at the protocol's most rounds, or (with `max_seconds`) after
+/// the round that the next one would take past that many seconds of the
+/// measurement.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Interleaved {
     pub protocol: Protocol,
     pub target_ci: f64,
+    pub max_seconds: Option<f64>,
 }
 
 impl Interleaved {
@@ -87,7 +90,7 @@ impl Interleaved {
             return Err(ProtocolError::NoRounds);
         }
         let protocol = Protocol { warm_up_rounds: 1, min_rounds: rounds, max_rounds: rounds, seed };
-        Ok(Interleaved { protocol, target_ci: 0.0 })
+        Ok(Interleaved { protocol, target_ci: 0.0, max_seconds: None })
     }
 
     /// At least `min_rounds` (6 or more) and at most `max_rounds` timed rounds
@@ -100,7 +103,23 @@ impl Interleaved {
         target_ci: f64,
         seed: u64,
     ) -> Result<Interleaved, ProtocolError> {
-        Ok(Interleaved { protocol: Protocol::new(warm_up, min_rounds, max_rounds, seed)?, target_ci })
+        Ok(Interleaved {
+            protocol: Protocol::new(warm_up, min_rounds, max_rounds, seed)?,
+            target_ci,
+            max_seconds: None,
+        })
+    }
+
+    /// These rounds within a time budget: past the fewest rounds (never
+    /// before them), stop after the round whose duration, once more, would
+    /// end past `minutes` since the measurement began. A budget that binds on
+    /// a slow device (lavapipe) and not on a fast one, where the rounds end
+    /// on their own first.
+    pub fn within_minutes(self, minutes: f64) -> Result<Interleaved, ProtocolError> {
+        if !(minutes.is_finite() && minutes > 0.0) {
+            return Err(ProtocolError::NoTime);
+        }
+        Ok(Interleaved { max_seconds: Some(minutes * 60.0), ..self })
     }
 
     /// The most runs of one configuration (warm-up included): what a progress
@@ -121,7 +140,11 @@ impl Interleaved {
                 p.min_rounds, p.max_rounds, self.target_ci, p.warm_up_rounds
             )
         };
-        run.input("rounds", rounds).input("seed", p.seed)
+        let run = run.input("rounds", rounds).input("seed", p.seed);
+        match self.max_seconds {
+            Some(s) => run.input("time_budget", format!("{:.1} min (never before {} rounds)", s / 60.0, p.min_rounds)),
+            None => run,
+        }
     }
 
     /// Whether intervals can come out of these rounds.
@@ -160,25 +183,48 @@ impl Interleaved {
     pub fn measure_rounds<T, E>(
         &self,
         configurations: usize,
-        mut measure: impl FnMut(usize, Phase) -> Result<Sample<T>, E>,
-        mut after_round: impl FnMut(usize),
+        measure: impl FnMut(usize, Phase) -> Result<Sample<T>, E>,
+        after_round: impl FnMut(usize),
     ) -> Result<Vec<Timings<T>>, E>
     where
         E: From<ProtocolError>,
     {
+        let start = std::time::Instant::now();
+        self.measure_rounds_timed(configurations, measure, after_round, || start.elapsed().as_secs_f64())
+    }
+
+    /// [`Interleaved::measure_rounds`] on the clock `seconds` (seconds since
+    /// the measurement began), which the time budget reads.
+    fn measure_rounds_timed<T, E>(
+        &self,
+        configurations: usize,
+        mut measure: impl FnMut(usize, Phase) -> Result<Sample<T>, E>,
+        mut after_round: impl FnMut(usize),
+        seconds: impl Fn() -> f64,
+    ) -> Result<Vec<Timings<T>>, E>
+    where
+        E: From<ProtocolError>,
+    {
+        let round_began = std::cell::Cell::new(None);
         let rounds = self.protocol.run(
             configurations,
             |c, phase| {
+                if phase == Phase::Timed && round_began.get().is_none() {
+                    round_began.set(Some(seconds()));
+                }
                 let sample = measure(c, phase)?;
                 Ok::<_, E>((sample.ms, sample.output))
             },
             |rounds| {
                 after_round(rounds.count());
+                let now = seconds();
+                let last_round = now - round_began.take().unwrap_or(now);
+                let out_of_time = self.max_seconds.is_some_and(|budget| now + last_round > budget);
                 let precise = (0..configurations).all(|c| {
                     let samples: Vec<f64> = rounds.runs[c].iter().filter_map(|r| r.0).collect();
                     median_estimate(&samples).is_ok_and(|e| e.precise_to(self.target_ci, 0.0))
                 });
-                Ok(if precise { Next::Stop } else { Next::Continue })
+                Ok(if precise || out_of_time { Next::Stop } else { Next::Continue })
             },
         )?;
         Ok(rounds
@@ -292,6 +338,38 @@ mod tests {
         assert_eq!((timings[1].samples().len(), timings[1].left_out()), (4, 2));
         assert_eq!(timings[1].rounds[1], None);
         assert_eq!(timings[1].paired_difference(&timings[0]), None, "fewer than six rounds counted by both");
+    }
+
+    #[test]
+    fn a_time_budget_stops_the_rounds_it_would_overrun_but_never_before_the_fewest() {
+        // Every run takes a second on the fake clock; two configurations, so a round is 2 s.
+        let run = |budget_minutes: f64, min: u32, max: u32| {
+            let m = Interleaved::adaptive(1, min, max, 1e-9, 5).unwrap().within_minutes(budget_minutes).unwrap();
+            let clock = std::cell::Cell::new(0.0);
+            let timings = m
+                .measure_rounds_timed(
+                    2,
+                    |c, _| {
+                        clock.set(clock.get() + 1.0);
+                        Ok::<_, Failure>(Sample::timed(1.0 + c as f64 + clock.get() * 1e-3, ()))
+                    },
+                    |_| {},
+                    || clock.get(),
+                )
+                .unwrap();
+            timings[0].rounds.len()
+        };
+        // 30 s: warm-up 2 s, then rounds end at 4, 6, ..., 28 s; after the one at 28 s the
+        // next would end at 30 s (not past it), after the one at 30 s it would end past.
+        assert_eq!(run(0.5, 6, 100), 14);
+        assert_eq!(run(0.01, 6, 100), 6, "never before the fewest rounds");
+        assert_eq!(run(10.0, 6, 20), 20, "a budget that does not bind leaves the most rounds");
+        // Without a budget the same (never precise) rounds go to the most.
+        let m = Interleaved::adaptive(1, 6, 20, 1e-9, 5).unwrap();
+        assert_eq!(m.max_seconds, None);
+        assert!(m.within_minutes(0.0).is_err() && m.within_minutes(f64::NAN).is_err());
+        let recorded = m.within_minutes(2.0).unwrap().recorded_in(RunInfo::default());
+        assert_eq!(recorded.inputs[2], ("time_budget".into(), "2.0 min (never before 6 rounds)".into()));
     }
 
     #[test]

@@ -24,6 +24,8 @@ pub enum ProtocolError {
     MaxBelowMin { min: u32, max: u32 },
     #[error("no configuration to measure")]
     NoConfigurations,
+    #[error("a time budget must be a number of minutes above 0")]
+    NoTime,
 }
 
 /// Warm-up, the fewest and most timed rounds, and the seed of the shuffles.

@@ -281,6 +281,9 @@ pub struct BenchIpsviArgs {
     pub repeat: u32,
     #[command(flatten)]
     pub rounds: RoundsArgs,
+    /// With --max-rounds: stop after the round that, once more, would pass this many minutes of a measurement (never before --repeat).
+    #[arg(long)]
+    pub max_minutes: Option<f64>,
     /// Only the baseline settings and one factor varied at a time (no full grid).
     #[arg(long)]
     pub one_at_a_time: bool,
@@ -417,6 +420,9 @@ pub struct CompareArgs {
     /// Write the reference image.
     #[arg(long, value_name = "FILE")]
     pub reference_out: Option<PathBuf>,
+    /// Keep the ground truth in DIR, and take it from there when this scene, model, size and device have one.
+    #[arg(long, value_name = "DIR")]
+    pub reference_cache: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]

@@ -13,7 +13,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let plan = BreakdownPlan {
         sizes: args.sizes.clone(),
         line_widths: args.line_widths.clone(),
-        interleaved: session::interleaved(args.repeat, &args.rounds)?,
+        interleaved: super::bench_ipsvi::rounds(args)?,
         volume_texels: session::volume_texels(&args.gpu),
     };
     let scene = scene_args::load(&args.scene)?;

@@ -7,7 +7,7 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use std::process::ExitCode;
 use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
-use sweeplab::bench::OutFolder;
+use sweeplab::bench::{Interleaved, OutFolder};
 use sweeplab::ipsvi::IpsviSettings;
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
@@ -20,7 +20,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         cache_sizes: args.cache_sizes.clone(),
         one_at_a_time: args.one_at_a_time,
         half_angle_slices: args.half_angle_slices.clone(),
-        interleaved: session::interleaved(args.repeat, &args.rounds)?,
+        interleaved: rounds(args)?,
         volume_texels: session::volume_texels(&args.gpu),
         group_bytes: DEFAULT_GROUP_BYTES,
     };
@@ -37,4 +37,11 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     );
     out_folder.finish()?;
     Ok(session::finish(&ctx))
+}
+
+/// The shared rounds of `args`, within --max-minutes when given.
+pub fn rounds(args: &BenchIpsviArgs) -> anyhow::Result<Interleaved> {
+    let rounds = session::interleaved(args.repeat, &args.rounds)?;
+    let Some(minutes) = args.max_minutes else { return Ok(rounds) };
+    rounds.within_minutes(minutes).map_err(|e| anyhow::anyhow!("--max-minutes: {e}"))
 }

@@ -9,6 +9,7 @@ use sweeplab::bench::{plot_error_map, ErrorMap};
 use sweeplab::metrics::pixel_errors;
 use sweeplab::output_paths;
 use sweeplab::techniques::comparison::{compare_with_reference, comparison_scene, ReferenceSource};
+use sweeplab::techniques::ground_truth_cache::GroundTruthCache;
 use sweeplab::techniques::Technique;
 
 pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
@@ -30,7 +31,8 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     let ctx = session::open(&args.gpu)?;
     session::report_long_waits(&ctx);
     let texels = session::volume_texels(&args.gpu);
-    let c = compare_with_reference(&ctx, &scene, technique, source, texels, PROFILER_CAPACITY)?;
+    let cache = args.reference_cache.as_ref().map(GroundTruthCache::new);
+    let c = compare_with_reference(&ctx, &scene, technique, source, texels, PROFILER_CAPACITY, cache.as_ref())?;
     for line in c.lines() {
         println!("{line}");
     }

@@ -3,6 +3,7 @@
 //! technique and the reference rendered at the scene's size, and the error
 //! statistics with both costs.
 
+use super::ground_truth_cache::{GroundTruth, GroundTruthCache, GroundTruthCacheError, GroundTruthKey};
 use super::registry::{render, RenderOutput, Technique};
 use crate::linear_image::LinearImage;
 use crate::metrics::{compare, MetricsError};
@@ -54,6 +55,8 @@ pub enum ComparisonError {
     Metrics(#[from] MetricsError),
     #[error(transparent)]
     Vk(#[from] VkError),
+    #[error(transparent)]
+    Cache(#[from] GroundTruthCacheError),
 }
 
 /// The figures of a comparison (what `--json` writes) and both images.
@@ -74,6 +77,9 @@ pub struct Comparison {
     pub gpu_ms: f64,
     pub reference_gpu_ms: Option<f64>,
     pub reference_cpu_s: Option<f64>,
+    /// The reference came from the ground-truth cache (its times are those of
+    /// the run that rendered it).
+    pub reference_cached: bool,
     pub dispatches: u32,
     pub gpu_memory_bytes: u64,
     pub device: String,
@@ -93,7 +99,8 @@ pub fn comparison_scene(scene: &Scene, technique: Technique) -> Scene {
 }
 
 /// Renders `technique` and the reference on `scene` (see [`comparison_scene`])
-/// and compares them.
+/// and compares them; with `cache`, the reference is taken from it when there
+/// and stored in it when rendered.
 pub fn compare_with_reference(
     ctx: &Context,
     scene: &Scene,
@@ -101,23 +108,35 @@ pub fn compare_with_reference(
     source: ReferenceSource,
     texels: VolumeTexels,
     profiler_capacity: u32,
+    cache: Option<&GroundTruthCache>,
 ) -> Result<Comparison, ComparisonError> {
     let (w, h) = (scene.render.width, scene.render.height);
     let failed = |technique| move |source| ComparisonError::Render { technique, source };
     let gpu = GpuScene::upload_with(ctx, scene, texels).map_err(failed(technique))?;
     let mut profiler = Profiler::new(ctx, profiler_capacity)?;
     let tested: RenderOutput = render(&gpu, technique, w, h, &mut profiler).map_err(failed(technique))?;
-    let (reference_image, reference_gpu_ms, reference_cpu_s) = match source {
-        ReferenceSource::Cpu => {
+    let key = GroundTruthKey::new(scene, source.name(), texels, &ctx.info);
+    let cached = match cache {
+        Some(cache) => cache.load(&key)?,
+        None => None,
+    };
+    let reference_cached = cached.is_some();
+    let truth = match (cached, source) {
+        (Some(truth), _) => truth,
+        (None, ReferenceSource::Cpu) => {
             let start = Instant::now();
             let image = render_cpu(scene, CpuRenderKind::reference_of(scene), w, h)?;
-            (image, None, Some(start.elapsed().as_secs_f64()))
+            GroundTruth { image, gpu_ms: None, cpu_s: Some(start.elapsed().as_secs_f64()) }
         }
-        ReferenceSource::Gpu => {
+        (None, ReferenceSource::Gpu) => {
             let out = render(&gpu, Technique::Reference, w, h, &mut profiler).map_err(failed(Technique::Reference))?;
-            (out.image, Some(out.profile.gpu_ms_total), None)
+            GroundTruth { image: out.image, gpu_ms: Some(out.profile.gpu_ms_total), cpu_s: None }
         }
     };
+    if let (Some(cache), false) = (cache, reference_cached) {
+        cache.store(&key, &truth)?;
+    }
+    let GroundTruth { image: reference_image, gpu_ms: reference_gpu_ms, cpu_s: reference_cpu_s } = truth;
     let stats = compare(&tested.image, &reference_image)?;
     Ok(Comparison {
         technique: technique.name(),
@@ -132,6 +151,7 @@ pub fn compare_with_reference(
         gpu_ms: tested.profile.gpu_ms_total,
         reference_gpu_ms,
         reference_cpu_s,
+        reference_cached,
         dispatches: tested.dispatches,
         gpu_memory_bytes: tested.profile.gpu_memory_bytes,
         device: tested.profile.device.clone(),
@@ -163,6 +183,9 @@ impl Comparison {
         ];
         lines.extend(self.reference_gpu_ms.map(|ms| format!("reference_gpu_ms {ms:.3}")));
         lines.extend(self.reference_cpu_s.map(|s| format!("reference_cpu_s  {s:.3}")));
+        if self.reference_cached {
+            lines.push("reference_from   the ground-truth cache (times of the run that rendered it)".to_string());
+        }
         lines.push(format!("dispatches       {}", self.dispatches));
         lines.push(format!("gpu_memory_bytes {}", self.gpu_memory_bytes));
         lines

@@ -5,6 +5,7 @@
 //! them; front ends (CLI, viewer, benches) come here.
 
 pub mod comparison;
+pub mod ground_truth_cache;
 pub mod registry;
 pub mod scenes;
 pub mod tables;
