@@ -73,8 +73,8 @@ impl SyncObserver for Files<'_> {
     fn warm_up(&mut self, workload: Workload, configurations: usize) {
         self.configurations = configurations;
         eprintln!(
-            "{} workload: {configurations} configurations; a warm-up round (each configuration's first frame \
-             compiles its shaders), then shuffled timed rounds",
+            "{} workload: {configurations} configurations; a warm-up round (a frame of each set of shaders \
+             compiles them; short frames also count how many make a run), then shuffled timed rounds",
             workload.name()
         );
     }

@@ -623,17 +623,25 @@ fn settings_for(base: &IpsviSettings, line_width: u32, sync: SyncStrategy, workl
 struct Warmed {
     /// Pipelines that have dispatched (llvmpipe compiles on the first dispatch).
     pipelines: HashSet<vk::Pipeline>,
-    /// Whether a warmed frame was long enough to be a run on its own.
-    long_frames: bool,
+    /// The shortest frame that compiled nothing, ms: where even it is a run
+    /// on its own, every frame of the workload is.
+    shortest_ms: Option<f64>,
     frames: usize,
 }
 
-/// A warm-up frame (the first compiles the shaders); where it is short, a
-/// second one sets how many frames a run averages. A configuration whose
-/// pipelines have all run, in a workload whose frames are long, needs
+impl Warmed {
+    fn saw(&mut self, wall_ms: f64) {
+        self.shortest_ms = Some(self.shortest_ms.map_or(wall_ms, |m| m.min(wall_ms)));
+    }
+}
+
+/// A warm-up frame (the first of new pipelines compiles them, so a second
+/// follows); where it is short, a second one sets how many frames a run
+/// averages. A configuration whose pipelines have all run, in a workload
+/// whose every frame so far was long (judged on frames that compiled nothing), needs
 /// neither: only its line width and sync differ from a warmed one's, so it
 /// skips the frame (the sweep's warm-up shrinks from one frame per
-/// configuration to one per set of shaders).
+/// configuration to two per set of shaders).
 fn warm_up(
     ctx: &Context,
     c: &mut Configuration,
@@ -642,20 +650,25 @@ fn warm_up(
     min_run: Duration,
 ) -> Result<Run, ExperimentError> {
     let pipelines = c.renderer.pipelines();
-    if warmed.long_frames && pipelines.iter().all(|p| warmed.pipelines.contains(p)) {
+    let compiles = !pipelines.iter().all(|p| warmed.pipelines.contains(p));
+    let min_run_ms = min_run.as_secs_f64() * 1e3;
+    let long_frames = warmed.shortest_ms.is_some_and(|ms| ms >= min_run_ms);
+    if long_frames && !compiles {
         c.frames_per_run = 1;
         return Ok(Run::default());
     }
-    let min_run_ms = min_run.as_secs_f64() * 1e3;
     let first = frame(ctx, c, profiler)?;
     warmed.frames += 1;
     warmed.pipelines.extend(pipelines);
-    if first.wall_ms >= min_run_ms {
-        warmed.long_frames = true;
-        return Ok(first);
+    if !compiles {
+        warmed.saw(first.wall_ms);
+        if first.wall_ms >= min_run_ms {
+            return Ok(first);
+        }
     }
     let second = frame(ctx, c, profiler)?;
     warmed.frames += 1;
+    warmed.saw(second.wall_ms);
     c.frames_per_run = ((min_run_ms / second.wall_ms.max(1e-3)).ceil() as u32).clamp(1, MAX_FRAMES_PER_RUN);
     Ok(second)
 }
