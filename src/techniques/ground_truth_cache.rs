@@ -44,8 +44,12 @@ impl GroundTruthKey {
     /// already switched to the technique's model) rendered on `source`.
     pub fn new(scene: &Scene, source: &str, texels: VolumeTexels, device: &DeviceInfo) -> GroundTruthKey {
         let text = format!(
-            "sweeplab {} | {source} | {texels:?} | {} {} {} {} | volume {:032x} {:?} {:?} | {:?} | {:?} | {:?} | {:?} | {:?}",
+            "sweeplab {} at {} | {source} | {texels:?} | {} {} {} {} | volume {:032x} {:?} {:?} | {:?} | {:?} | {:?} | {:?} | {:?}",
             env!("CARGO_PKG_VERSION"),
+            // The commit, not only the version: a reference changed between two
+            // builds of one version must not be read back (a build from an
+            // uncommitted tree shares its commit's entries: clear the folder).
+            env!("SWEEPLAB_GIT_COMMIT"),
             device.name,
             device.vendor_id,
             device.device_id,
