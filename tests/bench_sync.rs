@@ -111,10 +111,84 @@ fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
             }
         }
     }
+    // A strategy's per-line-timestamp frames synchronize after every other
+    // block only (racy by design), and pair the two kinds of boundary in the
+    // frame: about half the plain frame's barriers, and an in-frame estimate.
+    for workload in ["empty", "sweep"] {
+        let find = |arm: &str, stamped: bool| {
+            configs
+                .iter()
+                .find(|c| {
+                    c["workload"] == workload
+                        && c["arm"] == arm
+                        && c["line_width"] == 1
+                        && c["line_timestamps"] == stamped
+                })
+                .unwrap_or_else(|| panic!("no {arm} {stamped} in {workload}"))
+        };
+        let (plain, halved, base) =
+            (find("barrier-global", false), find("barrier-global", true), find("no-barriers", false));
+        let per_block = |c: &Value| c["barriers"].as_u64().unwrap() - base["barriers"].as_u64().unwrap();
+        // One barrier after every line record of the frame (blocks, and claim-only records).
+        let every = per_block(plain);
+        assert!(every >= plain["blocks"].as_u64().unwrap(), "{plain}");
+        assert_eq!(per_block(halved), every.div_ceil(2), "after records 0, 2, 4, ...: {halved}");
+        assert_eq!(halved["racy"], true, "{halved}");
+        let row = strategies.iter().find(|r| r["workload"] == workload && r["strategy"] == "barrier-global").unwrap();
+        assert_eq!(row["line_gaps"]["in_frame_sync_us"]["n"], 6, "{row}");
+        assert!(row["line_gaps"]["perturbation_ms"].is_null(), "only the baseline's frames measure it: {row}");
+    }
     // Non-racy strategies render barrier-global's image.
     for c in configs.iter().filter(|c| c["racy"] == false && c["workload"] == "sweep") {
         assert_eq!(c["rmse_vs_barrier_global"], 0.0, "{c}");
     }
+}
+
+/// Where the fewest rounds of every configuration would run past the time
+/// budget, a workload measures fewer configurations (interior line widths,
+/// then the A/A control) and says what it left out, instead of overrunning.
+#[test]
+fn a_budget_too_short_for_every_configuration_leaves_some_out_and_says_so() {
+    let dir = temp_dir("sync-budget");
+    let run = |minutes: &str, line_widths: &str| {
+        let mut args = vec!["bench", "sync", "--size", "12x12", "--strategies", "barrier-global"];
+        args.extend(["--min-rounds", "6", "--max-rounds", "6", "--seed", "7", "--workloads", "sweep"]);
+        args.extend(["--line-widths", line_widths, "--max-minutes", minutes, "--out", dir.to_str().unwrap()]);
+        sweeplab(&args)
+    };
+    // 0.06 s for set-up, warm-up and six rounds: nothing fits, so the least
+    // that gives a slope stays (the narrowest and widest line widths, no control).
+    let o = run("0.001", "1,2,4");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let warning = "warning: sweep workload: line width(s) 2 and the A/A control left out to fit the time budget";
+    assert!(stderr(&o).contains(warning), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("  line width(s) 2 and the A/A control left out"), "the verdict says it: {stdout}");
+    let report = json(&dir.join("sync.json"));
+    let sweep = &report["workloads"][0];
+    assert_eq!(sweep["line_widths"], serde_json::json!([1, 4]), "{sweep}");
+    assert_eq!(sweep["left_out"]["line_widths"], serde_json::json!([2]), "{sweep}");
+    assert_eq!(sweep["left_out"]["control"], true);
+    assert_eq!(sweep["rounds"], 6, "the fewest rounds still run");
+    let configs = report["configurations"].as_array().unwrap();
+    assert!(configs.iter().all(|c| c["line_width"] != 2 && c["strategy"] != "no-barriers-again"), "{configs:?}");
+    // no-barriers and barrier-global at 1 and 4, and both with per-line timestamps.
+    assert_eq!(configs.len(), 2 * 2 + 2, "{configs:?}");
+    assert!(configs.iter().all(|c| c["frames"] == 6), "{configs:?}");
+    let rows = report["strategies"].as_array().unwrap();
+    assert!(rows.iter().all(|r| r["strategy"] != "no-barriers-again"), "no row for what was not measured: {rows:?}");
+    let barrier = rows.iter().find(|r| r["strategy"] == "barrier-global").unwrap();
+    assert_eq!(barrier["sync_us"]["n"], 6, "{barrier}");
+    let md = std::fs::read_to_string(dir.join("sync.md")).unwrap();
+    assert!(md.contains("The sweep workload measured line widths [1, 4]: line width(s) 2 and the A/A control"), "{md}");
+    assert_every_output_names_its_run(&dir);
+    // A budget that holds every configuration leaves nothing out.
+    let o = run("10", "1,2,4");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("left out"), "{}", stderr(&o));
+    let report = json(&dir.join("sync.json"));
+    assert!(report["workloads"][0]["left_out"].is_null(), "{}", report["workloads"][0]);
+    assert_eq!(report["configurations"].as_array().unwrap().len(), 3 * 3 + 2);
 }
 
 #[test]

@@ -90,6 +90,16 @@ impl Estimate {
         h <= absolute || h <= relative * self.value.abs()
     }
 
+    /// About how many samples would make the interval as narrow as
+    /// [`Estimate::precise_to`] asks, from its width now (an interval of a
+    /// median narrows as one over the square root of the samples): an
+    /// extrapolation for planning, not a promise. None without a width.
+    pub fn samples_for(&self, relative: f64, absolute: f64) -> Option<usize> {
+        let h = self.half_width();
+        let target = absolute.max(relative * self.value.abs());
+        (h > 0.0 && target > 0.0 && self.n > 0).then(|| (self.n as f64 * (h / target).powi(2)).ceil() as usize)
+    }
+
     /// The same estimate in another unit (e.g. ms -> us).
     pub fn scaled(&self, factor: f64) -> Estimate {
         let (a, b) = (self.lo * factor, self.hi * factor);
@@ -265,6 +275,28 @@ fn per_x_medians(rounds: &[Vec<(f64, f64)>]) -> Vec<(f64, f64)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_samples_asked_for_give_about_the_interval_asked_for() {
+        let mut n = noise(11);
+        let mut draw = |k: usize| -> Vec<f64> { (0..k).map(|_| 10.0 + (0..4).map(|_| n()).sum::<f64>()).collect() };
+        let first = median_estimate(&draw(40)).unwrap();
+        let target = first.half_width() / 2.0;
+        let needed = first.samples_for(0.0, target).unwrap();
+        assert!((100..=260).contains(&needed), "half the width needs about four times the samples: {needed}");
+        let widths: Vec<f64> = (0..5).map(|_| median_estimate(&draw(needed)).unwrap().half_width() / target).collect();
+        let mut widths = widths;
+        widths.sort_by(f64::total_cmp);
+        let typical = median_of(&widths);
+        assert!((0.7..=1.4).contains(&typical), "with that many samples the half-width is {typical} x the target");
+        // Already narrow enough: no more than it has; no width: no answer.
+        assert!(first.samples_for(0.0, first.half_width() * 2.0).unwrap() <= first.n);
+        let point = Estimate { value: 1.0, lo: 1.0, hi: 1.0, n: 6 };
+        assert_eq!(point.samples_for(0.25, 3.0), None);
+        // The relative target counts where it is the wider.
+        let e = Estimate { value: 100.0, lo: 90.0, hi: 110.0, n: 10 };
+        assert_eq!(e.samples_for(0.05, 1.0), Some(40));
+    }
 
     /// A deterministic stream of noise (splitmix64) in [-1, 1).
     fn noise(seed: u64) -> impl FnMut() -> f64 {

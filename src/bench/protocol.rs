@@ -89,6 +89,20 @@ impl Protocol {
         std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_nanos() as u64).unwrap_or(1)
     }
 
+    /// The warm-up rounds alone, each in its own shuffled order (from the
+    /// seed, apart from the timed rounds' orders), for a caller that decides
+    /// after them what its timed rounds hold; its timed rounds then run with
+    /// `warm_up_rounds: 0`.
+    pub fn warm_up<E>(&self, configurations: usize, mut measure: impl FnMut(usize) -> Result<(), E>) -> Result<(), E> {
+        let mut shuffle = Shuffle::new(!self.seed);
+        for _ in 0..self.warm_up_rounds {
+            for c in shuffle.order(configurations) {
+                measure(c)?;
+            }
+        }
+        Ok(())
+    }
+
     /// Runs `configurations` configurations: `warm_up_rounds` untimed rounds,
     /// then timed rounds until `after_round` says [`Next::Stop`] (asked from
     /// `min_rounds` on, and after every round so partial results can be

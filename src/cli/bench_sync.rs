@@ -9,6 +9,7 @@ use std::process::ExitCode;
 use std::time::Duration;
 use sweeplab::bench::estimate::MIN_SAMPLES;
 use sweeplab::bench::experiments::sync::{self, Eta, SyncObserver, SyncPlan, SyncReport, Workload};
+use sweeplab::bench::experiments::sync_budget::LeftOut;
 use sweeplab::bench::experiments::{sync_report, ExperimentError};
 use sweeplab::bench::progress::format_duration;
 use sweeplab::bench::{OutFolder, Protocol, RunInfo};
@@ -76,6 +77,18 @@ impl SyncObserver for Files<'_> {
             "{} workload: {configurations} configurations; a warm-up round (a frame of each set of shaders \
              compiles them; short frames also count how many make a run), then shuffled timed rounds",
             workload.name()
+        );
+    }
+
+    fn planned(&mut self, workload: Workload, configurations: usize, fewest: Duration, left_out: Option<&LeftOut>) {
+        self.configurations = configurations;
+        if let Some(left) = left_out {
+            eprintln!("warning: {} workload: {}", workload.name(), left.describe());
+        }
+        eprintln!(
+            "{} workload: {configurations} configurations; its fewest rounds take about {}",
+            workload.name(),
+            format_duration(fewest)
         );
     }
 

@@ -14,8 +14,8 @@ use super::merged_steps::{self, LineDispatch};
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync::{
-    record_sweeps, GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, SplitBarriers, SubmissionPerBlock,
-    Unsynchronized,
+    record_sweeps, EveryOther, GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, SplitBarriers,
+    SubmissionPerBlock, Unsynchronized,
 };
 use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
@@ -510,10 +510,33 @@ impl<'a> IpsviRenderer<'a> {
     /// [`record`](Self::record) and the read-back, in one submission (several
     /// for `submits`).
     pub fn frame(&mut self, profiler: &mut Profiler, sync: SyncStrategy) -> Result<FrameResult, RenderError> {
+        self.frame_at(profiler, sync, false)
+    }
+
+    /// [`frame`](Self::frame) with `sync` after every other block only
+    /// ([`EveryOther`]): racy, for timing boundaries with and without it in
+    /// one frame (`bench sync`); its image is undefined.
+    pub fn frame_every_other(
+        &mut self,
+        profiler: &mut Profiler,
+        sync: SyncStrategy,
+    ) -> Result<FrameResult, RenderError> {
+        self.frame_at(profiler, sync, true)
+    }
+
+    fn frame_at(
+        &mut self,
+        profiler: &mut Profiler,
+        sync: SyncStrategy,
+        every_other: bool,
+    ) -> Result<FrameResult, RenderError> {
         let this = &*self;
         // The recorded frame (and what it keeps alive) outlives the submission.
         let (frame, dispatches, barriers) = submit_and_wait_or(this.ctx, "frame", |rec| {
-            let frame = this.record(rec, profiler, sync)?;
+            let line_sync = this.line_sync(sync)?;
+            let line_sync: Box<dyn LineSync + '_> =
+                if every_other { Box::new(EveryOther::new(line_sync)) } else { line_sync };
+            let frame = this.record_with(rec, profiler, line_sync)?;
             frame.output.record_readback(rec, &this.readback);
             Ok::<_, RenderError>((frame, rec.dispatch_count, rec.barrier_count))
         })?;
@@ -531,7 +554,15 @@ impl<'a> IpsviRenderer<'a> {
         profiler: &mut Profiler,
         sync: SyncStrategy,
     ) -> Result<RecordedFrame, RenderError> {
-        let mut line_sync = self.line_sync(sync)?;
+        self.record_with(rec, profiler, self.line_sync(sync)?)
+    }
+
+    fn record_with(
+        &self,
+        rec: &mut Recorder,
+        profiler: &mut Profiler,
+        mut line_sync: Box<dyn LineSync + '_>,
+    ) -> Result<RecordedFrame, RenderError> {
         let IpsviRenderer {
             background,
             settings,

@@ -18,15 +18,17 @@
 //! The baseline runs twice, as `no-barriers` and `no-barriers-again`: an A/A
 //! control whose difference must come out within noise.
 
+use super::sync_budget::{self, LeftOut};
 use super::ExperimentError;
 use crate::bench::cpu_time::{cpu_ms_between, process_cpu_time};
 use crate::bench::estimate::{
     median_estimate, paired_difference, paired_slope_difference, quartiles, readable, slope_per_round, Estimate,
-    MIN_SAMPLES,
+    Verdict, MIN_SAMPLES,
 };
-use crate::bench::protocol::{Next, Phase, Protocol, Rounds};
+use crate::bench::protocol::{Next, Protocol, Rounds};
 use crate::bench::run_info::RunInfo;
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
+use crate::ipsvi::sync::EveryOther;
 use crate::ipsvi::{BreakdownStep, IpsviSettings, SyncStrategy};
 use crate::linear_image::LinearImage;
 use crate::metrics::compare;
@@ -165,6 +167,21 @@ pub struct ConfigKey {
     pub line_timestamps: bool,
 }
 
+impl ConfigKey {
+    /// A strategy's per-line-timestamp frames synchronize after every other
+    /// block only ([`EveryOther`]), to pair boundaries with and without the
+    /// strategy in one frame: racy by design, like the baseline.
+    pub fn every_other(&self) -> bool {
+        self.line_timestamps && matches!(self.arm, Arm::Strategy(_))
+    }
+
+    /// Whether its frames leave blocks unsynchronized (hazards expected,
+    /// images undefined).
+    pub fn racy(&self) -> bool {
+        self.arm.racy() || self.every_other()
+    }
+}
+
 /// One run of a configuration: the mean of its frames.
 #[derive(Clone, Debug, Default)]
 pub struct Run {
@@ -177,6 +194,13 @@ pub struct Run {
     pub lines_us: Vec<f64>,
     /// The median of `gaps_us` (NaN without per-line timestamps).
     pub gap_median_us: f64,
+    /// Frames with the strategy after every other block only: the periods
+    /// (one line's start to the next's) after a synchronized block and after
+    /// an unsynchronized one, us.
+    pub synced_periods_us: Vec<f64>,
+    pub unsynced_periods_us: Vec<f64>,
+    /// The median of the first minus the median of the second (NaN without).
+    pub in_frame_sync_us: f64,
 }
 
 /// A configuration's frames, summed up.
@@ -217,10 +241,14 @@ pub struct LineGaps {
     pub gap_q1_us: f64,
     pub gap_q3_us: f64,
     pub line_median_us: f64,
-    /// This strategy's median gap minus the baseline's, round by round: the
-    /// sync cost as the per-line timestamps see it, us (None for the baseline).
-    pub gap_sync_us: Option<Estimate>,
-    /// Frame time with the timestamps minus without, paired by round, ms.
+    /// The strategy's cost per boundary paired in the frame: in frames that
+    /// synchronize after every other block, the median period (one line's
+    /// start to the next's) after a synchronized block minus after an
+    /// unsynchronized one, one value per run, us (None for the baseline).
+    #[serde(default)]
+    pub in_frame_sync_us: Option<Estimate>,
+    /// Frame time with the timestamps minus without, paired by round, ms
+    /// (the baseline's; a strategy's timestamped frames sync half as often).
     pub perturbation_ms: Option<Estimate>,
     /// The gaps of the last run, for a histogram.
     pub last_gaps_us: Vec<f64>,
@@ -244,6 +272,19 @@ pub struct StrategyRow {
     pub boundary_cpu_us: Option<Estimate>,
     pub sync_cpu_us: Option<Estimate>,
     pub line_gaps: Option<LineGaps>,
+}
+
+impl StrategyRow {
+    /// The narrower of its two estimates of the sync cost per boundary: from
+    /// frame slopes, and paired in the frame (strategies with per-line
+    /// timestamps). Both estimate the same cost; the verdict prints both.
+    pub fn best_sync_us(&self) -> Option<Estimate> {
+        let in_frame = self.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us);
+        match (self.sync_us, in_frame) {
+            (Some(a), Some(b)) => Some(if b.half_width() < a.half_width() { b } else { a }),
+            (a, b) => a.or(b),
+        }
+    }
 }
 
 /// The whole study as measured so far.
@@ -284,6 +325,12 @@ pub struct WorkloadRounds {
     /// already, in a workload of long frames, run none).
     #[serde(default)]
     pub warm_up_frames: usize,
+    /// The line widths its rounds measured (the plan's, less what was left out).
+    #[serde(default)]
+    pub line_widths: Vec<u32>,
+    /// What it left out to fit its fewest rounds into the time budget.
+    #[serde(default)]
+    pub left_out: Option<LeftOut>,
 }
 
 /// Of the time budget, the share a workload that runs first keeps for the
@@ -311,9 +358,23 @@ impl SyncReport {
     /// Whether every strategy's (and the control's) sync cost in `workload` is
     /// as precise as asked.
     pub fn precise_in(&self, workload: Workload) -> bool {
-        self.rows_of(workload)
+        self.rows_of(workload).filter(|r| r.strategy != BASELINE).all(|r| {
+            r.best_sync_us().is_some_and(|e| e.precise_to(self.precision.relative, self.precision.absolute_us))
+        })
+    }
+
+    /// About how many rounds the widest sync interval of `workload` would
+    /// need to be as narrow as asked ([`Estimate::samples_for`]), and the
+    /// minutes they take at the pace of its rounds so far.
+    pub fn rounds_needed(&self, workload: Workload) -> Option<(usize, f64)> {
+        let rounds = self
+            .rows_of(workload)
             .filter(|r| r.strategy != BASELINE)
-            .all(|r| r.sync_us.is_some_and(|e| e.precise_to(self.precision.relative, self.precision.absolute_us)))
+            .filter_map(|r| r.best_sync_us()?.samples_for(self.precision.relative, self.precision.absolute_us))
+            .max()?;
+        let w = self.workloads.iter().find(|r| r.workload == workload)?;
+        let pace_s = w.seconds / w.rounds.max(1) as f64;
+        Some((rounds, rounds as f64 * pace_s / 60.0))
     }
 
     /// One line per strategy and workload, e.g. `barrier-global: +2.10 us per
@@ -322,38 +383,59 @@ impl SyncReport {
         let mut out = Vec::new();
         for w in Workload::ALL {
             let Some(base) = self.rows_of(w).find(|r| r.strategy == BASELINE) else { continue };
-            let dispatch = base
-                .boundary_us
-                .map(|e| format!("{} us ({}-{})", readable(e.value), readable(e.lo), readable(e.hi)))
-                .unwrap_or_else(|| "not measured".into());
+            // A cost below zero is noise, never published as a cost.
+            let dispatch = match base.boundary_us {
+                Some(e) if e.verdict() == Verdict::Cost => {
+                    format!("costs {} us ({}-{})", readable(e.value), readable(e.lo), readable(e.hi))
+                }
+                Some(e) => format!(
+                    "cannot be told from noise here (95 % CI {}-{} us: the frames vary more than the boundaries add)",
+                    readable(e.lo),
+                    readable(e.hi)
+                ),
+                None => "is not measured".into(),
+            };
             let precision = if self.precise_in(w) {
                 "every interval as narrow as asked".to_string()
             } else {
                 format!(
-                    "not every interval as narrow as asked (half-width <= {} % of the estimate or <= {} us)",
+                    "not every interval as narrow as asked (half-width <= {} % of the estimate or <= {} us){}",
                     readable(self.precision.relative * 100.0),
-                    readable(self.precision.absolute_us)
+                    readable(self.precision.absolute_us),
+                    self.rounds_needed(w)
+                        .map(|(rounds, minutes)| if minutes > 600.0 {
+                            "; the widest would need more than 10 hours of rounds at this pace".to_string()
+                        } else {
+                            format!(
+                                "; the widest would need about {rounds} rounds, {} min at this pace",
+                                readable(minutes)
+                            )
+                        })
+                        .unwrap_or_default()
                 )
             };
             out.push(format!(
-                "{} workload ({} rounds; {precision}): a boundary with no barriers (the dispatch alone) costs {dispatch}",
+                "{} workload ({} rounds; {precision}): a boundary with no barriers (the dispatch alone) {dispatch}",
                 w.name(),
                 self.rounds_of(w)
             ));
+            if let Some(left) = self.workloads.iter().find(|r| r.workload == w).and_then(|r| r.left_out.as_ref()) {
+                out.push(format!("  {}", left.describe()));
+            }
             for r in self.rows_of(w).filter(|r| r.strategy != BASELINE) {
                 let what =
                     if r.strategy == CONTROL { format!("{} (A/A control)", r.strategy) } else { r.strategy.clone() };
                 let cost = match r.sync_us {
-                    Some(e) => format!("{} per boundary over no barriers", e.describe("us")),
+                    Some(e) => format!("{} per boundary over no barriers (frame slopes)", e.describe("us")),
                     None => format!("too few rounds (needs {MIN_SAMPLES})"),
                 };
-                let gaps = r
+                let paired = r
                     .line_gaps
                     .as_ref()
-                    .and_then(|g| g.gap_sync_us)
-                    .map(|e| format!("; per-line gaps: {}", e.describe("us")))
+                    .and_then(|g| g.in_frame_sync_us)
+                    .map(|e| format!("; {} paired in the frame", e.describe("us")))
                     .unwrap_or_default();
-                out.push(format!("  {what}: {cost}{gaps}"));
+                out.push(format!("  {what}: {cost}{paired}"));
             }
         }
         out
@@ -365,6 +447,17 @@ impl SyncReport {
 pub trait SyncObserver {
     /// Before a workload's warm-up round.
     fn warm_up(&mut self, _workload: Workload, _configurations: usize) {}
+    /// After it: the configurations its rounds measure, how long its fewest
+    /// rounds take (predicted from the warm-up), and what it left out to fit
+    /// the time budget.
+    fn planned(
+        &mut self,
+        _workload: Workload,
+        _configurations: usize,
+        _fewest_rounds: Duration,
+        _left_out: Option<&LeftOut>,
+    ) {
+    }
     fn round(&mut self, report: &SyncReport, eta: Eta) -> Result<(), ExperimentError>;
 }
 
@@ -389,6 +482,8 @@ struct Configuration<'a> {
     hazards: usize,
     frames_per_run: u32,
     last_image: Option<LinearImage>,
+    /// Left out of the rounds to fit the time budget (`sync_budget`).
+    left_out: bool,
 }
 
 /// Every configuration of `plan`, in a fixed order (workload, arm, line
@@ -472,6 +567,7 @@ pub fn run(
             hazards: 0,
             frames_per_run: 1,
             last_image: None,
+            left_out: false,
         });
     }
     let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
@@ -491,6 +587,8 @@ pub fn run(
             orders: Vec::new(),
             seconds: 0.0,
             warm_up_frames: 0,
+            line_widths: plan.line_widths.clone(),
+            left_out: None,
         });
         observer.warm_up(workload, members.len());
         let mut report_of = |configs: &[Configuration], so_far: &Measured| {
@@ -546,6 +644,18 @@ fn run_workload(
     measured: &mut Measured,
     observer: &mut dyn SyncObserver,
 ) -> Result<(), ExperimentError> {
+    let workload = configs[members[0]].key.workload;
+    // The warm-up first, on its own: how long its frames took decides what
+    // the fewest rounds can hold before the deadline.
+    let mut warmed = Warmed::default();
+    let mut warm_ms: Vec<Option<f64>> = vec![None; members.len()];
+    plan.protocol.warm_up(members.len(), |i| {
+        let run = warm_up(ctx, &mut configs[members[i]], profiler, &mut warmed, plan.min_run)?;
+        // A skipped warm-up runs no frame (its time is 0).
+        warm_ms[i] = (run.wall_ms > 0.0).then_some(run.wall_ms * configs[members[i]].frames_per_run as f64);
+        Ok::<_, ExperimentError>(())
+    })?;
+    let members = fit_members(plan, configs, members, &warm_ms, deadline, measured, observer);
     // Both closures of the protocol see the configurations: one runs them,
     // the other sums them up after each round.
     let configs = RefCell::new(configs);
@@ -553,15 +663,11 @@ fn run_workload(
     let round_started: Cell<Option<Instant>> = Cell::new(None);
     let first_round: Cell<Option<Instant>> = Cell::new(None);
     let mut round_times: Vec<Duration> = Vec::new();
-    let warmed = RefCell::new(Warmed::default());
-    let workload = configs.borrow()[members[0]].key.workload;
-    plan.protocol.run(
+    let warm_up_frames = warmed.frames;
+    Protocol { warm_up_rounds: 0, ..plan.protocol }.run(
         members.len(),
-        |i, phase| {
+        |i, _| {
             let config = &mut configs.borrow_mut()[members[i]];
-            if phase == Phase::WarmUp {
-                return warm_up(ctx, config, profiler, &mut warmed.borrow_mut(), plan.min_run);
-            }
             // The first timed run starts the clock of the rounds.
             if round_started.get().is_none() {
                 round_started.set(Some(Instant::now()));
@@ -582,7 +688,7 @@ fn run_workload(
                 w.rounds = rounds.count();
                 w.orders = rounds.orders.iter().map(|o| o.iter().map(|&i| members[i]).collect()).collect();
                 w.seconds = first_round.get().map(|t| t.elapsed().as_secs_f64()).unwrap_or(0.0);
-                w.warm_up_frames = warmed.borrow().frames;
+                w.warm_up_frames = warm_up_frames;
                 report_of(&configs.borrow(), &m)
             };
             let mean = round_times.iter().sum::<Duration>() / round_times.len() as u32;
@@ -612,6 +718,39 @@ fn run_workload(
         },
     )?;
     Ok(())
+}
+
+/// The members whose fewest rounds fit before `deadline` ([`sync_budget`]),
+/// from each run's time in the warm-up (a configuration that skipped its
+/// warm-up takes the mean of those that ran); the rest are marked left out.
+fn fit_members(
+    plan: &SyncPlan,
+    configs: &mut [Configuration],
+    members: &[usize],
+    warm_ms: &[Option<f64>],
+    deadline: Option<Instant>,
+    measured: &mut Measured,
+    observer: &mut dyn SyncObserver,
+) -> Vec<usize> {
+    let known: Vec<f64> = warm_ms.iter().flatten().copied().collect();
+    let mean_ms = if known.is_empty() { 0.0 } else { known.iter().sum::<f64>() / known.len() as f64 };
+    let run_s: Vec<f64> = warm_ms.iter().map(|m| m.unwrap_or(mean_ms) / 1e3).collect();
+    let keys: Vec<ConfigKey> = members.iter().map(|&c| configs[c].key).collect();
+    let rounds = plan.protocol.min_rounds;
+    let time_left = deadline.map_or(Duration::MAX, |d| d.saturating_duration_since(Instant::now()));
+    let fit = sync_budget::fit(&keys, &run_s, rounds, time_left);
+    let kept: Vec<usize> = fit.kept.iter().map(|&i| members[i]).collect();
+    for &c in members {
+        configs[c].left_out = !kept.contains(&c);
+    }
+    let workload = keys[0].workload;
+    let w = measured.workloads.last_mut().expect("the workload's entry was pushed");
+    if let Some(out) = &fit.left_out {
+        w.line_widths.retain(|lw| !out.line_widths.contains(lw));
+    }
+    w.left_out = fit.left_out.clone();
+    observer.planned(workload, kept.len(), Duration::from_secs_f64(fit.kept_rounds_s), fit.left_out.as_ref());
+    kept
 }
 
 fn settings_for(base: &IpsviSettings, line_width: u32, sync: SyncStrategy, workload: Workload) -> IpsviSettings {
@@ -684,11 +823,19 @@ fn measure(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Res
         sum.wall_ms += f.wall_ms / k as f64;
         sum.gaps_us.extend(f.gaps_us);
         sum.lines_us.extend(f.lines_us);
+        sum.synced_periods_us.extend(f.synced_periods_us);
+        sum.unsynced_periods_us.extend(f.unsynced_periods_us);
     }
-    let mut sorted = sum.gaps_us.clone();
-    sorted.sort_by(f64::total_cmp);
-    sum.gap_median_us = crate::bench::estimate::median_of(&sorted);
+    sum.gap_median_us = median_of_unsorted(&sum.gaps_us);
+    sum.in_frame_sync_us = median_of_unsorted(&sum.synced_periods_us) - median_of_unsorted(&sum.unsynced_periods_us);
     Ok(sum)
+}
+
+/// The median of `values` (NaN for none).
+fn median_of_unsorted(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    crate::bench::estimate::median_of(&sorted)
 }
 
 /// One frame of `c`: GPU time from the profiler, process CPU time and wall
@@ -698,20 +845,37 @@ fn frame(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Resul
     profiler.set_detail(c.key.line_timestamps);
     let cpu_start = process_cpu_time();
     let wall_start = Instant::now();
-    let frame = c.renderer.frame(profiler, c.key.arm.sync());
+    let frame = if c.key.every_other() {
+        c.renderer.frame_every_other(profiler, c.key.arm.sync())
+    } else {
+        c.renderer.frame(profiler, c.key.arm.sync())
+    };
     let wall_ms = wall_start.elapsed().as_secs_f64() * 1e3;
     let cpu_ms = cpu_ms_between(cpu_start, process_cpu_time());
     profiler.set_detail(false);
     let frame = frame?;
     let profile = profiler.resolve(ctx.memory.device_local_peak())?;
-    c.hazards += expected_hazards(ctx, c.key.arm)?;
+    c.hazards += expected_hazards(ctx, &c.key)?;
     c.dispatches = frame.dispatches;
     c.barriers = frame.barriers;
     c.last_image = Some(frame.image);
     let mut run = Run { gpu_ms: profile.gpu_ms_total, cpu_ms, wall_ms, ..Run::default() };
     if c.key.line_timestamps {
         let t = profile.timeline("ipsvi_line");
-        run.gaps_us = t.gaps_us;
+        if c.key.every_other() {
+            // Scope i is block i (every block has one, in frame order); the
+            // period after it spans its line and the boundary that follows.
+            for (i, (line, gap)) in t.durations_us.iter().zip(&t.gaps_us).enumerate() {
+                let synced = EveryOther::synchronizes_after(i);
+                if synced {
+                    run.gaps_us.push(*gap);
+                }
+                let periods = if synced { &mut run.synced_periods_us } else { &mut run.unsynced_periods_us };
+                periods.push(line + gap);
+            }
+        } else {
+            run.gaps_us = t.gaps_us;
+        }
         run.lines_us = t.durations_us;
     }
     Ok(run)
@@ -719,12 +883,12 @@ fn frame(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Resul
 
 /// Racy arms have no barriers, so synchronization validation reports their
 /// hazards by design: those are counted; any other message is an error.
-fn expected_hazards(ctx: &Context, arm: Arm) -> Result<usize, ExperimentError> {
+fn expected_hazards(ctx: &Context, key: &ConfigKey) -> Result<usize, ExperimentError> {
     let messages = ctx.take_validation_messages();
     let (hazards, other): (Vec<String>, Vec<String>) =
-        messages.into_iter().partition(|m| arm.racy() && m.contains("SYNC-HAZARD"));
+        messages.into_iter().partition(|m| key.racy() && m.contains("SYNC-HAZARD"));
     if !other.is_empty() {
-        return Err(ExperimentError::Validation { what: arm.name().to_string(), messages: other });
+        return Err(ExperimentError::Validation { what: key.arm.name().to_string(), messages: other });
     }
     Ok(hazards.len())
 }
@@ -743,7 +907,8 @@ fn summarize(
     let wall = |c: usize| rounds.series(c, |r| r.wall_ms);
     let reference = |key: &ConfigKey| {
         configs.iter().find(|o| {
-            o.key.workload == key.workload
+            !o.left_out
+                && o.key.workload == key.workload
                 && o.key.line_width == key.line_width
                 && !o.key.line_timestamps
                 && o.key.arm == Arm::Strategy(SyncStrategy::BarrierGlobal)
@@ -752,10 +917,11 @@ fn summarize(
     let configurations = configs
         .iter()
         .enumerate()
+        .filter(|(_, c)| !c.left_out)
         .map(|(i, c)| ConfigRow {
             workload: c.key.workload,
             arm: c.key.arm.name().to_string(),
-            racy: c.key.arm.racy(),
+            racy: c.key.racy(),
             line_width: c.key.line_width,
             line_timestamps: c.key.line_timestamps,
             lines: c.lines,
@@ -772,7 +938,7 @@ fn summarize(
             hazards_ignored: c.hazards,
             rmse_vs_barrier_global: match (c.last_image.as_ref(), reference(&c.key).and_then(|r| r.last_image.as_ref()))
             {
-                (Some(a), Some(b)) if !c.key.arm.racy() => compare(a, b).ok().map(|s| s.rmse),
+                (Some(a), Some(b)) if !c.key.racy() => compare(a, b).ok().map(|s| s.rmse),
                 _ => None,
             },
         })
@@ -781,7 +947,8 @@ fn summarize(
     let points = |workload: Workload, arm: Arm, value: &dyn Fn(&Run) -> f64| -> Vec<Vec<(f64, f64)>> {
         let members: Vec<usize> = (0..configs.len())
             .filter(|&i| {
-                configs[i].key.workload == workload && configs[i].key.arm == arm && !configs[i].key.line_timestamps
+                let c = &configs[i];
+                !c.left_out && c.key.workload == workload && c.key.arm == arm && !c.key.line_timestamps
             })
             .collect();
         let count = members.iter().map(|&i| rounds.runs[i].len()).min().unwrap_or(0);
@@ -790,16 +957,14 @@ fn summarize(
             .collect()
     };
     let mut strategies = Vec::new();
-    let arms: Vec<Arm> = {
-        let mut seen: Vec<Arm> = Vec::new();
-        for c in configs {
-            if !seen.contains(&c.key.arm) {
-                seen.push(c.key.arm);
+    for &workload in &plan.workloads {
+        // The arms this workload measures (the control may have been left out).
+        let mut arms: Vec<Arm> = Vec::new();
+        for c in configs.iter().filter(|c| !c.left_out && c.key.workload == workload) {
+            if !arms.contains(&c.key.arm) {
+                arms.push(c.key.arm);
             }
         }
-        seen
-    };
-    for &workload in &plan.workloads {
         let base_gpu = points(workload, Arm::NoBarriers, &|r| r.gpu_ms);
         let base_cpu = points(workload, Arm::NoBarriers, &|r| r.cpu_ms);
         for &arm in &arms {
@@ -845,7 +1010,8 @@ fn summarize(
 fn line_gaps(configs: &[Configuration], rounds: &Measured, workload: Workload, arm: Arm) -> Option<LineGaps> {
     let find = |stamped: bool, line_width: Option<u32>| {
         configs.iter().position(|c| {
-            c.key.workload == workload
+            !c.left_out
+                && c.key.workload == workload
                 && c.key.arm == arm
                 && c.key.line_timestamps == stamped
                 && line_width.is_none_or(|w| c.key.line_width == w)
@@ -854,15 +1020,9 @@ fn line_gaps(configs: &[Configuration], rounds: &Measured, workload: Workload, a
     let stamped = find(true, None)?;
     let line_width = configs[stamped].key.line_width;
     let plain = find(false, Some(line_width))?;
-    let base_stamped = configs
-        .iter()
-        .position(|c| c.key.workload == workload && c.key.arm == Arm::NoBarriers && c.key.line_timestamps);
-    let gap_sync_us = match base_stamped {
-        Some(b) if arm != Arm::NoBarriers => {
-            paired_difference(&rounds.series(b, |r| r.gap_median_us), &rounds.series(stamped, |r| r.gap_median_us)).ok()
-        }
-        _ => None,
-    };
+    let every_other = configs[stamped].key.every_other();
+    let in_frame_sync_us =
+        every_other.then(|| median_estimate(&rounds.series(stamped, |r| r.in_frame_sync_us)).ok()).flatten();
     let gaps: Vec<f64> = rounds.runs[stamped].iter().flat_map(|r| r.gaps_us.iter().copied()).collect();
     let lines: Vec<f64> = rounds.runs[stamped].iter().flat_map(|r| r.lines_us.iter().copied()).collect();
     if gaps.is_empty() {
@@ -879,10 +1039,11 @@ fn line_gaps(configs: &[Configuration], rounds: &Measured, workload: Workload, a
         gap_q1_us: q1,
         gap_q3_us: q3,
         line_median_us: crate::bench::estimate::median_of(&sorted_lines),
-        gap_sync_us,
+        in_frame_sync_us,
         last_gaps_us: rounds.runs[stamped].last().map(|r| r.gaps_us.clone()).unwrap_or_default(),
-        perturbation_ms: paired_difference(&rounds.series(plain, |r| r.gpu_ms), &rounds.series(stamped, |r| r.gpu_ms))
-            .ok(),
+        perturbation_ms: (!every_other)
+            .then(|| paired_difference(&rounds.series(plain, |r| r.gpu_ms), &rounds.series(stamped, |r| r.gpu_ms)).ok())
+            .flatten(),
     })
 }
 

@@ -44,7 +44,7 @@ fn strategy_row(r: &StrategyRow) -> BenchRow {
     if let Some(g) = &r.line_gaps {
         row.set("gap_median_us", g.gap_median_us).set("gap_q1_us", g.gap_q1_us).set("gap_q3_us", g.gap_q3_us);
         row.set("line_median_us", g.line_median_us);
-        row.set_estimate("gap_sync_us", g.gap_sync_us);
+        row.set_estimate("in_frame_sync_us", g.in_frame_sync_us);
         row.set_estimate("timestamp_perturbation_ms", g.perturbation_ms);
     }
     row
@@ -89,14 +89,15 @@ pub fn markdown(report: &SyncReport) -> String {
          are slopes of frame time over the number of line blocks (line widths {:?} at {}x{}), fitted \
          round by round and compared with `{BASELINE}` round by round. `{CONTROL}` is the baseline \
          measured again (A/A control): its cost must be within noise. The verdict reads GPU \
-         timestamps; `*_cpu_us` are the same estimates from process CPU time.\n\n",
+         timestamps; `*_cpu_us` are the same estimates from process CPU time.{}\n\n",
         report.warm_up_rounds,
         report.seed,
         report.rounds_text(),
         report.seconds,
         report.line_widths,
         report.width,
-        report.height
+        report.height,
+        left_out_text(report)
     ));
     out.push_str("## Verdict\n\n```\n");
     for line in report.verdict() {
@@ -108,6 +109,25 @@ pub fn markdown(report: &SyncReport) -> String {
     out.push_str("\n## Per configuration\n\n");
     out.push_str(&configuration_table(report).to_markdown());
     out
+}
+
+/// ` The sweep workload measured line widths [1, 4, 32]: ...` for each
+/// workload that left configurations out to fit the time budget.
+fn left_out_text(report: &SyncReport) -> String {
+    report
+        .workloads
+        .iter()
+        .filter_map(|w| {
+            w.left_out.as_ref().map(|left| {
+                format!(
+                    " The {} workload measured line widths {:?}: {}.",
+                    w.workload.name(),
+                    w.line_widths,
+                    left.describe()
+                )
+            })
+        })
+        .collect()
 }
 
 /// Writes `sync.json`, `sync.csv`, `sync.md`, `sync_configurations.csv`,
