@@ -57,6 +57,12 @@ impl ComputePipeline {
 
     fn create(ctx: &Context, desc: &ComputePipelineDesc, spirv: &[u8]) -> Result<ComputePipeline, VkError> {
         let shader = desc.shader;
+        if !shader.set1.is_empty() {
+            return Err(VkError::Shader {
+                shader: shader.name,
+                problem: "declares a set 1; these pipelines have set 0 only".into(),
+            });
+        }
         if shader.push_constant_bytes > ctx.limits.max_push_constants_size {
             let need = Need::new(
                 Limit::PushConstants,
