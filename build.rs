@@ -46,10 +46,7 @@ const GLSLANG_SPIRV_ARCHIVES: &[&str] = &[
 /// opposite. Only those bindings are referenced, so each dispatch shows
 /// validation exactly what it reads and writes.
 const BINDING_VARIANTS: &[(&str, &[(&str, &str)])] = &[
-    ("ipsvi_line", &[("_READ_A", "0"), ("_READ_B", "1")]),
     ("ipsvi_ert_sweep", &[("_READ_A", "0"), ("_READ_B", "1")]),
-    ("half_angle_slice", &[("_READ_A", "0"), ("_READ_B", "1")]),
-    ("lightvolume_slice", &[("_READ_A", "0"), ("_READ_B", "1")]),
     ("probe_parity", &[("_READ_A", "0"), ("_READ_B", "1")]),
 ];
 
@@ -207,7 +204,11 @@ fn shader_module(stem: &str, spirv: &[&Path], interface: &Interface) -> String {
                 "    /// `{}`: binding {} of set {set}.\n    pub const {name}: Binding = Binding {{ name: \"{}\", index: {}, kind: BindingKind::{} }};\n",
                 b.name, b.index, b.name, b.index, b.kind.rust_name()
             ));
-            if set == 0 { names.push(name) } else { set1_names.push(name) }
+            if set == 0 {
+                names.push(name)
+            } else {
+                set1_names.push(name)
+            }
         }
     }
     let builds: Vec<String> = spirv.iter().map(|p| format!("include_bytes!(\"{}\") as &[u8]", p.display())).collect();

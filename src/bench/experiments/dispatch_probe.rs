@@ -16,7 +16,7 @@ use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{DescriptorAllocator, Resource};
 use crate::vk::error::{VkError, VkResultExt};
-use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{layout_bindings, parity_pair, ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Context, Profiler};
 use ash::vk;
 use std::time::Instant;
@@ -233,23 +233,14 @@ impl<'a> TwoSetPipeline<'a> {
             set_layouts: [vk::DescriptorSetLayout::null(); 2],
         };
         for (i, bindings) in [shader.bindings, shader.set1].into_iter().enumerate() {
-            let list: Vec<vk::DescriptorSetLayoutBinding> = bindings
-                .iter()
-                .map(|b| {
-                    vk::DescriptorSetLayoutBinding::default()
-                        .binding(b.index)
-                        .descriptor_type(b.kind.vk_type())
-                        .descriptor_count(1)
-                        .stage_flags(vk::ShaderStageFlags::COMPUTE)
-                })
-                .collect();
+            let list = layout_bindings(bindings);
             let mut info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&list);
             if i == 1 && pushed {
                 info = info.flags(vk::DescriptorSetLayoutCreateFlags::PUSH_DESCRIPTOR_KHR);
             }
             // SAFETY: valid device and create info (push flag only with the extension enabled).
-            p.set_layouts[i] = unsafe { ctx.device.create_descriptor_set_layout(&info, None) }
-                .call("vkCreateDescriptorSetLayout")?;
+            p.set_layouts[i] =
+                unsafe { ctx.device.create_descriptor_set_layout(&info, None) }.call("vkCreateDescriptorSetLayout")?;
         }
         let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&p.set_layouts);
         // SAFETY: valid device; both set layouts were just created.
@@ -334,7 +325,10 @@ pub fn probe_ping_pong(
             shader.name,
             bound.set_layouts[1],
             shader.set1,
-            &[(probe_sets::IMAGE_IN, Resource::StorageImage(&from.image)), (probe_sets::IMAGE_OUT, Resource::StorageImage(&to.image))],
+            &[
+                (probe_sets::IMAGE_IN, Resource::StorageImage(&from.image)),
+                (probe_sets::IMAGE_OUT, Resource::StorageImage(&to.image)),
+            ],
         )
     };
     let small = [small(&a, &b)?, small(&b, &a)?];
@@ -358,7 +352,14 @@ pub fn probe_ping_pong(
                         let p = if variant == PingPong::SmallSets { &bound } else { pushed.as_ref().unwrap_or(&bound) };
                         unsafe {
                             ctx.device.cmd_bind_pipeline(rec.cb, vk::PipelineBindPoint::COMPUTE, p.raw);
-                            ctx.device.cmd_bind_descriptor_sets(rec.cb, vk::PipelineBindPoint::COMPUTE, p.layout, 0, &[big], &[]);
+                            ctx.device.cmd_bind_descriptor_sets(
+                                rec.cb,
+                                vk::PipelineBindPoint::COMPUTE,
+                                p.layout,
+                                0,
+                                &[big],
+                                &[],
+                            );
                         }
                     }
                 }
@@ -379,7 +380,9 @@ pub fn probe_ping_pong(
                         PingPong::PushedSet => {
                             let (Some(push), Some(p)) = (&ctx.push_descriptor, &pushed) else { unreachable!() };
                             let infos = views[side].map(|view| {
-                                [vk::DescriptorImageInfo::default().image_view(view).image_layout(vk::ImageLayout::GENERAL)]
+                                [vk::DescriptorImageInfo::default()
+                                    .image_view(view)
+                                    .image_layout(vk::ImageLayout::GENERAL)]
                             });
                             let writes: Vec<vk::WriteDescriptorSet> = shader
                                 .set1
@@ -393,7 +396,13 @@ pub fn probe_ping_pong(
                                 })
                                 .collect();
                             unsafe {
-                                push.cmd_push_descriptor_set(rec.cb, vk::PipelineBindPoint::COMPUTE, p.layout, 1, &writes)
+                                push.cmd_push_descriptor_set(
+                                    rec.cb,
+                                    vk::PipelineBindPoint::COMPUTE,
+                                    p.layout,
+                                    1,
+                                    &writes,
+                                )
                             };
                         }
                     }
