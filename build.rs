@@ -46,10 +46,8 @@ const GLSLANG_SPIRV_ARCHIVES: &[&str] = &[
 /// opposite. Only those bindings are referenced, so each dispatch shows
 /// validation exactly what it reads and writes.
 const BINDING_VARIANTS: &[(&str, &[(&str, &str)])] = &[
-    ("ipsvi_line", &[("_READ_A", "0"), ("_READ_B", "1")]),
     ("ipsvi_ert_sweep", &[("_READ_A", "0"), ("_READ_B", "1")]),
-    ("half_angle_slice", &[("_READ_A", "0"), ("_READ_B", "1")]),
-    ("lightvolume_slice", &[("_READ_A", "0"), ("_READ_B", "1")]),
+    ("probe_parity", &[("_READ_A", "0"), ("_READ_B", "1")]),
 ];
 
 fn main() {
@@ -196,15 +194,22 @@ fn const_name(name: &str) -> String {
 /// The generated module of one shader: its bindings, interface and struct layouts.
 fn shader_module(stem: &str, spirv: &[&Path], interface: &Interface) -> String {
     let mut names: Vec<String> = Vec::new();
+    let mut set1_names: Vec<String> = Vec::new();
     let mut bindings = String::new();
-    for b in &interface.bindings {
-        let name = const_name(&b.name);
-        assert!(!names.contains(&name), "{stem}: two bindings are named {name}");
-        bindings.push_str(&format!(
-            "    /// `{}`: binding {} of set 0.\n    pub const {name}: Binding = Binding {{ name: \"{}\", index: {}, kind: BindingKind::{} }};\n",
-            b.name, b.index, b.name, b.index, b.kind.rust_name()
-        ));
-        names.push(name);
+    for (set, list) in [(0, &interface.bindings), (1, &interface.set1)] {
+        for b in list {
+            let name = const_name(&b.name);
+            assert!(!names.contains(&name) && !set1_names.contains(&name), "{stem}: two bindings are named {name}");
+            bindings.push_str(&format!(
+                "    /// `{}`: binding {} of set {set}.\n    pub const {name}: Binding = Binding {{ name: \"{}\", index: {}, kind: BindingKind::{} }};\n",
+                b.name, b.index, b.name, b.index, b.kind.rust_name()
+            ));
+            if set == 0 {
+                names.push(name)
+            } else {
+                set1_names.push(name)
+            }
+        }
     }
     let builds: Vec<String> = spirv.iter().map(|p| format!("include_bytes!(\"{}\") as &[u8]", p.display())).collect();
     let mut layouts = String::new();
@@ -225,6 +230,7 @@ fn shader_module(stem: &str, spirv: &[&Path], interface: &Interface) -> String {
     }
     let builds = builds.join(", ");
     let binding_list = names.join(", ");
+    let set1_list = set1_names.join(", ");
     let push_constant_bytes = interface.push_constant_bytes;
     format!(
         r#"
@@ -240,6 +246,7 @@ pub mod {stem} {{
         name: "{stem}",
         builds: &[{builds}],
         bindings: &[{binding_list}],
+        set1: &[{set1_list}],
         push_constant_bytes: {push_constant_bytes},
     }};
 

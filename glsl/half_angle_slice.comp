@@ -5,9 +5,10 @@
 // directions, taken in order from the light's side. Invocations below
 // `pixel_count` composite the slice into the eye buffer, lit by the light buffer
 // as it stands after the previous slices; the rest attenuate the light buffer by
-// this slice, writing the other image of the ping-pong pair. Compiled twice by
-// build.rs (PARITY 0 reads light side a and writes b, 1 the opposite), each
-// variant referencing only its sides, so validation sees what a slice touches.
+// this slice, writing the other image of the ping-pong pair. The pair is a
+// small set 1, {in = a, out = b} or {in = b, out = a}, bound per slice (cheap
+// on lavapipe, unlike set 0: tools/dispatch_probe.rs); reads and writes are
+// separate bindings, so validation sees what a slice touches.
 
 layout(local_size_x = 64) in;
 
@@ -17,18 +18,8 @@ layout(local_size_x = 64) in;
 
 layout(std430, set = 0, binding = 4) readonly buffer LightBuffers { LightSpace light_buffer; };
 
-// Each binding has one name in both builds (the Rust side binds by name).
-#if PARITY == 0
-layout(set = 0, binding = 5, r32f) readonly uniform image2D light_a_read;
-layout(set = 0, binding = 8, r32f) writeonly uniform image2D light_b_write;
-#define light_in light_a_read
-#define light_out light_b_write
-#else
-layout(set = 0, binding = 6, r32f) readonly uniform image2D light_b_read;
-layout(set = 0, binding = 7, r32f) writeonly uniform image2D light_a_write;
-#define light_in light_b_read
-#define light_out light_a_write
-#endif
+layout(set = 1, binding = 0, r32f) readonly uniform image2D light_in;
+layout(set = 1, binding = 1, r32f) writeonly uniform image2D light_out;
 // Eye buffer: front to back rgb = colour, a = transmittance; back to front rgb
 // = colour composited over what lies behind.
 layout(set = 0, binding = 9, rgba32f) uniform image2D eye;

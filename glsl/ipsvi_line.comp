@@ -68,54 +68,22 @@ const uint TERMINATION_EXIT_POINTS = 2u;
 #include "ipsvi_common.glsl"
 #include "view_ray.glsl"
 
-// The ping-pong pair, all four images in one descriptor set bound once per
-// sweep (on lavapipe a set bind costs as much as twenty dispatches; a pipeline
-// bind about nothing, tools/dispatch_probe.rs). build.rs compiles this file twice:
-// PARITY 0 reads the a side and writes b, PARITY 1 the opposite, and each
-// variant references only those bindings, so synchronization validation sees
-// exactly what a block reads and writes, and reports a missing barrier.
-#ifndef PARITY
-#error "compiled with PARITY=0 or PARITY=1 by build.rs"
-#endif
-// Each binding has one name in both builds (the Rust side binds by name); the
-// code reads cache_in/front_in and writes cache_out/front_out.
-#if PARITY == 0
-layout(set = 0, binding = 6, rgba16f) readonly uniform image2D cache_a_read;
-layout(set = 0, binding = 7, r16ui) readonly uniform uimage2D front_a_read;
-layout(set = 0, binding = 12, rgba16f) writeonly uniform image2D cache_b_write;
-layout(set = 0, binding = 13, r16ui) writeonly uniform uimage2D front_b_write;
-#define cache_in cache_a_read
-#define front_in front_a_read
-#define cache_out cache_b_write
-#define front_out front_b_write
-layout(set = 0, binding = 17, rgba16f) readonly uniform image2D samples_a_read;
-layout(set = 0, binding = 18, r32ui) readonly uniform uimage2D stamps_a_read;
-layout(set = 0, binding = 23, rgba16f) writeonly uniform image2D samples_b_write;
-layout(set = 0, binding = 24, r32ui) writeonly uniform uimage2D stamps_b_write;
-#define samples_in samples_a_read
-#define stamps_in stamps_a_read
-#define samples_out samples_b_write
-#define stamps_out stamps_b_write
-#else
-layout(set = 0, binding = 8, rgba16f) readonly uniform image2D cache_b_read;
-layout(set = 0, binding = 9, r16ui) readonly uniform uimage2D front_b_read;
-layout(set = 0, binding = 10, rgba16f) writeonly uniform image2D cache_a_write;
-layout(set = 0, binding = 11, r16ui) writeonly uniform uimage2D front_a_write;
-#define cache_in cache_b_read
-#define front_in front_b_read
-#define cache_out cache_a_write
-#define front_out front_a_write
-layout(set = 0, binding = 19, rgba16f) readonly uniform image2D samples_b_read;
-layout(set = 0, binding = 20, r32ui) readonly uniform uimage2D stamps_b_read;
-layout(set = 0, binding = 21, rgba16f) writeonly uniform image2D samples_a_write;
-layout(set = 0, binding = 22, r32ui) writeonly uniform uimage2D stamps_a_write;
-#define samples_in samples_b_read
-#define stamps_in stamps_b_read
-#define samples_out samples_a_write
-#define stamps_out stamps_a_write
-#endif
-const uint KEY_HALF_IN = uint(PARITY);       // keys this block's pixels claimed
-const uint KEY_HALF_NEXT = 1u - uint(PARITY); // keys the next block's pixels claim
+// The ping-pong pairs in a small set 1, {in = a, out = b} or {in = b, out = a},
+// bound per block; set 0 stays bound for the sweep (rebinding it costs as
+// much as fifty dispatches on lavapipe, a small set about nothing:
+// tools/dispatch_probe.rs). Reads and writes are separate bindings, so
+// synchronization validation sees exactly what a block reads and writes, and
+// reports a missing barrier.
+layout(set = 1, binding = 0, rgba16f) readonly uniform image2D cache_in;
+layout(set = 1, binding = 1, r16ui) readonly uniform uimage2D front_in;
+layout(set = 1, binding = 2, rgba16f) writeonly uniform image2D cache_out;
+layout(set = 1, binding = 3, r16ui) writeonly uniform uimage2D front_out;
+layout(set = 1, binding = 4, rgba16f) readonly uniform image2D samples_in;
+layout(set = 1, binding = 5, r32ui) readonly uniform uimage2D stamps_in;
+layout(set = 1, binding = 6, rgba16f) writeonly uniform image2D samples_out;
+layout(set = 1, binding = 7, r32ui) writeonly uniform uimage2D stamps_out;
+#define KEY_HALF_IN (block.parity)        // keys this block's pixels claimed
+#define KEY_HALF_NEXT (1u - block.parity) // keys the next block's pixels claim
 
 layout(set = 0, binding = 14, rgba32f) uniform image2D out_image;
 
@@ -129,7 +97,7 @@ struct BlockParams {
     uint plane;       // plane index of the block's last line
     uint pixel_count; // line_width * span_len
     uvec4 region;     // cache texels to advance: x0, y0, w, h
-    uint parity;      // which of the two pipelines runs this block (PARITY)
+    uint parity;      // which side of the pairs this block reads (its set 1)
     uint light;       // index into sweeps[]
     uint stamp;       // view-samples: 1 + the block's index in its sweep (stamps of sample writes)
     uint claim_count; // farthest: pixels of the next block to claim for (0: none)

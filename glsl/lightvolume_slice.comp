@@ -9,9 +9,10 @@
 // writes it to its slice buffer; the lights' factor * light are summed in
 // registers (a two-float sum) and added into the illumination volume once per
 // voxel (a negative factor subtracts a light's old state: selective updates).
-// Compiled twice by build.rs (PARITY 0 reads slice side a and writes b, 1 the
-// opposite), each variant referencing only its sides, so synchronization
-// validation sees what a slice really reads and writes.
+// The slice buffers ping-pong through a small set 1, {in = a, out = b} or
+// {in = b, out = a}, bound per slice (cheap on lavapipe, unlike set 0:
+// tools/dispatch_probe.rs); reads and writes are separate bindings, so
+// synchronization validation sees what a slice really reads and writes.
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -58,18 +59,8 @@ layout(std140, set = 0, binding = 4) uniform GroupEntries { GroupEntry entries[1
 
 // Slice buffers: x, y = texel of the slice, z = slot of the light in its group;
 // rgb = the light's transmittance to the voxel centre, per channel.
-// Each binding has one name in both builds (the Rust side binds by name).
-#if PARITY == 0
-layout(set = 0, binding = 5, rgba32f) readonly uniform image3D slice_a_read;
-layout(set = 0, binding = 8, rgba32f) writeonly uniform image3D slice_b_write;
-#define slice_in slice_a_read
-#define slice_out slice_b_write
-#else
-layout(set = 0, binding = 6, rgba32f) readonly uniform image3D slice_b_read;
-layout(set = 0, binding = 7, rgba32f) writeonly uniform image3D slice_a_write;
-#define slice_in slice_b_read
-#define slice_out slice_a_write
-#endif
+layout(set = 1, binding = 0, rgba32f) readonly uniform image3D slice_in;
+layout(set = 1, binding = 1, rgba32f) writeonly uniform image3D slice_out;
 layout(set = 0, binding = 9, rgba32f) uniform image3D illumination;
 // Low words of the compensated sums (a one-voxel placeholder when not compensated).
 layout(set = 0, binding = 10, rgba32f) uniform image3D illumination_low;

@@ -279,6 +279,24 @@ fn the_dispatch_probe_runs_every_case() {
     common::assert_validation_clean(&ctx);
 }
 
+/// Every ping-pong variant of the probe (issue 24) runs validation-clean, one
+/// row each, with its per-block times. The blocks ping-pong through a
+/// barrier, and a block reads what the previous one wrote, so a variant that
+/// bound the wrong side would be reported by synchronization validation.
+#[test]
+fn the_ping_pong_probe_runs_every_variant() {
+    use sweeplab::bench::experiments::dispatch_probe::{probe_ping_pong, PingPong};
+    let ctx = validated_context();
+    let rows = probe_ping_pong(&ctx, &PingPong::ALL, 4, 6).unwrap();
+    let expected = if ctx.push_descriptor.is_some() { 3 } else { 2 };
+    assert_eq!(rows.len(), expected, "{rows:?}");
+    for r in &rows {
+        assert!(r.gpu_us_per_block.value > 0.0 && r.cpu_us_per_block.value >= 0.0, "{r:?}");
+        assert_eq!((r.blocks, r.gpu_us_per_block.n), (4, 6));
+    }
+    common::assert_validation_clean(&ctx);
+}
+
 /// Where frames are long (here: every frame, with no shortest run), the
 /// warm-up runs two frames per set of shaders (the compile is not a frame's
 /// length): every arm and line width of a

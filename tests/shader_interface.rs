@@ -10,7 +10,7 @@ use ash::vk;
 use common::*;
 use glam::Vec3;
 use sweeplab::render::{GpuScene, OutputImage};
-use sweeplab::shaders::{ipsvi_ert_depths, ipsvi_line, raycast};
+use sweeplab::shaders::{ipsvi_ert_depths, ipsvi_ert_sweep, ipsvi_line, raycast};
 use sweeplab::vk::descriptors::Resource;
 use sweeplab::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
 use sweeplab::vk::{Buffer, VkError};
@@ -75,19 +75,46 @@ fn sets_are_checked_by_binding_name() {
 #[test]
 fn the_number_of_builds_picks_the_constructor() {
     let ctx = validated_context();
-    let pair =
-        ComputePipelineDesc { name: "ipsvi_line", shader: &ipsvi_line::INTERFACE, specialization: &[], max_sets: 1 };
+    let pair = ComputePipelineDesc {
+        name: "ipsvi_ert_sweep",
+        shader: &ipsvi_ert_sweep::INTERFACE,
+        specialization: &[],
+        max_sets: 1,
+    };
     let single = ComputePipeline::new(&ctx, &pair).err().expect("a ping-pong shader is two pipelines");
     assert_eq!(
         single.to_string(),
-        "shader ipsvi_line: has 2 builds, a ping-pong pair: create its pipelines with parity_pair"
+        "shader ipsvi_ert_sweep: has 2 builds, a ping-pong pair: create its pipelines with parity_pair"
     );
     let once = ComputePipelineDesc { name: "dvr", shader: &raycast::INTERFACE, specialization: &[], max_sets: 1 };
     let pair_of_one = parity_pair(&ctx, &once).err().expect("a shader compiled once has no pair");
     assert_eq!(pair_of_one.to_string(), "shader raycast: has 1 build(s), not the two of a ping-pong pair");
     let [read_a, read_b] = parity_pair(&ctx, &pair).unwrap();
     assert_eq!(read_a.bindings, read_b.bindings);
-    assert_eq!(read_a.push_constant_bytes, 4);
+    assert_eq!(read_a.push_constant_bytes, read_b.push_constant_bytes);
     drop((read_a, read_b));
+    assert_validation_clean(&ctx);
+}
+
+/// A ping-pong shader of one build declares its pair in set 1 (issue 24: one
+/// pipeline, the side bound per block): reads and writes on separate
+/// bindings, so synchronization validation still sees which image a block
+/// reads and which it writes. A shader without set 1 refuses a set-1 set.
+#[test]
+fn ping_pong_pairs_are_a_set_1_of_separate_read_and_write_bindings() {
+    let names = |b: &[sweeplab::vk::interface::Binding]| b.iter().map(|b| b.name).collect::<Vec<_>>();
+    assert_eq!(ipsvi_line::INTERFACE.builds.len(), 1);
+    assert_eq!(
+        names(ipsvi_line::INTERFACE.set1),
+        ["cache_in", "front_in", "cache_out", "front_out", "samples_in", "stamps_in", "samples_out", "stamps_out"]
+    );
+    assert_eq!(names(sweeplab::shaders::half_angle_slice::INTERFACE.set1), ["light_in", "light_out"]);
+    assert_eq!(names(sweeplab::shaders::lightvolume_slice::INTERFACE.set1), ["slice_in", "slice_out"]);
+    assert!(raycast::INTERFACE.set1.is_empty());
+    let ctx = validated_context();
+    let once = ComputePipelineDesc { name: "dvr", shader: &raycast::INTERFACE, specialization: &[], max_sets: 1 };
+    let mut dvr = ComputePipeline::new(&ctx, &once).unwrap();
+    assert_eq!(dvr.create_set1(&[]).unwrap_err().to_string(), "shader raycast: has no set 1");
+    drop(dvr);
     assert_validation_clean(&ctx);
 }

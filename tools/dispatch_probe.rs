@@ -2,10 +2,13 @@
 //! back-to-back 1x1 dispatches of the DVR pipeline, with and without a
 //! barrier between them, and with a descriptor-set bind, a pipeline bind, a
 //! push-constant update or a pipeline switch before each. Median of 5 frames.
+//! Then the ping-pong blocks of issue 24: parity pipelines, one pipeline with
+//! a small set 1 bound per block, or pushed per block, interleaved over 12
+//! rounds (GPU and process CPU time per block, medians with 95 % intervals).
 //! The measurement is `sweeplab::bench::experiments::dispatch_probe` (tested
 //! in the suite); `sweeplab bench sync --workloads empty` measures the sync
 //! strategies themselves with intervals.
-use sweeplab::bench::experiments::dispatch_probe::{probe, ProbeCase};
+use sweeplab::bench::experiments::dispatch_probe::{probe, probe_ping_pong, PingPong, ProbeCase};
 use sweeplab::vk::{Context, ContextOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -22,6 +25,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             row.case.before_each.name(),
             row.gpu_us_per_dispatch,
             row.wall_us_per_dispatch
+        );
+    }
+    for row in probe_ping_pong(&ctx, &PingPong::ALL, n, 12)? {
+        println!(
+            "ping-pong {:32} {n} blocks, 12 rounds: gpu {} us per block, process cpu {} us per block",
+            row.variant.name(),
+            row.gpu_us_per_block.describe(""),
+            row.cpu_us_per_block.describe("")
         );
     }
     Ok(())

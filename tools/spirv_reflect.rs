@@ -1,5 +1,6 @@
 //! What a compiled compute shader declares, read from its SPIR-V words (build.rs
-//! only): the descriptor bindings of set 0 by name, the push-constant block's
+//! only): the descriptor bindings of set 0 (and of set 1, where a shader has a
+//! second set) by name, the push-constant block's
 //! size, and the member offsets of every explicitly laid out struct (uniform,
 //! storage and push blocks and the structs inside them). Reads the handful of
 //! instructions that carry this (OpName, OpMemberName, OpDecorate,
@@ -62,6 +63,9 @@ impl StructLayout {
 #[derive(Clone, Debug, Default)]
 pub struct Interface {
     pub bindings: Vec<Binding>,
+    /// Bindings of set 1: a small set rebound per dispatch (the dispatch
+    /// probe's small-set cases), beside set 0 bound once.
+    pub set1: Vec<Binding>,
     pub push_constant_bytes: u32,
     /// By struct type name.
     pub layouts: BTreeMap<String, StructLayout>,
@@ -256,12 +260,18 @@ impl Module {
                 _ => continue,
             };
             let set = self.decorations.get(&(id, DECORATION_DESCRIPTOR_SET)).copied().unwrap_or(0);
-            assert_eq!(set, 0, "{shader}: sweeplab's pipelines have one descriptor set (set = 0)");
+            assert!(set <= 1, "{shader}: sweeplab's pipelines have at most two descriptor sets (set = 0, 1)");
             let index = self.decorations.get(&(id, DECORATION_BINDING));
             let index = *index.unwrap_or_else(|| panic!("{shader}: descriptor {id} has no binding decoration"));
-            interface.bindings.push(Binding { name: self.binding_name(id, pointee, index), index, kind });
+            let binding = Binding { name: self.binding_name(id, pointee, index), index, kind };
+            if set == 0 {
+                interface.bindings.push(binding);
+            } else {
+                interface.set1.push(binding);
+            }
         }
         interface.bindings.sort_by_key(|b| b.index);
+        interface.set1.sort_by_key(|b| b.index);
         interface.layouts = self.layouts();
         interface
     }
@@ -315,6 +325,7 @@ pub fn reflect(shader: &str, spirv: &[u8]) -> Interface {
 pub fn merge(shader: &str, builds: &[Interface]) -> Interface {
     let mut merged = builds[0].clone();
     for other in &builds[1..] {
+        assert_eq!(merged.set1, other.set1, "{shader}: the builds' set 1 differ");
         assert_eq!(
             merged.push_constant_bytes, other.push_constant_bytes,
             "{shader}: the builds' push-constant blocks differ"

@@ -25,7 +25,7 @@ use crate::scene::{LightKind, Scene};
 use crate::shaders::half_angle_slice as shader;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::descriptors::Resource;
-use crate::vk::pipeline::{parity_pair, ComputePipelineDesc};
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler, Recorder};
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
@@ -200,31 +200,33 @@ pub fn record(
     let eye = gpu.frame_images.output(ctx, "half-angle eye buffer", width, height)?;
     let desc =
         ComputePipelineDesc { name: "half_angle_slice", shader: &shader::INTERFACE, specialization: &[], max_sets: 1 };
-    // Slice parity 0 reads light side a and writes b; parity 1 the opposite.
-    let mut pipelines = parity_pair(ctx, &desc)?;
-    let set = pipelines[0].create_set(&[
+    let mut pipeline = ComputePipeline::new(ctx, &desc)?;
+    let set = pipeline.create_set(&[
         (shader::FRAME, Resource::UniformBuffer(&frame)),
         (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
         (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
         (shader::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
         (shader::LIGHT_BUFFERS, Resource::StorageBuffer(&light_buffer_params)),
-        (shader::LIGHT_A_READ, Resource::StorageImage(&light[0])),
-        (shader::LIGHT_B_READ, Resource::StorageImage(&light[1])),
-        (shader::LIGHT_A_WRITE, Resource::StorageImage(&light[0])),
-        (shader::LIGHT_B_WRITE, Resource::StorageImage(&light[1])),
         (shader::EYE, Resource::StorageImage(&eye.image)),
     ])?;
+    // Slice parity 0 reads light side a and writes b; parity 1 the opposite.
+    let mut side = |from: usize, to: usize| {
+        pipeline.create_set1(&[
+            (shader::LIGHT_IN, Resource::StorageImage(&light[from])),
+            (shader::LIGHT_OUT, Resource::StorageImage(&light[to])),
+        ])
+    };
+    let sides = [side(0, 1)?, side(1, 0)?];
     let bg = scene.render.background;
     let start = if sl.front_to_back { [0.0, 0.0, 0.0, 1.0] } else { [bg.x, bg.y, bg.z, 1.0] };
     for (image, value) in [(&*light[0], [1.0f32; 4]), (&*light[1], [1.0; 4]), (&eye.image, start)] {
         rec.clear_for_compute(image, value, "slice_buffers_discard_to_clear", "slice_buffers_clear_to_first_slice");
     }
     let scope = profiler.begin(rec, "half_angle")?;
-    rec.bind(&pipelines[0], set);
+    rec.bind(&pipeline, set);
     for k in 0..sl.count {
         let detail = profiler.begin_detail(rec, "half_angle_slice")?;
-        let pipeline = &pipelines[(k % 2) as usize];
-        rec.bind_pipeline(pipeline);
+        rec.bind_set1(&pipeline, sides[(k % 2) as usize]);
         let background = sl.front_to_back && k + 1 == sl.count;
         let rect = if background { whole_image } else { rect };
         let pixel_count = rect[2] * rect[3];
@@ -234,7 +236,7 @@ pub fn record(
             rect,
             pixel_count,
         };
-        rec.push(pipeline, &push);
+        rec.push(&pipeline, &push);
         rec.dispatch((pixel_count + n * n).div_ceil(64), 1, 1);
         profiler.end(rec, detail)?;
         // This slice's light and eye writes are what the next slice reads.
@@ -247,6 +249,6 @@ pub fn record(
     profiler.end(rec, scope)?;
     let [light_a, light_b] = light;
     let keep_alive: Vec<Box<dyn Any>> =
-        vec![Box::new(frame), Box::new(light_buffer_params), Box::new(light_a), Box::new(light_b), Box::new(pipelines)];
+        vec![Box::new(frame), Box::new(light_buffer_params), Box::new(light_a), Box::new(light_b), Box::new(pipeline)];
     Ok(RecordedFrame::counted(rec, eye, keep_alive))
 }

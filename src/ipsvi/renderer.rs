@@ -29,7 +29,7 @@ use crate::shaders::{ipsvi_cache_init, ipsvi_line, ipsvi_sweep_sum};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait_or, SecondaryCommands};
 use crate::vk::descriptors::Resource;
-use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -177,8 +177,10 @@ pub struct IpsviRenderer<'a> {
     placeholder: Option<Arc<Image>>,
     init: ComputePipeline,
     init_set: vk::DescriptorSet,
-    lines: [ComputePipeline; 2],
+    line: ComputePipeline,
     line_set: vk::DescriptorSet,
+    /// Set 1 per block parity: 0 reads side a of the pairs and writes b, 1 the opposite.
+    line_sides: [vk::DescriptorSet; 2],
     /// Invocations per workgroup of the line dispatches (glsl/ipsvi_line.comp's
     /// local_size_x_id).
     line_group: u32,
@@ -372,9 +374,8 @@ impl<'a> IpsviRenderer<'a> {
             specialization: &specialization,
             max_sets: 1,
         };
-        // Block parity 0 reads cache side a and writes b; parity 1 the opposite. Both
-        // pipelines share one descriptor set (identical layouts), bound once per sweep.
-        let mut lines = parity_pair(ctx, &line_desc)?;
+        // One pipeline: set 0 bound once per sweep, a block's parity picks its set 1.
+        let mut line = ComputePipeline::new(ctx, &line_desc)?;
         let (dispatches, sweep_dispatches, step_table) = if slots > 1 {
             let merged = merged_steps::merge(&sweep_records, &block_records, line_group);
             let all = vec![(0, merged.dispatches.len())];
@@ -396,35 +397,32 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_cache_init::STAMPS_A, Resource::StorageImage(&cache.stamps[0])),
             (ipsvi_cache_init::STAMPS_B, Resource::StorageImage(&cache.stamps[1])),
         ])?;
-        let line_set = lines[0].create_set(&[
+        let line_set = line.create_set(&[
             (ipsvi_line::FRAME, Resource::UniformBuffer(&frame)),
             (ipsvi_line::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (ipsvi_line::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             (ipsvi_line::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
             (ipsvi_line::SWEEPS, Resource::StorageBuffer(&sweeps)),
             (ipsvi_line::PLANES, Resource::StorageBuffer(&planes)),
-            (ipsvi_line::CACHE_A_READ, Resource::StorageImage(a)),
-            (ipsvi_line::FRONT_A_READ, Resource::StorageImage(fa)),
-            (ipsvi_line::CACHE_B_READ, Resource::StorageImage(b)),
-            (ipsvi_line::FRONT_B_READ, Resource::StorageImage(fb)),
-            (ipsvi_line::CACHE_A_WRITE, Resource::StorageImage(a)),
-            (ipsvi_line::FRONT_A_WRITE, Resource::StorageImage(fa)),
-            (ipsvi_line::CACHE_B_WRITE, Resource::StorageImage(b)),
-            (ipsvi_line::FRONT_B_WRITE, Resource::StorageImage(fb)),
             (ipsvi_line::OUT_IMAGE, Resource::StorageImage(merged.as_ref().map_or(&output.image, |m| &m.accumulation))),
             (ipsvi_line::BLOCKS, Resource::StorageBuffer(&blocks)),
             (ipsvi_line::LMAX, Resource::StorageImage(lmax)),
-            (ipsvi_line::SAMPLES_A_READ, Resource::StorageImage(&cache.samples[0])),
-            (ipsvi_line::STAMPS_A_READ, Resource::StorageImage(&cache.stamps[0])),
-            (ipsvi_line::SAMPLES_B_READ, Resource::StorageImage(&cache.samples[1])),
-            (ipsvi_line::STAMPS_B_READ, Resource::StorageImage(&cache.stamps[1])),
-            (ipsvi_line::SAMPLES_A_WRITE, Resource::StorageImage(&cache.samples[0])),
-            (ipsvi_line::STAMPS_A_WRITE, Resource::StorageImage(&cache.stamps[0])),
-            (ipsvi_line::SAMPLES_B_WRITE, Resource::StorageImage(&cache.samples[1])),
-            (ipsvi_line::STAMPS_B_WRITE, Resource::StorageImage(&cache.stamps[1])),
             (ipsvi_line::KEYS, Resource::StorageBuffer(&cache.claim_keys)),
             (ipsvi_line::STEPS, Resource::StorageBuffer(&steps)),
         ])?;
+        let mut side = |from: usize, to: usize| {
+            line.create_set1(&[
+                (ipsvi_line::CACHE_IN, Resource::StorageImage(&cache.light[from])),
+                (ipsvi_line::FRONT_IN, Resource::StorageImage(&cache.front[from])),
+                (ipsvi_line::CACHE_OUT, Resource::StorageImage(&cache.light[to])),
+                (ipsvi_line::FRONT_OUT, Resource::StorageImage(&cache.front[to])),
+                (ipsvi_line::SAMPLES_IN, Resource::StorageImage(&cache.samples[from])),
+                (ipsvi_line::STAMPS_IN, Resource::StorageImage(&cache.stamps[from])),
+                (ipsvi_line::SAMPLES_OUT, Resource::StorageImage(&cache.samples[to])),
+                (ipsvi_line::STAMPS_OUT, Resource::StorageImage(&cache.stamps[to])),
+            ])
+        };
+        let line_sides = [side(0, 1)?, side(1, 0)?];
 
         let readback = output.readback_buffer(ctx)?;
         Ok(IpsviRenderer {
@@ -446,8 +444,9 @@ impl<'a> IpsviRenderer<'a> {
             placeholder,
             init,
             init_set,
-            lines,
+            line,
             line_set,
+            line_sides,
             line_group,
             readback,
             secondaries: OnceCell::new(),
@@ -463,7 +462,7 @@ impl<'a> IpsviRenderer<'a> {
     /// same shaders and specialization through the context's store): a bench
     /// warms up a renderer whose pipelines have all run already without a frame.
     pub fn pipelines(&self) -> Vec<vk::Pipeline> {
-        let mut all = vec![self.init.raw, self.lines[0].raw, self.lines[1].raw];
+        let mut all = vec![self.init.raw, self.line.raw];
         all.extend(self.merged.iter().map(|m| m.sum.raw));
         if let Some(e) = &self.exit_points {
             all.extend(e.pipelines());
@@ -482,7 +481,14 @@ impl<'a> IpsviRenderer<'a> {
         if let Some(recorded) = self.secondaries.get() {
             return Ok(recorded);
         }
-        let recorded = record_sweeps(self.ctx, &self.sweep_dispatches, &self.dispatches, &self.lines, self.line_set)?;
+        let recorded = record_sweeps(
+            self.ctx,
+            &self.sweep_dispatches,
+            &self.dispatches,
+            &self.line,
+            self.line_set,
+            self.line_sides,
+        )?;
         Ok(self.secondaries.get_or_init(|| recorded))
     }
 
@@ -576,11 +582,12 @@ impl<'a> IpsviRenderer<'a> {
             merged,
             init,
             init_set,
-            lines,
+            line,
             line_set,
+            line_sides,
             ..
         } = self;
-        let (init_set, line_set) = (*init_set, *line_set);
+        let (init_set, line_set, line_sides) = (*init_set, *line_set, *line_sides);
         let bg = *background;
         // Records the line dispatches of one sweep (or, merged, of all steps).
         let record_lines = |rec: &mut Recorder,
@@ -592,12 +599,11 @@ impl<'a> IpsviRenderer<'a> {
                 return Ok(());
             }
             // Bound once per sweep: dispatches find their parameters by index.
-            rec.bind(&lines[0], line_set);
+            rec.bind(line, line_set);
             let (first, count) = sweep_dispatches[sweep];
             for (n, d) in dispatches.iter().enumerate().skip(first).take(count) {
                 line_sync.before_block(rec, n);
-                let line = &lines[d.parity as usize];
-                line_sync.bind_line(rec, line, line_set);
+                line_sync.bind_line(rec, line, line_set, line_sides[d.parity as usize]);
                 let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
                 rec.push(line, &d.index);
                 rec.dispatch(d.groups, 1, 1);

@@ -18,7 +18,7 @@ use crate::shaders::lightvolume_slice as shader;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::SecondaryCommands;
 use crate::vk::descriptors::Resource;
-use crate::vk::pipeline::{parity_pair, ComputePipeline, ComputePipelineDesc};
+use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Recorder};
 use ash::vk;
@@ -193,10 +193,12 @@ impl Capacity {
 pub struct Propagation {
     pub capacity: Capacity,
     grid: UVec3,
-    /// Indexed by [`LightMix`][slice parity].
-    pipelines: [[ComputePipeline; 2]; 3],
+    /// Indexed by [`LightMix`].
+    pipelines: [ComputePipeline; 3],
     box_half: [f32; 3],
     set: vk::DescriptorSet,
+    /// Set 1 per slice parity: 0 reads slice side a and writes b, 1 the opposite.
+    sides: [vk::DescriptorSet; 2],
     /// Slice buffer sides a and b: x, y a slice texel, z the light's layer in
     /// its pass (a 3D image stands in for a 2D array: one layer per light).
     slices: [Arc<Image>; 2],
@@ -269,27 +271,29 @@ impl Propagation {
                 ],
                 max_sets: 1,
             };
-            // Slice parity 0 reads side a and writes b; parity 1 the opposite.
-            parity_pair(ctx, &desc)
+            ComputePipeline::new(ctx, &desc)
         };
         let mut pipelines = [build(LightMix::Directional)?, build(LightMix::Far)?, build(LightMix::Near)?];
-        // All six share one layout: one set serves them all.
-        let set = pipelines[0][0].create_set(&[
+        // All three share one layout: one set serves them all.
+        let set = pipelines[0].create_set(&[
             (shader::FRAME, Resource::UniformBuffer(&frame)),
             (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             // The lights a pass propagates: current states and, for subtractions, old ones.
             (shader::LIGHTS, Resource::StorageBuffer(&slots)),
             (shader::GROUP_ENTRIES, Resource::UniformBuffer(&entries)),
-            (shader::SLICE_A_READ, Resource::StorageImage(&slices[0])),
-            (shader::SLICE_B_READ, Resource::StorageImage(&slices[1])),
-            (shader::SLICE_A_WRITE, Resource::StorageImage(&slices[0])),
-            (shader::SLICE_B_WRITE, Resource::StorageImage(&slices[1])),
             (shader::ILLUMINATION, Resource::StorageImage(&illumination.image)),
             (shader::ILLUMINATION_LOW, Resource::StorageImage(&illumination.low)),
         ])?;
+        let mut side = |from: usize, to: usize| {
+            pipelines[0].create_set1(&[
+                (shader::SLICE_IN, Resource::StorageImage(&slices[from])),
+                (shader::SLICE_OUT, Resource::StorageImage(&slices[to])),
+            ])
+        };
+        let sides = [side(0, 1)?, side(1, 0)?];
         let box_half = params.box_half;
-        Ok(Propagation { capacity, grid, pipelines, box_half, set, slices, slots, entries, _frame: frame })
+        Ok(Propagation { capacity, grid, pipelines, box_half, set, sides, slices, slots, entries, _frame: frame })
     }
 
     /// Writes light states into the slot buffer from slot `first` on (between
@@ -347,13 +351,12 @@ impl Propagation {
         let grid = self.grid.as_ivec3();
         let name = group.scope_name();
         let slices = self.slice_count(group);
-        let pipelines = &self.pipelines[LightMix::of(group, self.box_half, self.grid) as usize];
+        let pipeline = &self.pipelines[LightMix::of(group, self.box_half, self.grid) as usize];
         Ok(SecondaryCommands::record(ctx, &name, 1, |_, rec| {
             let (u, v) = ((group.axis + 1) % 3, (group.axis + 2) % 3);
-            rec.bind(&pipelines[0], self.set);
+            rec.bind(pipeline, self.set);
             for k in 0..slices {
-                let pipeline = &pipelines[(k % 2) as usize];
-                rec.bind_pipeline(pipeline);
+                rec.bind_set1(pipeline, self.sides[(k % 2) as usize]);
                 let push = SlicePush {
                     axis: group.axis as i32,
                     travel: group.travel,

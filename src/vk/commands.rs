@@ -194,14 +194,24 @@ impl<'a> Recorder<'a> {
         unsafe { self.ctx.device.cmd_bind_pipeline(self.cb, vk::PipelineBindPoint::COMPUTE, pipeline.raw) };
     }
 
+    /// Binds set 1 (one side of a ping-pong pair), leaving set 0 bound.
+    pub fn bind_set1(&self, pipeline: &ComputePipeline, set: vk::DescriptorSet) {
+        self.bind_set_at(pipeline, 1, set);
+    }
+
     pub fn bind_set(&self, pipeline: &ComputePipeline, set: vk::DescriptorSet) {
-        // SAFETY: the set was allocated with this pipeline's layout; cb is recording.
+        self.bind_set_at(pipeline, 0, set);
+    }
+
+    fn bind_set_at(&self, pipeline: &ComputePipeline, index: u32, set: vk::DescriptorSet) {
+        // SAFETY: the set was allocated with this pipeline's layout of set
+        // `index` (create_set, create_set1); cb is recording.
         unsafe {
             self.ctx.device.cmd_bind_descriptor_sets(
                 self.cb,
                 vk::PipelineBindPoint::COMPUTE,
                 pipeline.layout,
-                0,
+                index,
                 &[set],
                 &[],
             )

@@ -74,6 +74,9 @@ pub struct Context {
     pub memory: Arc<GpuMemory>,
     /// shaderInt64 and shaderBufferInt64Atomics are enabled (the device has them).
     pub int64_atomics: bool,
+    /// VK_KHR_push_descriptor, enabled where the device has it: the dispatch
+    /// probe pushes a small set per block with it (lavapipe has it).
+    pub push_descriptor: Option<ash::khr::push_descriptor::Device>,
     /// Reports on long waits for a submission ([`super::wait_report`]).
     wait_reporter: Mutex<Option<Arc<WaitReporter>>>,
     /// Specialization constants every pipeline gets beside its own: those a
@@ -312,7 +315,7 @@ impl Context {
             }));
         }
         let swapchain = !surface_extensions.is_empty();
-        let (device, int64_atomics, calibration_ext) =
+        let (device, int64_atomics, calibration_ext, push_descriptor) =
             match create_device(&entry, &instance, cand, queue_family, swapchain) {
                 Ok(d) => d,
                 Err(e) => return Err(cleanup_instance(e)),
@@ -348,6 +351,7 @@ impl Context {
         let debug_utils = debug_instance.as_ref().map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
         let calibrator = calibration_ext.map(|name| Arc::new(Calibrator::new(&instance, &device, name)));
         let descriptor_pools = Arc::new(PoolShelf::new(&device));
+        let push_descriptor = push_descriptor.then(|| ash::khr::push_descriptor::Device::new(&instance, &device));
         Ok(Context {
             entry,
             instance,
@@ -363,6 +367,7 @@ impl Context {
             queue_family,
             memory,
             int64_atomics,
+            push_descriptor,
             wait_reporter: Mutex::new(None),
             shared_specialization: Mutex::new(Vec::new()),
             calibrator,
@@ -484,7 +489,7 @@ fn create_device(
     cand: &Candidate,
     queue_family: u32,
     swapchain: bool,
-) -> Result<(ash::Device, bool, Option<&'static CStr>), VkError> {
+) -> Result<(ash::Device, bool, Option<&'static CStr>, bool), VkError> {
     let mut have12 = vk::PhysicalDeviceVulkan12Features::default();
     let mut have13 = vk::PhysicalDeviceVulkan13Features::default();
     let mut have = vk::PhysicalDeviceFeatures2::default().push_next(&mut have12).push_next(&mut have13);
@@ -527,6 +532,12 @@ fn create_device(
     if let Some(name) = calibration_ext {
         extensions.push(name.as_ptr());
     }
+    let push_descriptor = device_extensions
+        .iter()
+        .any(|e| e.extension_name_as_c_str().map(|n| n == ash::khr::push_descriptor::NAME).unwrap_or(false));
+    if push_descriptor {
+        extensions.push(ash::khr::push_descriptor::NAME.as_ptr());
+    }
     // 64-bit atomicMax of IPSVI's deterministic cache writes: enabled where the
     // device has it; IPSVI refuses to render without it (`Context::int64_atomics`).
     let int64_atomics = int64 == vk::TRUE && have12.shader_buffer_int64_atomics == vk::TRUE;
@@ -548,7 +559,7 @@ fn create_device(
         .push_next(&mut want13);
     // SAFETY: all pointers in `info` refer to locals that outlive the call.
     let device = unsafe { instance.create_device(cand.physical_device, &info, None) }.call("vkCreateDevice")?;
-    Ok((device, int64_atomics, calibration_ext))
+    Ok((device, int64_atomics, calibration_ext, push_descriptor))
 }
 
 impl Drop for Context {

@@ -22,8 +22,12 @@ pub struct ShaderInterface {
     /// SPIR-V of each build: one, or the two sides of a ping-pong pair (build.rs
     /// `BINDING_VARIANTS`; index 0 is `PARITY` 0).
     pub builds: &'static [&'static [u8]],
-    /// Every binding any build declares, by index.
+    /// Every binding of set 0 any build declares, by index.
     pub bindings: &'static [Binding],
+    /// Bindings of set 1, by index: empty but for the dispatch probe's
+    /// small-set shader (pipelines of [`super::pipeline::ComputePipeline`]
+    /// have set 0 only and refuse a shader with a set 1).
+    pub set1: &'static [Binding],
     pub push_constant_bytes: u32,
 }
 

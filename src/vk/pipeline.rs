@@ -1,5 +1,7 @@
 //! Compute pipelines from embedded SPIR-V, with specialization constants (shader
-//! variants) and push constants, and their one descriptor-set layout. Each is
+//! variants) and push constants, and their descriptor-set layouts: set 0, and
+//! for a ping-pong shader a small set 1 of the pair's images, bound per block
+//! ({in = a, out = b} or {in = b, out = a}). Each is
 //! compiled once per context ([`super::pipeline_store`]) through the context's
 //! pipeline cache ([`super::pipeline_cache`]); each ComputePipeline has its own
 //! descriptor pool.
@@ -30,10 +32,15 @@ pub struct ComputePipeline {
     pub raw: vk::Pipeline,
     pub layout: vk::PipelineLayout,
     pub set_layout: vk::DescriptorSetLayout,
+    /// Set 1's layout, null where the shader has no set 1.
+    pub set1_layout: vk::DescriptorSetLayout,
     pub shader: &'static str,
     pub bindings: &'static [Binding],
+    pub set1_bindings: &'static [Binding],
     pub push_constant_bytes: u32,
     pub descriptors: DescriptorAllocator,
+    /// The two set-1 sets of a ping-pong shader (one per side).
+    set1_descriptors: Option<DescriptorAllocator>,
     /// Shared with the context's store ([`super::pipeline_store`]); dropped
     /// after the GPU work using it completed, like every ComputePipeline.
     _objects: Arc<PipelineObjects>,
@@ -86,14 +93,21 @@ impl ComputePipeline {
             ctx.counters.pipeline_reused();
         }
         let descriptors = DescriptorAllocator::new(ctx, shader.bindings, desc.max_sets.max(1))?;
+        let set1_descriptors = match shader.set1 {
+            [] => None,
+            set1 => Some(DescriptorAllocator::new(ctx, set1, 2 * desc.max_sets.max(1))?),
+        };
         Ok(ComputePipeline {
             raw: objects.raw,
             layout: objects.layout,
             set_layout: objects.set_layout,
+            set1_layout: objects.set1_layout,
             shader: shader.name,
             bindings: shader.bindings,
+            set1_bindings: shader.set1,
             push_constant_bytes: shader.push_constant_bytes,
             descriptors,
+            set1_descriptors,
             _objects: objects,
             _keep_alive: ctx.memory.clone(),
         })
@@ -103,6 +117,15 @@ impl ComputePipeline {
     /// resource into the binding it names; every binding of the shader needs one.
     pub fn create_set(&mut self, resources: &[(Binding, Resource)]) -> Result<vk::DescriptorSet, VkError> {
         self.descriptors.create_set(self.shader, self.set_layout, self.bindings, resources)
+    }
+
+    /// Allocates a set-1 set (one side of the ping-pong pair) and writes each
+    /// resource into the binding it names; every set-1 binding needs one.
+    pub fn create_set1(&mut self, resources: &[(Binding, Resource)]) -> Result<vk::DescriptorSet, VkError> {
+        match &mut self.set1_descriptors {
+            Some(d) => d.create_set(self.shader, self.set1_layout, self.set1_bindings, resources),
+            None => Err(VkError::Shader { shader: self.shader, problem: "has no set 1".into() }),
+        }
     }
 }
 
@@ -123,6 +146,20 @@ pub fn parity_pair(ctx: &Context, desc: &ComputePipelineDesc) -> Result<[Compute
     }
 }
 
+/// One compute-stage descriptor of each binding, for a set layout.
+pub fn layout_bindings(bindings: &[Binding]) -> Vec<vk::DescriptorSetLayoutBinding<'static>> {
+    bindings
+        .iter()
+        .map(|b| {
+            vk::DescriptorSetLayoutBinding::default()
+                .binding(b.index)
+                .descriptor_type(b.kind.vk_type())
+                .descriptor_count(1)
+                .stage_flags(vk::ShaderStageFlags::COMPUTE)
+        })
+        .collect()
+}
+
 /// Compiles `spirv` with `key`'s constants into a pipeline and its layouts,
 /// through the context's pipeline cache.
 fn create_objects(
@@ -139,39 +176,43 @@ fn create_objects(
     // SAFETY: words is valid SPIR-V compiled by build.rs.
     let module = unsafe { device.create_shader_module(&module_info, None) }.call("vkCreateShaderModule")?;
 
-    let layout_bindings: Vec<vk::DescriptorSetLayoutBinding> = shader
-        .bindings
-        .iter()
-        .map(|b| {
-            vk::DescriptorSetLayoutBinding::default()
-                .binding(b.index)
-                .descriptor_type(b.kind.vk_type())
-                .descriptor_count(1)
-                .stage_flags(vk::ShaderStageFlags::COMPUTE)
-        })
-        .collect();
-    let set_layout_info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings);
-    // SAFETY: valid device and create info.
-    let set_layout = unsafe { device.create_descriptor_set_layout(&set_layout_info, None) }
-        .call("vkCreateDescriptorSetLayout")
+    let layout_of = |bindings: &[Binding]| {
+        let layout_bindings = layout_bindings(bindings);
+        let set_layout_info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings);
+        // SAFETY: valid device and create info.
+        unsafe { device.create_descriptor_set_layout(&set_layout_info, None) }.call("vkCreateDescriptorSetLayout")
+    };
+    let set_layout = layout_of(shader.bindings)
         // SAFETY (in the closure): the module was just created and is unused.
         .inspect_err(|_| unsafe { device.destroy_shader_module(module, None) })?;
+    let set1_layout = match shader.set1 {
+        [] => vk::DescriptorSetLayout::null(),
+        set1 => layout_of(set1)
+            // SAFETY (in the closure): module and set layout were just created and are unused.
+            .inspect_err(|_| unsafe {
+                device.destroy_shader_module(module, None);
+                device.destroy_descriptor_set_layout(set_layout, None);
+            })?,
+    };
     let ranges = [vk::PushConstantRange::default()
         .stage_flags(vk::ShaderStageFlags::COMPUTE)
         .offset(0)
         .size(shader.push_constant_bytes.max(4))];
-    let set_layouts = [set_layout];
-    let mut layout_info = vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts);
+    let both = [set_layout, set1_layout];
+    let set_layouts = if shader.set1.is_empty() { &both[..1] } else { &both[..] };
+    let mut layout_info = vk::PipelineLayoutCreateInfo::default().set_layouts(set_layouts);
     if shader.push_constant_bytes > 0 {
         layout_info = layout_info.push_constant_ranges(&ranges);
     }
     // SAFETY: valid device and create info.
     let layout = unsafe { device.create_pipeline_layout(&layout_info, None) }
         .call("vkCreatePipelineLayout")
-        // SAFETY (in the closure): module and set layout were just created and are unused.
+        // SAFETY (in the closure): module and set layouts were just created and
+        // are unused (destroying a null set-1 layout is a no-op).
         .inspect_err(|_| unsafe {
             device.destroy_shader_module(module, None);
             device.destroy_descriptor_set_layout(set_layout, None);
+            device.destroy_descriptor_set_layout(set1_layout, None);
         })?;
 
     let entries: Vec<vk::SpecializationMapEntry> = key
@@ -203,10 +244,11 @@ fn create_objects(
                 }
                 device.destroy_pipeline_layout(layout, None);
                 device.destroy_descriptor_set_layout(set_layout, None);
+                device.destroy_descriptor_set_layout(set1_layout, None);
             }
             return Err(VkError::Call { call: "vkCreateComputePipelines", result });
         }
     };
     ctx.set_name(raw, desc.name);
-    Ok(PipelineObjects { raw, layout, set_layout, device: device.clone() })
+    Ok(PipelineObjects { raw, layout, set_layout, set1_layout, device: device.clone() })
 }

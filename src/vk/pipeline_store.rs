@@ -18,6 +18,8 @@ pub struct PipelineObjects {
     pub raw: vk::Pipeline,
     pub layout: vk::PipelineLayout,
     pub set_layout: vk::DescriptorSetLayout,
+    /// Set 1 (the small ping-pong set), null where the shader has none.
+    pub set1_layout: vk::DescriptorSetLayout,
     pub device: ash::Device,
 }
 
@@ -30,6 +32,7 @@ impl Drop for PipelineObjects {
             self.device.destroy_pipeline(self.raw, None);
             self.device.destroy_pipeline_layout(self.layout, None);
             self.device.destroy_descriptor_set_layout(self.set_layout, None);
+            self.device.destroy_descriptor_set_layout(self.set1_layout, None);
         }
     }
 }

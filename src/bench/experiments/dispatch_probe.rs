@@ -6,16 +6,19 @@
 //! set bind far more, which is why IPSVI binds its set once per sweep.
 
 use super::ExperimentError;
-use crate::bench::estimate::median_of;
+use crate::bench::cpu_time::{cpu_ms_between, process_cpu_time};
+use crate::bench::estimate::{median_estimate, median_of, Estimate};
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::{GpuScene, OutputImage};
-use crate::shaders::raycast;
+use crate::shaders::{probe_parity, probe_sets, raycast};
 use crate::techniques::default_scene;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
-use crate::vk::descriptors::Resource;
-use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::descriptors::{DescriptorAllocator, Resource};
+use crate::vk::error::{VkError, VkResultExt};
+use crate::vk::pipeline::{layout_bindings, parity_pair, ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Context, Profiler};
+use ash::vk;
 use std::time::Instant;
 
 /// What is recorded before each dispatch.
@@ -158,4 +161,277 @@ pub fn probe(
         });
     }
     Ok(rows)
+}
+
+/// How a ping-pong block switches sides (issue 24): what the block pays
+/// before its dispatch.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PingPong {
+    /// Today's passes: one pipeline per parity (each its own SPIR-V build),
+    /// both images in the one big set, bound once.
+    ParityPipelines,
+    /// One pipeline; the big set bound once at set 0, and a small set 1 of the
+    /// two images ({in = a, out = b} or {in = b, out = a}) bound per block.
+    SmallSets,
+    /// One pipeline; the small set pushed per block (VK_KHR_push_descriptor).
+    PushedSet,
+}
+
+impl PingPong {
+    pub const ALL: [PingPong; 3] = [PingPong::ParityPipelines, PingPong::SmallSets, PingPong::PushedSet];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            PingPong::ParityPipelines => "parity pipelines",
+            PingPong::SmallSets => "one pipeline, small set bound",
+            PingPong::PushedSet => "one pipeline, small set pushed",
+        }
+    }
+}
+
+/// One variant's per-block cost over the rounds: GPU time and process CPU
+/// time per block, medians with 95 % intervals.
+#[derive(Clone, Copy, Debug)]
+pub struct PingPongRow {
+    pub variant: PingPong,
+    pub blocks: u32,
+    pub gpu_us_per_block: Estimate,
+    pub cpu_us_per_block: Estimate,
+}
+
+/// The set-1 pipeline of `probe_sets.comp`, made here by hand: sweeplab's
+/// [`ComputePipeline`] has set 0 only. Its set 1 is a push-descriptor layout
+/// when `pushed`.
+struct TwoSetPipeline<'a> {
+    ctx: &'a Context,
+    raw: vk::Pipeline,
+    layout: vk::PipelineLayout,
+    set_layouts: [vk::DescriptorSetLayout; 2],
+}
+
+impl Drop for TwoSetPipeline<'_> {
+    fn drop(&mut self) {
+        // SAFETY: the probe waited for every submission using these objects
+        // (submit_and_wait); null handles (a failed creation) are no-ops.
+        unsafe {
+            self.ctx.device.destroy_pipeline(self.raw, None);
+            self.ctx.device.destroy_pipeline_layout(self.layout, None);
+            for l in self.set_layouts {
+                self.ctx.device.destroy_descriptor_set_layout(l, None);
+            }
+        }
+    }
+}
+
+impl<'a> TwoSetPipeline<'a> {
+    fn new(ctx: &'a Context, pushed: bool) -> Result<TwoSetPipeline<'a>, ExperimentError> {
+        let shader = &probe_sets::INTERFACE;
+        let mut p = TwoSetPipeline {
+            ctx,
+            raw: vk::Pipeline::null(),
+            layout: vk::PipelineLayout::null(),
+            set_layouts: [vk::DescriptorSetLayout::null(); 2],
+        };
+        for (i, bindings) in [shader.bindings, shader.set1].into_iter().enumerate() {
+            let list = layout_bindings(bindings);
+            let mut info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&list);
+            if i == 1 && pushed {
+                info = info.flags(vk::DescriptorSetLayoutCreateFlags::PUSH_DESCRIPTOR_KHR);
+            }
+            // SAFETY: valid device and create info (push flag only with the extension enabled).
+            p.set_layouts[i] =
+                unsafe { ctx.device.create_descriptor_set_layout(&info, None) }.call("vkCreateDescriptorSetLayout")?;
+        }
+        let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&p.set_layouts);
+        // SAFETY: valid device; both set layouts were just created.
+        p.layout = unsafe { ctx.device.create_pipeline_layout(&info, None) }.call("vkCreatePipelineLayout")?;
+        let words = ash::util::read_spv(&mut std::io::Cursor::new(shader.builds[0]))
+            .map_err(|e| ExperimentError::Invalid(format!("probe_sets SPIR-V: {e}")))?;
+        // SAFETY: words is valid SPIR-V compiled by build.rs.
+        let module =
+            unsafe { ctx.device.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&words), None) }
+                .call("vkCreateShaderModule")?;
+        // volume_fetch.glsl's filter constant, as every pipeline gets it.
+        let constants: Vec<(u32, u32)> = ctx.shared_specialization();
+        let entries: Vec<vk::SpecializationMapEntry> = (0..constants.len())
+            .map(|i| vk::SpecializationMapEntry { constant_id: constants[i].0, offset: (i * 4) as u32, size: 4 })
+            .collect();
+        let data: Vec<u8> = constants.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
+        let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
+        let stage = vk::PipelineShaderStageCreateInfo::default()
+            .stage(vk::ShaderStageFlags::COMPUTE)
+            .module(module)
+            .name(c"main")
+            .specialization_info(&spec);
+        let info = [vk::ComputePipelineCreateInfo::default().stage(stage).layout(p.layout)];
+        // SAFETY: module and layout are valid and match the shader's interface.
+        let created = unsafe { ctx.device.create_compute_pipelines(ctx.pipeline_cache.raw, &info, None) };
+        // SAFETY: the module is not needed once the pipeline is created.
+        unsafe { ctx.device.destroy_shader_module(module, None) };
+        p.raw = created.map_err(|(_, r)| VkError::Call { call: "vkCreateComputePipelines", result: r })?[0];
+        Ok(p)
+    }
+}
+
+/// Runs `rounds` rounds; each round runs every variant of `variants` in turn
+/// (A B C A B C: what the machine does during a round falls on all of them),
+/// one frame of `blocks` ping-pong blocks each, a barrier between blocks (each
+/// block reads what the previous one wrote). [`PingPong::PushedSet`] needs
+/// VK_KHR_push_descriptor and is left out where the device lacks it.
+pub fn probe_ping_pong(
+    ctx: &Context,
+    variants: &[PingPong],
+    blocks: u32,
+    rounds: u32,
+) -> Result<Vec<PingPongRow>, ExperimentError> {
+    let variants: Vec<PingPong> =
+        variants.iter().copied().filter(|v| *v != PingPong::PushedSet || ctx.push_descriptor.is_some()).collect();
+    let scene = default_scene(&["volume.size=8".into()]).map_err(|e| ExperimentError::Invalid(e.to_string()))?;
+    let gpu = GpuScene::upload(ctx, &scene)?;
+    let params = frame_params(&scene, 1, 1, gpu.lut_size, MarchSteps::render(&scene));
+    let frame = Buffer::with_data(ctx, "probe frame", &[params], ash::vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let a = OutputImage::new(ctx, "probe ping-pong a", 1, 1)?;
+    let b = OutputImage::new(ctx, "probe ping-pong b", 1, 1)?;
+    let desc = |name| ComputePipelineDesc { name, shader: &probe_parity::INTERFACE, specialization: &[], max_sets: 1 };
+    let mut parity = parity_pair(ctx, &desc("probe parity"))?;
+    let parity_set = parity[0].create_set(&[
+        (probe_parity::FRAME, Resource::UniformBuffer(&frame)),
+        (probe_parity::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+        (probe_parity::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+        (probe_parity::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+        (probe_parity::A_READ, Resource::StorageImage(&a.image)),
+        (probe_parity::B_READ, Resource::StorageImage(&b.image)),
+        (probe_parity::A_WRITE, Resource::StorageImage(&a.image)),
+        (probe_parity::B_WRITE, Resource::StorageImage(&b.image)),
+    ])?;
+    let shader = &probe_sets::INTERFACE;
+    let bound = TwoSetPipeline::new(ctx, false)?;
+    let pushed = if ctx.push_descriptor.is_some() { Some(TwoSetPipeline::new(ctx, true)?) } else { None };
+    let mut big_sets = DescriptorAllocator::new(ctx, shader.bindings, 1)?;
+    let big = big_sets.create_set(
+        shader.name,
+        bound.set_layouts[0],
+        shader.bindings,
+        &[
+            (probe_sets::FRAME, Resource::UniformBuffer(&frame)),
+            (probe_sets::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
+            (probe_sets::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
+            (probe_sets::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
+        ],
+    )?;
+    let mut small_sets = DescriptorAllocator::new(ctx, shader.set1, 2)?;
+    let mut small = |from: &OutputImage, to: &OutputImage| {
+        small_sets.create_set(
+            shader.name,
+            bound.set_layouts[1],
+            shader.set1,
+            &[
+                (probe_sets::IMAGE_IN, Resource::StorageImage(&from.image)),
+                (probe_sets::IMAGE_OUT, Resource::StorageImage(&to.image)),
+            ],
+        )
+    };
+    let small = [small(&a, &b)?, small(&b, &a)?];
+    // The push variant's writes: parity 0 reads a and writes b.
+    let views = [[a.image.view, b.image.view], [b.image.view, a.image.view]];
+    let mut profiler = Profiler::new(ctx, 4)?;
+    let (mut gpu_us, mut cpu_us) = (vec![Vec::new(); variants.len()], vec![Vec::new(); variants.len()]);
+    for _ in 0..rounds.max(1) {
+        for (v, &variant) in variants.iter().enumerate() {
+            profiler.reset();
+            let cpu_start = process_cpu_time();
+            submit_and_wait(ctx, "ping-pong probe", |rec| {
+                rec.discard_for_compute("pingpong_discard_to_compute_access", &[&a.image, &b.image]);
+                let scope = profiler.begin(rec, "blocks")?;
+                // SAFETY (each call below): the pipelines, layouts and sets belong
+                // to this device and match (set 0 the big set, set 1 the small
+                // one); cb is recording; the pushed writes point into `views`.
+                match variant {
+                    PingPong::ParityPipelines => rec.bind_set(&parity[0], parity_set),
+                    PingPong::SmallSets | PingPong::PushedSet => {
+                        let p = if variant == PingPong::SmallSets { &bound } else { pushed.as_ref().unwrap_or(&bound) };
+                        unsafe {
+                            ctx.device.cmd_bind_pipeline(rec.cb, vk::PipelineBindPoint::COMPUTE, p.raw);
+                            ctx.device.cmd_bind_descriptor_sets(
+                                rec.cb,
+                                vk::PipelineBindPoint::COMPUTE,
+                                p.layout,
+                                0,
+                                &[big],
+                                &[],
+                            );
+                        }
+                    }
+                }
+                for n in 0..blocks as usize {
+                    let side = n % 2;
+                    match variant {
+                        PingPong::ParityPipelines => rec.bind_pipeline(&parity[side]),
+                        PingPong::SmallSets => unsafe {
+                            ctx.device.cmd_bind_descriptor_sets(
+                                rec.cb,
+                                vk::PipelineBindPoint::COMPUTE,
+                                bound.layout,
+                                1,
+                                &[small[side]],
+                                &[],
+                            )
+                        },
+                        PingPong::PushedSet => {
+                            let (Some(push), Some(p)) = (&ctx.push_descriptor, &pushed) else { unreachable!() };
+                            let infos = views[side].map(|view| {
+                                [vk::DescriptorImageInfo::default()
+                                    .image_view(view)
+                                    .image_layout(vk::ImageLayout::GENERAL)]
+                            });
+                            let writes: Vec<vk::WriteDescriptorSet> = shader
+                                .set1
+                                .iter()
+                                .zip(&infos)
+                                .map(|(binding, info)| {
+                                    vk::WriteDescriptorSet::default()
+                                        .dst_binding(binding.index)
+                                        .descriptor_type(binding.kind.vk_type())
+                                        .image_info(info)
+                                })
+                                .collect();
+                            unsafe {
+                                push.cmd_push_descriptor_set(
+                                    rec.cb,
+                                    vk::PipelineBindPoint::COMPUTE,
+                                    p.layout,
+                                    1,
+                                    &writes,
+                                )
+                            };
+                        }
+                    }
+                    rec.dispatch(1, 1, 1);
+                    // The next block reads what this one wrote.
+                    rec.barrier(&Barrier::memory(
+                        "probe_block_write_to_next_block_read",
+                        Access::COMPUTE_WRITE,
+                        Access::COMPUTE_READ_WRITE,
+                    ));
+                }
+                profiler.end(rec, scope)
+            })?;
+            let per = |ms: f64| ms * 1e3 / blocks.max(1) as f64;
+            cpu_us[v].push(per(cpu_ms_between(cpu_start, process_cpu_time())));
+            gpu_us[v].push(per(profiler.resolve(0)?.gpu_ms_total));
+        }
+    }
+    let estimate = |samples: &[f64]| median_estimate(samples).map_err(|e| ExperimentError::Invalid(e.to_string()));
+    variants
+        .iter()
+        .enumerate()
+        .map(|(v, &variant)| {
+            Ok(PingPongRow {
+                variant,
+                blocks,
+                gpu_us_per_block: estimate(&gpu_us[v])?,
+                cpu_us_per_block: estimate(&cpu_us[v])?,
+            })
+        })
+        .collect()
 }

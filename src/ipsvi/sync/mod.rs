@@ -42,10 +42,10 @@ pub trait LineSync {
     /// Before `block`'s dispatch, with the line descriptor set bound for the sweep.
     fn before_block(&mut self, _rec: &mut Recorder, _block: usize) {}
 
-    /// Binds the block's line pipeline (its parity's); the descriptor set
-    /// stays bound from the start of the sweep.
-    fn bind_line(&self, rec: &mut Recorder, line: &ComputePipeline, _set: vk::DescriptorSet) {
-        rec.bind_pipeline(line);
+    /// Binds the block's side of the ping-pong pairs (`side`, set 1); the
+    /// pipeline and set 0 (`_set`) stay bound from the start of the sweep.
+    fn bind_line(&self, rec: &mut Recorder, line: &ComputePipeline, _set: vk::DescriptorSet, side: vk::DescriptorSet) {
+        rec.bind_set1(line, side);
     }
 
     /// After `block`'s dispatch: what orders it before the next block.

@@ -35,20 +35,21 @@ impl LineSync for ReplayedSweeps<'_> {
 /// (first dispatch, dispatch count) of `dispatches`; merged, the frame is one
 /// sweep of steps): its dispatches and the barrier after each, parameters read
 /// from buffers by the pushed index.
-/// A secondary inherits nothing: it binds the line pipelines and `line_set`.
+/// A secondary inherits nothing: it binds the line pipeline, `line_set`, and
+/// per block its parity's set 1 of `sides`.
 pub fn record_sweeps(
     ctx: &Context,
     sweeps: &[(usize, usize)],
     dispatches: &[LineDispatch],
-    lines: &[ComputePipeline; 2],
+    line: &ComputePipeline,
     line_set: vk::DescriptorSet,
+    sides: [vk::DescriptorSet; 2],
 ) -> Result<SecondaryCommands, VkError> {
     SecondaryCommands::record(ctx, "ipsvi sweep", sweeps.len(), |i, rec| {
         let (first, count) = sweeps[i];
-        rec.bind(&lines[0], line_set);
+        rec.bind(line, line_set);
         for d in &dispatches[first..first + count] {
-            let line = &lines[d.parity as usize];
-            rec.bind_pipeline(line);
+            rec.bind_set1(line, sides[d.parity as usize]);
             rec.push(line, &d.index);
             rec.dispatch(d.groups, 1, 1);
             rec.barrier(&Barrier::memory(

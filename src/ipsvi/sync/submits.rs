@@ -9,9 +9,10 @@ use ash::vk;
 pub struct SubmissionPerBlock;
 
 impl LineSync for SubmissionPerBlock {
-    fn bind_line(&self, rec: &mut Recorder, line: &ComputePipeline, set: vk::DescriptorSet) {
+    fn bind_line(&self, rec: &mut Recorder, line: &ComputePipeline, set: vk::DescriptorSet, side: vk::DescriptorSet) {
         // A new command buffer starts with nothing bound.
         rec.bind(line, set);
+        rec.bind_set1(line, side);
     }
 
     fn after_block(&mut self, rec: &mut Recorder, _block: usize) -> Result<(), VkError> {

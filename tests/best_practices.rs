@@ -1,0 +1,53 @@
+//! Best-practices validation stays readable (issue 24): one frame at 64x64 of
+//! `tests/scenes/slab-under-sphere.toml` gives at most the goal's number of
+//! best-practices messages per technique, counted by the binary as a user runs
+//! it (`sweeplab render --validate=best-practices`, which sets
+//! `VK_LAYER_ENABLES` for the NVIDIA and AMD vendor checks). What remains is
+//! listed in docs/native-gpu.md, "Best-practices validation".
+mod common;
+
+use common::cli::*;
+
+/// The run's best-practices count: the binary's `best practices: N message(s)`
+/// line (none where the run had no message at all).
+fn best_practices_count(technique: &str, extra: &[&str]) -> (usize, String) {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/scenes/slab-under-sphere.toml");
+    let dir = temp_dir(&format!("best-practices-{technique}"));
+    let out = dir.join("frame.png");
+    let mut args = vec![
+        "render",
+        "--validate=best-practices",
+        "--technique",
+        technique,
+        "--size",
+        "64x64",
+        "--scene",
+        scene,
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let o = sweeplab(&args);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{technique}: {err}");
+    let count = err
+        .lines()
+        .find_map(|l| l.strip_prefix("best practices: ")?.strip_suffix(" message(s)")?.parse().ok())
+        .unwrap_or(0);
+    let summary: Vec<&str> = err.lines().skip_while(|l| !l.starts_with("best practices:")).collect();
+    (count, summary.join("\n"))
+}
+
+// Goal not met yet (6 on ipsvi, 12 on lightvolume at the commit that added
+// this; docs/native-gpu.md lists what remains): run with --ignored.
+#[test]
+#[ignore = "goal of issue 24 not met yet: ipsvi 6 > 5, lightvolume 12 > 10"]
+fn best_practices_messages_per_frame_stay_within_the_goal() {
+    for (technique, extra, goal) in [("ipsvi", &[][..], 5), ("half-angle", &[][..], 10), ("lightvolume", &[][..], 10)] {
+        let (count, summary) = best_practices_count(technique, extra);
+        // Every frame allocates memory without VK_EXT_memory_priority, which
+        // the NVIDIA checks report: a count of 0 would mean the checks are off.
+        assert!(summary.contains("AllocateMemory-SetPriority"), "{technique}: vendor checks off? {summary}");
+        assert!(count <= goal, "{technique}: {count} best-practices messages, goal {goal}:\n{summary}");
+    }
+}
