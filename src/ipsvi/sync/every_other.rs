@@ -34,8 +34,8 @@ impl LineSync for EveryOther<'_> {
         self.inner.before_block(rec, block);
     }
 
-    fn bind_line(&self, rec: &mut Recorder, line: &ComputePipeline, set: vk::DescriptorSet) {
-        self.inner.bind_line(rec, line, set);
+    fn bind_line(&self, rec: &mut Recorder, line: &ComputePipeline, set: vk::DescriptorSet, side: vk::DescriptorSet) {
+        self.inner.bind_line(rec, line, set, side);
     }
 
     fn after_block(&mut self, rec: &mut Recorder, block: usize) -> Result<(), VkError> {
