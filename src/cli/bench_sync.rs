@@ -72,24 +72,17 @@ struct Files<'a> {
 
 impl SyncObserver for Files<'_> {
     fn warm_up(&mut self, workload: Workload, configurations: usize) {
-        self.configurations = configurations;
         eprintln!(
-            "{} workload: {configurations} configurations; a warm-up round (a frame of each set of shaders \
-             compiles them; short frames also count how many make a run), then shuffled timed rounds",
+            "{} workload: {configurations} configurations; a warm-up round, then shuffled timed rounds",
             workload.name()
         );
     }
 
     fn planned(&mut self, workload: Workload, configurations: usize, fewest: Duration, left_out: Option<&LeftOut>) {
+        let (name, about) = (workload.name(), format_duration(fewest));
         self.configurations = configurations;
-        if let Some(left) = left_out {
-            eprintln!("warning: {} workload: {}", workload.name(), left.describe());
-        }
-        eprintln!(
-            "{} workload: {configurations} configurations; its fewest rounds take about {}",
-            workload.name(),
-            format_duration(fewest)
-        );
+        left_out.inspect(|left| eprintln!("warning: {name} workload: {}", left.describe()));
+        eprintln!("{name} workload: {configurations} configurations; its fewest rounds take about {about}");
     }
 
     fn round(&mut self, report: &SyncReport, eta: Eta) -> Result<(), ExperimentError> {
