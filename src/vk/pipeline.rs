@@ -162,6 +162,51 @@ pub fn layout_bindings(bindings: &[Binding]) -> Vec<vk::DescriptorSetLayoutBindi
 
 /// Compiles `spirv` with `key`'s constants into a pipeline and its layouts,
 /// through the context's pipeline cache.
+/// A compute pipeline of `spirv` on `layout` with `constants` (id, value)
+/// specialized; the shader module lives only for the call, and nothing leaks
+/// where the creation fails.
+pub fn specialized_pipeline(
+    ctx: &Context,
+    spirv: &[u8],
+    layout: vk::PipelineLayout,
+    constants: &[(u32, u32)],
+) -> Result<vk::Pipeline, VkError> {
+    let device = &ctx.device;
+    let words = ash::util::read_spv(&mut Cursor::new(spirv))
+        .map_err(|_| VkError::Call { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
+    let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
+    // SAFETY: words is valid SPIR-V compiled by build.rs.
+    let module = unsafe { device.create_shader_module(&module_info, None) }.call("vkCreateShaderModule")?;
+    let entries: Vec<vk::SpecializationMapEntry> = constants
+        .iter()
+        .enumerate()
+        .map(|(i, (id, _))| vk::SpecializationMapEntry { constant_id: *id, offset: (i * 4) as u32, size: 4 })
+        .collect();
+    let data: Vec<u8> = constants.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
+    let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
+    let stage = vk::PipelineShaderStageCreateInfo::default()
+        .stage(vk::ShaderStageFlags::COMPUTE)
+        .module(module)
+        .name(c"main")
+        .specialization_info(&spec);
+    let info = [vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout)];
+    // SAFETY: module and layout are valid; the shader matches the layout.
+    let created = unsafe { device.create_compute_pipelines(ctx.pipeline_cache.raw, &info, None) };
+    // SAFETY: the module is no longer needed once pipelines are created.
+    unsafe { device.destroy_shader_module(module, None) };
+    match created {
+        Ok(pipelines) => Ok(pipelines[0]),
+        Err((pipelines, result)) => {
+            // SAFETY: nothing uses a handle the failed call returned (null
+            // where it created none; destroying null is a no-op).
+            for p in pipelines {
+                unsafe { device.destroy_pipeline(p, None) };
+            }
+            Err(VkError::Call { call: "vkCreateComputePipelines", result })
+        }
+    }
+}
+
 fn create_objects(
     ctx: &Context,
     desc: &ComputePipelineDesc,
@@ -170,29 +215,18 @@ fn create_objects(
 ) -> Result<PipelineObjects, VkError> {
     let device = &ctx.device;
     let shader = desc.shader;
-    let words = ash::util::read_spv(&mut Cursor::new(spirv))
-        .map_err(|_| VkError::Call { call: "read_spv", result: vk::Result::ERROR_INVALID_SHADER_NV })?;
-    let module_info = vk::ShaderModuleCreateInfo::default().code(&words);
-    // SAFETY: words is valid SPIR-V compiled by build.rs.
-    let module = unsafe { device.create_shader_module(&module_info, None) }.call("vkCreateShaderModule")?;
-
     let layout_of = |bindings: &[Binding]| {
         let layout_bindings = layout_bindings(bindings);
         let set_layout_info = vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings);
         // SAFETY: valid device and create info.
         unsafe { device.create_descriptor_set_layout(&set_layout_info, None) }.call("vkCreateDescriptorSetLayout")
     };
-    let set_layout = layout_of(shader.bindings)
-        // SAFETY (in the closure): the module was just created and is unused.
-        .inspect_err(|_| unsafe { device.destroy_shader_module(module, None) })?;
+    let set_layout = layout_of(shader.bindings)?;
     let set1_layout = match shader.set1 {
         [] => vk::DescriptorSetLayout::null(),
         set1 => layout_of(set1)
-            // SAFETY (in the closure): module and set layout were just created and are unused.
-            .inspect_err(|_| unsafe {
-                device.destroy_shader_module(module, None);
-                device.destroy_descriptor_set_layout(set_layout, None);
-            })?,
+            // SAFETY (in the closure): the set layout was just created and is unused.
+            .inspect_err(|_| unsafe { device.destroy_descriptor_set_layout(set_layout, None) })?,
     };
     let ranges = [vk::PushConstantRange::default()
         .stage_flags(vk::ShaderStageFlags::COMPUTE)
@@ -207,48 +241,19 @@ fn create_objects(
     // SAFETY: valid device and create info.
     let layout = unsafe { device.create_pipeline_layout(&layout_info, None) }
         .call("vkCreatePipelineLayout")
-        // SAFETY (in the closure): module and set layouts were just created and
-        // are unused (destroying a null set-1 layout is a no-op).
+        // SAFETY (in the closure): the set layouts were just created and are
+        // unused (destroying a null set-1 layout is a no-op).
         .inspect_err(|_| unsafe {
-            device.destroy_shader_module(module, None);
             device.destroy_descriptor_set_layout(set_layout, None);
             device.destroy_descriptor_set_layout(set1_layout, None);
         })?;
-
-    let entries: Vec<vk::SpecializationMapEntry> = key
-        .constants
-        .iter()
-        .enumerate()
-        .map(|(i, (id, _))| vk::SpecializationMapEntry { constant_id: *id, offset: (i * 4) as u32, size: 4 })
-        .collect();
-    let data: Vec<u8> = key.constants.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
-    let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
-    let stage = vk::PipelineShaderStageCreateInfo::default()
-        .stage(vk::ShaderStageFlags::COMPUTE)
-        .module(module)
-        .name(c"main")
-        .specialization_info(&spec);
-    let info = [vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout)];
-    // SAFETY: module and layout are valid; the shader matches the layout.
-    let created = unsafe { device.create_compute_pipelines(ctx.pipeline_cache.raw, &info, None) };
-    // SAFETY: the module is no longer needed once pipelines are created.
-    unsafe { device.destroy_shader_module(module, None) };
-    let raw = match created {
-        Ok(pipelines) => pipelines[0],
-        Err((pipelines, result)) => {
-            // SAFETY: nothing uses the layouts or any handle the failed call
-            // returned (null where it created none; destroying null is a no-op).
-            unsafe {
-                for p in pipelines {
-                    device.destroy_pipeline(p, None);
-                }
-                device.destroy_pipeline_layout(layout, None);
-                device.destroy_descriptor_set_layout(set_layout, None);
-                device.destroy_descriptor_set_layout(set1_layout, None);
-            }
-            return Err(VkError::Call { call: "vkCreateComputePipelines", result });
-        }
-    };
+    let raw = specialized_pipeline(ctx, spirv, layout, &key.constants)
+        // SAFETY (in the closure): nothing uses the layouts yet.
+        .inspect_err(|_| unsafe {
+            device.destroy_pipeline_layout(layout, None);
+            device.destroy_descriptor_set_layout(set_layout, None);
+            device.destroy_descriptor_set_layout(set1_layout, None);
+        })?;
     ctx.set_name(raw, desc.name);
     Ok(PipelineObjects { raw, layout, set_layout, set1_layout, device: device.clone() })
 }

@@ -15,8 +15,8 @@ use crate::techniques::default_scene;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::descriptors::{DescriptorAllocator, Resource};
-use crate::vk::error::{VkError, VkResultExt};
-use crate::vk::pipeline::{layout_bindings, parity_pair, ComputePipeline, ComputePipelineDesc};
+use crate::vk::error::VkResultExt;
+use crate::vk::pipeline::{layout_bindings, parity_pair, specialized_pipeline, ComputePipeline, ComputePipelineDesc};
 use crate::vk::{Buffer, Context, Profiler};
 use ash::vk;
 use std::time::Instant;
@@ -245,30 +245,8 @@ impl<'a> TwoSetPipeline<'a> {
         let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&p.set_layouts);
         // SAFETY: valid device; both set layouts were just created.
         p.layout = unsafe { ctx.device.create_pipeline_layout(&info, None) }.call("vkCreatePipelineLayout")?;
-        let words = ash::util::read_spv(&mut std::io::Cursor::new(shader.builds[0]))
-            .map_err(|e| ExperimentError::Invalid(format!("probe_sets SPIR-V: {e}")))?;
-        // SAFETY: words is valid SPIR-V compiled by build.rs.
-        let module =
-            unsafe { ctx.device.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&words), None) }
-                .call("vkCreateShaderModule")?;
         // volume_fetch.glsl's filter constant, as every pipeline gets it.
-        let constants: Vec<(u32, u32)> = ctx.shared_specialization();
-        let entries: Vec<vk::SpecializationMapEntry> = (0..constants.len())
-            .map(|i| vk::SpecializationMapEntry { constant_id: constants[i].0, offset: (i * 4) as u32, size: 4 })
-            .collect();
-        let data: Vec<u8> = constants.iter().flat_map(|(_, v)| v.to_ne_bytes()).collect();
-        let spec = vk::SpecializationInfo::default().map_entries(&entries).data(&data);
-        let stage = vk::PipelineShaderStageCreateInfo::default()
-            .stage(vk::ShaderStageFlags::COMPUTE)
-            .module(module)
-            .name(c"main")
-            .specialization_info(&spec);
-        let info = [vk::ComputePipelineCreateInfo::default().stage(stage).layout(p.layout)];
-        // SAFETY: module and layout are valid and match the shader's interface.
-        let created = unsafe { ctx.device.create_compute_pipelines(ctx.pipeline_cache.raw, &info, None) };
-        // SAFETY: the module is not needed once the pipeline is created.
-        unsafe { ctx.device.destroy_shader_module(module, None) };
-        p.raw = created.map_err(|(_, r)| VkError::Call { call: "vkCreateComputePipelines", result: r })?[0];
+        p.raw = specialized_pipeline(ctx, shader.builds[0], p.layout, &ctx.shared_specialization())?;
         Ok(p)
     }
 }
