@@ -140,9 +140,10 @@ fn compile_shaders() {
         let mut builds: Vec<(PathBuf, Interface)> = Vec::new();
         for (name, parity) in variants {
             let mut options = shaderc::CompileOptions::new().unwrap();
-            options.set_target_env(shaderc::TargetEnv::Vulkan, shaderc::EnvVersion::Vulkan1_2 as u32);
-            // SPIR-V 1.5: Vulkan 1.3 targets 1.6, whose LocalSizeId needs maintenance4.
-            options.set_target_spirv(shaderc::SpirvVersion::V1_5);
+            // SPIR-V 1.6: the local size is an execution mode (LocalSizeId), not the
+            // deprecated WorkgroupSize built-in; the device enables maintenance4 for it.
+            options.set_target_env(shaderc::TargetEnv::Vulkan, shaderc::EnvVersion::Vulkan1_3 as u32);
+            options.set_target_spirv(shaderc::SpirvVersion::V1_6);
             options.set_warnings_as_errors();
             options.set_optimization_level(shaderc::OptimizationLevel::Performance);
             options.set_generate_debug_info();

@@ -501,6 +501,11 @@ fn create_device(
     if have13.synchronization2 != vk::TRUE {
         missing.push("synchronization2");
     }
+    // The shaders are SPIR-V 1.6, whose LocalSizeId execution mode needs it
+    // (core in Vulkan 1.3; every 1.3 device has it).
+    if have13.maintenance4 != vk::TRUE {
+        missing.push("maintenance4");
+    }
     if have12.host_query_reset != vk::TRUE {
         missing.push("hostQueryReset");
     }
@@ -545,7 +550,10 @@ fn create_device(
         .host_query_reset(true)
         .timeline_semaphore(true)
         .shader_buffer_int64_atomics(int64_atomics);
-    let mut want13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true).dynamic_rendering(swapchain);
+    let mut want13 = vk::PhysicalDeviceVulkan13Features::default()
+        .synchronization2(true)
+        .maintenance4(true)
+        .dynamic_rendering(swapchain);
     // r16ui / rgba16f storage images of the IPSVI cache.
     let core =
         vk::PhysicalDeviceFeatures::default().shader_storage_image_extended_formats(true).shader_int64(int64_atomics);
