@@ -38,10 +38,7 @@ fn best_practices_count(technique: &str, extra: &[&str]) -> (usize, String) {
     (count, summary.join("\n"))
 }
 
-// Goal not met yet (6 on ipsvi, 12 on lightvolume at the commit that added
-// this; docs/native-gpu.md lists what remains): run with --ignored.
 #[test]
-#[ignore = "goal of issue 24 not met yet: ipsvi 6 > 5, lightvolume 12 > 10"]
 fn best_practices_messages_per_frame_stay_within_the_goal() {
     for (technique, extra, goal) in [("ipsvi", &[][..], 5), ("half-angle", &[][..], 10), ("lightvolume", &[][..], 10)] {
         let (count, summary) = best_practices_count(technique, extra);
