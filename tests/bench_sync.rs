@@ -19,7 +19,7 @@ fn bench(dir: &Path, extra: &[&str]) -> std::process::Output {
         "--line-widths",
         "1,2",
         "--strategies",
-        "barrier-global,events",
+        "barrier-global,events,secondary",
         "--min-rounds",
         "6",
         "--max-rounds",
@@ -55,9 +55,9 @@ fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
     assert_eq!(report["complete"], true);
     assert_every_output_names_its_run(&dir);
     let configs = report["configurations"].as_array().unwrap();
-    // 2 workloads x (baseline, A/A control, 2 strategies) x 2 line widths, and
-    // per workload 3 arms with per-line timestamps at line width 1.
-    assert_eq!(configs.len(), 2 * 4 * 2 + 2 * 3, "{configs:?}");
+    // 2 workloads x (baseline, A/A control, 3 strategies) x 2 line widths, and
+    // per workload 4 arms with per-line timestamps at line width 1.
+    assert_eq!(configs.len(), 2 * 5 * 2 + 2 * 4, "{configs:?}");
     for w in report["workloads"].as_array().unwrap() {
         assert_eq!(w["rounds"], 6);
         let name = w["workload"].as_str().unwrap();
@@ -126,17 +126,21 @@ fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
                 })
                 .unwrap_or_else(|| panic!("no {arm} {stamped} in {workload}"))
         };
-        let (plain, halved, base) =
-            (find("barrier-global", false), find("barrier-global", true), find("no-barriers", false));
+        let base = find("no-barriers", false);
         let per_block = |c: &Value| c["barriers"].as_u64().unwrap() - base["barriers"].as_u64().unwrap();
-        // One barrier after every line record of the frame (blocks, and claim-only records).
-        let every = per_block(plain);
-        assert!(every >= plain["blocks"].as_u64().unwrap(), "{plain}");
-        assert_eq!(per_block(halved), every.div_ceil(2), "after records 0, 2, 4, ...: {halved}");
-        assert_eq!(halved["racy"], true, "{halved}");
-        let row = strategies.iter().find(|r| r["workload"] == workload && r["strategy"] == "barrier-global").unwrap();
-        assert_eq!(row["line_gaps"]["in_frame_sync_us"]["n"], 6, "{row}");
-        assert!(row["line_gaps"]["perturbation_ms"].is_null(), "only the baseline's frames measure it: {row}");
+        // `secondary` records its timestamped sweeps into a secondary per frame
+        // (a recording replayed every frame cannot hold one frame's queries).
+        for strategy in ["barrier-global", "secondary"] {
+            let (plain, halved) = (find(strategy, false), find(strategy, true));
+            // One barrier after every line record of the frame (blocks, and claim-only records).
+            let every = per_block(plain);
+            assert!(every >= plain["blocks"].as_u64().unwrap(), "{plain}");
+            assert_eq!(per_block(halved), every.div_ceil(2), "after records 0, 2, 4, ...: {halved}");
+            assert_eq!(halved["racy"], true, "{halved}");
+            let row = strategies.iter().find(|r| r["workload"] == workload && r["strategy"] == strategy).unwrap();
+            assert_eq!(row["line_gaps"]["in_frame_sync_us"]["n"], 6, "{row}");
+            assert!(row["line_gaps"]["perturbation_ms"].is_null(), "only the baseline's frames measure it: {row}");
+        }
     }
     // Non-racy strategies render barrier-global's image.
     for c in configs.iter().filter(|c| c["racy"] == false && c["workload"] == "sweep") {

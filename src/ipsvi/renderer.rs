@@ -14,7 +14,7 @@ use super::merged_steps::{self, LineDispatch};
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync::{
-    record_sweeps, EveryOther, GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, SplitBarriers,
+    record_sweeps, EveryOther, GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, RerecordedSweeps, SplitBarriers,
     SubmissionPerBlock, Unsynchronized,
 };
 use super::sync_strategy::SyncStrategy;
@@ -539,9 +539,12 @@ impl<'a> IpsviRenderer<'a> {
         let this = &*self;
         // The recorded frame (and what it keeps alive) outlives the submission.
         let (frame, dispatches, barriers) = submit_and_wait_or(this.ctx, "frame", |rec| {
-            let line_sync = this.line_sync(sync)?;
-            let line_sync: Box<dyn LineSync + '_> =
-                if every_other { Box::new(EveryOther::new(line_sync)) } else { line_sync };
+            let line_sync: Box<dyn LineSync + '_> = match (every_other, sync) {
+                // Per-line timestamps need the frame's queries in the secondary.
+                (true, SyncStrategy::Secondary) => Box::new(EveryOther::new(Box::new(RerecordedSweeps::default()))),
+                (true, _) => Box::new(EveryOther::new(this.line_sync(sync)?)),
+                (false, _) => this.line_sync(sync)?,
+            };
             let frame = this.record_with(rec, profiler, line_sync)?;
             frame.output.record_readback(rec, &this.readback);
             Ok::<_, RenderError>((frame, rec.dispatch_count, rec.barrier_count))
@@ -585,6 +588,7 @@ impl<'a> IpsviRenderer<'a> {
             line,
             line_set,
             line_sides,
+            ctx,
             ..
         } = self;
         let (init_set, line_set, line_sides) = (*init_set, *line_set, *line_sides);
@@ -598,19 +602,29 @@ impl<'a> IpsviRenderer<'a> {
             if line_sync.replay_sweep(rec, sweep) {
                 return Ok(());
             }
-            // Bound once per sweep: dispatches find their parameters by index.
-            rec.bind(line, line_set);
-            let (first, count) = sweep_dispatches[sweep];
-            for (n, d) in dispatches.iter().enumerate().skip(first).take(count) {
-                line_sync.before_block(rec, n);
-                line_sync.bind_line(rec, line, line_set, line_sides[d.parity as usize]);
-                let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
-                rec.push(line, &d.index);
-                rec.dispatch(d.groups, 1, 1);
-                profiler.end(rec, line_scope)?;
-                line_sync.after_block(rec, n)?;
+            let mut record_blocks = |rec: &mut Recorder, line_sync: &mut dyn LineSync| -> Result<(), VkError> {
+                // Bound once per sweep: dispatches find their parameters by index.
+                rec.bind(line, line_set);
+                let (first, count) = sweep_dispatches[sweep];
+                for (n, d) in dispatches.iter().enumerate().skip(first).take(count) {
+                    line_sync.before_block(rec, n);
+                    line_sync.bind_line(rec, line, line_set, line_sides[d.parity as usize]);
+                    let line_scope = profiler.begin_detail(rec, "ipsvi_line")?;
+                    rec.push(line, &d.index);
+                    rec.dispatch(d.groups, 1, 1);
+                    profiler.end(rec, line_scope)?;
+                    line_sync.after_block(rec, n)?;
+                }
+                Ok(())
+            };
+            if line_sync.records_sweeps_per_frame() {
+                let recorded =
+                    SecondaryCommands::record(ctx, "ipsvi sweep (timed)", 1, |_, srec| record_blocks(srec, line_sync))?;
+                rec.execute(&recorded, 0);
+                line_sync.keep_secondary(recorded);
+                return Ok(());
             }
-            Ok(())
+            record_blocks(rec, line_sync)
         };
         let init_caches = |rec: &mut Recorder, profiler: &mut Profiler, light: u32, slots: u32| {
             let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;

@@ -502,11 +502,8 @@ pub fn configurations(plan: &SyncPlan) -> Vec<ConfigKey> {
     }
     if plan.line_timestamps {
         for &workload in &plan.workloads {
-            // Replayed secondary command buffers carry no per-line timestamps;
-            // the control adds nothing the baseline does not show.
-            for &arm in
-                arms.iter().filter(|a| !matches!(a, Arm::NoBarriersAgain | Arm::Strategy(SyncStrategy::Secondary)))
-            {
+            // The control adds nothing the baseline does not show.
+            for &arm in arms.iter().filter(|a| !matches!(a, Arm::NoBarriersAgain)) {
                 keys.push(ConfigKey { workload, arm, line_width: narrowest, line_timestamps: true });
             }
         }

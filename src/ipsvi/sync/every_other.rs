@@ -1,5 +1,5 @@
 use super::LineSync;
-use crate::vk::commands::Recorder;
+use crate::vk::commands::{Recorder, SecondaryCommands};
 use crate::vk::pipeline::ComputePipeline;
 use crate::vk::VkError;
 use ash::vk;
@@ -28,6 +28,14 @@ impl<'a> EveryOther<'a> {
 impl LineSync for EveryOther<'_> {
     fn before_sweep(&mut self, rec: &mut Recorder) {
         self.inner.before_sweep(rec);
+    }
+
+    fn records_sweeps_per_frame(&self) -> bool {
+        self.inner.records_sweeps_per_frame()
+    }
+
+    fn keep_secondary(&mut self, recorded: SecondaryCommands) {
+        self.inner.keep_secondary(recorded);
     }
 
     fn before_block(&mut self, rec: &mut Recorder, block: usize) {

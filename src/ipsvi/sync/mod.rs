@@ -17,10 +17,10 @@ pub use barrier_image::ImageBarriers;
 pub use events::SplitBarriers;
 pub use every_other::EveryOther;
 pub use racy::Unsynchronized;
-pub use secondary::{record_sweeps, ReplayedSweeps};
+pub use secondary::{record_sweeps, ReplayedSweeps, RerecordedSweeps};
 pub use submits::SubmissionPerBlock;
 
-use crate::vk::commands::Recorder;
+use crate::vk::commands::{Recorder, SecondaryCommands};
 use crate::vk::pipeline::ComputePipeline;
 use crate::vk::VkError;
 use ash::vk;
@@ -38,6 +38,18 @@ pub trait LineSync {
     fn replay_sweep(&mut self, _rec: &mut Recorder, _sweep: usize) -> bool {
         false
     }
+
+    /// Whether each sweep's blocks go into a secondary command buffer recorded
+    /// for this frame, with this object's synchronization and the profiler's
+    /// per-line scopes, and executed from the primary (`secondary` timed per
+    /// line: a secondary recorded once cannot carry one frame's queries).
+    fn records_sweeps_per_frame(&self) -> bool {
+        false
+    }
+
+    /// Keeps a secondary recorded for this frame until its submission finished
+    /// (returned by `frame_resources`).
+    fn keep_secondary(&mut self, _recorded: SecondaryCommands) {}
 
     /// Before `block`'s dispatch, with the line descriptor set bound for the sweep.
     fn before_block(&mut self, _rec: &mut Recorder, _block: usize) {}

@@ -1,10 +1,10 @@
-use super::LineSync;
+use super::{GlobalBarrier, LineSync};
 use crate::ipsvi::merged_steps::LineDispatch;
-use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{Recorder, SecondaryCommands};
 use crate::vk::pipeline::ComputePipeline;
 use crate::vk::{Context, VkError};
 use ash::vk;
+use std::any::Any;
 
 /// `secondary`: each sweep's blocks and the global barrier after each, recorded
 /// once into a secondary command buffer ([`record_sweeps`]) and executed from
@@ -31,6 +31,35 @@ impl LineSync for ReplayedSweeps<'_> {
     }
 }
 
+/// `secondary` with per-line timestamps (`bench sync`'s in-frame pairing):
+/// each sweep's blocks and the global barrier after each, recorded into a
+/// secondary command buffer for this frame (the profiler's queries are the
+/// frame's) and executed from the primary. The device runs what
+/// [`ReplayedSweeps`] replays, barriers inside a secondary; only the host's
+/// recording is per frame, and that is outside the timestamps.
+#[derive(Default)]
+pub struct RerecordedSweeps {
+    recorded: Vec<SecondaryCommands>,
+}
+
+impl LineSync for RerecordedSweeps {
+    fn records_sweeps_per_frame(&self) -> bool {
+        true
+    }
+
+    fn keep_secondary(&mut self, recorded: SecondaryCommands) {
+        self.recorded.push(recorded);
+    }
+
+    fn after_block(&mut self, rec: &mut Recorder, block: usize) -> Result<(), VkError> {
+        GlobalBarrier.after_block(rec, block)
+    }
+
+    fn frame_resources(self: Box<Self>) -> Vec<Box<dyn Any>> {
+        self.recorded.into_iter().map(|r| Box::new(r) as Box<dyn Any>).collect()
+    }
+}
+
 /// One secondary command buffer per sweep (in frame order, `sweeps` as
 /// (first dispatch, dispatch count) of `dispatches`; merged, the frame is one
 /// sweep of steps): its dispatches and the barrier after each, parameters read
@@ -52,11 +81,7 @@ pub fn record_sweeps(
             rec.bind_set1(line, sides[d.parity as usize]);
             rec.push(line, &d.index);
             rec.dispatch(d.groups, 1, 1);
-            rec.barrier(&Barrier::memory(
-                "cache_write_to_next_line_read",
-                Access::COMPUTE_WRITE,
-                Access::COMPUTE_READ_WRITE,
-            ));
+            GlobalBarrier.after_block(rec, 0)?;
         }
         Ok(())
     })
