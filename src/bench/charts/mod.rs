@@ -27,4 +27,4 @@ pub use histogram::{bin_counts, histogram_bins, plot_histogram, render_histogram
 pub use scale::AxisScale;
 pub use series::{Distribution, Point, Series, StackedBar};
 pub use style::palette_color;
-pub use xy::{plot_error_vs_time, plot_lines, render_error_vs_time, render_lines};
+pub use xy::{plot_error_vs_time, plot_lines, plot_points, render_error_vs_time, render_lines};

@@ -25,6 +25,9 @@ use crate::bench::BenchError;
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Kind {
     Lines,
+    /// Markers with their intervals, unjoined: estimates of separate things
+    /// (one per strategy) that a line would wrongly connect.
+    Points,
     ErrorVsTime,
 }
 
@@ -38,6 +41,13 @@ struct XyFigure<'a> {
 pub fn plot_lines(path: impl AsRef<Path>, chart: &Chart, series: &[Series]) -> Result<(), BenchError> {
     chart.check_size()?;
     write(path.as_ref(), &XyFigure { chart, series, kind: Kind::Lines })
+}
+
+/// Draws each series' points as markers with their intervals, no lines, and
+/// writes the chart as PNG at `path` and SVG beside it.
+pub fn plot_points(path: impl AsRef<Path>, chart: &Chart, series: &[Series]) -> Result<(), BenchError> {
+    chart.check_size()?;
+    write(path.as_ref(), &XyFigure { chart, series, kind: Kind::Points })
 }
 
 /// One line per series through its points in order of x, a marker on each

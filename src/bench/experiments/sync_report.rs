@@ -8,7 +8,9 @@
 use super::sync::{ConfigRow, StrategyRow, SyncReport, BASELINE, CONTROL};
 use crate::bench::estimate::Estimate;
 use crate::bench::rows::{BenchRow, BenchTable};
-use crate::bench::{plot_histogram, plot_lines, AxisScale, BenchError, Chart, Distribution, Point, Series};
+use crate::bench::{
+    plot_histogram, plot_lines, plot_points, AxisScale, BenchError, Chart, Distribution, Point, Series,
+};
 use std::path::Path;
 
 /// How a sync cost reads: `cost`, `within noise`, `below baseline`.
@@ -181,6 +183,7 @@ pub fn side_by_side(reports: &[SyncReport]) -> BenchTable {
             if r.strategy != BASELINE {
                 row.set("sync_verdict", verdict_word(r.sync_us));
             }
+            row.set_estimate("in_frame_sync_us", r.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us));
             table.push(row);
         }
     }
@@ -197,8 +200,9 @@ pub fn read(path: &Path) -> Result<SyncReport, BenchError> {
 /// - `sync_frames_<workload>.png`: frame time over the number of blocks per
 ///   strategy (medians with their intervals): the lines whose slopes are the
 ///   per-boundary costs;
-/// - `sync_cost_<workload>.png`: each strategy's sync cost over no barriers
-///   with its interval (a hollow marker: within noise);
+/// - `sync_cost_<workload>.png`: each strategy's sync cost over no barriers,
+///   both estimates (frame slopes, paired in the frame) with their intervals
+///   (a hollow marker: within noise);
 /// - `sync_gaps_<workload>.png`: the gaps between consecutive line dispatches
 ///   of one timestamped frame per strategy.
 pub fn write_charts(report: &SyncReport, folder: &Path) -> Result<(), BenchError> {
@@ -225,20 +229,36 @@ pub fn write_charts(report: &SyncReport, folder: &Path) -> Result<(), BenchError
                 .x_scale(AxisScale::Log2),
             &frames,
         )?;
-        let costs: Vec<Series> = arms
+        // Both estimates of each strategy side by side, the frame slopes' left
+        // of the strategy's number, the in-frame pairing's right of it.
+        let strategies: Vec<&StrategyRow> = arms.iter().copied().filter(|r| r.strategy != BASELINE).collect();
+        let estimator = |label: &str, offset: f64, pick: fn(&StrategyRow) -> Option<Estimate>| {
+            let points = strategies
+                .iter()
+                .enumerate()
+                .filter_map(|(i, r)| {
+                    pick(r).map(|e| Point::new(i as f64 + 1.0 + offset, e.value).with_interval(e.lo, e.hi))
+                })
+                .collect();
+            Series::with_points(label, points)
+        };
+        let costs = [
+            estimator("frame slopes (sync_us)", -0.12, |r| r.sync_us),
+            estimator("paired in the frame (in_frame_sync_us)", 0.12, |r| {
+                r.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us)
+            }),
+        ];
+        let x_label = strategies
             .iter()
-            .filter(|r| r.strategy != BASELINE)
             .enumerate()
-            .map(|(i, r)| {
-                let points = r.sync_us.map(|e| Point::new(i as f64 + 1.0, e.value).with_interval(e.lo, e.hi));
-                Series::with_points(r.strategy.as_str(), points.into_iter().collect())
-            })
-            .collect();
-        plot_lines(
+            .map(|(i, r)| format!("{} {}", i + 1, r.strategy))
+            .collect::<Vec<_>>()
+            .join(", ");
+        plot_points(
             folder.join(format!("sync_cost_{name}.png")),
             &chart(
                 format!("{name} workload: sync cost per boundary over no barriers, 95 % CI"),
-                "strategy (see legend)",
+                &x_label,
                 "us per boundary",
             ),
             &costs,
@@ -277,22 +297,25 @@ pub fn plot_side_by_side(
             }
         }
     }
+    // Each device a little apart at its strategy, so that intervals do not hide each other.
+    let spread = |d: usize| (d as f64 - (reports.len() as f64 - 1.0) / 2.0) * 0.1;
     let series: Vec<Series> = reports
         .iter()
-        .map(|r| {
+        .enumerate()
+        .map(|(d, r)| {
             let points = strategies
                 .iter()
                 .enumerate()
                 .filter_map(|(i, name)| {
                     let e = r.rows_of(workload).find(|s| &s.strategy == name)?.sync_us?;
-                    Some(Point::new(i as f64 + 1.0, e.value).with_interval(e.lo, e.hi))
+                    Some(Point::new(i as f64 + 1.0 + spread(d), e.value).with_interval(e.lo, e.hi))
                 })
                 .collect();
             Series::with_points(format!("{} ({})", r.run.device, r.run.driver_version), points)
         })
         .collect();
     let x_label = strategies.iter().enumerate().map(|(i, s)| format!("{} {s}", i + 1)).collect::<Vec<_>>().join(", ");
-    plot_lines(
+    plot_points(
         path,
         &Chart::new(
             format!("{} workload: sync cost per boundary over no barriers, 95 % CI", workload.name()),
