@@ -194,12 +194,13 @@ pub struct Run {
     pub lines_us: Vec<f64>,
     /// The median of `gaps_us` (NaN without per-line timestamps).
     pub gap_median_us: f64,
-    /// Frames with the strategy after every other block only: the periods
-    /// (one line's start to the next's) after a synchronized block and after
-    /// an unsynchronized one, us.
-    pub synced_periods_us: Vec<f64>,
-    pub unsynced_periods_us: Vec<f64>,
-    /// The median of the first minus the median of the second (NaN without).
+    /// Frames with the strategy after every other block only, per
+    /// synchronized boundary: its period (its line's start to the next's) minus the mean of the periods of
+    /// its two unsynchronized neighbours: a local, paired difference, in which
+    /// the line's work (nearly that of its neighbours) and the machine's
+    /// drift over the frame cancel, linear trends included.
+    pub paired_sync_us: Vec<f64>,
+    /// The median of `paired_sync_us` (NaN without).
     pub in_frame_sync_us: f64,
 }
 
@@ -242,9 +243,10 @@ pub struct LineGaps {
     pub gap_q3_us: f64,
     pub line_median_us: f64,
     /// The strategy's cost per boundary paired in the frame: in frames that
-    /// synchronize after every other block, the median period (one line's
-    /// start to the next's) after a synchronized block minus after an
-    /// unsynchronized one, one value per run, us (None for the baseline).
+    /// synchronize after every other block, the median over a run's
+    /// synchronized boundaries of the period (one line's start to the next's)
+    /// after it minus the mean period after its two unsynchronized
+    /// neighbours; one value per run, us (None for the baseline).
     #[serde(default)]
     pub in_frame_sync_us: Option<Estimate>,
     /// Frame time with the timestamps minus without, paired by round, ms
@@ -820,11 +822,10 @@ fn measure(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Res
         sum.wall_ms += f.wall_ms / k as f64;
         sum.gaps_us.extend(f.gaps_us);
         sum.lines_us.extend(f.lines_us);
-        sum.synced_periods_us.extend(f.synced_periods_us);
-        sum.unsynced_periods_us.extend(f.unsynced_periods_us);
+        sum.paired_sync_us.extend(f.paired_sync_us);
     }
     sum.gap_median_us = median_of_unsorted(&sum.gaps_us);
-    sum.in_frame_sync_us = median_of_unsorted(&sum.synced_periods_us) - median_of_unsorted(&sum.unsynced_periods_us);
+    sum.in_frame_sync_us = median_of_unsorted(&sum.paired_sync_us);
     Ok(sum)
 }
 
@@ -862,20 +863,29 @@ fn frame(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Resul
         if c.key.every_other() {
             // Scope i is block i (every block has one, in frame order); the
             // period after it spans its line and the boundary that follows.
-            for (i, (line, gap)) in t.durations_us.iter().zip(&t.gaps_us).enumerate() {
-                let synced = EveryOther::synchronizes_after(i);
-                if synced {
+            for (i, gap) in t.gaps_us.iter().enumerate() {
+                if EveryOther::synchronizes_after(i) {
                     run.gaps_us.push(*gap);
                 }
-                let periods = if synced { &mut run.synced_periods_us } else { &mut run.unsynced_periods_us };
-                periods.push(line + gap);
             }
+            run.paired_sync_us = paired_sync_differences(&t.durations_us, &t.gaps_us);
         } else {
             run.gaps_us = t.gaps_us;
         }
         run.lines_us = t.durations_us;
     }
     Ok(run)
+}
+
+/// Per synchronized boundary of an [`EveryOther`] frame (block i's line
+/// `durations_us[i]`, then the gap `gaps_us[i]` to the next line's start):
+/// its period minus the mean period of its two unsynchronized neighbours.
+fn paired_sync_differences(durations_us: &[f64], gaps_us: &[f64]) -> Vec<f64> {
+    let period = |i: usize| durations_us[i] + gaps_us[i];
+    (1..gaps_us.len().min(durations_us.len()).saturating_sub(1))
+        .filter(|&i| EveryOther::synchronizes_after(i))
+        .map(|i| period(i) - 0.5 * (period(i - 1) + period(i + 1)))
+        .collect()
 }
 
 /// Racy arms have no barriers, so synchronization validation reports their
@@ -1053,5 +1063,21 @@ mod tests {
         let both = execution_order(&[Workload::Empty, Workload::Sweep]);
         assert_eq!(both, [Workload::Sweep, Workload::Empty]);
         assert_eq!(execution_order(&[Workload::Empty]), [Workload::Empty]);
+    }
+
+    /// Lines whose work grows along the sweep (100 + 3 i us) and a sync that
+    /// adds 7 us after every other one: the mean of both neighbours finds 7
+    /// at every synchronized boundary, where one neighbour alone would read
+    /// the 3 us of growth as part of the cost.
+    #[test]
+    fn the_paired_difference_cancels_work_that_changes_along_the_sweep() {
+        let n = 41;
+        let durations: Vec<f64> = (0..n).map(|i| 100.0 + 3.0 * i as f64).collect();
+        let gaps: Vec<f64> = (0..n).map(|i| if EveryOther::synchronizes_after(i) { 12.0 } else { 5.0 }).collect();
+        let paired = paired_sync_differences(&durations, &gaps);
+        assert_eq!(paired.len(), (n - 2) / 2);
+        for d in &paired {
+            assert!((d - 7.0).abs() < 1e-9, "{paired:?}");
+        }
     }
 }
