@@ -42,14 +42,24 @@ impl LeftOut {
         if self.control {
             parts.push("the A/A control".to_string());
         }
-        format!(
+        let mut text = format!(
             "{} left out to fit the time budget: {} rounds of every configuration take about {:.1} min, \
              {:.1} min were left (--max-minutes sets the budget)",
             parts.join(" and "),
             self.rounds,
             self.all_rounds_s / 60.0,
             self.time_left_s / 60.0
-        )
+        );
+        if self.kept_rounds_s > self.time_left_s {
+            // The narrowest and widest line widths and the timestamped frames
+            // cannot go: say that the run ends late rather than let it surprise.
+            text += &format!(
+                "; what is kept still takes about {:.1} min, so the run ends past its budget \
+                 (fewer strategies, a smaller --size or a larger --max-minutes fit)",
+                self.kept_rounds_s / 60.0
+            );
+        }
+        text
     }
 }
 
@@ -213,5 +223,8 @@ mod tests {
         let text = out.describe();
         assert!(text.starts_with("line width(s) 2, 8 and the A/A control left out"), "{text}");
         assert!(text.contains("6 rounds of every configuration take about 22.1 min, 7.5 min were left"), "{text}");
+        assert!(!text.contains("past its budget"), "{text}");
+        let late = LeftOut { kept_rounds_s: 540.0, ..out }.describe();
+        assert!(late.contains("what is kept still takes about 9.0 min, so the run ends past its budget"), "{late}");
     }
 }
