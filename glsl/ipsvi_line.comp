@@ -320,7 +320,7 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel, bool empty) 
         // across a texel moves it along the light, so neighbouring texels held
         // points scattered about the plane and a reader's weighted depth missed
         // its own ray's crossing (engine.vti 256x256 RMSE: every-sample 4.61e-3
-        // -> 2.86e-3, non-empty 5.26e-3 -> 3.07e-3). Under either write rule the
+        // -> 2.86e-3, non-empty 5.26e-3 -> 3.08e-3). Under either write rule the
         // writer's view ray lies in its line plane, and the texel-ray march
         // carries the light from wherever the texel was last written (under
         // non-empty often many lines back) to the crossing, so the rule holds
