@@ -313,15 +313,21 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel, bool empty) 
     }
     float s = frame.shadow_step * frame.voxel_length;
     vec2 io = ray_in_box(cache_ray(uvec2(k)));
-    if (EVERY_SAMPLE && WRITE_TEXEL_RAY && PIECEWISE && io.x <= io.y) {
+    if (WRITE_TEXEL_RAY && PIECEWISE && io.x <= io.y) {
         // The texel's point is where its ray crosses the writing sample's line
         // plane (the paper's cache plane, section 4.4), not the sample's own
         // depth: that lies up to half a texel off the ray, where the plane's tilt
         // across a texel moves it along the light, so neighbouring texels held
         // points scattered about the plane and a reader's weighted depth missed
-        // its own ray's crossing (engine.vti 256x256: RMSE 4.61e-3 -> 2.86e-3).
-        // The own segment is the last stretch up to the plane; a write never
-        // moves a texel back toward the light.
+        // its own ray's crossing (engine.vti 256x256 RMSE: every-sample 4.61e-3
+        // -> 2.86e-3, non-empty 5.26e-3 -> 3.08e-3). Under either write rule the
+        // writer's view ray lies in its line plane, and the texel-ray march
+        // carries the light from wherever the texel was last written (under
+        // non-empty often many lines back) to the crossing, so the rule holds
+        // for both. The own segment is the last stretch up to the plane; a write
+        // never moves a texel back toward the light. (write_value = "sample"
+        // keeps the sample's depth: its value is the light read at the sample's
+        // own point, which no march carries to the crossing.)
         uint old_code;
         state_load(k, old_code);
         float old_depth = depth_of(old_code, io);

@@ -26,7 +26,10 @@ fn png_bytes(path: &Path) -> Vec<u8> {
 /// tests/scenes/noise.toml --size 40x32 --set camera.distance=3.0 --technique
 /// T` built from the code before jitter existed (midpoint samples; the
 /// distance given, as the automatic framing has changed since): jitter off
-/// must give the same bytes, jitter on must not.
+/// must give the same bytes, jitter on must not. The IPSVI PNG was rewritten
+/// (jitter off) when texel-ray writes of the default write rule moved to the
+/// line plane's crossing (54 of 1280 pixels changed, by at most 4 of 255);
+/// the build before that change still gave the old PNG's bytes with jitter off.
 #[test]
 fn jitter_off_reproduces_the_midpoint_images_and_jitter_on_changes_them() {
     let ctx = validated_context();
