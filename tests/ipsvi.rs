@@ -126,17 +126,7 @@ fn point_light_in_each_zone_and_inside_the_volume_matches_the_reference() {
 
 #[test]
 fn orthographic_camera_and_spot_light_match_the_reference() {
-    let mut scene = slab_scene(vec![Light {
-        kind: LightKind::Spot {
-            position: Vec3::new(0.2, 1.2, 0.3),
-            direction: Vec3::new(-0.1, -1.0, -0.2),
-            inner_cone_deg: 15.0,
-            outer_cone_deg: 30.0,
-        },
-        color: Vec3::ONE,
-        intensity: 2.0,
-        falloff: Falloff::InverseSquare,
-    }]);
+    let mut scene = slab_scene(vec![spot_light(2.0)]);
     scene.camera.projection = Projection::Orthographic { height: 1.8 };
     check_against_reference(&scene, "orthographic, spot");
 }

@@ -185,17 +185,7 @@ fn view_samples_match_the_reference_on_the_ipsvi_scenes() {
     let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
     let basis = camera.basis(SIZE, SIZE);
     let (r, u) = (basis.right.normalize(), basis.up.normalize());
-    let mut spot = slab_scene(vec![Light {
-        kind: LightKind::Spot {
-            position: Vec3::new(0.2, 1.2, 0.3),
-            direction: Vec3::new(-0.1, -1.0, -0.2),
-            inner_cone_deg: 15.0,
-            outer_cone_deg: 30.0,
-        },
-        color: Vec3::ONE,
-        intensity: 2.0,
-        falloff: Falloff::InverseSquare,
-    }]);
+    let mut spot = slab_scene(vec![spot_light(2.0)]);
     spot.camera.projection = Projection::Orthographic { height: 1.8 };
     let cases = vec![
         ("directional", slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]), DIRECTIONAL_TOLERANCE),
@@ -345,6 +335,8 @@ fn line_barrier_is_reported_missing_in_both_modes() {
                     cache_write,
                     write_rule,
                     write_value,
+                    // The claim pass's barriers too, where line width 1 leaves it out.
+                    keep_redundant_claims: true,
                     ..IpsviSettings::default()
                 };
                 assert_ipsvi_line_barrier_load_bearing(
@@ -357,6 +349,51 @@ fn line_barrier_is_reported_missing_in_both_modes() {
             }
         }
     }
+}
+
+/// At one line per block with texel-ray writes every writer of a texel stores
+/// the same value, so the claim pass is left out (`records_claims`): the image
+/// is that of the recorded claims bit for bit, on directional, point and spot
+/// lights, under both resolutions and both write rules; at two lines per block
+/// the pass stays.
+#[test]
+fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
+    let ctx = validated_context();
+    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
+    let basis = camera.basis(SIZE, SIZE);
+    let (r, u) = (basis.right.normalize(), basis.up.normalize());
+    let spot = spot_light(2.0);
+    let scenes = [
+        ("directional", slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)])),
+        ("right zone", slab_scene(vec![point(r * 1.2 + u * 0.3)])),
+        ("inside the volume", slab_scene(vec![point(Vec3::new(0.15, 0.35, 0.1))])),
+        ("spot", slab_scene(vec![spot])),
+    ];
+    for (what, scene) in &scenes {
+        let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
+        for write in [CacheWrite::Farthest, CacheWrite::Nearest] {
+            for write_rule in WriteRule::ALL {
+                let left_out = IpsviSettings { write_rule, ..view_samples(FED_CACHE, write) };
+                let kept = IpsviSettings { keep_redundant_claims: true, ..left_out.clone() };
+                assert!(!left_out.records_claims() && kept.records_claims());
+                let (a, b) = (
+                    ipsvi(&ctx, &gpu, &left_out, SyncStrategy::BarrierGlobal),
+                    ipsvi(&ctx, &gpu, &kept, SyncStrategy::BarrierGlobal),
+                );
+                assert!(a == b, "{what}, {}, {write_rule:?}: the image changed without the claim pass", write.name());
+            }
+        }
+    }
+    // Blocks of two lines lie in two planes: there the winner matters, and the
+    // comparison above would see it (racy stores against the claimed ones).
+    let two_lines = IpsviSettings { line_width: 2, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
+    assert!(two_lines.records_claims());
+    let gpu = GpuScene::upload_with(&ctx, &scenes[1].1, VolumeTexels::Float32).unwrap();
+    let claimed = ipsvi(&ctx, &gpu, &two_lines, SyncStrategy::BarrierGlobal);
+    let racy =
+        ipsvi(&ctx, &gpu, &IpsviSettings { cache_write: CacheWrite::Racy, ..two_lines }, SyncStrategy::BarrierGlobal);
+    assert!(claimed != racy, "at two lines per block the claims must change the image");
+    assert_validation_clean(&ctx);
 }
 
 /// Claimed writes (farthest, nearest) give the same image every frame; the

@@ -315,17 +315,7 @@ fn every_light_kind(intensity: f32) -> Vec<Light> {
             intensity,
             falloff: Falloff::InverseSquare,
         },
-        Light {
-            kind: LightKind::Spot {
-                position: Vec3::new(0.2, 1.2, 0.3),
-                direction: Vec3::new(-0.1, -1.0, -0.2),
-                inner_cone_deg: 15.0,
-                outer_cone_deg: 30.0,
-            },
-            color: Vec3::ONE,
-            intensity,
-            falloff: Falloff::InverseSquare,
-        },
+        spot_light(intensity),
         // Inside the volume: its second group carries light against its direction.
         Light {
             kind: LightKind::Point { position: Vec3::new(0.1, 0.2, 0.05) },

@@ -524,6 +524,7 @@ fn technique_tables_are_read_into_typed_settings() {
         merge_sweeps: true,
         single_dispatch_baseline: false,
         breakdown_step: sweeplab::ipsvi::BreakdownStep::Full,
+        keep_redundant_claims: false,
     };
     let lightvolume = LightVolumeSettings {
         scale: 4,

@@ -55,7 +55,7 @@ impl Cache {
     fn new(gpu: &GpuScene, settings: &IpsviSettings, slots: u32) -> Result<Cache, RenderError> {
         let size = settings.cache_size;
         let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
-        let claims = view_samples && settings.cache_write.claims();
+        let claims = settings.records_claims();
         let sized = |name: &str, format, n: u32| {
             gpu.frame_images.storage_2d(gpu.ctx, name, format, (n, n * slots), vk::ImageUsageFlags::empty())
         };
@@ -339,7 +339,7 @@ impl<'a> IpsviRenderer<'a> {
             },
         )?;
         let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
-        let claims = view_samples && settings.cache_write.claims();
+        let claims = settings.records_claims();
         let nearest = settings.cache_write == CacheWrite::Nearest;
         let termination = match settings.early_termination {
             EarlyTermination::Off => 0,
@@ -499,8 +499,7 @@ impl<'a> IpsviRenderer<'a> {
             SyncStrategy::BarrierGlobal => Box::new(GlobalBarrier),
             SyncStrategy::BarrierImage => {
                 let [l0, l1, f0, f1, s0, s1, t0, t1] = cache.images();
-                let claims =
-                    self.settings.cache_update == CacheUpdate::ViewSamples && self.settings.cache_write.claims();
+                let claims = self.settings.records_claims();
                 let mut images = vec![l0, l1, f0, f1, s0, s1, t0, t1, &self.output.image];
                 images.extend(self.merged.as_ref().map(|m| &*m.accumulation));
                 Box::new(ImageBarriers::new(&images, claims.then_some(&cache.claim_keys)))
@@ -726,7 +725,7 @@ fn block_params(
     settings: &IpsviSettings,
 ) -> Result<(Vec<BlockParams>, Vec<SweepRecords>), RenderError> {
     let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
-    let claims = view_samples && settings.cache_write.claims();
+    let claims = settings.records_claims();
     let mut out: Vec<BlockParams> = Vec::new();
     let mut sweeps = Vec::new();
     for (li, plan) in plans.iter().enumerate() {

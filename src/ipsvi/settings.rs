@@ -68,6 +68,11 @@ pub struct IpsviSettings {
     /// --breakdown`); `Full` is IPSVI. Set in code only, never from a file.
     #[serde(skip)]
     pub breakdown_step: BreakdownStep,
+    /// Records the claim pass even where it cannot change the image (see
+    /// [`IpsviSettings::records_claims`]): for the test that proves it cannot.
+    /// Set in code only, never from a file.
+    #[serde(skip)]
+    pub keep_redundant_claims: bool,
 }
 
 /// When the view rays of the main pass stop.
@@ -117,7 +122,29 @@ impl Default for IpsviSettings {
             merge_sweeps: false,
             single_dispatch_baseline: false,
             breakdown_step: BreakdownStep::Full,
+            keep_redundant_claims: false,
         }
+    }
+}
+
+impl IpsviSettings {
+    /// Whether the frame records the claim pass of `cache_write = "farthest"`
+    /// / `"nearest"` (one writer per texel). Left out where every writer of a
+    /// texel in a block stores the same value, so the winner cannot matter:
+    /// one line per block (every block lies in one sweep plane), texel-ray
+    /// writes with piecewise integration (the light is marched along the
+    /// texel's own ray, from its stored depth to that plane, whichever sample
+    /// writes), and every run marching (`empty_runs_move_depth` keeps the
+    /// writing sample's own point). Saves the claim pass's medium march and
+    /// atomics and the keys buffer; `tests/ipsvi_view_samples.rs` checks the
+    /// image is the same bit for bit.
+    pub fn records_claims(&self) -> bool {
+        let claims = self.cache_update == CacheUpdate::ViewSamples && self.cache_write.claims();
+        let same_value_from_every_writer = self.line_width == 1
+            && self.write_value == WriteValue::TexelRay
+            && self.piecewise
+            && !self.empty_runs_move_depth;
+        claims && (self.keep_redundant_claims || !same_value_from_every_writer)
     }
 }
 

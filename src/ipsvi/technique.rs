@@ -44,7 +44,7 @@ impl RenderTechnique for Ipsvi {
         let blocks: usize = plans.iter().flat_map(|p| &p.sweeps).map(|sweep| sweep.blocks.len()).sum();
         let sweeps: usize = plans.iter().map(|p| p.sweeps.len()).sum();
         let view_samples = s.cache_update == CacheUpdate::ViewSamples;
-        let claims = view_samples && s.cache_write.claims();
+        let claims = s.records_claims();
         // A claim-only record ahead of each sweep's first block.
         let records = if claims { blocks + sweeps } else { blocks };
         // merge_sweeps: one cache (and claim keys, colour accumulation) per sweep, stacked in rows.

@@ -136,6 +136,22 @@ pub fn directional(direction: Vec3, intensity: f32) -> Light {
     Light { kind: LightKind::Directional { direction }, color: Vec3::ONE, intensity, falloff: Falloff::None }
 }
 
+/// The spot light of the IPSVI and light-volume tests: above the volume,
+/// pointing down and a little sideways, inverse-square falloff.
+pub fn spot_light(intensity: f32) -> Light {
+    Light {
+        kind: LightKind::Spot {
+            position: Vec3::new(0.2, 1.2, 0.3),
+            direction: Vec3::new(-0.1, -1.0, -0.2),
+            inner_cone_deg: 15.0,
+            outer_cone_deg: 30.0,
+        },
+        color: Vec3::ONE,
+        intensity,
+        falloff: Falloff::InverseSquare,
+    }
+}
+
 /// tests/scenes/cornell-box.toml at `n`^3, rendered at `size`^2, with the
 /// `[ao]` table `ao` (its keys, one per line).
 pub fn cornell_box_scene(n: u32, size: u32, ao: &str) -> Scene {
