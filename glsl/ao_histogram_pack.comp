@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// AO space sweep, step 3 of a slice: normalizes the part's unpacked histograms
-// by 1/N_r (in registers: the CPU, reading them back for the final codebook,
+// AO space sweep, step 3 of a batch, one dispatch per part: normalizes the
+// part's unpacked histograms by 1/N_r (in registers: the CPU, reading them back for the final codebook,
 // applies the same f32 product) and packs them (section 3.2): packing is
 // linear, the packing matrix applied as its sparse rows (bin k -> (packed bin,
 // share) pairs), in the CPU's order (PackingScheme::pack), into packed
