@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // AO space sweep, step 1 of a batch: bins every slice the batch's stencils
-// read (one per invocation z) into its slot of the binned slices, with the
+// read (one per invocation z; the rows its parts' stencils read) into its slot
+// of the binned slices, with the
 // "outside" bin in the padding and for slices outside the volume. Each voxel
 // is binned once per batch instead of once per stencil voxel that reads it.
 
@@ -14,8 +15,10 @@ layout(std430, set = 0, binding = 0) readonly buffer Values { float values[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer Binned { uint binned[]; };
 
 void main() {
-    int px = int(gl_GlobalInvocationID.x), py = int(gl_GlobalInvocationID.y);
-    if (px >= padded_width() || py >= padded_height()) return;
+    // Padded row first_row is row first_row - e_y: the batch's rows and e_y
+    // more on each side.
+    int px = int(gl_GlobalInvocationID.x), py = int(gl_GlobalInvocationID.y) + sweep.first_row;
+    if (px >= padded_width() || py >= min(padded_height(), sweep.first_row + sweep.rows + 2 * sweep.extent.y)) return;
     int x = px - sweep.extent.x, y = py - sweep.extent.y, z = sweep.slice + int(gl_GlobalInvocationID.z);
     uint bin = uint(sweep.bins);
     if (x >= 0 && y >= 0 && z >= 0 && x < sweep.dims.x && y < sweep.dims.y && z < sweep.dims.z) {

@@ -16,8 +16,8 @@ layout(push_constant) uniform Sweep {
     ivec3 extent;        // stencil extent e per axis
     int first_binned;    // the slice at slot 0 of the binned slices
     int slice;           // centre slice z (bin pass: the first slice it bins)
-    int first_row;       // first row y of this part of the slice
-    int rows;            // rows in this part
+    int first_row;       // first row y of this part of the slice (bin pass: of the batch)
+    int rows;            // rows in this part (bin pass: in the batch)
     int first_entry;     // stencil chunk: entries [first_entry, first_entry + entry_count)
     int entry_count;
     int part_voxel;      // first voxel of this part in the batch's buffers

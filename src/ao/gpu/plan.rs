@@ -55,6 +55,13 @@ impl Batch {
         first..self.parts.last().map_or(first, |p| p.z + 1)
     }
 
+    /// The rows of its parts: all of them, or the rows of its one part of a
+    /// slice.
+    pub fn rows(&self) -> Range<u32> {
+        let start = self.parts.iter().map(|p| p.first_row).min().unwrap_or(0);
+        start..self.parts.iter().map(|p| p.first_row + p.rows).max().unwrap_or(start)
+    }
+
     /// The slices its stencils read (e_z more on each side), binned once
     /// per batch.
     pub fn binned_slices(&self, extent_z: u32) -> Range<i32> {
@@ -184,6 +191,9 @@ mod tests {
                 assert!(batch.parts.iter().all(|p| slices.contains(&p.z)), "{batch:?}");
                 assert_eq!(batch.binned_slices(2), slices.start as i32 - 2..slices.end as i32 + 2);
                 assert!(slices.len() <= plan.batch_slices);
+                let rows = batch.rows();
+                assert!(batch.parts.iter().all(|p| rows.start <= p.first_row && p.first_row + p.rows <= rows.end));
+                assert!(batch.parts.len() == 1 || rows == (0..7), "{batch:?}");
             }
             assert_eq!(next, 5 * 7 * 4, "budget {budget_voxels}");
         }

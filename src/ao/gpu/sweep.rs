@@ -454,6 +454,8 @@ impl<'c> GpuSweep<'c> {
         let (nx, padded) = (plan.dims.x, [push.dims[0] + 2 * push.extent[0], push.dims[1] + 2 * push.extent[1]]);
         let batch = &plan.batches[b];
         let binned = batch.binned_slices(push.extent[2] as u32);
+        // A batch that is part of a slice bins only the rows its stencil reads.
+        let rows = batch.rows();
         let push = SweepPush { first_binned: binned.start, ..*push };
         let part_push = |part: &super::plan::Part| SweepPush {
             slice: part.z as i32,
@@ -473,8 +475,10 @@ impl<'c> GpuSweep<'c> {
             ));
             let scope = profiler.begin(rec, BIN_PASS)?;
             rec.bind(bin, sets[0]);
-            rec.push(bin, &SweepPush { slice: binned.start, ..push });
-            rec.dispatch((padded[0] as u32).div_ceil(8), (padded[1] as u32).div_ceil(8), binned.len() as u32);
+            let (first_row, row_count) = (rows.start as i32, rows.len() as i32);
+            rec.push(bin, &SweepPush { slice: binned.start, first_row, rows: row_count, ..push });
+            let padded_rows = (row_count + 2 * push.extent[1]).min(padded[1]) as u32;
+            rec.dispatch((padded[0] as u32).div_ceil(8), padded_rows.div_ceil(8), binned.len() as u32);
             profiler.end(rec, scope)?;
             if sync == SliceSync::Barrier {
                 rec.barrier(&Barrier::memory(
