@@ -18,13 +18,13 @@ void main() {
     // Padded row first_row is row first_row - e_y: the batch's rows and e_y
     // more on each side.
     int px = int(gl_GlobalInvocationID.x), py = int(gl_GlobalInvocationID.y) + sweep.first_row;
-    if (px >= padded_width() || py >= min(padded_height(), sweep.first_row + sweep.rows + 2 * sweep.extent.y)) return;
-    int x = px - sweep.extent.x, y = py - sweep.extent.y, z = sweep.slice + int(gl_GlobalInvocationID.z);
-    uint bin = uint(sweep.bins);
-    if (x >= 0 && y >= 0 && z >= 0 && x < sweep.dims.x && y < sweep.dims.y && z < sweep.dims.z) {
-        float s = clamp(values[(z * sweep.dims.y + y) * sweep.dims.x + x], 0.0, 1.0);
+    if (px >= padded_width() || py >= min(padded_height(), sweep.first_row + sweep.rows + 2 * EXTENT.y)) return;
+    int x = px - EXTENT.x, y = py - EXTENT.y, z = sweep.slice + int(gl_GlobalInvocationID.z);
+    uint bin = uint(BINS);
+    if (x >= 0 && y >= 0 && z >= 0 && x < DIMS.x && y < DIMS.y && z < DIMS.z) {
+        float s = clamp(values[(z * DIMS.y + y) * DIMS.x + x], 0.0, 1.0);
         // k = min(floor(s 2^b), 2^b - 1): exact, 2^b is a power of two.
-        bin = min(uint(floor(s * float(sweep.bins))), uint(sweep.bins - 1));
+        bin = min(uint(floor(s * float(BINS))), uint(BINS - 1));
     }
     binned[binned_index(z - sweep.first_binned, x, y)] = bin;
 }

@@ -23,7 +23,7 @@ layout(std430, set = 0, binding = 3) readonly buffer StencilOffsets { int stenci
 layout(std430, set = 0, binding = 4) buffer Unpacked { float unpacked[]; };
 
 float value_at(ivec3 p) {
-    return values[(p.z * sweep.dims.y + p.y) * sweep.dims.x + p.x];
+    return values[(p.z * DIMS.y + p.y) * DIMS.x + p.x];
 }
 
 // Central differences with clamped neighbours, in the CPU's operation order
@@ -35,24 +35,24 @@ vec3 central_gradient(ivec3 p) {
     for (int axis = 0; axis < 3; ++axis) {
         ivec3 lo = p, hi = p;
         lo[axis] = max(p[axis] - 1, 0);
-        hi[axis] = min(p[axis] + 1, sweep.dims[axis] - 1);
+        hi[axis] = min(p[axis] + 1, DIMS[axis] - 1);
         precise float difference = value_at(hi) - value_at(lo);
-        g[axis] = difference * sweep.gradient_scale[axis];
+        g[axis] = difference * GRADIENT_SCALE[axis];
     }
     return g;
 }
 
 void main() {
     int x = int(gl_GlobalInvocationID.x), row = int(gl_GlobalInvocationID.y);
-    if (x >= sweep.dims.x || row >= sweep.rows) return;
+    if (x >= DIMS.x || row >= sweep.rows) return;
     int y = sweep.first_row + row, z = sweep.slice;
-    int voxel = sweep.part_voxel + row * sweep.dims.x + x;
+    int voxel = sweep.part_voxel + row * DIMS.x + x;
     int forward = voxel * unpacked_stride();
-    int backward = forward + sweep.bins + 1;
+    int backward = forward + BINS + 1;
     vec3 g = central_gradient(ivec3(x, y, z));
     // The window's first slice z - e_z.
-    int base = binned_index(z - sweep.extent.z - sweep.first_binned, x, y);
-    int run_bin = sweep.bins;  // the discard slot: flushing the empty run is harmless
+    int base = binned_index(z - EXTENT.z - sweep.first_binned, x, y);
+    int run_bin = BINS;  // the discard slot: flushing the empty run is harmless
     float run_forward = 0.0, run_backward = 0.0;
     int end = sweep.first_entry + sweep.entry_count;
     for (int i = sweep.first_entry; i < end; ++i) {

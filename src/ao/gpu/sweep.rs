@@ -26,6 +26,7 @@ use std::ops::Range;
 
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
+use glam::UVec3;
 use gpu_allocator::MemoryLocation;
 
 use super::assign::{AssignPass, AssignRange, SearchState};
@@ -62,11 +63,6 @@ const HEAP_SHARE: u64 = 4;
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct SweepPush {
-    gradient_scale: [f32; 3],
-    pad_scale: f32,
-    dims: [i32; 3],
-    bins: i32,
-    extent: [i32; 3],
     first_binned: i32,
     slice: i32,
     first_row: i32,
@@ -74,8 +70,6 @@ struct SweepPush {
     first_entry: i32,
     entry_count: i32,
     part_voxel: i32,
-    packed_stride: i32,
-    pad: i32,
 }
 
 macro_rules! assert_sweep_push_layout {
@@ -83,8 +77,7 @@ macro_rules! assert_sweep_push_layout {
         crate::assert_gpu_layout!(
             SweepPush,
             $shader::layout::SWEEP,
-            [gradient_scale, pad_scale, dims, bins, extent, first_binned, slice, first_row, rows, first_entry, entry_count,
-             part_voxel, packed_stride, pad]
+            [first_binned, slice, first_row, rows, first_entry, entry_count, part_voxel]
         );
     )*};
 }
@@ -257,7 +250,7 @@ fn within_storage_range(ctx: &Context, name: &str, bytes: usize) -> Result<(), A
 pub struct GpuSweep<'c> {
     ctx: &'c Context,
     plan: SweepPlan,
-    push: SweepPush,
+    extent: UVec3,
     normalization: f32,
     bin: ComputePipeline,
     stencil: ComputePipeline,
@@ -305,14 +298,14 @@ impl<'c> GpuSweep<'c> {
         // A batch's centre slices and e_z more on each side.
         let binned_slots = plan.batch_slices as u32 + 2 * e.z;
         let (px, py) = (dims.x + 2 * e.x, dims.y + 2 * e.y);
-        let push = SweepPush {
-            gradient_scale: gradient_scale(volume.spacing),
-            dims: dims.as_ivec3().to_array(),
-            bins: bins as i32,
-            extent: e.as_ivec3().to_array(),
-            packed_stride: plan.packed_stride as i32,
-            ..SweepPush::zeroed()
-        };
+        // The specialization constants of glsl/ao_histogram_common.glsl, ids 1..=11.
+        let [gx, gy, gz] = gradient_scale(volume.spacing).map(f32::to_bits);
+        let constants: Vec<(u32, u32)> = [gx, gy, gz, dims.x, dims.y, dims.z, bins as u32, e.x, e.y, e.z]
+            .into_iter()
+            .chain([plan.packed_stride as u32])
+            .enumerate()
+            .map(|(i, value)| (i as u32 + 1, value))
+            .collect();
 
         // Every buffer a shader reads or writes is device-local; the inputs
         // arrive through staging (one submission), the results leave through
@@ -359,12 +352,12 @@ impl<'c> GpuSweep<'c> {
         let pipeline = |name: &str, shader, specialization: &[(u32, u32)]| {
             ComputePipeline::new(ctx, &ComputePipelineDesc { name, shader, specialization, max_sets: 1 })
         };
-        let mut bin = pipeline(BIN_PASS, &ao_histogram_bin::INTERFACE, &[])?;
+        let mut bin = pipeline(BIN_PASS, &ao_histogram_bin::INTERFACE, &constants)?;
         let bin_set = bin.create_set(&[
             (ao_histogram_bin::VALUES, Resource::StorageBuffer(&values)),
             (ao_histogram_bin::BINNED, Resource::StorageBuffer(&binned)),
         ])?;
-        let mut sweep = pipeline(STENCIL_PASS, &ao_histogram_sweep::INTERFACE, &[])?;
+        let mut sweep = pipeline(STENCIL_PASS, &ao_histogram_sweep::INTERFACE, &constants)?;
         let sweep_set = sweep.create_set(&[
             (ao_histogram_sweep::VALUES, Resource::StorageBuffer(&values)),
             (ao_histogram_sweep::BINNED, Resource::StorageBuffer(&binned)),
@@ -372,7 +365,8 @@ impl<'c> GpuSweep<'c> {
             (ao_histogram_sweep::STENCIL_OFFSETS, Resource::StorageBuffer(&stencil_offsets)),
             (ao_histogram_sweep::UNPACKED, Resource::StorageBuffer(&unpacked)),
         ])?;
-        let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &[(0, normalization.to_bits())])?;
+        let pack_constants: Vec<(u32, u32)> = [(0, normalization.to_bits())].into_iter().chain(constants).collect();
+        let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &pack_constants)?;
         let pack_set = pack.create_set(&[
             (ao_histogram_pack::UNPACKED, Resource::StorageBuffer(&unpacked)),
             (ao_histogram_pack::SHARE_STARTS, Resource::StorageBuffer(&share_starts)),
@@ -394,7 +388,7 @@ impl<'c> GpuSweep<'c> {
         Ok(GpuSweep {
             ctx,
             plan,
-            push,
+            extent: e,
             normalization,
             bin,
             stencil: sweep,
@@ -449,14 +443,14 @@ impl<'c> GpuSweep<'c> {
 
     fn record_batch(&mut self, b: usize, sync: SliceSync) -> Result<(), VkError> {
         let GpuSweep {
-            ctx, plan, push, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, ..
+            ctx, plan, extent, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, ..
         } = self;
-        let (nx, padded) = (plan.dims.x, [push.dims[0] + 2 * push.extent[0], push.dims[1] + 2 * push.extent[1]]);
+        let (nx, padded) = (plan.dims.x, [plan.dims.x + 2 * extent.x, plan.dims.y + 2 * extent.y]);
         let batch = &plan.batches[b];
-        let binned = batch.binned_slices(push.extent[2] as u32);
+        let binned = batch.binned_slices(extent.z);
         // A batch that is part of a slice bins only the rows its stencil reads.
         let rows = batch.rows();
-        let push = SweepPush { first_binned: binned.start, ..*push };
+        let push = SweepPush { first_binned: binned.start, ..SweepPush::zeroed() };
         let part_push = |part: &super::plan::Part| SweepPush {
             slice: part.z as i32,
             first_row: part.first_row as i32,
@@ -477,8 +471,8 @@ impl<'c> GpuSweep<'c> {
             rec.bind(bin, sets[0]);
             let (first_row, row_count) = (rows.start as i32, rows.len() as i32);
             rec.push(bin, &SweepPush { slice: binned.start, first_row, rows: row_count, ..push });
-            let padded_rows = (row_count + 2 * push.extent[1]).min(padded[1]) as u32;
-            rec.dispatch((padded[0] as u32).div_ceil(8), padded_rows.div_ceil(8), binned.len() as u32);
+            let padded_rows = (rows.len() as u32 + 2 * extent.y).min(padded[1]);
+            rec.dispatch(padded[0].div_ceil(8), padded_rows.div_ceil(8), binned.len() as u32);
             profiler.end(rec, scope)?;
             if sync == SliceSync::Barrier {
                 rec.barrier(&Barrier::memory(
