@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// AO space sweep, step 3 of a slice: normalizes the part's unpacked histograms
-// by 1/N_r (in registers: the CPU, reading them back for the final codebook,
+// AO space sweep, step 3 of a batch, one dispatch per part: normalizes the
+// part's unpacked histograms by 1/N_r (in registers: the CPU, reading them back for the final codebook,
 // applies the same f32 product) and packs them (section 3.2): packing is
 // linear, the packing matrix applied as its sparse rows (bin k -> (packed bin,
 // share) pairs), in the CPU's order (PackingScheme::pack), into packed
@@ -26,16 +26,16 @@ layout(std430, set = 0, binding = 3) buffer Packed { float packed[]; };
 layout(constant_id = 0) const float NORMALIZATION = 1.0;
 
 void main() {
-    int part_voxels = sweep.rows * sweep.dims.x;
+    int part_voxels = sweep.rows * DIMS.x;
     int v = int(gl_GlobalInvocationID.x);
     if (v >= part_voxels) return;
     int voxel = sweep.part_voxel + v;
     for (int side = 0; side < 2; ++side) {
-        int histogram = voxel * unpacked_stride() + side * (sweep.bins + 1);
-        int out_base = (2 * voxel + side) * sweep.packed_stride;
+        int histogram = voxel * unpacked_stride() + side * (BINS + 1);
+        int out_base = (2 * voxel + side) * PACKED_STRIDE;
         // Built in place (packed_dim is not bounded by a register array).
-        for (int j = 0; j < sweep.packed_stride; ++j) packed[out_base + j] = 0.0;
-        for (int k = 0; k < sweep.bins; ++k) {
+        for (int j = 0; j < PACKED_STRIDE; ++j) packed[out_base + j] = 0.0;
+        for (int k = 0; k < BINS; ++k) {
             precise float h = unpacked[histogram + k] * NORMALIZATION;
             if (h != 0.0) {
                 for (uint s = share_starts[k]; s < share_starts[k + 1]; ++s) {

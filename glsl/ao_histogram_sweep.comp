@@ -1,9 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// AO space sweep, step 2 of a slice: the local histograms (equations 2-3) of
-// the voxels of one part of the centre slice, for one chunk of the stencil
+// AO space sweep, step 2 of a batch, one dispatch per part: the local
+// histograms (equations 2-3) of the voxels of one part of a centre slice, for
+// one chunk of the stencil
 // (llvmpipe ends an invocation after 65,535 loop iterations; r = 16 fits in
-// one chunk, r = 32 takes three). Reads the ring of binned slices; adds each
+// one chunk, r = 32 takes three). Reads the binned slices; adds each
 // stencil voxel's 1/d^2 weight to its bin in the forward or backward
 // hemisphere (half to each on the plane) of the unpacked, not yet normalized
 // histograms (cleared by a buffer fill before the batch). Neighbours come in runs of equal bins (stencil rows are rows of
@@ -14,15 +15,15 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "ao_histogram_common.glsl"
 
 layout(std430, set = 0, binding = 0) readonly buffer Values { float values[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Ring { uint ring[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Binned { uint binned[]; };
 // Per stencil entry: the offset in units of d_min (xyz) and the weight 1/d^2 (w)...
 layout(std430, set = 0, binding = 2) readonly buffer StencilDirections { vec4 stencil_directions[]; };
-// ...and its linear offset in the ring, from the window's first slot.
+// ...and its linear offset in the binned slices, from the window's first slot.
 layout(std430, set = 0, binding = 3) readonly buffer StencilOffsets { int stencil_offsets[]; };
 layout(std430, set = 0, binding = 4) buffer Unpacked { float unpacked[]; };
 
 float value_at(ivec3 p) {
-    return values[(p.z * sweep.dims.y + p.y) * sweep.dims.x + p.x];
+    return values[(p.z * DIMS.y + p.y) * DIMS.x + p.x];
 }
 
 // Central differences with clamped neighbours, in the CPU's operation order
@@ -34,30 +35,28 @@ vec3 central_gradient(ivec3 p) {
     for (int axis = 0; axis < 3; ++axis) {
         ivec3 lo = p, hi = p;
         lo[axis] = max(p[axis] - 1, 0);
-        hi[axis] = min(p[axis] + 1, sweep.dims[axis] - 1);
+        hi[axis] = min(p[axis] + 1, DIMS[axis] - 1);
         precise float difference = value_at(hi) - value_at(lo);
-        g[axis] = difference * sweep.gradient_scale[axis];
+        g[axis] = difference * GRADIENT_SCALE[axis];
     }
     return g;
 }
 
 void main() {
     int x = int(gl_GlobalInvocationID.x), row = int(gl_GlobalInvocationID.y);
-    if (x >= sweep.dims.x || row >= sweep.rows) return;
+    if (x >= DIMS.x || row >= sweep.rows) return;
     int y = sweep.first_row + row, z = sweep.slice;
-    int voxel = sweep.part_voxel + row * sweep.dims.x + x;
+    int voxel = sweep.part_voxel + row * DIMS.x + x;
     int forward = voxel * unpacked_stride();
-    int backward = forward + sweep.bins + 1;
+    int backward = forward + BINS + 1;
     vec3 g = central_gradient(ivec3(x, y, z));
-    // Slice s sits at slot (s + e_z) mod R, so the window's first slice
-    // z - e_z at slot z mod R.
-    int first_slot = z % sweep.ring_slices;
-    int base = ring_index(first_slot, x, y);
-    int run_bin = sweep.bins;  // the discard slot: flushing the empty run is harmless
+    // The window's first slice z - e_z.
+    int base = binned_index(z - EXTENT.z - sweep.first_binned, x, y);
+    int run_bin = BINS;  // the discard slot: flushing the empty run is harmless
     float run_forward = 0.0, run_backward = 0.0;
     int end = sweep.first_entry + sweep.entry_count;
     for (int i = sweep.first_entry; i < end; ++i) {
-        int k = int(ring[base + stencil_offsets[i]]);
+        int k = int(binned[base + stencil_offsets[i]]);
         if (k != run_bin) {
             unpacked[forward + run_bin] += run_forward;
             unpacked[backward + run_bin] += run_backward;

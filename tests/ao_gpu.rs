@@ -259,9 +259,9 @@ fn the_gpu_backend_past_one_storage_buffer_range_is_validation_clean_and_equals_
     assert!(differing * 1000 <= volume.voxel_count(), "{differing} voxels assigned differently");
 }
 
-/// The barrier between binning the entering slice and the stencil reading
+/// The barrier between binning the batch's slices and the stencil reading
 /// it is load-bearing: recorded without it, synchronization validation
-/// reports the hazard on the ring (with it, clean: the tests above).
+/// reports the hazard on the binned slices (with it, clean: the tests above).
 #[test]
 fn the_sweep_without_its_slice_barrier_is_reported_by_sync_validation() {
     let ctx = validated_context();
@@ -269,7 +269,7 @@ fn the_sweep_without_its_slice_barrier_is_reported_by_sync_validation() {
     compare(&ctx, &volume, 2, 4, Metric::L2, BATCH_BYTES, SliceSync::RacyNoSliceBarrier);
     let messages = ctx.take_validation_messages();
     assert!(
-        messages.iter().any(|m| m.contains("SYNC-HAZARD-READ-AFTER-WRITE") && m.contains("ao binned slice ring")),
+        messages.iter().any(|m| m.contains("SYNC-HAZARD-READ-AFTER-WRITE") && m.contains("ao binned slices")),
         "the racy sweep was not reported: {messages:?}"
     );
 }

@@ -141,12 +141,29 @@ impl AssignPass {
         })
     }
 
-    /// Records the search of `range`'s histograms, which an earlier barrier
-    /// made visible; leaves each result in `states` and, as the next slice's
-    /// hint, in `hints`.
-    pub fn record(&self, rec: &mut Recorder, profiler: &mut Profiler, range: AssignRange) -> Result<(), VkError> {
+    /// Records the search of `ranges`' histograms, which an earlier barrier
+    /// made visible, in order and with the pipeline bound once; leaves each
+    /// result in `states` and, as the next slice's hint, in `hints`. Each
+    /// range is one slice (or part of one) and starts at the hints the range
+    /// before wrote.
+    pub fn record(&self, rec: &mut Recorder, profiler: &mut Profiler, ranges: &[AssignRange]) -> Result<(), VkError> {
         let scope = profiler.begin(rec, ASSIGN_PASS)?;
         rec.bind(&self.pipeline, self.set);
+        for (i, range) in ranges.iter().enumerate() {
+            if i > 0 {
+                rec.barrier(&Barrier::memory(
+                    "search_hints_write_to_next_slice_read",
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ_WRITE,
+                ));
+            }
+            self.record_walk(rec, range);
+        }
+        profiler.end(rec, scope)
+    }
+
+    /// One range's walk, in dispatches of `walk_entries` list entries.
+    fn record_walk(&self, rec: &mut Recorder, range: &AssignRange) {
         for chunk in 0..self.walk_chunks {
             if chunk > 0 {
                 rec.barrier(&Barrier::memory(
@@ -170,7 +187,6 @@ impl AssignPass {
             rec.push(&self.pipeline, &push);
             rec.dispatch((range.count as u32).div_ceil(GROUP_SIZE), 1, 1);
         }
-        profiler.end(rec, scope)
     }
 }
 
@@ -214,7 +230,7 @@ pub fn assign_packed(
     let mut profiler = Profiler::new(ctx, 4)?;
     submit_and_wait(ctx, "ao assign packed", |rec| {
         let range = AssignRange { first: 0, count, hint_first: 0, has_hints: hints.is_some() };
-        pass.record(rec, &mut profiler, range)?;
+        pass.record(rec, &mut profiler, &[range])?;
         rec.barrier(&Barrier::memory(
             "search_state_write_to_readback_copy",
             Access::COMPUTE_WRITE,

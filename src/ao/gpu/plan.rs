@@ -6,6 +6,8 @@
 //!   the read-back buffer; each batch is one submission, after which the CPU
 //!   sums the unpacked histograms per cluster (the final codebook) and the
 //!   buffers are reused. Only one batch of unpacked histograms ever exists.
+//!   A batch is recorded pass by pass (every part's stencil, then every
+//!   part's packing, ...), so each pipeline is bound once per batch.
 //! - The stencil loop and the codeword walk are split into chunks that stay
 //!   within llvmpipe's loop cap ([`LOOP_BUDGET`] iterations per invocation
 //!   and dispatch).
@@ -46,6 +48,28 @@ pub struct Batch {
     pub voxels: Range<usize>,
 }
 
+impl Batch {
+    /// The centre slices of the batch's parts.
+    pub fn slices(&self) -> Range<u32> {
+        let first = self.parts.first().map_or(0, |p| p.z);
+        first..self.parts.last().map_or(first, |p| p.z + 1)
+    }
+
+    /// The rows of its parts: all of them, or the rows of its one part of a
+    /// slice.
+    pub fn rows(&self) -> Range<u32> {
+        let start = self.parts.iter().map(|p| p.first_row).min().unwrap_or(0);
+        start..self.parts.iter().map(|p| p.first_row + p.rows).max().unwrap_or(start)
+    }
+
+    /// The slices its stencils read (e_z more on each side), binned once
+    /// per batch.
+    pub fn binned_slices(&self, extent_z: u32) -> Range<i32> {
+        let centre = self.slices();
+        centre.start as i32 - extent_z as i32..(centre.end + extent_z) as i32
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct SweepPlan {
     pub dims: UVec3,
@@ -54,6 +78,8 @@ pub struct SweepPlan {
     pub batches: Vec<Batch>,
     /// Most voxels in a batch (sizes the batch buffers).
     pub batch_voxels: usize,
+    /// Most centre slices in a batch (with 2 e_z, sizes the binned slices).
+    pub batch_slices: usize,
     /// Stencil entries per histogram dispatch.
     pub stencil_chunks: Vec<Range<usize>>,
     /// Sorted-list entries a codeword-walk dispatch visits, and how many
@@ -104,6 +130,7 @@ impl SweepPlan {
             batches.push(current);
         }
         let batch_voxels = batches.iter().map(|b| b.voxels.len()).max().unwrap_or(0);
+        let batch_slices = batches.iter().map(|b| b.slices().len()).max().unwrap_or(0);
 
         // The first stencil chunk also zeroes the voxel's histograms; the
         // gradient takes 3 iterations.
@@ -131,6 +158,7 @@ impl SweepPlan {
             packed_stride: stride,
             batches,
             batch_voxels,
+            batch_slices,
             stencil_chunks,
             walk_entries,
             walk_chunks,
@@ -159,6 +187,13 @@ mod tests {
                     next += part.rows as usize * 5;
                 }
                 assert_eq!(batch.voxels.end, next);
+                let slices = batch.slices();
+                assert!(batch.parts.iter().all(|p| slices.contains(&p.z)), "{batch:?}");
+                assert_eq!(batch.binned_slices(2), slices.start as i32 - 2..slices.end as i32 + 2);
+                assert!(slices.len() <= plan.batch_slices);
+                let rows = batch.rows();
+                assert!(batch.parts.iter().all(|p| rows.start <= p.first_row && p.first_row + p.rows <= rows.end));
+                assert!(batch.parts.len() == 1 || rows == (0..7), "{batch:?}");
             }
             assert_eq!(next, 5 * 7 * 4, "budget {budget_voxels}");
         }

@@ -1,30 +1,32 @@
 //! The paper's space sweep of local histograms on the GPU (section 5),
-//! slice by slice along z. What the sweep carries from slice to slice:
+//! slice by slice along z, recorded pass by pass per batch of parts
+//! ([`super::plan`]) so that each pipeline is bound once per batch:
 //!
-//! - a ring of the 2 e_z + 1 *binned* slices the stencil's window covers
-//!   (glsl/ao_histogram_common.glsl): each slice is binned once, by the
-//!   dispatch that brings it into the window (`ao_histogram_bin`), and read by
-//!   the stencils of the 2 e_z + 1 centre slices that follow; the barrier
-//!   `binned_slice_write_to_stencil_read` guards that hand-over, and
-//!   `slice_reads_to_next_slice_writes` the slot the next entering slice
-//!   overwrites;
-//! - each voxel's codewords, which start the next slice's searches at the
-//!   same (x, y) (neighbouring histograms are close, so the exact search
-//!   visits few codewords).
+//! 1. `ao_histogram_bin` bins every slice the batch's stencils read (its
+//!    centre slices and e_z more on each side, glsl/ao_histogram_common.glsl)
+//!    in one dispatch; barrier `binned_slices_write_to_stencil_read`;
+//! 2. `ao_histogram_stencil`: every part's stencil, in chunks within
+//!    llvmpipe's loop cap (barrier `stencil_chunk_write_to_next_chunk_read`
+//!    between chunks; the parts' histograms are disjoint); barrier
+//!    `unpacked_write_to_pack_read`;
+//! 3. `ao_histogram_pack`: every part's normalization and packing; barrier
+//!    `packed_write_to_assignment_read`;
+//! 4. `ao_assign`: the parts in order, each slice's searches started at the
+//!    previous slice's codewords at the same (x, y) (neighbouring histograms
+//!    are close, so the exact search visits few codewords), behind
+//!    `search_hints_write_to_next_slice_read`.
 //!
-//! Per centre slice (or part of one): bin the entering slice, the stencil
-//! (`ao_histogram_stencil`, in chunks within llvmpipe's loop cap), normalize
-//! and pack (`ao_histogram_pack`), assign (`ao_assign`); every pass with a
-//! debug label and a profiler scope of its name, every hand-over behind a
-//! named barrier. A batch of parts is one submission; its unpacked histograms
-//! and search results are then read back in place for the final codebook, so
-//! only one batch of unpacked histograms exists at a time.
+//! Every pass has a debug label and a profiler scope of its name. A batch is
+//! one submission; its unpacked histograms and search results are then read
+//! back in place for the final codebook, so only one batch of unpacked
+//! histograms exists at a time.
 
 use std::collections::BTreeMap;
 use std::ops::Range;
 
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
+use glam::UVec3;
 use gpu_allocator::MemoryLocation;
 
 use super::assign::{AssignPass, AssignRange, SearchState};
@@ -61,20 +63,13 @@ const HEAP_SHARE: u64 = 4;
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct SweepPush {
-    gradient_scale: [f32; 3],
-    pad_scale: f32,
-    dims: [i32; 3],
-    bins: i32,
-    extent: [i32; 3],
-    ring_slices: i32,
+    first_binned: i32,
     slice: i32,
     first_row: i32,
     rows: i32,
     first_entry: i32,
     entry_count: i32,
     part_voxel: i32,
-    packed_stride: i32,
-    pad: i32,
 }
 
 macro_rules! assert_sweep_push_layout {
@@ -82,8 +77,7 @@ macro_rules! assert_sweep_push_layout {
         crate::assert_gpu_layout!(
             SweepPush,
             $shader::layout::SWEEP,
-            [gradient_scale, pad_scale, dims, bins, extent, ring_slices, slice, first_row, rows, first_entry, entry_count,
-             part_voxel, packed_stride, pad]
+            [first_binned, slice, first_row, rows, first_entry, entry_count, part_voxel]
         );
     )*};
 }
@@ -99,11 +93,11 @@ struct Share {
 
 crate::assert_gpu_layout!(Share, ao_histogram_pack::layout::SHARE, [packed_bin, share]);
 
-/// Whether the entering slice's binning is ordered before the stencil reads it.
+/// Whether the batch's binning is ordered before the stencils read it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SliceSync {
     Barrier,
-    /// RACY: no `binned_slice_write_to_stencil_read`. Only for proving that
+    /// RACY: no `binned_slices_write_to_stencil_read`. Only for proving that
     /// synchronization validation reports the missing barrier; the histograms
     /// are undefined.
     RacyNoSliceBarrier,
@@ -225,11 +219,10 @@ fn binding_sizes(
     let [ex, ey, ez] = stencil.extent.to_array().map(|v| v as usize);
     let [nx, ny, _] = volume.dims.to_array().map(|v| v as usize);
     let bins = plan.bins;
-    let ring_slices = 2 * ez + 1;
     let [unpacked, packed, states] = batch_bytes_per_voxel(bins, packed_dim).map(|b| b * plan.batch_voxels);
     vec![
         ("ao normalized values", volume.voxel_count() * 4),
-        ("ao binned slice ring", 2 * ring_slices * (nx + 2 * ex) * (ny + 2 * ey) * 4),
+        ("ao binned slices", (plan.batch_slices + 2 * ez) * (nx + 2 * ex) * (ny + 2 * ey) * 4),
         ("ao stencil directions", stencil.voxel_count() * 16),
         ("ao packing shares", (bins + packed_dim) * size_of::<Share>()),
         ("ao unpacked histograms", unpacked),
@@ -257,7 +250,7 @@ fn within_storage_range(ctx: &Context, name: &str, bytes: usize) -> Result<(), A
 pub struct GpuSweep<'c> {
     ctx: &'c Context,
     plan: SweepPlan,
-    push: SweepPush,
+    extent: UVec3,
     normalization: f32,
     bin: ComputePipeline,
     stencil: ComputePipeline,
@@ -270,7 +263,7 @@ pub struct GpuSweep<'c> {
     /// Host-visible copies of `unpacked` and `states`, written after each batch.
     readback: [Buffer; 2],
     _values: Buffer,
-    _ring: Buffer,
+    _binned: Buffer,
     _stencil_directions: Buffer,
     _stencil_offsets: Buffer,
     _share_starts: Buffer,
@@ -302,17 +295,17 @@ impl<'c> GpuSweep<'c> {
             within_storage_range(ctx, name, bytes)?;
         }
         let e = stencil.extent;
-        let ring_slices = 2 * e.z + 1;
+        // A batch's centre slices and e_z more on each side.
+        let binned_slots = plan.batch_slices as u32 + 2 * e.z;
         let (px, py) = (dims.x + 2 * e.x, dims.y + 2 * e.y);
-        let push = SweepPush {
-            gradient_scale: gradient_scale(volume.spacing),
-            dims: dims.as_ivec3().to_array(),
-            bins: bins as i32,
-            extent: e.as_ivec3().to_array(),
-            ring_slices: ring_slices as i32,
-            packed_stride: plan.packed_stride as i32,
-            ..SweepPush::zeroed()
-        };
+        // The specialization constants of glsl/ao_histogram_common.glsl, ids 1..=11.
+        let [gx, gy, gz] = gradient_scale(volume.spacing).map(f32::to_bits);
+        let constants: Vec<(u32, u32)> = [gx, gy, gz, dims.x, dims.y, dims.z, bins as u32, e.x, e.y, e.z]
+            .into_iter()
+            .chain([plan.packed_stride as u32])
+            .enumerate()
+            .map(|(i, value)| (i as u32 + 1, value))
+            .collect();
 
         // Every buffer a shader reads or writes is device-local; the inputs
         // arrive through staging (one submission), the results leave through
@@ -325,7 +318,7 @@ impl<'c> GpuSweep<'c> {
         let values: Vec<f32> = (0..volume.voxel_count()).map(|i| volume.data.normalized(i)).collect();
         let values = uploads.buffer("ao normalized values", &values, usage)?;
         let none = vk::BufferUsageFlags::empty();
-        let ring = device_buffer("ao binned slice ring", 2 * (ring_slices * px * py) as usize * 4, none)?;
+        let binned = device_buffer("ao binned slices", (binned_slots * px * py) as usize * 4, none)?;
         let directions: Vec<[f32; 4]> =
             stencil.directions.iter().zip(&stencil.weights).map(|(d, &w)| [d.x, d.y, d.z, w as f32]).collect();
         let offsets: Vec<i32> =
@@ -359,20 +352,21 @@ impl<'c> GpuSweep<'c> {
         let pipeline = |name: &str, shader, specialization: &[(u32, u32)]| {
             ComputePipeline::new(ctx, &ComputePipelineDesc { name, shader, specialization, max_sets: 1 })
         };
-        let mut bin = pipeline(BIN_PASS, &ao_histogram_bin::INTERFACE, &[])?;
+        let mut bin = pipeline(BIN_PASS, &ao_histogram_bin::INTERFACE, &constants)?;
         let bin_set = bin.create_set(&[
             (ao_histogram_bin::VALUES, Resource::StorageBuffer(&values)),
-            (ao_histogram_bin::RING, Resource::StorageBuffer(&ring)),
+            (ao_histogram_bin::BINNED, Resource::StorageBuffer(&binned)),
         ])?;
-        let mut sweep = pipeline(STENCIL_PASS, &ao_histogram_sweep::INTERFACE, &[])?;
+        let mut sweep = pipeline(STENCIL_PASS, &ao_histogram_sweep::INTERFACE, &constants)?;
         let sweep_set = sweep.create_set(&[
             (ao_histogram_sweep::VALUES, Resource::StorageBuffer(&values)),
-            (ao_histogram_sweep::RING, Resource::StorageBuffer(&ring)),
+            (ao_histogram_sweep::BINNED, Resource::StorageBuffer(&binned)),
             (ao_histogram_sweep::STENCIL_DIRECTIONS, Resource::StorageBuffer(&stencil_directions)),
             (ao_histogram_sweep::STENCIL_OFFSETS, Resource::StorageBuffer(&stencil_offsets)),
             (ao_histogram_sweep::UNPACKED, Resource::StorageBuffer(&unpacked)),
         ])?;
-        let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &[(0, normalization.to_bits())])?;
+        let pack_constants: Vec<(u32, u32)> = [(0, normalization.to_bits())].into_iter().chain(constants).collect();
+        let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &pack_constants)?;
         let pack_set = pack.create_set(&[
             (ao_histogram_pack::UNPACKED, Resource::StorageBuffer(&unpacked)),
             (ao_histogram_pack::SHARE_STARTS, Resource::StorageBuffer(&share_starts)),
@@ -389,12 +383,12 @@ impl<'c> GpuSweep<'c> {
             [&packed, &states, &hints],
         )?;
         uploads.finish()?;
-        let most_parts = plan.batches.iter().map(|b| b.parts.len()).max().unwrap_or(1) as u32;
-        let profiler = Profiler::new(ctx, 4 * most_parts + 4)?;
+        // One scope per pass and batch.
+        let profiler = Profiler::new(ctx, 4)?;
         Ok(GpuSweep {
             ctx,
             plan,
-            push,
+            extent: e,
             normalization,
             bin,
             stencil: sweep,
@@ -406,7 +400,7 @@ impl<'c> GpuSweep<'c> {
             states,
             readback,
             _values: values,
-            _ring: ring,
+            _binned: binned,
             _stencil_directions: stencil_directions,
             _stencil_offsets: stencil_offsets,
             _share_starts: share_starts,
@@ -449,10 +443,21 @@ impl<'c> GpuSweep<'c> {
 
     fn record_batch(&mut self, b: usize, sync: SliceSync) -> Result<(), VkError> {
         let GpuSweep {
-            ctx, plan, push, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, ..
+            ctx, plan, extent, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, ..
         } = self;
-        let (nx, e_z, padded) =
-            (plan.dims.x, push.extent[2], [push.dims[0] + 2 * push.extent[0], push.dims[1] + 2 * push.extent[1]]);
+        let (nx, padded) = (plan.dims.x, [plan.dims.x + 2 * extent.x, plan.dims.y + 2 * extent.y]);
+        let batch = &plan.batches[b];
+        let binned = batch.binned_slices(extent.z);
+        // A batch that is part of a slice bins only the rows its stencil reads.
+        let rows = batch.rows();
+        let push = SweepPush { first_binned: binned.start, ..SweepPush::zeroed() };
+        let part_push = |part: &super::plan::Part| SweepPush {
+            slice: part.z as i32,
+            first_row: part.first_row as i32,
+            rows: part.rows as i32,
+            part_voxel: part.batch_voxel as i32,
+            ..push
+        };
         submit_and_wait(ctx, "ao histogram sweep", |rec| {
             // The stencil adds into zeroed histograms (a memset, far cheaper
             // than a zeroing loop per invocation on llvmpipe).
@@ -462,83 +467,77 @@ impl<'c> GpuSweep<'c> {
                 Access::CLEAR_WRITE,
                 Access::COMPUTE_READ_WRITE,
             ));
-            for part in &plan.batches[b].parts {
-                let z = part.z as i32;
-                let mut push = SweepPush {
-                    slice: z,
-                    first_row: part.first_row as i32,
-                    rows: part.rows as i32,
-                    part_voxel: part.batch_voxel as i32,
-                    ..*push
-                };
-                if part.first_row == 0 {
-                    // The slice entering the window; the first slice primes
-                    // the ring with the whole window.
-                    let (first, count) = if z == 0 { (-e_z, 2 * e_z + 1) } else { (z + e_z, 1) };
-                    let scope = profiler.begin(rec, BIN_PASS)?;
-                    rec.bind(bin, sets[0]);
-                    rec.push(bin, &SweepPush { slice: first, ..push });
-                    rec.dispatch((padded[0] as u32).div_ceil(8), (padded[1] as u32).div_ceil(8), count as u32);
-                    profiler.end(rec, scope)?;
-                    if sync == SliceSync::Barrier {
-                        rec.barrier(&Barrier::memory(
-                            "binned_slice_write_to_stencil_read",
-                            Access::COMPUTE_WRITE,
-                            Access::COMPUTE_READ,
-                        ));
-                    }
+            let scope = profiler.begin(rec, BIN_PASS)?;
+            rec.bind(bin, sets[0]);
+            let (first_row, row_count) = (rows.start as i32, rows.len() as i32);
+            rec.push(bin, &SweepPush { slice: binned.start, first_row, rows: row_count, ..push });
+            let padded_rows = (rows.len() as u32 + 2 * extent.y).min(padded[1]);
+            rec.dispatch(padded[0].div_ceil(8), padded_rows.div_ceil(8), binned.len() as u32);
+            profiler.end(rec, scope)?;
+            if sync == SliceSync::Barrier {
+                rec.barrier(&Barrier::memory(
+                    "binned_slices_write_to_stencil_read",
+                    Access::COMPUTE_WRITE,
+                    Access::COMPUTE_READ,
+                ));
+            }
+            // The parts' histograms are disjoint: only a chunk depends on
+            // the one before (it adds into the same histograms).
+            let scope = profiler.begin(rec, STENCIL_PASS)?;
+            rec.bind(stencil, sets[1]);
+            for (i, chunk) in plan.stencil_chunks.iter().enumerate() {
+                if i > 0 {
+                    rec.barrier(&Barrier::memory(
+                        "stencil_chunk_write_to_next_chunk_read",
+                        Access::COMPUTE_WRITE,
+                        Access::COMPUTE_READ_WRITE,
+                    ));
                 }
-                let scope = profiler.begin(rec, STENCIL_PASS)?;
-                rec.bind(stencil, sets[1]);
-                for (i, chunk) in plan.stencil_chunks.iter().enumerate() {
-                    if i > 0 {
-                        rec.barrier(&Barrier::memory(
-                            "stencil_chunk_write_to_next_chunk_read",
-                            Access::COMPUTE_WRITE,
-                            Access::COMPUTE_READ_WRITE,
-                        ));
-                    }
-                    push.first_entry = chunk.start as i32;
-                    push.entry_count = chunk.len() as i32;
+                for part in &batch.parts {
+                    let push = SweepPush {
+                        first_entry: chunk.start as i32,
+                        entry_count: chunk.len() as i32,
+                        ..part_push(part)
+                    };
                     rec.push(stencil, &push);
                     rec.dispatch(nx.div_ceil(8), part.rows.div_ceil(8), 1);
                 }
-                profiler.end(rec, scope)?;
-                rec.barrier(&Barrier::memory(
-                    "unpacked_write_to_pack_read",
-                    Access::COMPUTE_WRITE,
-                    Access::COMPUTE_READ,
-                ));
-                let scope = profiler.begin(rec, PACK_PASS)?;
-                rec.bind(pack, sets[2]);
-                rec.push(pack, &push);
-                rec.dispatch((part.rows * nx).div_ceil(64), 1, 1);
-                profiler.end(rec, scope)?;
-                rec.barrier(&Barrier::memory(
-                    "packed_write_to_assignment_read",
-                    Access::COMPUTE_WRITE,
-                    Access::COMPUTE_READ,
-                ));
-                let histograms = 2 * part.rows as usize * nx as usize;
-                let range = AssignRange {
-                    first: 2 * part.batch_voxel,
-                    count: histograms,
-                    hint_first: 2 * part.first_row as usize * nx as usize,
-                    has_hints: z > 0,
-                };
-                assign.record(rec, profiler, range)?;
-                // The next entering slice overwrites the ring slot this
-                // stencil read; the next part rewrites the histogram and
-                // search buffers and reads the hints this one wrote.
-                rec.barrier(&Barrier::memory(
-                    "slice_reads_to_next_slice_writes",
-                    Access::COMPUTE_READ_WRITE,
-                    Access::COMPUTE_READ_WRITE,
-                ));
             }
+            profiler.end(rec, scope)?;
+            rec.barrier(&Barrier::memory("unpacked_write_to_pack_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ));
+            let scope = profiler.begin(rec, PACK_PASS)?;
+            rec.bind(pack, sets[2]);
+            for part in &batch.parts {
+                rec.push(pack, &part_push(part));
+                rec.dispatch((part.rows * nx).div_ceil(64), 1, 1);
+            }
+            profiler.end(rec, scope)?;
+            rec.barrier(&Barrier::memory(
+                "packed_write_to_assignment_read",
+                Access::COMPUTE_WRITE,
+                Access::COMPUTE_READ,
+            ));
+            let ranges: Vec<AssignRange> = batch
+                .parts
+                .iter()
+                .map(|part| AssignRange {
+                    first: 2 * part.batch_voxel,
+                    count: 2 * part.rows as usize * nx as usize,
+                    hint_first: 2 * part.first_row as usize * nx as usize,
+                    has_hints: part.z > 0,
+                })
+                .collect();
+            assign.record(rec, profiler, &ranges)?;
+            // The next batch's first slice starts at the hints this batch's
+            // last slice wrote.
+            rec.barrier(&Barrier::memory(
+                "search_hints_write_to_next_batch_read",
+                Access::COMPUTE_WRITE,
+                Access::COMPUTE_READ_WRITE,
+            ));
             // The batch's histograms and search results go to the host.
             rec.barrier(&Barrier::memory("sweep_write_to_readback_copy", Access::COMPUTE_WRITE, Access::TRANSFER_READ));
-            let voxels = plan.batches[b].voxels.len();
+            let voxels = batch.voxels.len();
             copy_buffer(rec, unpacked, &readback[0], (voxels * unpacked_stride(plan.bins) * 4) as u64);
             copy_buffer(rec, states, &readback[1], (2 * voxels * size_of::<SearchState>()) as u64);
             rec.barrier(&Barrier::memory("readback_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
