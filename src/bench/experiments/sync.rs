@@ -280,12 +280,25 @@ impl StrategyRow {
     /// The narrower of its two estimates of the sync cost per boundary: from
     /// frame slopes, and paired in the frame (strategies with per-line
     /// timestamps). Both estimate the same cost; the verdict prints both.
+    /// Only where the two agree (their intervals overlap): on lavapipe the
+    /// per-line timestamps change what a boundary costs (a barrier after a
+    /// timestamped dispatch drains what the timestamp flushed), so the in-frame
+    /// estimate can sit far outside the frame slopes' interval; it then
+    /// measures the timestamped frame, not the boundary.
     pub fn best_sync_us(&self) -> Option<Estimate> {
         let in_frame = self.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us);
         match (self.sync_us, in_frame) {
-            (Some(a), Some(b)) => Some(if b.half_width() < a.half_width() { b } else { a }),
+            (Some(a), Some(b)) if self.estimates_agree() != Some(false) && b.half_width() < a.half_width() => Some(b),
             (a, b) => a.or(b),
         }
+    }
+
+    /// Whether the frame slopes' and the in-frame estimate's intervals overlap
+    /// (None without both).
+    pub fn estimates_agree(&self) -> Option<bool> {
+        let in_frame = self.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us)?;
+        let slopes = self.sync_us?;
+        Some(in_frame.lo <= slopes.hi && slopes.lo <= in_frame.hi)
     }
 }
 
@@ -437,7 +450,13 @@ impl SyncReport {
                     .and_then(|g| g.in_frame_sync_us)
                     .map(|e| format!("; {} paired in the frame", e.describe("us")))
                     .unwrap_or_default();
-                out.push(format!("  {what}: {cost}{paired}"));
+                let disagree = if r.estimates_agree() == Some(false) {
+                    " (the two disagree: the per-line timestamps change what a boundary costs here, \
+                     so the frame slopes are the estimate)"
+                } else {
+                    ""
+                };
+                out.push(format!("  {what}: {cost}{paired}{disagree}"));
             }
         }
         out
@@ -752,8 +771,19 @@ fn fit_members(
     kept
 }
 
+/// A configuration's settings. Every line width does the same work: the claim
+/// pass, which a frame leaves out at line width 1 where it cannot change the
+/// image (`IpsviSettings::records_claims`), stays in at every width, or the
+/// slope over blocks would carry the pass's cost.
 fn settings_for(base: &IpsviSettings, line_width: u32, sync: SyncStrategy, workload: Workload) -> IpsviSettings {
-    IpsviSettings { line_width, sync, breakdown_step: workload.breakdown_step(), merge_sweeps: false, ..base.clone() }
+    IpsviSettings {
+        line_width,
+        sync,
+        breakdown_step: workload.breakdown_step(),
+        merge_sweeps: false,
+        keep_redundant_claims: true,
+        ..base.clone()
+    }
 }
 
 /// What one workload's warm-up has run so far.
@@ -1063,6 +1093,52 @@ mod tests {
         let both = execution_order(&[Workload::Empty, Workload::Sweep]);
         assert_eq!(both, [Workload::Sweep, Workload::Empty]);
         assert_eq!(execution_order(&[Workload::Empty]), [Workload::Empty]);
+    }
+
+    #[test]
+    fn every_line_width_records_the_same_passes() {
+        let base = IpsviSettings::default();
+        assert!(!base.records_claims(), "line width 1 leaves the claim pass out of a frame");
+        for line_width in [1, 2, 32] {
+            let s = settings_for(&base, line_width, SyncStrategy::BarrierGlobal, Workload::Sweep);
+            assert!(s.records_claims(), "line width {line_width}");
+        }
+    }
+
+    /// Two estimates of one cost whose intervals do not overlap: the in-frame
+    /// one, however narrow, is not used (it measured the timestamped frame).
+    #[test]
+    fn an_in_frame_estimate_that_disagrees_with_the_slopes_is_not_used() {
+        let e = |value: f64, lo: f64, hi: f64| Some(Estimate { value, lo, hi, n: 6 });
+        let gaps = |in_frame: Option<Estimate>| LineGaps {
+            line_width: 1,
+            gap_median_us: 0.0,
+            gap_q1_us: 0.0,
+            gap_q3_us: 0.0,
+            line_median_us: 0.0,
+            in_frame_sync_us: in_frame,
+            perturbation_ms: None,
+            last_gaps_us: Vec::new(),
+        };
+        let row = |in_frame: Option<Estimate>| StrategyRow {
+            workload: Workload::Empty,
+            strategy: "barrier-global".into(),
+            racy: false,
+            boundary_us: e(60.0, 55.0, 65.0),
+            r_squared: None,
+            intercept_ms: None,
+            sync_us: e(3.0, -1.5, 8.0),
+            boundary_cpu_us: None,
+            sync_cpu_us: None,
+            line_gaps: Some(gaps(in_frame)),
+        };
+        let far = row(e(195.0, 189.0, 197.0));
+        assert_eq!(far.estimates_agree(), Some(false));
+        assert_eq!(far.best_sync_us(), far.sync_us, "the wider slopes, not the far in-frame estimate");
+        let near = row(e(1.0, 0.2, 2.8));
+        assert_eq!(near.estimates_agree(), Some(true));
+        assert_eq!(near.best_sync_us(), near.line_gaps.as_ref().unwrap().in_frame_sync_us, "the narrower, agreeing");
+        assert_eq!(row(None).estimates_agree(), None);
     }
 
     /// Lines whose work grows along the sweep (100 + 3 i us) and a sync that

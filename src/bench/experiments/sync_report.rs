@@ -47,6 +47,9 @@ fn strategy_row(r: &StrategyRow) -> BenchRow {
         row.set("gap_median_us", g.gap_median_us).set("gap_q1_us", g.gap_q1_us).set("gap_q3_us", g.gap_q3_us);
         row.set("line_median_us", g.line_median_us);
         row.set_estimate("in_frame_sync_us", g.in_frame_sync_us);
+        if let Some(agree) = r.estimates_agree() {
+            row.set("estimates_agree", agree);
+        }
         row.set_estimate("timestamp_perturbation_ms", g.perturbation_ms);
     }
     row
