@@ -52,7 +52,8 @@ fn frame(ctx: &Context, gpu: &GpuScene, s: &IpsviSettings, sync: SyncStrategy) -
 
 /// Block records per sweep: its blocks, and with claims one claim-only record.
 fn records_per_sweep(gpu: &GpuScene, s: &IpsviSettings) -> Vec<u32> {
-    let claims = s.cache_update == CacheUpdate::ViewSamples && s.cache_write.claims();
+    // A claim-only record ahead of each sweep, where the frame records claims.
+    let claims = s.records_claims();
     plans(gpu, s, W, H).iter().flat_map(|p| &p.sweeps).map(|sw| sw.blocks.len() as u32 + claims as u32).collect()
 }
 

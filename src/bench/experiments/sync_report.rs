@@ -314,7 +314,7 @@ pub fn plot_side_by_side(
                     Some(Point::new(i as f64 + 1.0 + spread(d), e.value).with_interval(e.lo, e.hi))
                 })
                 .collect();
-            Series::with_points(format!("{} ({})", r.run.device, r.run.driver_version), points)
+            Series::with_points(format!("{} ({}), {}", r.run.device, r.run.driver_version, r.run.date), points)
         })
         .collect();
     let x_label = strategies.iter().enumerate().map(|(i, s)| format!("{} {s}", i + 1)).collect::<Vec<_>>().join(", ");
