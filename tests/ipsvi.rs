@@ -271,11 +271,12 @@ fn extreme_cases_stay_finite_and_lit() {
             ipsvi.max_value()
         );
         // And where it adds it: the lit part against the ground truth's lit part.
-        // The stated tolerance, relative to the lit part's peak (measured: 1.7% at
-        // 1e-6 and at 1e6, 0.6% grazing, 0.1% parallel). Near-opaque surfaces are
-        // one sample thick, so the one-texel terminator (see RMSE_TOLERANCE) covers
-        // more of the lit pixels: measured 3.0%, bound 4%.
-        let tolerance = if *what == "near-opaque" { 0.04 } else { RMSE_TOLERANCE };
+        // The stated tolerance, relative to the lit part's peak (measured on
+        // lavapipe: 0.20% at 1e-6, 0.13% at 1e6, 0.02% grazing, 0.01% parallel).
+        // Near-opaque surfaces are one sample thick, so the one-texel terminator
+        // (see RMSE_TOLERANCE) covers more of the lit pixels: measured 0.25%,
+        // bound 1% (an earlier build measured 3.0% here, against a bound of 4%).
+        let tolerance = if *what == "near-opaque" { 0.01 } else { RMSE_TOLERANCE };
         let rmse = compare(&ipsvi, &reference).unwrap().rmse / peak;
         println!("{what}: lit part relative rmse {rmse:.4} of lit peak {peak:.3e}");
         assert!(rmse <= tolerance, "{what}: lit part relative rmse {rmse}");
