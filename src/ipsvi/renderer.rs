@@ -492,8 +492,18 @@ impl<'a> IpsviRenderer<'a> {
         Ok(self.secondaries.get_or_init(|| recorded))
     }
 
-    /// The synchronization object of `sync` for one frame.
-    fn line_sync(&self, sync: SyncStrategy) -> Result<Box<dyn LineSync + '_>, RenderError> {
+    /// The synchronization object of `sync` for one frame; `every_other`: only
+    /// after blocks 0, 2, 4, ... ([`EveryOther`], `bench sync`'s per-line timing).
+    fn line_sync(&self, sync: SyncStrategy, every_other: bool) -> Result<Box<dyn LineSync + '_>, RenderError> {
+        if every_other {
+            // Per-line timestamps need the frame's queries in the secondary, so
+            // `secondary` records its sweeps for this frame instead of replaying.
+            let inner: Box<dyn LineSync + '_> = match sync {
+                SyncStrategy::Secondary => Box::new(RerecordedSweeps::default()),
+                _ => self.line_sync(sync, false)?,
+            };
+            return Ok(Box::new(EveryOther::new(inner)));
+        }
         let cache = &self.cache;
         Ok(match sync {
             SyncStrategy::BarrierGlobal => Box::new(GlobalBarrier),
@@ -538,13 +548,7 @@ impl<'a> IpsviRenderer<'a> {
         let this = &*self;
         // The recorded frame (and what it keeps alive) outlives the submission.
         let (frame, dispatches, barriers) = submit_and_wait_or(this.ctx, "frame", |rec| {
-            let line_sync: Box<dyn LineSync + '_> = match (every_other, sync) {
-                // Per-line timestamps need the frame's queries in the secondary.
-                (true, SyncStrategy::Secondary) => Box::new(EveryOther::new(Box::new(RerecordedSweeps::default()))),
-                (true, _) => Box::new(EveryOther::new(this.line_sync(sync)?)),
-                (false, _) => this.line_sync(sync)?,
-            };
-            let frame = this.record_with(rec, profiler, line_sync)?;
+            let frame = this.record_with(rec, profiler, this.line_sync(sync, every_other)?)?;
             frame.output.record_readback(rec, &this.readback);
             Ok::<_, RenderError>((frame, rec.dispatch_count, rec.barrier_count))
         })?;
@@ -562,7 +566,7 @@ impl<'a> IpsviRenderer<'a> {
         profiler: &mut Profiler,
         sync: SyncStrategy,
     ) -> Result<RecordedFrame, RenderError> {
-        self.record_with(rec, profiler, self.line_sync(sync)?)
+        self.record_with(rec, profiler, self.line_sync(sync, false)?)
     }
 
     fn record_with(
