@@ -21,6 +21,7 @@ pub mod progress;
 pub mod protocol;
 pub mod rows;
 pub mod run_info;
+pub mod shift;
 pub mod stats;
 
 pub use charts::{

@@ -8,8 +8,9 @@
 //! boundary (a dispatch and that strategy's sync). The no-barriers slope is the
 //! dispatch's own cost, a strategy's slope minus it the cost of its sync.
 //! Slopes are fitted round by round and compared round by round
-//! ([`paired_slope_difference`]), so what a round of the machine did to all
-//! its frames cancels.
+//! ([`paired_slope_difference`]: a Hodges-Lehmann shift of the per-round
+//! differences, against the mean of the baseline's two copies), so what a
+//! round of the machine did to all its frames cancels.
 //!
 //! Two workloads: `sweep` (the scene's IPSVI frame) and `empty` (the same
 //! dispatches and sync with shaders that return at once), so a boundary's
@@ -352,7 +353,11 @@ pub struct WorkloadRounds {
 /// ones after it. The sweep runs first: its fewest rounds take most of the
 /// budget and cannot be shortened, while the empty workload's rounds take
 /// about a second on lavapipe and narrow its intervals with what is left.
-const LATER_WORKLOADS_SHARE: f64 = 0.15;
+/// On lavapipe a third of a 10-minute budget gives the empty workload about
+/// 150 rounds, what its near-zero costs need for a 3 us half-width, while the
+/// sweep keeps its narrowest and widest line widths: at 256x256 its frame
+/// slopes span +-500-1300 us after 6 rounds whether two or three widths run.
+const LATER_WORKLOADS_SHARE: f64 = 0.35;
 
 impl SyncReport {
     /// The strategy rows of `workload`.
@@ -907,6 +912,22 @@ fn frame(ctx: &Context, c: &mut Configuration, profiler: &mut Profiler) -> Resul
     Ok(run)
 }
 
+/// The baseline rounds `arm` is compared with. Where the A/A control ran, the
+/// baseline was measured twice a round: a strategy is compared with both
+/// copies (their mean, [`paired_slope_difference`]), the control itself with
+/// the first copy alone.
+fn baselines_for<'a>(
+    arm: Arm,
+    base: &'a [Vec<(f64, f64)>],
+    again: &'a [Vec<(f64, f64)>],
+) -> Vec<&'a [Vec<(f64, f64)>]> {
+    if arm == Arm::NoBarriersAgain || again.is_empty() {
+        vec![base]
+    } else {
+        vec![base, again]
+    }
+}
+
 /// Per synchronized boundary of an [`EveryOther`] frame (block i's line
 /// `durations_us[i]`, then the gap `gaps_us[i]` to the next line's start):
 /// its period minus the mean period of its two unsynchronized neighbours.
@@ -1004,6 +1025,8 @@ fn summarize(
         }
         let base_gpu = points(workload, Arm::NoBarriers, &|r| r.gpu_ms);
         let base_cpu = points(workload, Arm::NoBarriers, &|r| r.cpu_ms);
+        let again_gpu = points(workload, Arm::NoBarriersAgain, &|r| r.gpu_ms);
+        let again_cpu = points(workload, Arm::NoBarriersAgain, &|r| r.cpu_ms);
         for &arm in &arms {
             let arm_gpu = points(workload, arm, &|r| r.gpu_ms);
             let arm_cpu = points(workload, arm, &|r| r.cpu_ms);
@@ -1016,9 +1039,13 @@ fn summarize(
                 boundary_us: fit.map(|f| f.slope),
                 r_squared: fit.map(|f| f.r_squared),
                 intercept_ms: fit.map(|f| f.intercept * 1e-3),
-                sync_us: (!is_base).then(|| paired_slope_difference(&base_gpu, &arm_gpu).ok()).flatten(),
+                sync_us: (!is_base)
+                    .then(|| paired_slope_difference(&baselines_for(arm, &base_gpu, &again_gpu), &arm_gpu).ok())
+                    .flatten(),
                 boundary_cpu_us: slope_per_round(&arm_cpu).ok().map(|f| f.slope),
-                sync_cpu_us: (!is_base).then(|| paired_slope_difference(&base_cpu, &arm_cpu).ok()).flatten(),
+                sync_cpu_us: (!is_base)
+                    .then(|| paired_slope_difference(&baselines_for(arm, &base_cpu, &again_cpu), &arm_cpu).ok())
+                    .flatten(),
                 line_gaps: line_gaps(configs, rounds, workload, arm),
             });
         }

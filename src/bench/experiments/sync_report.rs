@@ -92,8 +92,9 @@ pub fn markdown(report: &SyncReport) -> String {
         "Protocol: per workload, {} warm-up round(s), then timed rounds of all its configurations, \
          each in a shuffled order (seed {}); rounds: {}; {:.0} s in all. Estimates are medians with exact 95 % order-statistics intervals; costs \
          are slopes of frame time over the number of line blocks (line widths {:?} at {}x{}), fitted \
-         round by round and compared with `{BASELINE}` round by round. `{CONTROL}` is the baseline \
-         measured again (A/A control): its cost must be within noise. The verdict reads GPU \
+         round by round and compared round by round with the mean of `{BASELINE}` and `{CONTROL}` \
+         (Hodges-Lehmann shifts with exact signed-rank intervals). `{CONTROL}` is the baseline \
+         measured again (A/A control): its cost against `{BASELINE}` alone must be within noise. The verdict reads GPU \
          timestamps; `*_cpu_us` are the same estimates from process CPU time.{}\n\n",
         report.warm_up_rounds,
         report.seed,
