@@ -41,7 +41,7 @@ use crate::ao::settings::Metric;
 use crate::scene::Volume;
 use crate::shaders::{ao_histogram_bin, ao_histogram_pack, ao_histogram_sweep};
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::commands::submit_and_wait;
+use crate::vk::commands::{submit_and_wait, Recorder};
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
 use crate::vk::staging::{copy_buffer, readback_buffer, Uploads};
@@ -421,9 +421,18 @@ impl<'c> GpuSweep<'c> {
         mut consume: impl FnMut(&BatchOutput) -> Result<(), AoError>,
     ) -> Result<PassTimes, AoError> {
         let mut times = PassTimes::new();
-        for b in 0..self.plan.batches.len() {
+        // The first batch's histograms are zeroed in a submission of their
+        // own; each batch zeroes the next one's after its read-back. So no
+        // batch's first profiler scope starts right after a transfer, which
+        // only an ALL_COMMANDS timestamp would wait for.
+        submit_and_wait(self.ctx, "ao unpacked histograms clear", |rec| {
+            clear_unpacked(rec, &self.unpacked);
+            Ok(())
+        })?;
+        let batches = self.plan.batches.len();
+        for b in 0..batches {
             self.profiler.reset();
-            self.record_batch(b, sync)?;
+            self.record_batch(b, sync, b + 1 < batches)?;
             let report = self.profiler.resolve(0)?;
             for pass in report.passes {
                 *times.entry(pass.name).or_default() += pass.gpu_ms;
@@ -441,7 +450,9 @@ impl<'c> GpuSweep<'c> {
         Ok(times)
     }
 
-    fn record_batch(&mut self, b: usize, sync: SliceSync) -> Result<(), VkError> {
+    /// Records batch `b`; with `clear_next`, then zeroes the unpacked
+    /// histograms for the next batch once they are copied out.
+    fn record_batch(&mut self, b: usize, sync: SliceSync, clear_next: bool) -> Result<(), VkError> {
         let GpuSweep {
             ctx, plan, extent, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, ..
         } = self;
@@ -459,14 +470,7 @@ impl<'c> GpuSweep<'c> {
             ..push
         };
         submit_and_wait(ctx, "ao histogram sweep", |rec| {
-            // The stencil adds into zeroed histograms (a memset, far cheaper
-            // than a zeroing loop per invocation on llvmpipe).
-            rec.fill_buffer(unpacked, 0);
-            rec.barrier(&Barrier::memory(
-                "unpacked_clear_to_stencil_accumulate",
-                Access::CLEAR_WRITE,
-                Access::COMPUTE_READ_WRITE,
-            ));
+            // The histograms were zeroed before this submission ([`Self::run`]).
             let scope = profiler.begin(rec, BIN_PASS)?;
             rec.bind(bin, sets[0]);
             let (first_row, row_count) = (rows.start as i32, rows.len() as i32);
@@ -541,7 +545,27 @@ impl<'c> GpuSweep<'c> {
             copy_buffer(rec, unpacked, &readback[0], (voxels * unpacked_stride(plan.bins) * 4) as u64);
             copy_buffer(rec, states, &readback[1], (2 * voxels * size_of::<SearchState>()) as u64);
             rec.barrier(&Barrier::memory("readback_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
+            if clear_next {
+                rec.barrier(&Barrier::memory(
+                    "unpacked_readback_copy_to_next_batch_clear",
+                    Access::TRANSFER_READ,
+                    Access::CLEAR_WRITE,
+                ));
+                clear_unpacked(rec, unpacked);
+            }
             Ok(())
         })
     }
+}
+
+/// Zeroes the unpacked histograms the stencil adds into (a memset, far
+/// cheaper than a zeroing loop per invocation on llvmpipe), ordered before
+/// the next stencil in submission order.
+fn clear_unpacked(rec: &mut Recorder, unpacked: &Buffer) {
+    rec.fill_buffer(unpacked, 0);
+    rec.barrier(&Barrier::memory(
+        "unpacked_clear_to_stencil_accumulate",
+        Access::CLEAR_WRITE,
+        Access::COMPUTE_READ_WRITE,
+    ));
 }
