@@ -17,6 +17,12 @@ layout(set = 0, binding = 9, r16ui) writeonly uniform uimage2D front_b;
 // stamp 0 is no block's, so the first block reads the history pair.
 layout(set = 0, binding = 10, r32ui) writeonly uniform uimage2D stamps_a;
 layout(set = 0, binding = 11, r32ui) writeonly uniform uimage2D stamps_b;
+// ipsvi.packed_store: the packed pairs (rgba32ui: value halves, code or
+// stamp; glsl/ipsvi_line.comp), 1x1 otherwise, as the unpacked ones are then.
+layout(set = 0, binding = 12, rgba32ui) writeonly uniform uimage2D history_a;
+layout(set = 0, binding = 13, rgba32ui) writeonly uniform uimage2D history_b;
+layout(set = 0, binding = 14, rgba32ui) writeonly uniform uimage2D packed_samples_a;
+layout(set = 0, binding = 15, rgba32ui) writeonly uniform uimage2D packed_samples_b;
 // `slots` caches stacked in rows (ipsvi.merge_sweeps: one per sweep; else 1).
 layout(push_constant) uniform Push { uint light; uint slots; } push;
 
@@ -26,12 +32,23 @@ void main() {
     if (k.x >= sweep.cache_size || k.y >= sweep.cache_size * push.slots) return;
     vec4 start = vec4(0.0, 0.0, 0.0, 1.0);
     uvec4 code = uvec4(FRONT_ENTRY);
-    imageStore(cache_a, ivec2(k), start);
-    imageStore(front_a, ivec2(k), code);
-    imageStore(cache_b, ivec2(k), start);
-    imageStore(front_b, ivec2(k), code);
+    if (all(lessThan(ivec2(k), imageSize(cache_a)))) {
+        imageStore(cache_a, ivec2(k), start);
+        imageStore(front_a, ivec2(k), code);
+        imageStore(cache_b, ivec2(k), start);
+        imageStore(front_b, ivec2(k), code);
+    }
     if (all(lessThan(ivec2(k), imageSize(stamps_a)))) {
         imageStore(stamps_a, ivec2(k), uvec4(0u));
         imageStore(stamps_b, ivec2(k), uvec4(0u));
+    }
+    if (all(lessThan(ivec2(k), imageSize(history_a)))) {
+        uvec4 packed_start = uvec4(packHalf2x16(start.rg), packHalf2x16(start.ba), FRONT_ENTRY, 0u);
+        imageStore(history_a, ivec2(k), packed_start);
+        imageStore(history_b, ivec2(k), packed_start);
+    }
+    if (all(lessThan(ivec2(k), imageSize(packed_samples_a)))) {
+        imageStore(packed_samples_a, ivec2(k), uvec4(0u));
+        imageStore(packed_samples_b, ivec2(k), uvec4(0u));
     }
 }

@@ -61,6 +61,10 @@ layout(constant_id = 11) const bool EVERY_SAMPLE = false;
 // empty stores its texel's light as it is at the new depth, without the
 // texel-ray march (which would cross the medium on the texel's own ray).
 layout(constant_id = 12) const bool EMPTY_RUNS_MOVE_DEPTH = false;
+// ipsvi.packed_store: each pair is one rgba32ui image, value (four halves,
+// packHalf2x16) and depth code / stamp in one texel: one store and one load
+// per texel instead of two (bindings 8-11; else 0-7, the others 1x1, unused).
+layout(constant_id = 13) const bool PACKED = false;
 const uint TERMINATION_OFF = 0u;
 const uint TERMINATION_PLAIN = 1u;
 const uint TERMINATION_EXIT_POINTS = 2u;
@@ -82,6 +86,10 @@ layout(set = 1, binding = 4, rgba16f) readonly uniform image2D samples_in;
 layout(set = 1, binding = 5, r32ui) readonly uniform uimage2D stamps_in;
 layout(set = 1, binding = 6, rgba16f) writeonly uniform image2D samples_out;
 layout(set = 1, binding = 7, r32ui) writeonly uniform uimage2D stamps_out;
+layout(set = 1, binding = 8, rgba32ui) readonly uniform uimage2D history_in;
+layout(set = 1, binding = 9, rgba32ui) writeonly uniform uimage2D history_out;
+layout(set = 1, binding = 10, rgba32ui) readonly uniform uimage2D packed_samples_in;
+layout(set = 1, binding = 11, rgba32ui) writeonly uniform uimage2D packed_samples_out;
 #define KEY_HALF_IN (block.parity)        // keys this block's pixels claimed
 #define KEY_HALF_NEXT (1u - block.parity) // keys the next block's pixels claim
 
@@ -135,12 +143,73 @@ BlockParams block;
 // Texel k of the block's sweep's cache in the cache images.
 ivec2 slot_texel(ivec2 k) { return k + ivec2(0, int(block.cache_row)); }
 
-vec4 cache_load(ivec2 k) { return imageLoad(cache_in, slot_texel(k)); }
-uint front_load(ivec2 k) { return imageLoad(front_in, slot_texel(k)).r; }
+// Packed texels: the value's halves rounded as the rgba16f images round them
+// (toward zero on lavapipe; packHalf2x16 rounds to nearest, which changes the
+// image), then the code.
+uint half_bits(float f) {
+    uint u = floatBitsToUint(f);
+    uint sign = (u >> 16) & 0x8000u;
+    int e = int((u >> 23) & 0xFFu) - 112;
+    uint m = u & 0x7FFFFFu;
+    if (e == 143) return sign | 0x7C00u | (m != 0u ? 0x200u : 0u); // inf, NaN
+    if (e >= 31) return sign | 0x7BFFu;                            // largest finite
+    if (e <= 0) return e < -10 ? sign : sign | ((m | 0x800000u) >> uint(14 - e));
+    return sign | (uint(e) << 10) | (m >> 13);
+}
+uint pack_halves(vec2 v) { return half_bits(v.x) | (half_bits(v.y) << 16); }
+uvec4 pack_texel(vec4 v, uint code) { return uvec4(pack_halves(v.rg), pack_halves(v.ba), code, 0u); }
+vec4 unpack_value(uvec4 t) { return vec4(unpackHalf2x16(t.x), unpackHalf2x16(t.y)); }
+
+vec4 cache_load(ivec2 k) {
+    if (PACKED) return unpack_value(imageLoad(history_in, slot_texel(k)));
+    return imageLoad(cache_in, slot_texel(k));
+}
+uint front_load(ivec2 k) {
+    if (PACKED) return imageLoad(history_in, slot_texel(k)).z;
+    return imageLoad(front_in, slot_texel(k)).r;
+}
+// Texel k of the history pair: value and front code in one load when packed.
+vec4 history_load(ivec2 k, out uint code) {
+    if (PACKED) {
+        uvec4 t = imageLoad(history_in, slot_texel(k));
+        code = t.z;
+        return unpack_value(t);
+    }
+    code = front_load(k);
+    return cache_load(k);
+}
 
 void cache_store(ivec2 k, vec4 v, uint code) {
+    // r16ui keeps the low 16 bits; the packed code keeps the same.
+    if (PACKED) {
+        imageStore(history_out, slot_texel(k), pack_texel(v, code & 0xFFFFu));
+        return;
+    }
     imageStore(cache_out, slot_texel(k), v);
     imageStore(front_out, slot_texel(k), uvec4(code));
+}
+
+// The sample pair's texel k: (value, stamp << 16 | depth code).
+vec4 sample_load(ivec2 k, out uint stamped) {
+    if (PACKED) {
+        uvec4 t = imageLoad(packed_samples_in, slot_texel(k));
+        stamped = t.z;
+        return unpack_value(t);
+    }
+    stamped = imageLoad(stamps_in, slot_texel(k)).r;
+    return imageLoad(samples_in, slot_texel(k));
+}
+uint stamp_load(ivec2 k) {
+    if (PACKED) return imageLoad(packed_samples_in, slot_texel(k)).z;
+    return imageLoad(stamps_in, slot_texel(k)).r;
+}
+void sample_store(ivec2 k, vec4 v, uint stamped) {
+    if (PACKED) {
+        imageStore(packed_samples_out, slot_texel(k), pack_texel(v, stamped));
+        return;
+    }
+    imageStore(samples_out, slot_texel(k), v);
+    imageStore(stamps_out, slot_texel(k), uvec4(stamped));
 }
 
 float zone_weight(BlockParams line_block, vec2 c) {
@@ -185,11 +254,12 @@ vec4 light_at(vec3 p) {
     vec4 cached = vec4(0.0);
     float front = 0.0;
     for (int j = 0; j < 4; ++j) {
-        cached += fp.weight[j] * cache_load(fp.texel[j]);
+        uint code;
+        cached += fp.weight[j] * history_load(fp.texel[j], code);
         if (piecewise) {
             Ray r = cache_ray(uvec2(fp.texel[j]));
             vec2 io = ray_in_box(r);
-            front += fp.weight[j] * (io.x <= io.y ? front_param(r, front_load(fp.texel[j]), io) : c.z);
+            front += fp.weight[j] * (io.x <= io.y ? front_param(r, code, io) : c.z);
         }
     }
     if (!piecewise) return cached;
@@ -220,13 +290,22 @@ uint depth_code(float z, vec2 io) {
 // Texel k as the previous block left it: (value, depth code).
 vec4 state_load(ivec2 k, out uint code) {
     uint previous = block.stamp - 1u;
-    uint stamped = imageLoad(stamps_in, slot_texel(k)).r;
+    if (PACKED) {
+        // One load when the texel was written by the previous block.
+        uint stamped;
+        vec4 v = sample_load(k, stamped);
+        if (previous != 0u && (stamped >> 16) == previous) {
+            code = stamped & 0xFFFFu;
+            return v;
+        }
+        return history_load(k, code);
+    }
+    uint stamped = stamp_load(k);
     if (previous != 0u && (stamped >> 16) == previous) {
         code = stamped & 0xFFFFu;
         return imageLoad(samples_in, slot_texel(k));
     }
-    code = front_load(k);
-    return cache_load(k);
+    return history_load(k, code);
 }
 
 // The texel a sample at cache coordinates c writes.
@@ -261,7 +340,7 @@ uint64_t claim_key(uint record, float depth, uint pixel) {
 // Keys of the whole cache images (every sweep's cache when merged), per half.
 uint key_index(uint half_index, ivec2 k) {
     uint n = sweep.cache_size;
-    uint rows = uint(imageSize(cache_in).y);
+    uint rows = uint(PACKED ? imageSize(history_in).y : imageSize(cache_in).y);
     return half_index * n * rows + uint(slot_texel(k).y) * n + uint(k.x);
 }
 
@@ -344,8 +423,7 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel, bool empty) 
     vec3 back = to_light(p);
     if (STEP >= STEP_OWN_SEGMENT) l = through_segment(l, light_segment(p - back * s, back, s, 4u, EMISSIVE));
     uint code = io.x <= io.y ? depth_code(depth + s, io) : FRONT_ENTRY;
-    imageStore(samples_out, slot_texel(k), l);
-    imageStore(stamps_out, slot_texel(k), uvec4((block.stamp << 16) | code));
+    sample_store(k, l, (block.stamp << 16) | code);
 }
 
 uvec2 block_pixel(BlockParams b, uint index) {
@@ -475,8 +553,8 @@ vec4 cone_average(uvec2 k, float radius) {
 
 void advance_texel(uint index) {
     uvec2 k = block.region.xy + uvec2(index % block.region.z, index / block.region.z);
-    vec4 cached = cache_load(ivec2(k));
-    uint code = front_load(ivec2(k));
+    uint code;
+    vec4 cached = history_load(ivec2(k), code);
     Ray r = cache_ray(k);
     vec2 io = ray_in_box(r);
     if (io.x <= io.y && code != FRONT_EXIT) {

@@ -306,7 +306,8 @@ fn plain_early_termination_loses_the_hidden_feature_and_exit_points_recover_it()
 }
 
 /// The barrier after each line block is load-bearing in both modes, with
-/// every write resolution, both write rules and both write values: without it synchronization validation reports the
+/// every write resolution, both write rules, both write values and both store
+/// layouts (`packed_store`): without it synchronization validation reports the
 /// hazard on the cache.
 #[test]
 fn line_barrier_is_reported_missing_in_both_modes() {
@@ -325,7 +326,7 @@ fn line_barrier_is_reported_missing_in_both_modes() {
             if cache_update == CacheUpdate::LightRays && write_rule != WriteRule::NonEmpty {
                 continue; // light rays do not use the rule
             }
-            for write_value in WriteValue::ALL {
+            for (write_value, packed_store) in WriteValue::ALL.into_iter().flat_map(|v| [(v, false), (v, true)]) {
                 if cache_update == CacheUpdate::LightRays && write_value != WriteValue::TexelRay {
                     continue;
                 }
@@ -335,6 +336,7 @@ fn line_barrier_is_reported_missing_in_both_modes() {
                     cache_write,
                     write_rule,
                     write_value,
+                    packed_store,
                     // The claim pass's barriers too, where line width 1 leaves it out.
                     keep_redundant_claims: true,
                     ..IpsviSettings::default()
@@ -344,7 +346,7 @@ fn line_barrier_is_reported_missing_in_both_modes() {
                     &gpu,
                     &s,
                     &mut profiler,
-                    &format!("{cache_update:?}/{cache_write:?}/{write_rule:?}/{write_value:?}"),
+                    &format!("{cache_update:?}/{cache_write:?}/{write_rule:?}/{write_value:?}/packed {packed_store}"),
                 );
             }
         }
@@ -393,6 +395,55 @@ fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
     let racy =
         ipsvi(&ctx, &gpu, &IpsviSettings { cache_write: CacheWrite::Racy, ..two_lines }, SyncStrategy::BarrierGlobal);
     assert!(claimed != racy, "at two lines per block the claims must change the image");
+    assert_validation_clean(&ctx);
+}
+
+/// `packed_store` (value and code in one rgba32ui texel, one store instead of
+/// two) gives the two-store image bit for bit: light rays, and view samples
+/// under both claimed resolutions, both write rules and both write values, at
+/// one and two lines per block, on directional, point and spot lights.
+#[test]
+fn the_packed_store_is_bit_identical_to_two_stores() {
+    let ctx = validated_context();
+    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
+    let basis = camera.basis(SIZE, SIZE);
+    let (r, u) = (basis.right.normalize(), basis.up.normalize());
+    let scenes = [
+        ("directional", slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)])),
+        ("right zone", slab_scene(vec![point(r * 1.2 + u * 0.3)])),
+        ("inside the volume", slab_scene(vec![point(Vec3::new(0.15, 0.35, 0.1))])),
+        ("spot", slab_scene(vec![spot_light(2.0)])),
+    ];
+    let mut modes =
+        vec![IpsviSettings { cache_update: CacheUpdate::LightRays, ..view_samples(FED_CACHE, CacheWrite::Racy) }];
+    for write in [CacheWrite::Farthest, CacheWrite::Nearest] {
+        for write_rule in WriteRule::ALL {
+            for write_value in WriteValue::ALL {
+                modes.push(IpsviSettings { write_rule, write_value, ..view_samples(FED_CACHE, write) });
+            }
+        }
+    }
+    modes.push(IpsviSettings { line_width: 2, ..view_samples(FED_CACHE, CacheWrite::Farthest) });
+    for (what, scene) in &scenes {
+        let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
+        for two in &modes {
+            let packed = IpsviSettings { packed_store: true, ..two.clone() };
+            let (a, b) = (
+                ipsvi(&ctx, &gpu, two, SyncStrategy::BarrierGlobal),
+                ipsvi(&ctx, &gpu, &packed, SyncStrategy::BarrierGlobal),
+            );
+            let mode = format!(
+                "{what}, {:?} {} {:?} {:?} lw {}",
+                two.cache_update,
+                two.cache_write.name(),
+                two.write_rule,
+                two.write_value,
+                two.line_width
+            );
+            assert!(a.pixels.iter().any(|p| p[0] > 0.0), "{mode}: the image is black");
+            assert!(a == b, "{mode}: the packed store changed the image");
+        }
+    }
     assert_validation_clean(&ctx);
 }
 

@@ -106,7 +106,21 @@ fn ping_pong_pairs_are_a_set_1_of_separate_read_and_write_bindings() {
     assert_eq!(ipsvi_line::INTERFACE.builds.len(), 1);
     assert_eq!(
         names(ipsvi_line::INTERFACE.set1),
-        ["cache_in", "front_in", "cache_out", "front_out", "samples_in", "stamps_in", "samples_out", "stamps_out"]
+        [
+            "cache_in",
+            "front_in",
+            "cache_out",
+            "front_out",
+            "samples_in",
+            "stamps_in",
+            "samples_out",
+            "stamps_out",
+            // ipsvi.packed_store: each pair in one image, still read and written apart.
+            "history_in",
+            "history_out",
+            "packed_samples_in",
+            "packed_samples_out"
+        ]
     );
     assert_eq!(names(sweeplab::shaders::half_angle_slice::INTERFACE.set1), ["light_in", "light_out"]);
     assert_eq!(names(sweeplab::shaders::lightvolume_slice::INTERFACE.set1), ["slice_in", "slice_out"]);

@@ -42,12 +42,15 @@ use std::sync::Arc;
 /// pair that the samples of a block write (value, block stamp | depth), and
 /// the claim keys of `cache_write = "farthest"`. What a mode does not use is
 /// 1x1 (bound, never read). Merged sweeps stack one cache per sweep in rows
-/// (`slots`); keys likewise.
+/// (`slots`); keys likewise. With `packed_store` each pair is one rgba32ui
+/// image (`history`, `packed_samples`) and the four unpacked ones are 1x1.
 struct Cache {
     light: [Arc<Image>; 2],
     front: [Arc<Image>; 2],
     samples: [Arc<Image>; 2],
     stamps: [Arc<Image>; 2],
+    history: [Arc<Image>; 2],
+    packed_samples: [Arc<Image>; 2],
     claim_keys: Buffer,
 }
 
@@ -59,9 +62,15 @@ impl Cache {
         let sized = |name: &str, format, n: u32| {
             gpu.frame_images.storage_2d(gpu.ctx, name, format, (n, n * slots), vk::ImageUsageFlags::empty())
         };
-        let image = |name: &str, format| sized(name, format, size);
-        let sample_size = if view_samples { size } else { 1 };
+        let packed = settings.packed_store;
+        let unpacked_size = if packed { 1 } else { size };
+        let image = |name: &str, format| sized(name, format, unpacked_size);
+        let sample_size = if view_samples && !packed { size } else { 1 };
         let sample = |name: &str, format| sized(name, format, sample_size);
+        let history_size = if packed { size } else { 1 };
+        let history = |name: &str| sized(name, vk::Format::R32G32B32A32_UINT, history_size);
+        let packed_sample_size = if packed && view_samples { size } else { 1 };
+        let packed_sample = |name: &str| sized(name, vk::Format::R32G32B32A32_UINT, packed_sample_size);
         // Two halves (this block's claims, the next block's) of N x N 64-bit keys.
         let key_bytes = if claims { 2 * 8 * u64::from(size) * u64::from(size) * u64::from(slots) } else { 16 };
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
@@ -79,11 +88,13 @@ impl Cache {
                 sample("ipsvi cache stamps a", vk::Format::R32_UINT)?,
                 sample("ipsvi cache stamps b", vk::Format::R32_UINT)?,
             ],
+            history: [history("ipsvi history a")?, history("ipsvi history b")?],
+            packed_samples: [packed_sample("ipsvi packed samples a")?, packed_sample("ipsvi packed samples b")?],
             claim_keys: Buffer::new(gpu.ctx, "ipsvi claim keys", key_bytes, usage, MemoryLocation::GpuOnly)?,
         })
     }
 
-    fn images(&self) -> [&Image; 8] {
+    fn images(&self) -> [&Image; 12] {
         [
             &self.light[0],
             &self.light[1],
@@ -93,6 +104,10 @@ impl Cache {
             &self.samples[1],
             &self.stamps[0],
             &self.stamps[1],
+            &self.history[0],
+            &self.history[1],
+            &self.packed_samples[0],
+            &self.packed_samples[1],
         ]
     }
 }
@@ -367,6 +382,7 @@ impl<'a> IpsviRenderer<'a> {
             (10, (view_samples && settings.write_value == WriteValue::TexelRay) as u32),
             (11, (view_samples && settings.write_rule == WriteRule::EverySample) as u32),
             (12, (view_samples && settings.empty_runs_move_depth) as u32),
+            (13, settings.packed_store as u32),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
@@ -396,6 +412,10 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_cache_init::FRONT_B, Resource::StorageImage(fb)),
             (ipsvi_cache_init::STAMPS_A, Resource::StorageImage(&cache.stamps[0])),
             (ipsvi_cache_init::STAMPS_B, Resource::StorageImage(&cache.stamps[1])),
+            (ipsvi_cache_init::HISTORY_A, Resource::StorageImage(&cache.history[0])),
+            (ipsvi_cache_init::HISTORY_B, Resource::StorageImage(&cache.history[1])),
+            (ipsvi_cache_init::PACKED_SAMPLES_A, Resource::StorageImage(&cache.packed_samples[0])),
+            (ipsvi_cache_init::PACKED_SAMPLES_B, Resource::StorageImage(&cache.packed_samples[1])),
         ])?;
         let line_set = line.create_set(&[
             (ipsvi_line::FRAME, Resource::UniformBuffer(&frame)),
@@ -420,6 +440,10 @@ impl<'a> IpsviRenderer<'a> {
                 (ipsvi_line::STAMPS_IN, Resource::StorageImage(&cache.stamps[from])),
                 (ipsvi_line::SAMPLES_OUT, Resource::StorageImage(&cache.samples[to])),
                 (ipsvi_line::STAMPS_OUT, Resource::StorageImage(&cache.stamps[to])),
+                (ipsvi_line::HISTORY_IN, Resource::StorageImage(&cache.history[from])),
+                (ipsvi_line::HISTORY_OUT, Resource::StorageImage(&cache.history[to])),
+                (ipsvi_line::PACKED_SAMPLES_IN, Resource::StorageImage(&cache.packed_samples[from])),
+                (ipsvi_line::PACKED_SAMPLES_OUT, Resource::StorageImage(&cache.packed_samples[to])),
             ])
         };
         let line_sides = [side(0, 1)?, side(1, 0)?];
@@ -508,9 +532,9 @@ impl<'a> IpsviRenderer<'a> {
         Ok(match sync {
             SyncStrategy::BarrierGlobal => Box::new(GlobalBarrier),
             SyncStrategy::BarrierImage => {
-                let [l0, l1, f0, f1, s0, s1, t0, t1] = cache.images();
                 let claims = self.settings.records_claims();
-                let mut images = vec![l0, l1, f0, f1, s0, s1, t0, t1, &self.output.image];
+                let mut images = cache.images().to_vec();
+                images.push(&self.output.image);
                 images.extend(self.merged.as_ref().map(|m| &*m.accumulation));
                 Box::new(ImageBarriers::new(&images, claims.then_some(&cache.claim_keys)))
             }

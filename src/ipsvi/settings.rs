@@ -51,6 +51,11 @@ pub struct IpsviSettings {
     /// unchanged at the new depth, without marching the texel's own ray there.
     /// Cheaper; drops what medium that ray crosses over about one line.
     pub empty_runs_move_depth: bool,
+    /// Each ping-pong pair (history: value and front; samples: value and
+    /// stamp | depth) as one rgba32ui image, the value as four halves beside
+    /// its code: one store and one load per texel instead of two. The same
+    /// image bit for bit (`tests/ipsvi_view_samples.rs`).
+    pub packed_store: bool,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
@@ -118,6 +123,7 @@ impl Default for IpsviSettings {
             write_value: WriteValue::TexelRay,
             write_rule: WriteRule::NonEmpty,
             empty_runs_move_depth: false,
+            packed_store: false,
             sync: SyncStrategy::BarrierGlobal,
             merge_sweeps: false,
             single_dispatch_baseline: false,

@@ -126,6 +126,7 @@ pub fn controls() -> Vec<Control> {
         control("ipsvi", "empty_runs_move_depth", Toggle, |s| {
             Bool(s.settings.get::<IpsviSettings>().empty_runs_move_depth)
         }),
+        control("ipsvi", "packed_store", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().packed_store)),
         control("ipsvi", "sync", Choice(names(&SyncStrategy::ALL.map(|c| c.name()))), |s| {
             Name(s.settings.get::<IpsviSettings>().sync.name())
         }),
