@@ -383,18 +383,22 @@ impl SyncReport {
         })
     }
 
-    /// About how many rounds the widest sync interval of `workload` would
-    /// need to be as narrow as asked ([`Estimate::samples_for`]), and the
-    /// minutes they take at the pace of its rounds so far.
-    pub fn rounds_needed(&self, workload: Workload) -> Option<(usize, f64)> {
-        let rounds = self
+    /// Which sync interval of `workload` is the widest against what is asked,
+    /// about how many rounds it would need to be as narrow as asked
+    /// ([`Estimate::samples_for`]), and the minutes they take at the pace of
+    /// its rounds so far.
+    pub fn rounds_needed(&self, workload: Workload) -> Option<(&str, usize, f64)> {
+        let (strategy, rounds) = self
             .rows_of(workload)
             .filter(|r| r.strategy != BASELINE)
-            .filter_map(|r| r.best_sync_us()?.samples_for(self.precision.relative, self.precision.absolute_us))
-            .max()?;
+            .filter_map(|r| {
+                let rounds = r.best_sync_us()?.samples_for(self.precision.relative, self.precision.absolute_us)?;
+                Some((r.strategy.as_str(), rounds))
+            })
+            .max_by_key(|&(_, rounds)| rounds)?;
         let w = self.workloads.iter().find(|r| r.workload == workload)?;
         let pace_s = w.seconds / w.rounds.max(1) as f64;
-        Some((rounds, rounds as f64 * pace_s / 60.0))
+        Some((strategy, rounds, rounds as f64 * pace_s / 60.0))
     }
 
     /// One line per strategy and workload, e.g. `barrier-global: +2.10 us per
@@ -423,11 +427,11 @@ impl SyncReport {
                     readable(self.precision.relative * 100.0),
                     readable(self.precision.absolute_us),
                     self.rounds_needed(w)
-                        .map(|(rounds, minutes)| if minutes > 600.0 {
-                            "; the widest would need more than 10 hours of rounds at this pace".to_string()
+                        .map(|(widest, rounds, minutes)| if minutes > 600.0 {
+                            format!("; the widest ({widest}) would need more than 10 hours of rounds at this pace")
                         } else {
                             format!(
-                                "; the widest would need about {rounds} rounds, {} min at this pace",
+                                "; the widest ({widest}) would need about {rounds} rounds, {} min at this pace",
                                 readable(minutes)
                             )
                         })
