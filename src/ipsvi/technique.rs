@@ -50,8 +50,12 @@ impl RenderTechnique for Ipsvi {
         // merge_sweeps: one cache (and claim keys, colour accumulation) per sweep, stacked in rows.
         let slots = if s.merge_sweeps && sweeps > 1 { sweeps as u32 } else { 1 };
         let cache = [s.cache_size, s.cache_size * slots, 1];
-        // The view-sample pair; 1x1 and bound only in light-rays mode.
-        let sample = if view_samples { cache } else { [1, slots, 1] };
+        // With packed_store each pair is one rgba32ui image and the unpacked ones are 1x1
+        // (and the other way round); the view-sample pairs are 1x1 in light-rays mode.
+        let small = [1, slots, 1];
+        let (unpacked, history) = if s.packed_store { (small, cache) } else { (cache, small) };
+        let sample = if view_samples && !s.packed_store { cache } else { small };
+        let packed_sample = if view_samples && s.packed_store { cache } else { small };
         let n = u64::from(s.cache_size);
         let key_bytes = if claims { 2 * 8 * n * n * u64::from(slots) } else { 16 };
         // The step table: per step and sweep (block, first workgroup) after a header; a placeholder unmerged.
@@ -60,14 +64,18 @@ impl RenderTechnique for Ipsvi {
         let mut needs = vec![
             ResourceNeed::output_image("ipsvi output", width, height),
             // Illumination: RGBA16F; front: R16_UINT.
-            ResourceNeed::image("ipsvi cache a", cache, 8),
-            ResourceNeed::image("ipsvi cache b", cache, 8),
-            ResourceNeed::image("ipsvi front a", cache, 2),
-            ResourceNeed::image("ipsvi front b", cache, 2),
+            ResourceNeed::image("ipsvi cache a", unpacked, 8),
+            ResourceNeed::image("ipsvi cache b", unpacked, 8),
+            ResourceNeed::image("ipsvi front a", unpacked, 2),
+            ResourceNeed::image("ipsvi front b", unpacked, 2),
             ResourceNeed::image("ipsvi cache samples a", sample, 8),
             ResourceNeed::image("ipsvi cache samples b", sample, 8),
             ResourceNeed::image("ipsvi cache stamps a", sample, 4),
             ResourceNeed::image("ipsvi cache stamps b", sample, 4),
+            ResourceNeed::image("ipsvi history a", history, 16),
+            ResourceNeed::image("ipsvi history b", history, 16),
+            ResourceNeed::image("ipsvi packed samples a", packed_sample, 16),
+            ResourceNeed::image("ipsvi packed samples b", packed_sample, 16),
             ResourceNeed::buffer("ipsvi claim keys", key_bytes),
             ResourceNeed::of::<FrameParams>("frame params", 1),
             ResourceNeed::of::<[f32; 4]>("ipsvi line planes", (width + height) as usize),
