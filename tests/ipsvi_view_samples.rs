@@ -353,6 +353,20 @@ fn line_barrier_is_reported_missing_in_both_modes() {
     }
 }
 
+/// One light of each kind the bit-identity tests compare on: directional, a
+/// point in the right zone, a point inside the volume, a spot.
+fn four_light_setups() -> [(&'static str, Scene); 4] {
+    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
+    let basis = camera.basis(SIZE, SIZE);
+    let (r, u) = (basis.right.normalize(), basis.up.normalize());
+    [
+        ("directional", slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)])),
+        ("right zone", slab_scene(vec![point(r * 1.2 + u * 0.3)])),
+        ("inside the volume", slab_scene(vec![point(Vec3::new(0.15, 0.35, 0.1))])),
+        ("spot", slab_scene(vec![spot_light(2.0)])),
+    ]
+}
+
 /// At one line per block with texel-ray writes every writer of a texel stores
 /// the same value, so the claim pass is left out (`records_claims`): the image
 /// is that of the recorded claims bit for bit, on directional, point and spot
@@ -361,16 +375,7 @@ fn line_barrier_is_reported_missing_in_both_modes() {
 #[test]
 fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
     let ctx = validated_context();
-    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
-    let basis = camera.basis(SIZE, SIZE);
-    let (r, u) = (basis.right.normalize(), basis.up.normalize());
-    let spot = spot_light(2.0);
-    let scenes = [
-        ("directional", slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)])),
-        ("right zone", slab_scene(vec![point(r * 1.2 + u * 0.3)])),
-        ("inside the volume", slab_scene(vec![point(Vec3::new(0.15, 0.35, 0.1))])),
-        ("spot", slab_scene(vec![spot])),
-    ];
+    let scenes = four_light_setups();
     for (what, scene) in &scenes {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
         for write in [CacheWrite::Farthest, CacheWrite::Nearest] {
@@ -405,15 +410,6 @@ fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
 #[test]
 fn the_packed_store_is_bit_identical_to_two_stores() {
     let ctx = validated_context();
-    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
-    let basis = camera.basis(SIZE, SIZE);
-    let (r, u) = (basis.right.normalize(), basis.up.normalize());
-    let scenes = [
-        ("directional", slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)])),
-        ("right zone", slab_scene(vec![point(r * 1.2 + u * 0.3)])),
-        ("inside the volume", slab_scene(vec![point(Vec3::new(0.15, 0.35, 0.1))])),
-        ("spot", slab_scene(vec![spot_light(2.0)])),
-    ];
     let mut modes =
         vec![IpsviSettings { cache_update: CacheUpdate::LightRays, ..view_samples(FED_CACHE, CacheWrite::Racy) }];
     for write in [CacheWrite::Farthest, CacheWrite::Nearest] {
@@ -424,7 +420,7 @@ fn the_packed_store_is_bit_identical_to_two_stores() {
         }
     }
     modes.push(IpsviSettings { line_width: 2, ..view_samples(FED_CACHE, CacheWrite::Farthest) });
-    for (what, scene) in &scenes {
+    for (what, scene) in &four_light_setups() {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
         for two in &modes {
             let packed = IpsviSettings { packed_store: true, ..two.clone() };

@@ -263,6 +263,9 @@ pub fn paired_slope_difference(
     treatment: &[Vec<(f64, f64)>],
 ) -> Result<Estimate, EstimateError> {
     let treated = round_slopes(treatment)?;
+    if baselines.is_empty() {
+        return Err(EstimateError::Unpaired { a: 0, b: treated.len() });
+    }
     let mut base = vec![0.0; treated.len()];
     for b in baselines {
         let slopes = round_slopes(b)?;
@@ -272,9 +275,6 @@ pub fn paired_slope_difference(
         for (sum, s) in base.iter_mut().zip(slopes) {
             *sum += s / baselines.len() as f64;
         }
-    }
-    if baselines.is_empty() {
-        return Err(EstimateError::Unpaired { a: 0, b: treated.len() });
     }
     let d: Vec<f64> = base.iter().zip(&treated).map(|(b, t)| t - b).collect();
     super::shift::shift_estimate(&d)
