@@ -278,18 +278,26 @@ pub struct StrategyRow {
 }
 
 impl StrategyRow {
-    /// The narrower of its two estimates of the sync cost per boundary: from
-    /// frame slopes, and paired in the frame (strategies with per-line
-    /// timestamps). Both estimate the same cost; the verdict prints both.
-    /// Only where the two agree (their intervals overlap): on lavapipe the
-    /// per-line timestamps change what a boundary costs (a barrier after a
-    /// timestamped dispatch drains what the timestamp flushed), so the in-frame
-    /// estimate can sit far outside the frame slopes' interval; it then
-    /// measures the timestamped frame, not the boundary.
-    pub fn best_sync_us(&self) -> Option<Estimate> {
+    /// The verdict's estimate of the sync cost per boundary, from its two
+    /// estimates (frame slopes, and paired in the frame for strategies with
+    /// per-line timestamps), by a rule that does not switch between them
+    /// from run to run:
+    /// - where the two agree (their intervals overlap), the narrower;
+    /// - where they disagree, the frame slopes' value with an interval that
+    ///   spans both: on lavapipe the per-line timestamps can change what a
+    ///   boundary costs (a barrier after a timestamped dispatch drains what the
+    ///   timestamp flushed), so either may be off by the other's bias, and
+    ///   more rounds would not reconcile them.
+    ///
+    /// So a run whose estimators disagree is never precise, and two runs whose
+    /// estimates each agree with their twins give overlapping verdicts.
+    pub fn verdict_sync_us(&self) -> Option<Estimate> {
         let in_frame = self.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us);
         match (self.sync_us, in_frame) {
-            (Some(a), Some(b)) if self.estimates_agree() != Some(false) && b.half_width() < a.half_width() => Some(b),
+            (Some(a), Some(b)) if self.estimates_agree() == Some(false) => {
+                Some(Estimate { value: a.value, lo: a.lo.min(b.lo), hi: a.hi.max(b.hi), n: a.n.min(b.n) })
+            }
+            (Some(a), Some(b)) if b.half_width() < a.half_width() => Some(b),
             (a, b) => a.or(b),
         }
     }
@@ -379,7 +387,7 @@ impl SyncReport {
     /// as precise as asked.
     pub fn precise_in(&self, workload: Workload) -> bool {
         self.rows_of(workload).filter(|r| r.strategy != BASELINE).all(|r| {
-            r.best_sync_us().is_some_and(|e| e.precise_to(self.precision.relative, self.precision.absolute_us))
+            r.verdict_sync_us().is_some_and(|e| e.precise_to(self.precision.relative, self.precision.absolute_us))
         })
     }
 
@@ -390,15 +398,30 @@ impl SyncReport {
     pub fn rounds_needed(&self, workload: Workload) -> Option<(&str, usize, f64)> {
         let (strategy, rounds) = self
             .rows_of(workload)
-            .filter(|r| r.strategy != BASELINE)
+            .filter(|r| r.strategy != BASELINE && r.estimates_agree() != Some(false))
             .filter_map(|r| {
-                let rounds = r.best_sync_us()?.samples_for(self.precision.relative, self.precision.absolute_us)?;
+                let e = r.verdict_sync_us()?;
+                if e.precise_to(self.precision.relative, self.precision.absolute_us) {
+                    return None;
+                }
+                let rounds = e.samples_for(self.precision.relative, self.precision.absolute_us)?;
                 Some((r.strategy.as_str(), rounds))
             })
             .max_by_key(|&(_, rounds)| rounds)?;
         let w = self.workloads.iter().find(|r| r.workload == workload)?;
         let pace_s = w.seconds / w.rounds.max(1) as f64;
         Some((strategy, rounds, rounds as f64 * pace_s / 60.0))
+    }
+
+    /// The strategies of `workload` whose two estimates disagree, e.g.
+    /// `submits, events` (None where every one agrees).
+    pub fn disagreeing(&self, workload: Workload) -> Option<String> {
+        let names: Vec<&str> = self
+            .rows_of(workload)
+            .filter(|r| r.estimates_agree() == Some(false))
+            .map(|r| r.strategy.as_str())
+            .collect();
+        (!names.is_empty()).then(|| names.join(", "))
     }
 
     /// One line per strategy and workload, e.g. `barrier-global: +2.10 us per
@@ -423,7 +446,7 @@ impl SyncReport {
                 "every interval as narrow as asked".to_string()
             } else {
                 format!(
-                    "not every interval as narrow as asked (half-width <= {} % of the estimate or <= {} us){}",
+                    "not every interval as narrow as asked (half-width <= {} % of the estimate or <= {} us){}{}",
                     readable(self.precision.relative * 100.0),
                     readable(self.precision.absolute_us),
                     self.rounds_needed(w)
@@ -435,6 +458,9 @@ impl SyncReport {
                                 readable(minutes)
                             )
                         })
+                        .unwrap_or_default(),
+                    self.disagreeing(w)
+                        .map(|names| format!("; {names}: two estimates that disagree"))
                         .unwrap_or_default()
                 )
             };
@@ -449,23 +475,33 @@ impl SyncReport {
             for r in self.rows_of(w).filter(|r| r.strategy != BASELINE) {
                 let what =
                     if r.strategy == CONTROL { format!("{} (A/A control)", r.strategy) } else { r.strategy.clone() };
-                let cost = match r.sync_us {
-                    Some(e) => format!("{} per boundary over no barriers (frame slopes)", e.describe("us")),
-                    None => format!("too few rounds (needs {MIN_SAMPLES})"),
+                let in_frame = r.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us);
+                let line = match (r.verdict_sync_us(), r.sync_us, in_frame) {
+                    (None, ..) => format!("too few rounds (needs {MIN_SAMPLES})"),
+                    (Some(v), Some(slopes), Some(paired)) => {
+                        let how = if r.estimates_agree() == Some(false) {
+                            "the two estimates disagree, so the interval spans both (the per-line timestamps \
+                             change what a boundary costs here; more rounds do not reconcile them)"
+                        } else if v == paired {
+                            "paired in the frame, the narrower of two that agree"
+                        } else {
+                            "frame slopes, the narrower of two that agree"
+                        };
+                        format!(
+                            "{} per boundary over no barriers ({how}; frame slopes: {}; paired in the frame: {})",
+                            v.describe("us"),
+                            slopes.describe("us"),
+                            paired.describe("us")
+                        )
+                    }
+                    (Some(v), Some(_), None) => {
+                        format!("{} per boundary over no barriers (frame slopes)", v.describe("us"))
+                    }
+                    (Some(v), None, _) => {
+                        format!("{} per boundary over no barriers (paired in the frame)", v.describe("us"))
+                    }
                 };
-                let paired = r
-                    .line_gaps
-                    .as_ref()
-                    .and_then(|g| g.in_frame_sync_us)
-                    .map(|e| format!("; {} paired in the frame", e.describe("us")))
-                    .unwrap_or_default();
-                let disagree = if r.estimates_agree() == Some(false) {
-                    " (the two disagree: the per-line timestamps change what a boundary costs here, \
-                     so the frame slopes are the estimate)"
-                } else {
-                    ""
-                };
-                out.push(format!("  {what}: {cost}{paired}{disagree}"));
+                out.push(format!("  {what}: {line}"));
             }
         }
         out
@@ -1136,10 +1172,12 @@ mod tests {
         }
     }
 
-    /// Two estimates of one cost whose intervals do not overlap: the in-frame
-    /// one, however narrow, is not used (it measured the timestamped frame).
+    /// Two estimates of one cost: where they agree the verdict takes the
+    /// narrower; where they do not, an interval that spans both (so it is not
+    /// precise, and a second run's verdict overlaps it wherever either
+    /// estimate overlaps its twin), never the narrow in-frame one alone.
     #[test]
-    fn an_in_frame_estimate_that_disagrees_with_the_slopes_is_not_used() {
+    fn the_verdict_spans_two_estimates_that_disagree() {
         let e = |value: f64, lo: f64, hi: f64| Some(Estimate { value, lo, hi, n: 6 });
         let gaps = |in_frame: Option<Estimate>| LineGaps {
             line_width: 1,
@@ -1151,25 +1189,33 @@ mod tests {
             perturbation_ms: None,
             last_gaps_us: Vec::new(),
         };
-        let row = |in_frame: Option<Estimate>| StrategyRow {
+        let row = |slopes: Option<Estimate>, in_frame: Option<Estimate>| StrategyRow {
             workload: Workload::Empty,
-            strategy: "barrier-global".into(),
+            strategy: "submits".into(),
             racy: false,
             boundary_us: e(60.0, 55.0, 65.0),
             r_squared: None,
             intercept_ms: None,
-            sync_us: e(3.0, -1.5, 8.0),
+            sync_us: slopes,
             boundary_cpu_us: None,
             sync_cpu_us: None,
             line_gaps: Some(gaps(in_frame)),
         };
-        let far = row(e(195.0, 189.0, 197.0));
-        assert_eq!(far.estimates_agree(), Some(false));
-        assert_eq!(far.best_sync_us(), far.sync_us, "the wider slopes, not the far in-frame estimate");
-        let near = row(e(1.0, 0.2, 2.8));
-        assert_eq!(near.estimates_agree(), Some(true));
-        assert_eq!(near.best_sync_us(), near.line_gaps.as_ref().unwrap().in_frame_sync_us, "the narrower, agreeing");
-        assert_eq!(row(None).estimates_agree(), None);
+        // The previous record's two runs of submits, in us.
+        let run1 = row(e(19.1, 15.6, 22.8), e(11.5, 10.5, 13.2));
+        let run2 = row(e(16.9, 10.9, 23.1), e(11.7, 10.6, 13.1));
+        assert_eq!(run1.estimates_agree(), Some(false));
+        assert_eq!(run1.verdict_sync_us(), e(19.1, 10.5, 22.8), "the slopes' value, both intervals");
+        assert_eq!(run2.estimates_agree(), Some(true));
+        assert_eq!(run2.verdict_sync_us(), e(11.7, 10.6, 13.1), "the narrower of two that agree");
+        let (v1, v2) = (run1.verdict_sync_us().unwrap(), run2.verdict_sync_us().unwrap());
+        assert!(v1.lo <= v2.hi && v2.lo <= v1.hi, "the two runs' verdicts overlap");
+        assert!(!v1.precise_to(0.25, 3.0), "a verdict over two disagreeing estimates is not precise");
+        let wide_in_frame = row(e(1.0, 0.2, 1.8), e(1.5, -3.0, 6.0));
+        assert_eq!(wide_in_frame.verdict_sync_us(), wide_in_frame.sync_us, "the narrower: here the slopes");
+        assert_eq!(row(e(1.0, 0.2, 1.8), None).estimates_agree(), None);
+        assert_eq!(row(e(1.0, 0.2, 1.8), None).verdict_sync_us(), e(1.0, 0.2, 1.8));
+        assert_eq!(row(None, e(1.5, -3.0, 6.0)).verdict_sync_us(), e(1.5, -3.0, 6.0));
     }
 
     /// Lines whose work grows along the sweep (100 + 3 i us) and a sync that
