@@ -479,20 +479,19 @@ impl SyncReport {
                 let line = match (r.verdict_sync_us(), r.sync_us, in_frame) {
                     (None, ..) => format!("too few rounds (needs {MIN_SAMPLES})"),
                     (Some(v), Some(slopes), Some(paired)) => {
+                        let (slopes, paired) = (slopes.describe("us"), paired.describe("us"));
                         let how = if r.estimates_agree() == Some(false) {
-                            "the two estimates disagree, so the interval spans both (the per-line timestamps \
-                             change what a boundary costs here; more rounds do not reconcile them)"
-                        } else if v == paired {
-                            "paired in the frame, the narrower of two that agree"
+                            format!(
+                                "spans both estimates, which disagree: frame slopes {slopes}, paired in the frame \
+                                 {paired}; the per-line timestamps change what a boundary costs here, and more \
+                                 rounds do not reconcile them"
+                            )
+                        } else if Some(v) == r.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us) {
+                            format!("paired in the frame; the frame slopes agree: {slopes}")
                         } else {
-                            "frame slopes, the narrower of two that agree"
+                            format!("frame slopes; paired in the frame agrees: {paired}")
                         };
-                        format!(
-                            "{} per boundary over no barriers ({how}; frame slopes: {}; paired in the frame: {})",
-                            v.describe("us"),
-                            slopes.describe("us"),
-                            paired.describe("us")
-                        )
+                        format!("{} per boundary over no barriers ({how})", v.describe("us"))
                     }
                     (Some(v), Some(_), None) => {
                         format!("{} per boundary over no barriers (frame slopes)", v.describe("us"))
