@@ -21,7 +21,8 @@ layout(constant_id = 2) const float SLACK_DOWN = 1.0;
 layout(push_constant) uniform Assign {
     int first;           // first histogram of the part in the batch buffers
     int count;           // histograms in the part
-    int hint_first;      // the part's first histogram in `hints` (one slice)
+    int hint_first;      // the part's first hint in `hints_in` (the slice before)
+    int hint_out_first;  // ... and where its results go in `hints_out` (this slice)
     int has_hints;       // 0 on the first slice: start at codeword 0
     int first_entry;     // list entries [first_entry, first_entry + entries) this dispatch
     int entries;
@@ -45,7 +46,12 @@ layout(std430, set = 0, binding = 1) readonly buffer Codewords { float codewords
 layout(std430, set = 0, binding = 2) readonly buffer Order { uint order[]; };
 layout(std430, set = 0, binding = 3) readonly buffer OrderDistances { float order_distances[]; };
 layout(std430, set = 0, binding = 4) buffer States { SearchState states[]; };
-layout(std430, set = 0, binding = 5) buffer Hints { uint hints[]; };
+// The hints ping-pong between the two halves of one buffer (a slice reads the
+// half the slice before wrote and writes the other), bound twice so that the
+// read and the write are separate bindings: synchronization validation then
+// reports a missing `search_hints_write_to_next_slice_read`.
+layout(std430, set = 0, binding = 5) readonly buffer HintsIn { uint hints_in[]; };
+layout(std430, set = 0, binding = 6) writeonly buffer HintsOut { uint hints_out[]; };
 
 #define MIN_POSITIVE uintBitsToFloat(0x00800000u)  // f32::MIN_POSITIVE
 #define INFINITY uintBitsToFloat(0x7f800000u)
@@ -92,7 +98,7 @@ void main() {
     int x = histogram * assign.packed_stride;
     SearchState s;
     if (assign.first_chunk != 0) {
-        uint h = assign.has_hints != 0 ? min(hints[assign.hint_first + i], uint(assign.clusters - 1)) : 0u;
+        uint h = assign.has_hints != 0 ? min(hints_in[assign.hint_first + i], uint(assign.clusters - 1)) : 0u;
         s.hint = h;
         s.best = h;
         s.best_raw = distance_within(x, int(h) * assign.packed_stride, INFINITY);
@@ -125,5 +131,5 @@ void main() {
         }
     }
     states[histogram] = s;
-    if (assign.last_chunk != 0) hints[assign.hint_first + i] = s.best;
+    if (assign.last_chunk != 0) hints_out[assign.hint_out_first + i] = s.best;
 }

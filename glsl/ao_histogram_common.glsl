@@ -34,6 +34,7 @@ layout(push_constant) uniform Sweep {
     int first_entry;     // stencil chunk: entries [first_entry, first_entry + entry_count)
     int entry_count;
     int part_voxel;      // first voxel of this part in the batch's buffers
+    int unpacked_first;  // its first float in the unpacked histograms' window (set 1)
 } sweep;
 
 int padded_width() { return DIMS.x + 2 * EXTENT.x; }

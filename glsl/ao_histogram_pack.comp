@@ -16,11 +16,12 @@ struct Share {
     float share;
 };
 
-layout(std430, set = 0, binding = 0) readonly buffer Unpacked { float unpacked[]; };
+// The part's window of the batch's unpacked histograms, from unpacked_first.
+layout(std430, set = 1, binding = 0) readonly buffer Unpacked { float unpacked[]; };
 // Row k of the packing matrix: shares[share_starts[k] .. share_starts[k + 1]).
-layout(std430, set = 0, binding = 1) readonly buffer ShareStarts { uint share_starts[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Shares { Share shares[]; };
-layout(std430, set = 0, binding = 3) buffer Packed { float packed[]; };
+layout(std430, set = 0, binding = 0) readonly buffer ShareStarts { uint share_starts[]; };
+layout(std430, set = 0, binding = 1) readonly buffer Shares { Share shares[]; };
+layout(std430, set = 0, binding = 2) buffer Packed { float packed[]; };
 
 // 1 / N_r, rounded once from the exact value.
 layout(constant_id = 0) const float NORMALIZATION = 1.0;
@@ -31,7 +32,7 @@ void main() {
     if (v >= part_voxels) return;
     int voxel = sweep.part_voxel + v;
     for (int side = 0; side < 2; ++side) {
-        int histogram = voxel * unpacked_stride() + side * (BINS + 1);
+        int histogram = sweep.unpacked_first + v * unpacked_stride() + side * (BINS + 1);
         int out_base = (2 * voxel + side) * PACKED_STRIDE;
         // Built in place (packed_dim is not bounded by a register array).
         for (int j = 0; j < PACKED_STRIDE; ++j) packed[out_base + j] = 0.0;

@@ -20,7 +20,9 @@ layout(std430, set = 0, binding = 1) readonly buffer Binned { uint binned[]; };
 layout(std430, set = 0, binding = 2) readonly buffer StencilDirections { vec4 stencil_directions[]; };
 // ...and its linear offset in the binned slices, from the window's first slot.
 layout(std430, set = 0, binding = 3) readonly buffer StencilOffsets { int stencil_offsets[]; };
-layout(std430, set = 0, binding = 4) buffer Unpacked { float unpacked[]; };
+// The part's window of the batch's unpacked histograms (a batch can exceed
+// maxStorageBufferRange; a part cannot): from its first float, unpacked_first.
+layout(std430, set = 1, binding = 0) buffer Unpacked { float unpacked[]; };
 
 float value_at(ivec3 p) {
     return values[(p.z * DIMS.y + p.y) * DIMS.x + p.x];
@@ -46,8 +48,7 @@ void main() {
     int x = int(gl_GlobalInvocationID.x), row = int(gl_GlobalInvocationID.y);
     if (x >= DIMS.x || row >= sweep.rows) return;
     int y = sweep.first_row + row, z = sweep.slice;
-    int voxel = sweep.part_voxel + row * DIMS.x + x;
-    int forward = voxel * unpacked_stride();
+    int forward = sweep.unpacked_first + (row * DIMS.x + x) * unpacked_stride();
     int backward = forward + BINS + 1;
     vec3 g = central_gradient(ivec3(x, y, z));
     // The window's first slice z - e_z.

@@ -8,7 +8,7 @@ mod common;
 
 use common::{assert_validation_clean, validated_context};
 use glam::{UVec3, Vec3};
-use sweeplab::ao::gpu::{assign_packed, batch_bytes, GpuSweep, SliceSync, SweepInputs, BATCH_BYTES};
+use sweeplab::ao::gpu::{assign_packed, batch_bytes, supported_plan, GpuSweep, SliceSync, SweepInputs, BATCH_BYTES};
 use sweeplab::ao::gradient::central_gradient;
 use sweeplab::ao::histogram::LocalHistograms;
 use sweeplab::ao::packing::PackingScheme;
@@ -184,13 +184,14 @@ fn a_stencil_past_the_loop_cap_is_split_and_still_equals_brute_force() {
     assert_validation_clean(&ctx);
 }
 
-/// The batch follows the device's `maxStorageBufferRange`: with the limit
-/// forced down to 64 KiB, a volume whose unpacked histograms take 1.6 MB
-/// (every batch buffer is bound whole) is swept in batches that each fit, and
-/// still equals brute force. Sized from the default budget alone, it would be
-/// one batch (and `GpuSweep::new` refuses a binding over the limit).
+/// The parts follow the device's `maxStorageBufferRange`: with the limit
+/// forced down to 64 KiB, a volume whose unpacked histograms take 1.6 MB is
+/// swept in one batch whose parts (each bound as its own window of the
+/// batch's buffer, at offsets aligned for the device) fit the limit, and
+/// still equals brute force; validation (which checks every window's range
+/// and offset) stays clean. A budget of 20 KiB splits it into batches too.
 #[test]
-fn a_small_storage_buffer_range_splits_the_sweep_into_batches_that_fit() {
+fn a_small_storage_buffer_range_binds_the_batch_in_windows_that_fit() {
     let mut ctx = validated_context();
     let limit = 64 << 10;
     ctx.limits.max_storage_buffer_range = limit;
@@ -199,28 +200,23 @@ fn a_small_storage_buffer_range_splits_the_sweep_into_batches_that_fit() {
     let bytes = batch_bytes(&ctx, bins, packed_dim);
     let per_voxel = 2 * (bins + 1) * 4;
     assert!(volume.voxel_count() * per_voxel > limit as usize, "the unbatched sweep must exceed the limit");
-    assert!(bytes <= limit as usize && bytes >= per_voxel * 11, "batch of {bytes} bytes for a {limit}-byte range");
+    assert!(bytes >= volume.voxel_count() * per_voxel, "the packed histograms and states fit: one batch");
+    // Each part, with what aligning its window's offset adds, fits the limit;
+    // a whole slice (99 voxels, 203 kB) would not.
+    let h = LocalHistograms::new(&volume, 2, 8);
+    let plan = supported_plan(&ctx, &volume, h.stencil(), bins, packed_dim, 6, false).unwrap();
+    let align = ctx.limits.min_storage_buffer_offset_alignment as usize;
+    let parts: Vec<_> = plan.batches.iter().flat_map(|b| &b.parts).collect();
+    assert!(parts.iter().all(|p| p.rows as usize * 11 * per_voxel + align <= limit as usize), "{parts:?}");
+    assert!(parts.iter().any(|p| p.rows < 9), "slices split into parts");
     let c = compare(&ctx, &volume, 2, 8, Metric::L2, bytes, SliceSync::Barrier);
-    assert!(c.batches > 1, "one batch under a {limit}-byte range");
+    assert_eq!(c.batches, 1, "one batch bound in windows");
     assert!(c.worst <= 1.0, "a bin off by {:.2} tolerances", c.worst);
     assert_eq!(c.search_mismatches, 0);
-    // The default budget alone: refused, not bound past the limit.
-    let h = LocalHistograms::new(&volume, 2, 8);
-    let packing = packing_of(&h, packed_dim);
-    let codebook = codebook_of(&h, &packing, 6, Metric::L2);
-    let search = CodebookSearch::new(&codebook, Metric::L2);
-    let inputs = SweepInputs {
-        volume: &volume,
-        stencil: h.stencil(),
-        bins,
-        packing: &packing,
-        codebook: &codebook,
-        search: &search,
-        metric: Metric::L2,
-        max_batch_bytes: BATCH_BYTES,
-    };
-    let e = GpuSweep::new(&ctx, &inputs).err().expect("a binding past maxStorageBufferRange").to_string();
-    assert!(e.contains("maxStorageBufferRange") && e.contains("ao unpacked histograms"), "{e}");
+    let c = compare(&ctx, &volume, 2, 8, Metric::L2, 20 << 10, SliceSync::Barrier);
+    assert!(c.batches > 1, "a 20 KiB batch budget");
+    assert!(c.worst <= 1.0, "a bin off by {:.2} tolerances", c.worst);
+    assert_eq!(c.search_mismatches, 0);
     assert_validation_clean(&ctx);
 }
 
@@ -259,19 +255,34 @@ fn the_gpu_backend_past_one_storage_buffer_range_is_validation_clean_and_equals_
     assert!(differing * 1000 <= volume.voxel_count(), "{differing} voxels assigned differently");
 }
 
-/// The barrier between binning the batch's slices and the stencil reading
-/// it is load-bearing: recorded without it, synchronization validation
-/// reports the hazard on the binned slices (with it, clean: the tests above).
-#[test]
-fn the_sweep_without_its_slice_barrier_is_reported_by_sync_validation() {
+/// Records the sweep with one barrier left out and asserts that
+/// synchronization validation reports the read-after-write hazard on the
+/// resource it protects (with every barrier, clean: the tests above).
+fn assert_racy_sweep_reported(sync: SliceSync, resource: &str) {
     let ctx = validated_context();
     let volume = test_volume(UVec3::new(6, 6, 5), Vec3::ONE, 3);
-    compare(&ctx, &volume, 2, 4, Metric::L2, BATCH_BYTES, SliceSync::RacyNoSliceBarrier);
+    compare(&ctx, &volume, 2, 4, Metric::L2, BATCH_BYTES, sync);
     let messages = ctx.take_validation_messages();
     assert!(
-        messages.iter().any(|m| m.contains("SYNC-HAZARD-READ-AFTER-WRITE") && m.contains("ao binned slices")),
-        "the racy sweep was not reported: {messages:?}"
+        messages.iter().any(|m| m.contains("SYNC-HAZARD-READ-AFTER-WRITE") && m.contains(resource)),
+        "the sweep without its barrier on {resource} was not reported: {messages:?}"
     );
+}
+
+/// The barrier between binning the batch's slices and the stencil reading
+/// it is load-bearing.
+#[test]
+fn the_sweep_without_its_slice_barrier_is_reported_by_sync_validation() {
+    assert_racy_sweep_reported(SliceSync::RacyNoSliceBarrier, "ao binned slices");
+}
+
+/// The barrier between one slice's searches writing their results as hints
+/// and the next slice's searches reading them is load-bearing (the shader
+/// reads and writes them through separate bindings, the halves of one buffer
+/// ping-ponged, so that validation can see the hazard).
+#[test]
+fn the_sweep_without_its_hints_barrier_is_reported_by_sync_validation() {
+    assert_racy_sweep_reported(SliceSync::RacyNoHintsBarrier, "ao search hints");
 }
 
 #[test]

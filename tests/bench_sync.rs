@@ -242,6 +242,9 @@ fn every_output_names_its_run_and_report_puts_two_devices_side_by_side() {
             );
         }
     }
+    // Every slope is read with its verdict beside it, so a negative one is never taken as a cost.
+    let header = md.lines().find(|l| l.contains("| boundary_us")).expect("the table's header");
+    assert!(header.contains("boundary_verdict"), "no boundary_verdict column: {header}");
     let bad = dir.join("not-a-report.json");
     std::fs::write(&bad, "[1, 2]").unwrap();
     assert_user_error(&sweeplab(&["report", bad.to_str().unwrap(), "--out", out.to_str().unwrap()]), "sync.json");

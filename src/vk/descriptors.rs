@@ -37,6 +37,14 @@ pub enum Resource<'a> {
     StorageImage(&'a Image),
     SampledImage(&'a Image, &'a Sampler),
     StorageBuffer(&'a Buffer),
+    /// `range` bytes of a storage buffer from `offset` (a multiple of
+    /// `minStorageBufferOffsetAlignment`), for a buffer larger than
+    /// `maxStorageBufferRange` bound in windows.
+    StorageBufferWindow {
+        buffer: &'a Buffer,
+        offset: u64,
+        range: u64,
+    },
     UniformBuffer(&'a Buffer),
 }
 
@@ -45,7 +53,7 @@ impl Resource<'_> {
         match self {
             Resource::StorageImage(_) => BindingKind::StorageImage,
             Resource::SampledImage(..) => BindingKind::SampledImage,
-            Resource::StorageBuffer(_) => BindingKind::StorageBuffer,
+            Resource::StorageBuffer(_) | Resource::StorageBufferWindow { .. } => BindingKind::StorageBuffer,
             Resource::UniformBuffer(_) => BindingKind::UniformBuffer,
         }
     }
@@ -152,6 +160,9 @@ impl DescriptorAllocator {
                 Resource::StorageBuffer(b) | Resource::UniformBuffer(b) => {
                     [vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)]
                 }
+                Resource::StorageBufferWindow { buffer, offset, range } => {
+                    [vk::DescriptorBufferInfo::default().buffer(buffer.raw).offset(*offset).range(*range)]
+                }
                 _ => [vk::DescriptorBufferInfo::default()],
             })
             .collect();
@@ -165,7 +176,9 @@ impl DescriptorAllocator {
                     .descriptor_type(binding.kind.vk_type());
                 match res {
                     Resource::StorageImage(_) | Resource::SampledImage(..) => w.image_info(&image_infos[i]),
-                    Resource::StorageBuffer(_) | Resource::UniformBuffer(_) => w.buffer_info(&buffer_infos[i]),
+                    Resource::StorageBuffer(_) | Resource::StorageBufferWindow { .. } | Resource::UniformBuffer(_) => {
+                        w.buffer_info(&buffer_infos[i])
+                    }
                 }
             })
             .collect();

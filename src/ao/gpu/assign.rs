@@ -34,6 +34,7 @@ struct AssignPush {
     first: i32,
     count: i32,
     hint_first: i32,
+    hint_out_first: i32,
     has_hints: i32,
     first_entry: i32,
     entries: i32,
@@ -46,7 +47,19 @@ struct AssignPush {
 crate::assert_gpu_layout!(
     AssignPush,
     shader::layout::ASSIGN,
-    [first, count, hint_first, has_hints, first_entry, entries, first_chunk, last_chunk, clusters, packed_stride]
+    [
+        first,
+        count,
+        hint_first,
+        hint_out_first,
+        has_hints,
+        first_entry,
+        entries,
+        first_chunk,
+        last_chunk,
+        clusters,
+        packed_stride
+    ]
 );
 
 /// Mirrors `SearchState`: where one histogram's search stands.
@@ -69,8 +82,11 @@ pub struct AssignRange {
     /// First histogram in the packed and state buffers.
     pub first: usize,
     pub count: usize,
-    /// First histogram's hint in the hint buffer.
+    /// First histogram's hint in the hint buffer (written by the range
+    /// before)...
     pub hint_first: usize,
+    /// ... and where its own results go, in the other half of the buffer.
+    pub hint_out_first: usize,
     /// false: start every search at codeword 0.
     pub has_hints: bool,
 }
@@ -91,7 +107,8 @@ impl AssignPass {
     /// Stages the codebook and its sorted lists in `uploads` (the caller
     /// finishes them before recording); `packed` holds the histograms
     /// (stride [`packed_stride`]), `states` one [`SearchState`] per histogram,
-    /// `hints` the start codewords.
+    /// `hints` the start codewords, read from one part of it and written to
+    /// another ([`AssignRange`]) through two bindings.
     pub fn new(
         ctx: &Context,
         uploads: &mut Uploads,
@@ -126,7 +143,8 @@ impl AssignPass {
             (shader::ORDER, Resource::StorageBuffer(&order)),
             (shader::ORDER_DISTANCES, Resource::StorageBuffer(&order_distances)),
             (shader::STATES, Resource::StorageBuffer(states)),
-            (shader::HINTS, Resource::StorageBuffer(hints)),
+            (shader::HINTS_IN, Resource::StorageBuffer(hints)),
+            (shader::HINTS_OUT, Resource::StorageBuffer(hints)),
         ])?;
         Ok(AssignPass {
             pipeline,
@@ -146,11 +164,19 @@ impl AssignPass {
     /// result in `states` and, as the next slice's hint, in `hints`. Each
     /// range is one slice (or part of one) and starts at the hints the range
     /// before wrote.
-    pub fn record(&self, rec: &mut Recorder, profiler: &mut Profiler, ranges: &[AssignRange]) -> Result<(), VkError> {
+    /// Without `hints_barrier` (RACY, only for proving that synchronization
+    /// validation reports it) the ranges are not ordered after each other.
+    pub fn record(
+        &self,
+        rec: &mut Recorder,
+        profiler: &mut Profiler,
+        ranges: &[AssignRange],
+        hints_barrier: bool,
+    ) -> Result<(), VkError> {
         let scope = profiler.begin(rec, ASSIGN_PASS)?;
         rec.bind(&self.pipeline, self.set);
         for (i, range) in ranges.iter().enumerate() {
-            if i > 0 {
+            if i > 0 && hints_barrier {
                 rec.barrier(&Barrier::memory(
                     "search_hints_write_to_next_slice_read",
                     Access::COMPUTE_WRITE,
@@ -176,6 +202,7 @@ impl AssignPass {
                 first: range.first as i32,
                 count: range.count as i32,
                 hint_first: range.hint_first as i32,
+                hint_out_first: range.hint_out_first as i32,
                 has_hints: range.has_hints as i32,
                 first_entry: (chunk * self.walk_entries) as i32,
                 entries: self.walk_entries as i32,
@@ -204,7 +231,7 @@ pub fn assign_packed(
     let dim = codebook.dim;
     let count = vectors.len() / dim.max(1);
     let search = CodebookSearch::new(codebook, metric);
-    let plan = SweepPlan::new(glam::UVec3::ONE, 2, dim.max(2), 1, codebook.len(), metric == Metric::Lmax, 64)
+    let plan = SweepPlan::new(glam::UVec3::ONE, 2, dim.max(2), 1, codebook.len(), metric == Metric::Lmax, 64, 64)
         .map_err(AoError::GpuLimit)?;
     let stride = plan.packed_stride;
     let mut padded = vec![0f32; count.max(1) * stride];
@@ -223,14 +250,16 @@ pub fn assign_packed(
         MemoryLocation::GpuOnly,
     )?;
     let readback = readback_buffer(ctx, "ao search states readback", states_bytes as u64)?;
-    let hint_values = hints.map_or_else(|| vec![0u32; count.max(1)], |h| h.to_vec());
+    // The given hints, then room for the results the pass writes.
+    let mut hint_values = hints.map_or_else(|| vec![0u32; count.max(1)], |h| h.to_vec());
+    hint_values.resize(2 * count.max(1), 0);
     let hint_buffer = uploads.buffer("ao search hints", &hint_values, usage)?;
     let pass = AssignPass::new(ctx, &mut uploads, codebook, &search, metric, &plan, [&packed, &states, &hint_buffer])?;
     uploads.finish()?;
     let mut profiler = Profiler::new(ctx, 4)?;
     submit_and_wait(ctx, "ao assign packed", |rec| {
-        let range = AssignRange { first: 0, count, hint_first: 0, has_hints: hints.is_some() };
-        pass.record(rec, &mut profiler, &[range])?;
+        let range = AssignRange { first: 0, count, hint_first: 0, hint_out_first: count, has_hints: hints.is_some() };
+        pass.record(rec, &mut profiler, &[range], true)?;
         rec.barrier(&Barrier::memory(
             "search_state_write_to_readback_copy",
             Access::COMPUTE_WRITE,

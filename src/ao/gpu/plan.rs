@@ -1,7 +1,9 @@
 //! How the GPU space sweep cuts the volume into dispatches and submissions.
 //!
 //! - A *part* is a run of whole rows of one slice: a whole slice unless its
-//!   unpacked histograms exceed the batch budget (large b).
+//!   unpacked histograms exceed the batch budget or the part budget (one
+//!   window of the unpacked histograms bound as a storage buffer, within
+//!   `maxStorageBufferRange`; large b or large slices).
 //! - A *batch* is a run of consecutive parts whose unpacked histograms fit in
 //!   the read-back buffer; each batch is one submission, after which the CPU
 //!   sums the unpacked histograms per cluster (the final codebook) and the
@@ -89,7 +91,9 @@ pub struct SweepPlan {
 }
 
 impl SweepPlan {
-    /// `max_batch_bytes` bounds the unpacked histograms of one batch.
+    /// `max_batch_bytes` bounds the unpacked histograms of one batch,
+    /// `max_part_bytes` those of one part.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         dims: UVec3,
         bins: usize,
@@ -98,13 +102,15 @@ impl SweepPlan {
         clusters: usize,
         lmax: bool,
         max_batch_bytes: usize,
+        max_part_bytes: usize,
     ) -> Result<SweepPlan, String> {
         let budget = LOOP_BUDGET as usize;
         let stride = packed_stride(packed_dim);
         let voxel_bytes = unpacked_stride(bins) * std::mem::size_of::<f32>();
         let (nx, ny) = (dims.x as usize, dims.y as usize);
         let batch_voxels = (max_batch_bytes / voxel_bytes).max(nx);
-        let rows_per_part = (batch_voxels / nx).clamp(1, ny);
+        let part_voxels = (max_part_bytes / voxel_bytes).min(batch_voxels);
+        let rows_per_part = (part_voxels / nx).clamp(1, ny);
         let mut batches: Vec<Batch> = Vec::new();
         let mut current = Batch { parts: vec![], voxels: 0..0 };
         for z in 0..dims.z {
@@ -175,7 +181,7 @@ mod tests {
         let dims = UVec3::new(5, 7, 4);
         let bytes = |voxels: usize| voxels * unpacked_stride(16) * 4;
         for budget_voxels in [1, 5, 12, 35, 36, 70, 1000] {
-            let plan = SweepPlan::new(dims, 16, 8, 100, 8, false, bytes(budget_voxels)).unwrap();
+            let plan = SweepPlan::new(dims, 16, 8, 100, 8, false, bytes(budget_voxels), usize::MAX).unwrap();
             let mut next = 0;
             for batch in &plan.batches {
                 assert_eq!(batch.voxels.start, next);
@@ -198,17 +204,35 @@ mod tests {
             assert_eq!(next, 5 * 7 * 4, "budget {budget_voxels}");
         }
         // Everything in one batch when it fits: one submission.
-        assert_eq!(SweepPlan::new(dims, 16, 8, 100, 8, false, bytes(140)).unwrap().batches.len(), 1);
+        assert_eq!(SweepPlan::new(dims, 16, 8, 100, 8, false, bytes(140), usize::MAX).unwrap().batches.len(), 1);
+    }
+
+    /// A part budget below a slice splits slices into parts of whole rows
+    /// within it, while a batch still holds as many parts as its own budget
+    /// allows: one batch here, parts of 2 rows (10 voxels) each.
+    #[test]
+    fn parts_stay_within_their_own_budget_in_a_larger_batch() {
+        let dims = UVec3::new(5, 7, 4);
+        let bytes = |voxels: usize| voxels * unpacked_stride(16) * 4;
+        let plan = SweepPlan::new(dims, 16, 8, 100, 8, false, bytes(140), bytes(12)).unwrap();
+        assert_eq!(plan.batches.len(), 1);
+        let parts = &plan.batches[0].parts;
+        assert!(parts.iter().all(|p| p.rows as usize * 5 <= 12), "{parts:?}");
+        assert_eq!(parts.iter().map(|p| p.rows as usize * 5).sum::<usize>(), 140);
+        assert_eq!(parts.iter().filter(|p| p.z == 0).map(|p| p.rows).collect::<Vec<_>>(), vec![2, 2, 2, 1]);
+        // A budget below one row still gives parts of one row.
+        let plan = SweepPlan::new(dims, 16, 8, 100, 8, false, bytes(140), bytes(3)).unwrap();
+        assert!(plan.batches[0].parts.iter().all(|p| p.rows == 1));
     }
 
     #[test]
     fn loops_stay_under_the_cap_and_split_only_past_it() {
         let dims = UVec3::splat(4);
         // r = 16: 17,076 stencil voxels, one chunk; r = 32: 137,064, three.
-        let plan = SweepPlan::new(dims, 256, 64, 17_076, 2048, false, 1 << 20).unwrap();
+        let plan = SweepPlan::new(dims, 256, 64, 17_076, 2048, false, 1 << 20, usize::MAX).unwrap();
         assert_eq!(plan.stencil_chunks, vec![0..17_076]);
         assert_eq!(plan.walk_chunks, 1, "2048 codewords of 64 floats: one walk dispatch");
-        let plan = SweepPlan::new(dims, 256, 64, 137_064, 2048, true, 1 << 20).unwrap();
+        let plan = SweepPlan::new(dims, 256, 64, 137_064, 2048, true, 1 << 20, usize::MAX).unwrap();
         assert_eq!(plan.stencil_chunks.len(), 3);
         assert_eq!(plan.stencil_chunks.last().unwrap().end, 137_064);
         assert!(plan.stencil_chunks.iter().all(|c| c.len() + 8 <= LOOP_BUDGET as usize));

@@ -14,7 +14,8 @@
 //! 4. `ao_assign`: the parts in order, each slice's searches started at the
 //!    previous slice's codewords at the same (x, y) (neighbouring histograms
 //!    are close, so the exact search visits few codewords), behind
-//!    `search_hints_write_to_next_slice_read`.
+//!    `search_hints_write_to_next_slice_read`; the hints ping-pong between the
+//!    halves of one buffer, read and written through separate bindings.
 //!
 //! Every pass has a debug label and a profiler scope of its name. A batch is
 //! one submission; its unpacked histograms and search results are then read
@@ -52,8 +53,10 @@ pub const STENCIL_PASS: &str = "ao_histogram_stencil";
 pub const PACK_PASS: &str = "ao_histogram_pack";
 
 /// Unpacked histograms one batch holds at most, bytes, before the device's
-/// limits ([`batch_bytes`]) lower it.
-pub const BATCH_BYTES: usize = 192 << 20;
+/// memory ([`batch_bytes`]) lowers it: 35 slices of 64 x 64 at b = 8, so a
+/// 64^3 volume takes 2 batches (each a submission that binds the sweep's four
+/// pipelines again; best-practices validation counts every rebind).
+pub const BATCH_BYTES: usize = 288 << 20;
 
 /// The share of the smallest device-local heap the batch buffers may take
 /// (the volume, the other buffers and other programs need the rest).
@@ -70,6 +73,7 @@ struct SweepPush {
     first_entry: i32,
     entry_count: i32,
     part_voxel: i32,
+    unpacked_first: i32,
 }
 
 macro_rules! assert_sweep_push_layout {
@@ -77,7 +81,7 @@ macro_rules! assert_sweep_push_layout {
         crate::assert_gpu_layout!(
             SweepPush,
             $shader::layout::SWEEP,
-            [first_binned, slice, first_row, rows, first_entry, entry_count, part_voxel]
+            [first_binned, slice, first_row, rows, first_entry, entry_count, part_voxel, unpacked_first]
         );
     )*};
 }
@@ -101,6 +105,10 @@ pub enum SliceSync {
     /// synchronization validation reports the missing barrier; the histograms
     /// are undefined.
     RacyNoSliceBarrier,
+    /// RACY: no `search_hints_write_to_next_slice_read` between the parts'
+    /// searches. Only for proving that synchronization validation reports
+    /// it; the search starts (not their results) are undefined.
+    RacyNoHintsBarrier,
 }
 
 /// What one batch leaves for the CPU, read in place from the GPU's buffers.
@@ -151,18 +159,68 @@ fn batch_bytes_per_voxel(bins: usize, packed_dim: usize) -> [usize; 3] {
 }
 
 /// The unpacked histograms one batch holds on `ctx`, bytes: at most
-/// [`BATCH_BYTES`], every batch buffer (unpacked, packed, search states)
-/// within `maxStorageBufferRange` (each is bound whole), and the three
-/// together within a quarter of the smallest device-local heap. The batch is
-/// at least one x row ([`SweepPlan::new`]); [`GpuSweep::new`] refuses a row
-/// that breaks the range.
+/// [`BATCH_BYTES`], the packed histograms and search states within
+/// `maxStorageBufferRange` (each is bound whole; the unpacked histograms are
+/// bound a part at a time, [`part_bytes`]), and the three together within a
+/// quarter of the smallest device-local heap. The batch is at least one x row
+/// ([`SweepPlan::new`]); [`GpuSweep::new`] refuses a row that breaks the range.
 pub fn batch_bytes(ctx: &Context, bins: usize, packed_dim: usize) -> usize {
     let per_voxel = batch_bytes_per_voxel(bins, packed_dim);
     let range = ctx.limits.max_storage_buffer_range as usize;
-    let by_range = per_voxel.iter().map(|&b| range / b).min().unwrap_or(0);
+    let by_range = per_voxel[1..].iter().map(|&b| range / b).min().unwrap_or(0);
     let by_memory = (device_local_heap(ctx) / HEAP_SHARE) as usize / per_voxel.iter().sum::<usize>();
     let voxels = (BATCH_BYTES / per_voxel[0]).min(by_range).min(by_memory);
     voxels * per_voxel[0]
+}
+
+/// The unpacked histograms one part holds at most on `ctx`, bytes: a part's
+/// window of the batch's buffer, bound as one storage buffer from an offset
+/// rounded down to `minStorageBufferOffsetAlignment`, must fit
+/// `maxStorageBufferRange` with what the rounding adds.
+pub fn part_bytes(ctx: &Context) -> usize {
+    let align = ctx.limits.min_storage_buffer_offset_alignment.max(1) as usize;
+    (ctx.limits.max_storage_buffer_range as usize).saturating_sub(align)
+}
+
+/// One part's window of the batch's unpacked histograms: the bytes bound
+/// (`offset` aligned for the device) and where the part's first float lies in
+/// them. Parts at the same place of different batches share a window.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct UnpackedWindow {
+    batch_voxel: usize,
+    voxels: usize,
+    offset: u64,
+    range: u64,
+    first_float: u32,
+}
+
+/// The distinct windows of `plan`'s parts, for a device whose storage buffer
+/// offsets align to `align` bytes.
+fn unpacked_windows(plan: &SweepPlan, align: u64) -> Vec<UnpackedWindow> {
+    let voxel_bytes = (unpacked_stride(plan.bins) * 4) as u64;
+    let mut windows: Vec<UnpackedWindow> = Vec::new();
+    for part in plan.batches.iter().flat_map(|b| &b.parts) {
+        let voxels = part.rows as usize * plan.dims.x as usize;
+        if windows.iter().any(|w| w.batch_voxel == part.batch_voxel && w.voxels == voxels) {
+            continue;
+        }
+        let start = part.batch_voxel as u64 * voxel_bytes;
+        let offset = start / align.max(1) * align.max(1);
+        windows.push(UnpackedWindow {
+            batch_voxel: part.batch_voxel,
+            voxels,
+            offset,
+            range: start - offset + voxels as u64 * voxel_bytes,
+            first_float: ((start - offset) / 4) as u32,
+        });
+    }
+    windows
+}
+
+/// The window of `part` among `windows` (every part has one).
+fn window_of(windows: &[UnpackedWindow], part: &super::plan::Part, nx: u32) -> usize {
+    let voxels = part.rows as usize * nx as usize;
+    windows.iter().position(|w| w.batch_voxel == part.batch_voxel && w.voxels == voxels).unwrap_or(0)
 }
 
 /// The smallest device-local heap's size, bytes.
@@ -189,10 +247,19 @@ pub fn supported_plan(
     lmax: bool,
 ) -> Result<SweepPlan, AoError> {
     let max_batch_bytes = batch_bytes(ctx, bins, packed_dim);
-    let plan = SweepPlan::new(volume.dims, bins, packed_dim, stencil.voxel_count(), clusters, lmax, max_batch_bytes)
-        .map_err(AoError::GpuLimit)?;
+    let plan = SweepPlan::new(
+        volume.dims,
+        bins,
+        packed_dim,
+        stencil.voxel_count(),
+        clusters,
+        lmax,
+        max_batch_bytes,
+        part_bytes(ctx),
+    )
+    .map_err(AoError::GpuLimit)?;
     let plan = check_indices(volume, plan)?;
-    for (name, bytes) in binding_sizes(volume, stencil, &plan, clusters, packed_dim) {
+    for (name, bytes) in binding_sizes(ctx, volume, stencil, &plan, clusters, packed_dim) {
         within_storage_range(ctx, name, bytes)?;
     }
     Ok(plan)
@@ -207,9 +274,11 @@ fn check_indices(volume: &Volume, plan: SweepPlan) -> Result<SweepPlan, AoError>
     Ok(plan)
 }
 
-/// Every storage buffer the sweep binds whole, with its size in bytes (the
-/// packing shares are at most bins + packed_dim entries).
+/// Every storage buffer the sweep binds, with its size in bytes (the
+/// packing shares are at most bins + packed_dim entries; the unpacked
+/// histograms: the largest part's window).
 fn binding_sizes(
+    ctx: &Context,
     volume: &Volume,
     stencil: &SphereStencil,
     plan: &SweepPlan,
@@ -219,7 +288,9 @@ fn binding_sizes(
     let [ex, ey, ez] = stencil.extent.to_array().map(|v| v as usize);
     let [nx, ny, _] = volume.dims.to_array().map(|v| v as usize);
     let bins = plan.bins;
-    let [unpacked, packed, states] = batch_bytes_per_voxel(bins, packed_dim).map(|b| b * plan.batch_voxels);
+    let [_, packed, states] = batch_bytes_per_voxel(bins, packed_dim).map(|b| b * plan.batch_voxels);
+    let align = ctx.limits.min_storage_buffer_offset_alignment;
+    let unpacked = unpacked_windows(plan, align).iter().map(|w| w.range as usize).max().unwrap_or(0);
     vec![
         ("ao normalized values", volume.voxel_count() * 4),
         ("ao binned slices", (plan.batch_slices + 2 * ez) * (nx + 2 * ex) * (ny + 2 * ey) * 4),
@@ -228,10 +299,24 @@ fn binding_sizes(
         ("ao unpacked histograms", unpacked),
         ("ao packed histograms", packed),
         ("ao search states", states),
-        ("ao search hints", nx * ny * 2 * 4),
+        ("ao search hints", 2 * hints_per_slice(nx, ny) * 4),
         ("ao codewords", clusters * plan.packed_stride * 4),
         ("ao codeword order", clusters * clusters * 4),
     ]
+}
+
+/// Search hints of one slice (a forward and a backward search per voxel);
+/// the hints buffer holds two slices', ping-ponged ([`hint_halves`]).
+fn hints_per_slice(nx: usize, ny: usize) -> usize {
+    nx * ny * 2
+}
+
+/// Where slice `z`'s searches read their hints (what slice z - 1 wrote) and
+/// where they write theirs, in hints: the halves alternate with z.
+fn hint_halves(z: u32, nx: usize, ny: usize) -> (usize, usize) {
+    let half = hints_per_slice(nx, ny);
+    let read = (z as usize % 2) * half;
+    (read, half - read)
 }
 
 /// A storage buffer of `bytes` is bound whole: it must fit the device's
@@ -256,6 +341,10 @@ pub struct GpuSweep<'c> {
     stencil: ComputePipeline,
     pack: ComputePipeline,
     sets: [vk::DescriptorSet; 3],
+    /// The parts' windows of the unpacked histograms, and their set-1 sets
+    /// for the stencil and the pack pipeline.
+    windows: Vec<UnpackedWindow>,
+    window_sets: [Vec<vk::DescriptorSet>; 2],
     assign: AssignPass,
     profiler: Profiler,
     unpacked: Buffer,
@@ -288,12 +377,14 @@ impl<'c> GpuSweep<'c> {
             inputs.codebook.len(),
             lmax,
             inputs.max_batch_bytes,
+            part_bytes(ctx),
         )
         .map_err(AoError::GpuLimit)
         .and_then(|p| check_indices(volume, p))?;
-        for (name, bytes) in binding_sizes(volume, stencil, &plan, inputs.codebook.len(), packing.packed_dim) {
+        for (name, bytes) in binding_sizes(ctx, volume, stencil, &plan, inputs.codebook.len(), packing.packed_dim) {
             within_storage_range(ctx, name, bytes)?;
         }
+        let windows = unpacked_windows(&plan, ctx.limits.min_storage_buffer_offset_alignment);
         let e = stencil.extent;
         // A batch's centre slices and e_z more on each side.
         let binned_slots = plan.batch_slices as u32 + 2 * e.z;
@@ -343,14 +434,15 @@ impl<'c> GpuSweep<'c> {
         let packed = device_buffer("ao packed histograms", batch * 2 * plan.packed_stride * 4, none)?;
         let states_bytes = batch * 2 * size_of::<SearchState>();
         let states = device_buffer("ao search states", states_bytes, copy_out)?;
-        let hints = device_buffer("ao search hints", (dims.x * dims.y * 2) as usize * 4, none)?;
+        let hints = device_buffer("ao search hints", 2 * hints_per_slice(dims.x as usize, dims.y as usize) * 4, none)?;
         let readback = [
             readback_buffer(ctx, "ao unpacked histograms readback", unpacked_bytes as u64)?,
             readback_buffer(ctx, "ao search states readback", states_bytes as u64)?,
         ];
 
         let pipeline = |name: &str, shader, specialization: &[(u32, u32)]| {
-            ComputePipeline::new(ctx, &ComputePipelineDesc { name, shader, specialization, max_sets: 1 })
+            let max_sets = windows.len() as u32;
+            ComputePipeline::new(ctx, &ComputePipelineDesc { name, shader, specialization, max_sets })
         };
         let mut bin = pipeline(BIN_PASS, &ao_histogram_bin::INTERFACE, &constants)?;
         let bin_set = bin.create_set(&[
@@ -363,12 +455,20 @@ impl<'c> GpuSweep<'c> {
             (ao_histogram_sweep::BINNED, Resource::StorageBuffer(&binned)),
             (ao_histogram_sweep::STENCIL_DIRECTIONS, Resource::StorageBuffer(&stencil_directions)),
             (ao_histogram_sweep::STENCIL_OFFSETS, Resource::StorageBuffer(&stencil_offsets)),
-            (ao_histogram_sweep::UNPACKED, Resource::StorageBuffer(&unpacked)),
         ])?;
+        let window =
+            |w: &UnpackedWindow| Resource::StorageBufferWindow { buffer: &unpacked, offset: w.offset, range: w.range };
+        let sweep_windows = windows
+            .iter()
+            .map(|w| sweep.create_set1(&[(ao_histogram_sweep::UNPACKED, window(w))]))
+            .collect::<Result<Vec<_>, _>>()?;
         let pack_constants: Vec<(u32, u32)> = [(0, normalization.to_bits())].into_iter().chain(constants).collect();
         let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &pack_constants)?;
+        let pack_windows = windows
+            .iter()
+            .map(|w| pack.create_set1(&[(ao_histogram_pack::UNPACKED, window(w))]))
+            .collect::<Result<Vec<_>, _>>()?;
         let pack_set = pack.create_set(&[
-            (ao_histogram_pack::UNPACKED, Resource::StorageBuffer(&unpacked)),
             (ao_histogram_pack::SHARE_STARTS, Resource::StorageBuffer(&share_starts)),
             (ao_histogram_pack::SHARES, Resource::StorageBuffer(&shares)),
             (ao_histogram_pack::PACKED, Resource::StorageBuffer(&packed)),
@@ -394,6 +494,8 @@ impl<'c> GpuSweep<'c> {
             stencil: sweep,
             pack,
             sets: [bin_set, sweep_set, pack_set],
+            windows,
+            window_sets: [sweep_windows, pack_windows],
             assign,
             profiler,
             unpacked,
@@ -454,7 +556,21 @@ impl<'c> GpuSweep<'c> {
     /// histograms for the next batch once they are copied out.
     fn record_batch(&mut self, b: usize, sync: SliceSync, clear_next: bool) -> Result<(), VkError> {
         let GpuSweep {
-            ctx, plan, extent, bin, stencil, pack, sets, assign, profiler, unpacked, states, readback, ..
+            ctx,
+            plan,
+            extent,
+            bin,
+            stencil,
+            pack,
+            sets,
+            windows,
+            window_sets,
+            assign,
+            profiler,
+            unpacked,
+            states,
+            readback,
+            ..
         } = self;
         let (nx, padded) = (plan.dims.x, [plan.dims.x + 2 * extent.x, plan.dims.y + 2 * extent.y]);
         let batch = &plan.batches[b];
@@ -467,6 +583,7 @@ impl<'c> GpuSweep<'c> {
             first_row: part.first_row as i32,
             rows: part.rows as i32,
             part_voxel: part.batch_voxel as i32,
+            unpacked_first: windows[window_of(windows, part, nx)].first_float as i32,
             ..push
         };
         submit_and_wait(ctx, "ao histogram sweep", |rec| {
@@ -478,7 +595,7 @@ impl<'c> GpuSweep<'c> {
             let padded_rows = (rows.len() as u32 + 2 * extent.y).min(padded[1]);
             rec.dispatch(padded[0].div_ceil(8), padded_rows.div_ceil(8), binned.len() as u32);
             profiler.end(rec, scope)?;
-            if sync == SliceSync::Barrier {
+            if sync != SliceSync::RacyNoSliceBarrier {
                 rec.barrier(&Barrier::memory(
                     "binned_slices_write_to_stencil_read",
                     Access::COMPUTE_WRITE,
@@ -503,6 +620,7 @@ impl<'c> GpuSweep<'c> {
                         entry_count: chunk.len() as i32,
                         ..part_push(part)
                     };
+                    rec.bind_set1(stencil, window_sets[0][window_of(windows, part, nx)]);
                     rec.push(stencil, &push);
                     rec.dispatch(nx.div_ceil(8), part.rows.div_ceil(8), 1);
                 }
@@ -512,6 +630,7 @@ impl<'c> GpuSweep<'c> {
             let scope = profiler.begin(rec, PACK_PASS)?;
             rec.bind(pack, sets[2]);
             for part in &batch.parts {
+                rec.bind_set1(pack, window_sets[1][window_of(windows, part, nx)]);
                 rec.push(pack, &part_push(part));
                 rec.dispatch((part.rows * nx).div_ceil(64), 1, 1);
             }
@@ -524,14 +643,19 @@ impl<'c> GpuSweep<'c> {
             let ranges: Vec<AssignRange> = batch
                 .parts
                 .iter()
-                .map(|part| AssignRange {
-                    first: 2 * part.batch_voxel,
-                    count: 2 * part.rows as usize * nx as usize,
-                    hint_first: 2 * part.first_row as usize * nx as usize,
-                    has_hints: part.z > 0,
+                .map(|part| {
+                    let (read, write) = hint_halves(part.z, nx as usize, plan.dims.y as usize);
+                    let row_offset = 2 * part.first_row as usize * nx as usize;
+                    AssignRange {
+                        first: 2 * part.batch_voxel,
+                        count: 2 * part.rows as usize * nx as usize,
+                        hint_first: read + row_offset,
+                        hint_out_first: write + row_offset,
+                        has_hints: part.z > 0,
+                    }
                 })
                 .collect();
-            assign.record(rec, profiler, &ranges)?;
+            assign.record(rec, profiler, &ranges, sync != SliceSync::RacyNoHintsBarrier)?;
             // The next batch's first slice starts at the hints this batch's
             // last slice wrote.
             rec.barrier(&Barrier::memory(

@@ -6,7 +6,7 @@
 //! interrupted study keeps what it measured.
 
 use super::sync::{ConfigRow, StrategyRow, SyncReport, BASELINE, CONTROL};
-use crate::bench::estimate::Estimate;
+use crate::bench::estimate::{Estimate, Verdict};
 use crate::bench::rows::{BenchRow, BenchTable};
 use crate::bench::{
     plot_histogram, plot_lines, plot_points, AxisScale, BenchError, Chart, Distribution, Point, Series,
@@ -16,6 +16,15 @@ use std::path::Path;
 /// How a sync cost reads: `cost`, `within noise`, `below baseline`.
 fn verdict_word(e: Option<Estimate>) -> &'static str {
     e.map_or("", |e| e.verdict().name())
+}
+
+/// How a per-boundary slope reads: `cost`, `within noise`, or `below zero`
+/// (frames with more blocks were faster: not a cost, never published as one).
+fn slope_word(e: Option<Estimate>) -> &'static str {
+    match e.map(|e| e.verdict()) {
+        Some(Verdict::BelowBaseline) => "below zero",
+        v => v.map_or("", Verdict::name),
+    }
 }
 
 /// One row per strategy and workload.
@@ -31,6 +40,7 @@ fn strategy_row(r: &StrategyRow) -> BenchRow {
     let mut row = BenchRow::new();
     row.set("workload", r.workload.name()).set("strategy", r.strategy.as_str()).set("racy", r.racy);
     row.set_estimate("boundary_us", r.boundary_us);
+    row.set("boundary_verdict", slope_word(r.boundary_us));
     if let Some(v) = r.r_squared {
         row.set("r_squared", v);
     }
@@ -185,6 +195,7 @@ pub fn side_by_side(reports: &[SyncReport]) -> BenchTable {
             row.set("size", format!("{}x{}", report.width, report.height)).set("rounds", report.rounds_of(r.workload));
             row.set("workload", r.workload.name()).set("strategy", r.strategy.as_str());
             row.set_estimate("boundary_us", r.boundary_us);
+            row.set("boundary_verdict", slope_word(r.boundary_us));
             row.set_estimate("sync_us", r.sync_us);
             row.set_estimate("in_frame_sync_us", r.line_gaps.as_ref().and_then(|g| g.in_frame_sync_us));
             if r.strategy != BASELINE {
@@ -331,4 +342,21 @@ pub fn plot_side_by_side(
         ),
         &series,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn estimate(lo: f64, hi: f64) -> Option<Estimate> {
+        Some(Estimate { value: (lo + hi) / 2.0, lo, hi, n: 10 })
+    }
+
+    #[test]
+    fn a_slope_below_zero_is_never_called_a_cost() {
+        assert_eq!(slope_word(estimate(-3998.0, -71.7)), "below zero");
+        assert_eq!(slope_word(estimate(-2236.0, 1985.0)), "within noise");
+        assert_eq!(slope_word(estimate(35.9, 41.7)), "cost");
+        assert_eq!(slope_word(None), "");
+    }
 }
