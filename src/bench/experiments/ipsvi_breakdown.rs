@@ -234,7 +234,7 @@ impl BreakdownReport {
     fn step_rows(&mut self, size: u32, s: &IpsviSettings, lines: u32, steps: &[(&str, &Timings<Counts>)]) {
         let total = steps.last().map_or(f64::NAN, |(_, t)| t.median());
         let mut bar = StackedBar { label: String::new(), segments: Vec::new() };
-        let mut as_zero = Vec::new();
+        let (mut as_zero, mut below) = (Vec::new(), Vec::new());
         let intervals = steps.iter().all(|(_, t)| t.estimate().is_some());
         for (k, (label, t)) in steps.iter().enumerate() {
             let (estimate, cost) = step_cost(t, k.checked_sub(1).map(|p| steps[p].1));
@@ -257,10 +257,13 @@ impl BreakdownReport {
                 }
             }
             row.set("step_share", cost.unwrap_or(0.0) / total);
+            let short = label.split(':').next().unwrap_or(label).to_string();
             if let Some(c) = cost {
                 row.set("step_us_per_line", c * 1000.0 / lines.max(1) as f64);
+            } else if estimate.is_some_and(|e| e.verdict() == crate::bench::Verdict::BelowBaseline) {
+                below.push(short);
             } else {
-                as_zero.push(label.split(':').next().unwrap_or(label).to_string());
+                as_zero.push(short);
             }
             row.set("lines", lines).set("dispatches", t.last.dispatches).set("barriers", t.last.barriers);
             self.table.push(row);
@@ -270,6 +273,12 @@ impl BreakdownReport {
         if !as_zero.is_empty() {
             let why = if intervals { "within noise" } else { "not above the step below" };
             bar.label += &format!(" ({} {why}: 0)", as_zero.join(", "));
+        }
+        // A step faster than the one below it means the steps change each
+        // other's work (e.g. stores shortening later marches): the bar's
+        // segments then add up to more than the frame, which the label says.
+        if !below.is_empty() {
+            bar.label += &format!(" ({} below the step before: 0; frame {total:.0} ms)", below.join(", "));
         }
         self.bars.push(bar);
     }
@@ -354,6 +363,23 @@ mod tests {
         // Fewer than six rounds: the difference of medians, only when above 0.
         assert_eq!(step_cost(&timings(&[3.0]), Some(&timings(&[1.0]))), (None, Some(2.0)));
         assert_eq!(step_cost(&timings(&[1.0]), Some(&timings(&[3.0]))), (None, None));
+    }
+
+    #[test]
+    fn a_step_below_the_one_before_is_named_on_its_bar_with_the_frame_time() {
+        let mut report =
+            BreakdownReport { table: BenchTable::new(), widths_table: BenchTable::new(), bars: Vec::new() };
+        let dvr = timings(&[1.0, 1.1, 0.9, 1.0, 1.2, 1.0]);
+        let noise = timings(&[1.05, 1.0, 0.95, 1.05, 1.1, 1.02]);
+        let slow = timings(&[9.0, 9.5, 8.5, 9.0, 9.8, 9.1]);
+        let fast = timings(&[5.0, 5.2, 4.8, 5.0, 5.4, 5.1]);
+        let steps = [("a: x", &dvr), ("b: y", &noise), ("c: z", &slow), ("d: w", &fast)];
+        report.step_rows(16, &IpsviSettings::default(), 16, &steps);
+        let label = &report.bars[0].label;
+        assert!(label.contains("(b within noise: 0)"), "{label}");
+        assert!(label.contains("(d below the step before: 0; frame 5 ms)"), "{label}");
+        let verdicts: Vec<String> = report.table.rows.iter().map(|r| r.text("step_ms_verdict")).collect();
+        assert_eq!(verdicts, ["cost", "within noise", "cost", "below baseline"]);
     }
 
     #[test]
