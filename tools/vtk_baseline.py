@@ -367,6 +367,28 @@ def summarize(vtk_runs, sweeplab_runs):
     return rows
 
 
+def host_cpu():
+    """The host CPU's model name (lavapipe's speed is the host's), or "unknown"."""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return "unknown"
+
+
+def git_commit():
+    """The checkout's commit (with -dirty for uncommitted changes): the build the
+    sweeplab figures come from, if target/release/sweeplab was built from it."""
+    try:
+        out = subprocess.run(["git", "describe", "--always", "--dirty", "--abbrev=12"],
+                             capture_output=True, text=True, check=True)
+        return out.stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
 def markdown(rows, ratios, meta):
     def cell(row, key):
         return f"{row[key]:.3f}" if key in row else "-"
@@ -375,6 +397,8 @@ def markdown(rows, ratios, meta):
         f"{meta['size']} on {meta['volume']}, GL renderer `{meta['gl_renderer']}` ({meta['window_class']}),",
         f"Vulkan `{meta['vulkan_device']}`; medians of {meta['rounds']} alternating rounds, "
         f"VTK {meta['frames']} frames after the first; load average {meta['loadavg_range']}.",
+        f"Host CPU `{meta['host_cpu']}` ({meta['cores']} cores); sweeplab at `{meta['sweeplab_commit']}`; "
+        f"{meta['date']}; `{meta['command']}`.",
         "",
         "| run | frame s (median) | min | max | frame CPU s | first frame s | process wall s | process CPU s |",
         "| :-- | --: | --: | --: | --: | --: | --: | --: |",
@@ -493,6 +517,9 @@ def main():
         "cores": os.cpu_count(),
         "loadavg_range": f"{min(loads):.2f}-{max(loads):.2f}",
         "command": " ".join([Path(sys.executable).name, *sys.argv]),
+        "host_cpu": host_cpu(),
+        "sweeplab_commit": git_commit(),
+        "date": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
     }
     table = markdown(rows, ratios, meta)
     print(table)
