@@ -24,7 +24,10 @@ What it measures
   VTK and sweeplab runs alternate --rounds times, so load changes hit both; medians over
   the rounds are reported, with the load average (/proc/loadavg) before each run.
 
-The scene mirrors sweeplab's defaults for `--volume FILE` (src/scene/default_scene.rs,
+The camera and the light are given to sweeplab explicitly (`--set camera.distance=...
+--set lights.0.direction=...`): since commit 422681d its automatic camera frames the
+visible voxels and its light comes from the side, which the VTK scene below does not.
+The scene mirrors sweeplab's defaults for `--volume FILE` up to commit dd41002 (src/scene/default_scene.rs,
 src/scene/presets.rs::transfer_from_histogram, src/scene/scene_spec.rs): the automatic
 transfer function from the volume's histogram (recomputed here the same way), opacity
 per voxel length (ScalarOpacityUnitDistance = smallest spacing), orbit camera at azimuth
@@ -269,6 +272,11 @@ def measure_vtk(args):
         "window_class": window.GetClassName(),
         "gl_renderer": gl_renderer,
         "gl_version": gl_version,
+        # The same camera in sweeplab's world units (the longest side of the
+        # cell box is 1), passed to its runs: since sweeplab's automatic camera
+        # frames the visible voxels instead, both would otherwise render
+        # different pixel counts.
+        "sweeplab_camera_distance": distance / max(extent),
         "sample_distance_used": mapper.GetSampleDistance(),
         "auto_adjust_sample_distances": mapper.GetAutoAdjustSampleDistances(),
         "transfer": [[to_scalar(s), list(rgb), a] for s, rgb, a in transfer],
@@ -325,6 +333,17 @@ def run_vtk(args, mode, png):
     return record
 
 
+def sweeplab_scene(vtk_record):
+    """sweeplab overrides that give it VTK's camera and light: sweeplab's
+    `--volume` defaults now frame the visible voxels and light from the side,
+    which this script's VTK scene (its defaults up to commit dd41002) does not."""
+    light = "[" + ", ".join(f"{c:g}" for c in LIGHT_DIRECTION) + "]"
+    return [
+        "--set", f"camera.distance={vtk_record['sweeplab_camera_distance']:.6f}",
+        "--set", f"lights.0.direction={light}",
+    ]
+
+
 def run_sweeplab(args, label, extra, scratch):
     profile = scratch / "profile.json"
     cmd = [str(args.sweeplab), "render", "--volume", str(args.volume), "--size", f"{args.size[0]}x{args.size[1]}"]
@@ -336,6 +355,7 @@ def run_sweeplab(args, label, extra, scratch):
     lines = (stdout + stderr).splitlines()
     device = next((ln[len("device:") :].strip() for ln in lines if ln.startswith("device:")), "?")
     record = {"run": label, "gpu_s": gpu_ms / 1000.0, "process_wall_s": wall, "process_cpu_s": cpu}
+    record["command"] = " ".join(map(str, cmd))
     record.update({"loadavg_before": load, "vulkan_device": device})
     return record
 
@@ -482,8 +502,9 @@ def main():
                 record = run_vtk(args, mode, png)
                 vtk_runs[mode].append(record)
                 print(f"round {round_index + 1} VTK {mode}: frame {record['frame_median_s']:.3f} s", file=sys.stderr)
+            scene = sweeplab_scene(vtk_runs[args.modes[0]][-1])
             for label, extra in SWEEPLAB_RUNS if not args.no_sweeplab else ():
-                record = run_sweeplab(args, label, extra, scratch)
+                record = run_sweeplab(args, label, scene + extra, scratch)
                 sweeplab_runs[label].append(record)
                 print(f"round {round_index + 1} sweeplab {label}: GPU {record['gpu_s']:.3f} s", file=sys.stderr)
 
