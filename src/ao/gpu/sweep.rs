@@ -194,33 +194,44 @@ struct UnpackedWindow {
     first_float: u32,
 }
 
-/// The distinct windows of `plan`'s parts, for a device whose storage buffer
-/// offsets align to `align` bytes.
-fn unpacked_windows(plan: &SweepPlan, align: u64) -> Vec<UnpackedWindow> {
-    let voxel_bytes = (unpacked_stride(plan.bins) * 4) as u64;
-    let mut windows: Vec<UnpackedWindow> = Vec::new();
-    for part in plan.batches.iter().flat_map(|b| &b.parts) {
-        let voxels = part.rows as usize * plan.dims.x as usize;
-        if windows.iter().any(|w| w.batch_voxel == part.batch_voxel && w.voxels == voxels) {
-            continue;
-        }
-        let start = part.batch_voxel as u64 * voxel_bytes;
-        let offset = start / align.max(1) * align.max(1);
-        windows.push(UnpackedWindow {
-            batch_voxel: part.batch_voxel,
-            voxels,
-            offset,
-            range: start - offset + voxels as u64 * voxel_bytes,
-            first_float: ((start - offset) / 4) as u32,
-        });
-    }
-    windows
+/// The distinct windows of a plan's parts, and which one each part binds.
+struct UnpackedWindows {
+    windows: Vec<UnpackedWindow>,
+    /// Per batch, per part (the plan's order): the index into `windows`.
+    of_part: Vec<Vec<usize>>,
 }
 
-/// The window of `part` among `windows` (every part has one).
-fn window_of(windows: &[UnpackedWindow], part: &super::plan::Part, nx: u32) -> usize {
-    let voxels = part.rows as usize * nx as usize;
-    windows.iter().position(|w| w.batch_voxel == part.batch_voxel && w.voxels == voxels).unwrap_or(0)
+impl UnpackedWindows {
+    /// The windows of `plan`'s parts, for a device whose storage buffer
+    /// offsets align to `align` bytes.
+    fn new(plan: &SweepPlan, align: u64) -> UnpackedWindows {
+        let voxel_bytes = (unpacked_stride(plan.bins) * 4) as u64;
+        let align = align.max(1);
+        let mut windows: Vec<UnpackedWindow> = Vec::new();
+        let mut window_of = |part: &super::plan::Part| {
+            let voxels = part.rows as usize * plan.dims.x as usize;
+            if let Some(i) = windows.iter().position(|w| w.batch_voxel == part.batch_voxel && w.voxels == voxels) {
+                return i;
+            }
+            let start = part.batch_voxel as u64 * voxel_bytes;
+            let offset = start / align * align;
+            windows.push(UnpackedWindow {
+                batch_voxel: part.batch_voxel,
+                voxels,
+                offset,
+                range: start - offset + voxels as u64 * voxel_bytes,
+                first_float: ((start - offset) / 4) as u32,
+            });
+            windows.len() - 1
+        };
+        let of_part = plan.batches.iter().map(|b| b.parts.iter().map(&mut window_of).collect()).collect();
+        UnpackedWindows { windows, of_part }
+    }
+
+    /// The largest window, bytes.
+    fn largest(&self) -> usize {
+        self.windows.iter().map(|w| w.range as usize).max().unwrap_or(0)
+    }
 }
 
 /// The smallest device-local heap's size, bytes.
@@ -290,7 +301,7 @@ fn binding_sizes(
     let bins = plan.bins;
     let [_, packed, states] = batch_bytes_per_voxel(bins, packed_dim).map(|b| b * plan.batch_voxels);
     let align = ctx.limits.min_storage_buffer_offset_alignment;
-    let unpacked = unpacked_windows(plan, align).iter().map(|w| w.range as usize).max().unwrap_or(0);
+    let unpacked = UnpackedWindows::new(plan, align).largest();
     vec![
         ("ao normalized values", volume.voxel_count() * 4),
         ("ao binned slices", (plan.batch_slices + 2 * ez) * (nx + 2 * ex) * (ny + 2 * ey) * 4),
@@ -343,7 +354,7 @@ pub struct GpuSweep<'c> {
     sets: [vk::DescriptorSet; 3],
     /// The parts' windows of the unpacked histograms, and their set-1 sets
     /// for the stencil and the pack pipeline.
-    windows: Vec<UnpackedWindow>,
+    windows: UnpackedWindows,
     window_sets: [Vec<vk::DescriptorSet>; 2],
     assign: AssignPass,
     profiler: Profiler,
@@ -384,7 +395,7 @@ impl<'c> GpuSweep<'c> {
         for (name, bytes) in binding_sizes(ctx, volume, stencil, &plan, inputs.codebook.len(), packing.packed_dim) {
             within_storage_range(ctx, name, bytes)?;
         }
-        let windows = unpacked_windows(&plan, ctx.limits.min_storage_buffer_offset_alignment);
+        let windows = UnpackedWindows::new(&plan, ctx.limits.min_storage_buffer_offset_alignment);
         let e = stencil.extent;
         // A batch's centre slices and e_z more on each side.
         let binned_slots = plan.batch_slices as u32 + 2 * e.z;
@@ -440,16 +451,17 @@ impl<'c> GpuSweep<'c> {
             readback_buffer(ctx, "ao search states readback", states_bytes as u64)?,
         ];
 
-        let pipeline = |name: &str, shader, specialization: &[(u32, u32)]| {
-            let max_sets = windows.len() as u32;
+        // The stencil and pack pipelines bind one set 1 per window.
+        let pipeline = |name: &str, shader, specialization: &[(u32, u32)], max_sets: usize| {
+            let max_sets = max_sets as u32;
             ComputePipeline::new(ctx, &ComputePipelineDesc { name, shader, specialization, max_sets })
         };
-        let mut bin = pipeline(BIN_PASS, &ao_histogram_bin::INTERFACE, &constants)?;
+        let mut bin = pipeline(BIN_PASS, &ao_histogram_bin::INTERFACE, &constants, 1)?;
         let bin_set = bin.create_set(&[
             (ao_histogram_bin::VALUES, Resource::StorageBuffer(&values)),
             (ao_histogram_bin::BINNED, Resource::StorageBuffer(&binned)),
         ])?;
-        let mut sweep = pipeline(STENCIL_PASS, &ao_histogram_sweep::INTERFACE, &constants)?;
+        let mut sweep = pipeline(STENCIL_PASS, &ao_histogram_sweep::INTERFACE, &constants, windows.windows.len())?;
         let sweep_set = sweep.create_set(&[
             (ao_histogram_sweep::VALUES, Resource::StorageBuffer(&values)),
             (ao_histogram_sweep::BINNED, Resource::StorageBuffer(&binned)),
@@ -459,12 +471,14 @@ impl<'c> GpuSweep<'c> {
         let window =
             |w: &UnpackedWindow| Resource::StorageBufferWindow { buffer: &unpacked, offset: w.offset, range: w.range };
         let sweep_windows = windows
+            .windows
             .iter()
             .map(|w| sweep.create_set1(&[(ao_histogram_sweep::UNPACKED, window(w))]))
             .collect::<Result<Vec<_>, _>>()?;
         let pack_constants: Vec<(u32, u32)> = [(0, normalization.to_bits())].into_iter().chain(constants).collect();
-        let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &pack_constants)?;
+        let mut pack = pipeline(PACK_PASS, &ao_histogram_pack::INTERFACE, &pack_constants, windows.windows.len())?;
         let pack_windows = windows
+            .windows
             .iter()
             .map(|w| pack.create_set1(&[(ao_histogram_pack::UNPACKED, window(w))]))
             .collect::<Result<Vec<_>, _>>()?;
@@ -578,12 +592,14 @@ impl<'c> GpuSweep<'c> {
         // A batch that is part of a slice bins only the rows its stencil reads.
         let rows = batch.rows();
         let push = SweepPush { first_binned: binned.start, ..SweepPush::zeroed() };
-        let part_push = |part: &super::plan::Part| SweepPush {
+        // Part k of the batch and the window it binds.
+        let window_of = |k: usize| windows.of_part[b][k];
+        let part_push = |k: usize, part: &super::plan::Part| SweepPush {
             slice: part.z as i32,
             first_row: part.first_row as i32,
             rows: part.rows as i32,
             part_voxel: part.batch_voxel as i32,
-            unpacked_first: windows[window_of(windows, part, nx)].first_float as i32,
+            unpacked_first: windows.windows[window_of(k)].first_float as i32,
             ..push
         };
         submit_and_wait(ctx, "ao histogram sweep", |rec| {
@@ -614,13 +630,13 @@ impl<'c> GpuSweep<'c> {
                         Access::COMPUTE_READ_WRITE,
                     ));
                 }
-                for part in &batch.parts {
+                for (k, part) in batch.parts.iter().enumerate() {
                     let push = SweepPush {
                         first_entry: chunk.start as i32,
                         entry_count: chunk.len() as i32,
-                        ..part_push(part)
+                        ..part_push(k, part)
                     };
-                    rec.bind_set1(stencil, window_sets[0][window_of(windows, part, nx)]);
+                    rec.bind_set1(stencil, window_sets[0][window_of(k)]);
                     rec.push(stencil, &push);
                     rec.dispatch(nx.div_ceil(8), part.rows.div_ceil(8), 1);
                 }
@@ -629,9 +645,9 @@ impl<'c> GpuSweep<'c> {
             rec.barrier(&Barrier::memory("unpacked_write_to_pack_read", Access::COMPUTE_WRITE, Access::COMPUTE_READ));
             let scope = profiler.begin(rec, PACK_PASS)?;
             rec.bind(pack, sets[2]);
-            for part in &batch.parts {
-                rec.bind_set1(pack, window_sets[1][window_of(windows, part, nx)]);
-                rec.push(pack, &part_push(part));
+            for (k, part) in batch.parts.iter().enumerate() {
+                rec.bind_set1(pack, window_sets[1][window_of(k)]);
+                rec.push(pack, &part_push(k, part));
                 rec.dispatch((part.rows * nx).div_ceil(64), 1, 1);
             }
             profiler.end(rec, scope)?;
