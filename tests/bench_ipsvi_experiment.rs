@@ -54,6 +54,34 @@ fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
     assert!(text.contains("- seed: `11`") && text.contains("- rounds: `6`"), "{text}");
 }
 
+/// Without half-angle runs (`--half-angle-slices` with no value) the run
+/// renders no model (i) truth and still writes every mode's rows.
+#[test]
+fn bench_ipsvi_without_half_angle_runs_measures_every_mode() {
+    let dir = temp_dir("ipsvi-no-half-angle");
+    let plan = IpsviPlan {
+        sizes: vec![8],
+        line_widths: vec![1],
+        cache_sizes: vec![32],
+        one_at_a_time: true,
+        half_angle_slices: vec![],
+        interleaved: Interleaved::fixed(1, 3).unwrap(),
+        volume_texels: VolumeTexels::Native,
+        group_bytes: DEFAULT_GROUP_BYTES,
+    };
+    let ctx = common::validated_context();
+    let out = OutFolder::prepare(&dir).unwrap();
+    ipsvi_bench::run(&ctx, &scene(), &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
+    common::assert_validation_clean(&ctx);
+    out.finish().unwrap();
+    let rows = bench_rows(&dir.join("ipsvi.json"));
+    assert!(rows.iter().all(|r| r["technique"] != "half-angle"));
+    for mode in ["view samples, non-empty", "view samples, every-sample", "light rays"] {
+        let at_32 = rows.iter().filter(|r| r["mode"] == mode && r["cache_size"].as_f64() == Some(32.0)).count();
+        assert_eq!(at_32, 1, "{mode} at cache 32: {rows:?}");
+    }
+}
+
 #[test]
 fn the_breakdown_at_8x8_with_six_rounds_publishes_no_cost_within_noise() {
     let dir = temp_dir("breakdown-experiment");

@@ -38,8 +38,9 @@ pub enum Command {
 #[derive(Subcommand, Debug)]
 pub enum BenchCommand {
     /// IPSVI over line width x cache size x piecewise integration x early ray
-    /// termination x image size, each run compared with the GPU ground truth.
-    /// Long at the defaults (312 steps; the progress line shows the time left);
+    /// termination x mode (view samples under each write rule, light rays) x
+    /// image size, each run compared with the GPU ground truth. Long at the
+    /// defaults (450 configurations per size; the progress line shows the time left);
     /// --breakdown takes about 2.5 min at 128-512 on lavapipe with 2 cores.
     Ipsvi(BenchIpsviArgs),
     /// What one block boundary of the IPSVI sweep costs per sync strategy: the

@@ -61,12 +61,30 @@ pub fn check_ipsvi(flags: &str, configurations: &[IpsviSettings]) -> Result<(), 
     Ok(())
 }
 
-/// The write rules a configuration is measured with: both for view samples
-/// (so the plot shows which rule serves each budget), light rays' own otherwise.
-fn write_rules(base: &IpsviSettings) -> Vec<WriteRule> {
-    match base.cache_update {
-        CacheUpdate::ViewSamples => WriteRule::ALL.to_vec(),
-        CacheUpdate::LightRays => vec![base.write_rule],
+/// The ways IPSVI feeds its cache, each measured at every point of the grid so
+/// the plot shows which to pick at each budget: the view samples under each
+/// write rule (the paper's data flow) and the light rays (a texel-parallel
+/// advance). The scene's own mode comes first; light rays keep the scene's
+/// write rule, which they do not use.
+fn modes(base: &IpsviSettings) -> Vec<IpsviSettings> {
+    let mut out = vec![base.clone()];
+    let mut push = |s: IpsviSettings| {
+        if !out.iter().any(|o| mode_name(o) == mode_name(&s)) {
+            out.push(s)
+        }
+    };
+    for write_rule in WriteRule::ALL {
+        push(IpsviSettings { cache_update: CacheUpdate::ViewSamples, write_rule, ..base.clone() });
+    }
+    push(IpsviSettings { cache_update: CacheUpdate::LightRays, ..base.clone() });
+    out
+}
+
+/// A mode as the plot's legend and the `mode` column name it.
+fn mode_name(s: &IpsviSettings) -> String {
+    match s.cache_update {
+        CacheUpdate::ViewSamples => format!("view samples, {}", s.write_rule.name()),
+        CacheUpdate::LightRays => "light rays".to_string(),
     }
 }
 
@@ -99,15 +117,17 @@ impl IpsviPlan {
                 }
             };
             push(base.clone());
-            for write_rule in write_rules(base) {
-                push(IpsviSettings { write_rule, ..base.clone() });
+            // Every mode at every cache size: the cache's resolution moves the
+            // error of each mode most (docs/ipsvi.md).
+            for mode in modes(base) {
+                push(mode.clone());
+                for &c in &self.cache_sizes {
+                    push(IpsviSettings { cache_size: c, ..mode.clone() });
+                }
             }
             for &lw in &self.line_widths {
                 push(IpsviSettings { line_width: lw, ..base.clone() });
                 push(IpsviSettings { line_width: lw, piecewise: false, ..base.clone() });
-            }
-            for &c in &self.cache_sizes {
-                push(IpsviSettings { cache_size: c, ..base.clone() });
             }
             for ert in [EarlyTermination::Off, EarlyTermination::Plain, EarlyTermination::ExitPoints] {
                 push(IpsviSettings { early_termination: ert, ..base.clone() });
@@ -120,15 +140,8 @@ impl IpsviPlan {
                     for early_termination in
                         [EarlyTermination::Plain, EarlyTermination::Off, EarlyTermination::ExitPoints]
                     {
-                        for write_rule in write_rules(base) {
-                            out.push(IpsviSettings {
-                                line_width,
-                                cache_size,
-                                piecewise,
-                                early_termination,
-                                write_rule,
-                                ..base.clone()
-                            });
+                        for mode in modes(base) {
+                            out.push(IpsviSettings { line_width, cache_size, piecewise, early_termination, ..mode });
                         }
                     }
                 }
@@ -287,7 +300,8 @@ pub fn run(
                 let mut row = size_row("ipsvi", size);
                 row.set("line_width", s.line_width).set("cache_size", s.cache_size);
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
-                row.set("cache_update", s.cache_update.name()).set("write_rule", s.write_rule.name());
+                row.set("mode", mode_name(s)).set("cache_update", s.cache_update.name());
+                row.set("write_rule", s.write_rule.name());
                 row.set_timing("gpu_ms", t);
                 set_errors(&mut row, &stats);
                 row.set("lines", lines).set("dispatches", t.last.dispatches).set("barriers", t.last.barriers);
@@ -300,8 +314,8 @@ pub fn run(
                 table.push(row);
             }
             out_folder.save_rows("ipsvi", &table)?;
-            if g == 0 {
-                let truth = single_reference.as_ref().expect("half-angle rows have their ground truth");
+            // Without half-angle runs (`--half-angle-slices` with no value) there is no model (i) truth.
+            if let (0, Some(truth)) = (g, single_reference.as_ref()) {
                 for ((&step, prepared), t) in half_angle.iter().zip(&half_angle_scenes).zip(&half_angle_timings) {
                     let stats = compare(&t.last.image, truth)?;
                     let mut row = size_row("half-angle", size);
@@ -439,20 +453,20 @@ impl IpsviReport {
         let table = &self.table;
         for &size in &plan.sizes {
             let idx = ipsvi_rows(table, size);
-            // One series per line width and write rule: which IPSVI to pick at each budget.
-            let rules = write_rules(base);
+            // One series per line width and mode: which IPSVI to pick at each budget.
+            let modes: Vec<String> = modes(base).iter().map(mode_name).collect();
             let series: Vec<Series> = plan
                 .line_widths
                 .iter()
-                .flat_map(|&lw| rules.iter().map(move |&rule| (lw, rule)))
-                .map(|(lw, rule)| {
+                .flat_map(|&lw| modes.iter().map(move |mode| (lw, mode)))
+                .map(|(lw, mode)| {
                     let pts = idx
                         .iter()
                         .map(|&i| &table.rows[i])
-                        .filter(|r| r.get_f64("line_width") == Some(lw as f64) && r.text("write_rule") == rule.name())
+                        .filter(|r| r.get_f64("line_width") == Some(lw as f64) && r.text("mode") == *mode)
                         .map(|r| (r.get_f64("gpu_ms").unwrap_or(f64::NAN), r.get_f64("rmse").unwrap_or(f64::NAN)))
                         .collect();
-                    Series::new(format!("line width {lw}, {}", rule.name()), pts)
+                    Series::new(format!("line width {lw}, {mode}"), pts)
                 })
                 .chain(std::iter::once(Series::new(
                     "half-angle (model i)",
@@ -505,7 +519,7 @@ impl IpsviReport {
                     "lw={} cache={} {} {:.0} ms ({:.1}x DVR), rmse {:.3e}",
                     r.text("line_width"),
                     r.text("cache_size"),
-                    r.text("write_rule"),
+                    r.text("mode"),
                     r.get_f64("gpu_ms").unwrap_or(f64::NAN),
                     r.get_f64("time_over_dvr").unwrap_or(f64::NAN),
                     r.get_f64("rmse").unwrap_or(f64::NAN)
@@ -541,13 +555,26 @@ mod tests {
     #[test]
     fn the_grid_crosses_every_list_and_one_at_a_time_varies_one_factor() {
         let base = IpsviSettings { cache_update: CacheUpdate::ViewSamples, ..IpsviSettings::default() };
-        // 2 line widths x 1 cache x piecewise on/off x 3 early terminations x 2 write rules.
-        assert_eq!(plan().configurations(&base).unwrap().len(), 24);
+        // 2 line widths x 1 cache x piecewise on/off x 3 early terminations x 3 modes.
+        let grid = plan().configurations(&base).unwrap();
+        assert_eq!(grid.len(), 36);
+        let names: Vec<String> = modes(&base).iter().map(mode_name).collect();
+        assert_eq!(names, ["view samples, non-empty", "view samples, every-sample", "light rays"]);
+        for name in &names {
+            assert_eq!(grid.iter().filter(|s| mode_name(s) == *name).count(), 12, "{name}");
+        }
         let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..base.clone() };
-        assert_eq!(plan().configurations(&rays).unwrap().len(), 12, "light rays have one write rule");
-        let one = IpsviPlan { one_at_a_time: true, ..plan() }.configurations(&base).unwrap();
-        assert!(one.contains(&base) && one.len() < 24, "{one:?}");
+        assert_eq!(mode_name(&modes(&rays)[0]), "light rays", "the scene's own mode first");
+        assert_eq!(plan().configurations(&rays).unwrap().len(), 36);
+        let sizes = IpsviPlan { one_at_a_time: true, cache_sizes: vec![64, 256], ..plan() };
+        let one = sizes.configurations(&base).unwrap();
+        assert!(one.contains(&base) && one.len() < 36, "{one:?}");
         assert!(one.iter().enumerate().all(|(i, s)| !one[..i].contains(s)), "no configuration twice");
+        for name in &names {
+            for c in [64, 256] {
+                assert!(one.iter().any(|s| mode_name(s) == *name && s.cache_size == c), "{name} at cache {c}");
+            }
+        }
     }
 
     #[test]
