@@ -49,7 +49,16 @@ fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
     for r in &ipsvi {
         let (lo, hi) = (r["time_over_dvr_lo"].as_f64().unwrap(), r["time_over_dvr_hi"].as_f64().unwrap());
         assert!(lo > 0.0 && lo <= hi, "{r}");
+        // Paired with the scene's own settings, which the one-at-a-time grid starts with.
+        let (lo, v, hi) = (
+            r["time_over_scene_settings_lo"].as_f64().unwrap(),
+            r["time_over_scene_settings"].as_f64().unwrap(),
+            r["time_over_scene_settings_hi"].as_f64().unwrap(),
+        );
+        assert!(lo > 0.0 && lo <= v && v <= hi, "{r}");
     }
+    let own = &ipsvi[0];
+    assert_eq!(own["time_over_scene_settings"].as_f64(), Some(1.0), "the scene's settings against themselves: {own}");
     let text = std::fs::read_to_string(dir.join("ipsvi.md")).unwrap();
     assert!(text.contains("- seed: `11`") && text.contains("- rounds: `6`"), "{text}");
 }

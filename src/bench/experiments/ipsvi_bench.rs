@@ -292,6 +292,9 @@ pub fn run(
                 set_errors(&mut row, &stats).set("dispatches", dvr.dispatches).set("gpu_memory_bytes", dvr_bytes);
                 table.push(row);
             }
+            // The scene's own settings, where this group measured them: every
+            // configuration's time against them, paired round by round.
+            let own = group.iter().position(|&i| configs[i] == base).map(|k| &ipsvi_timings[k]);
             for ((&i, prepared), t) in group.iter().zip(&renderers).zip(&ipsvi_timings) {
                 let s = &configs[i];
                 let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
@@ -311,6 +314,9 @@ pub fn run(
                 row.set("time_over_dvr", gpu_ms / dvr_group.median());
                 row.set_estimate("time_over_dvr", t.paired_ratio(&dvr_group));
                 row.set("ms_per_dispatch", gpu_ms / t.last.dispatches.max(1) as f64);
+                if let Some(own) = own {
+                    row.set_estimate("time_over_scene_settings", t.paired_ratio(own));
+                }
                 table.push(row);
             }
             out_folder.save_rows("ipsvi", &table)?;
@@ -447,36 +453,43 @@ fn ipsvi_rows(table: &BenchTable, size: u32) -> Vec<usize> {
         .collect()
 }
 
+/// The plot's series at one image size: one per line width and mode (which
+/// IPSVI to pick at each budget) and the half-angle runs; a series without
+/// points (no half-angle runs, a line width measured in no mode) is left out
+/// of the legend, where it would say nothing.
+fn error_vs_time_series(table: &BenchTable, size: u32, line_widths: &[u32], base: &IpsviSettings) -> Vec<Series> {
+    let idx = ipsvi_rows(table, size);
+    let modes: Vec<String> = modes(base).iter().map(mode_name).collect();
+    line_widths
+        .iter()
+        .flat_map(|&lw| modes.iter().map(move |mode| (lw, mode)))
+        .map(|(lw, mode)| {
+            let pts = idx
+                .iter()
+                .map(|&i| &table.rows[i])
+                .filter(|r| r.get_f64("line_width") == Some(lw as f64) && r.text("mode") == *mode)
+                .map(|r| (r.get_f64("gpu_ms").unwrap_or(f64::NAN), r.get_f64("rmse").unwrap_or(f64::NAN)))
+                .collect();
+            Series::new(format!("line width {lw}, {mode}"), pts)
+        })
+        .chain(std::iter::once(Series::new(
+            "half-angle (model i)",
+            table.points(
+                |r| r.text("technique") == "half-angle" && r.get_f64("width") == Some(size as f64),
+                "gpu_ms",
+                "rmse",
+            ),
+        )))
+        .filter(|s| !s.points.is_empty())
+        .collect()
+}
+
 impl IpsviReport {
     /// ipsvi.csv, ipsvi.json, ipsvi.md and per size ipsvi_<size>_error_vs_time.png (and .svg) in `out`.
     pub fn write(&self, out: &Path, plan: &IpsviPlan, base: &IpsviSettings) -> Result<(), ExperimentError> {
         let table = &self.table;
         for &size in &plan.sizes {
-            let idx = ipsvi_rows(table, size);
-            // One series per line width and mode: which IPSVI to pick at each budget.
-            let modes: Vec<String> = modes(base).iter().map(mode_name).collect();
-            let series: Vec<Series> = plan
-                .line_widths
-                .iter()
-                .flat_map(|&lw| modes.iter().map(move |mode| (lw, mode)))
-                .map(|(lw, mode)| {
-                    let pts = idx
-                        .iter()
-                        .map(|&i| &table.rows[i])
-                        .filter(|r| r.get_f64("line_width") == Some(lw as f64) && r.text("mode") == *mode)
-                        .map(|r| (r.get_f64("gpu_ms").unwrap_or(f64::NAN), r.get_f64("rmse").unwrap_or(f64::NAN)))
-                        .collect();
-                    Series::new(format!("line width {lw}, {mode}"), pts)
-                })
-                .chain(std::iter::once(Series::new(
-                    "half-angle (model i)",
-                    table.points(
-                        |r| r.text("technique") == "half-angle" && r.get_f64("width") == Some(size as f64),
-                        "gpu_ms",
-                        "rmse",
-                    ),
-                )))
-                .collect();
+            let series = error_vs_time_series(table, size, &plan.line_widths, base);
             let chart = Chart::new(
                 format!("IPSVI {size}x{size}: error against GPU time"),
                 "GPU time (ms)",
@@ -575,6 +588,30 @@ mod tests {
                 assert!(one.iter().any(|s| mode_name(s) == *name && s.cache_size == c), "{name} at cache {c}");
             }
         }
+    }
+
+    #[test]
+    fn the_plot_has_a_series_per_mode_measured_and_none_without_points() {
+        let base = IpsviSettings::default();
+        let mut table = BenchTable::default();
+        for mode in modes(&base) {
+            let mut row = size_row("ipsvi", 16);
+            row.set("line_width", 1).set("mode", mode_name(&mode)).set("gpu_ms", 2.0).set("rmse", 0.1);
+            table.push(row);
+        }
+        let names: Vec<String> = error_vs_time_series(&table, 16, &[1, 4], &base).into_iter().map(|s| s.name).collect();
+        assert_eq!(
+            names,
+            [
+                "line width 1, view samples, non-empty",
+                "line width 1, view samples, every-sample",
+                "line width 1, light rays"
+            ]
+        );
+        let mut ha = size_row("half-angle", 16);
+        ha.set("gpu_ms", 1.0).set("rmse", 0.2);
+        table.push(ha);
+        assert_eq!(error_vs_time_series(&table, 16, &[1], &base).last().unwrap().name, "half-angle (model i)");
     }
 
     #[test]
