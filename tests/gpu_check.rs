@@ -19,6 +19,7 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
         .env("GPU_CHECK_AO_SET", "ao.clusters=16")
         .env("GPU_CHECK_SYNC_ARGS", "--quick --min-rounds 6 --max-rounds 6 --max-minutes 0.2 --line-widths 1,4")
         .env("GPU_CHECK_IPSVI_ARGS", "--line-widths 1,4 --repeat 1")
+        .env("GPU_CHECK_MODES_ARGS", "--one-at-a-time --line-widths 1 --cache-sizes 16 --half-angle-slices --repeat 1")
         .env(
             "GPU_CHECK_LIGHTS_ARGS",
             "--size 16x16 --scales 4 --light-counts 2 --scaling-counts 1 --error-scales 4 --incremental-passes 1 \
@@ -57,7 +58,7 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     let names: Vec<&str> = parts.iter().map(|p| p.0.as_str()).collect();
     let mut expected = vec!["devices".to_string()];
     expected.extend(all.split(',').map(|t| format!("compare-{t}")));
-    expected.extend(["bench-sync", "bench-ipsvi-breakdown", "bench-lights"].map(String::from));
+    expected.extend(["bench-sync", "bench-ipsvi-breakdown", "bench-ipsvi-modes", "bench-lights"].map(String::from));
     assert_eq!(names, expected);
     for (name, rc, validation) in &parts {
         assert_eq!(*rc, 0, "{name} failed: {report:#}");
@@ -68,6 +69,7 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     assert!(ok, "the script exits 0 when every part passed");
     assert_eq!(report["failed_parts"], 0);
     assert!(out.join("compare/ipsvi.json").exists() && out.join("bench-sync").is_dir());
+    assert!(out.join("bench-ipsvi-modes/ipsvi.json").exists(), "the error against time per mode");
     // The ground truth is rendered once per model: phong, reference and ao reuse dvr's
     // (single scattering, one colour), ipsvi's model and the light volume's colour differ.
     let compared = |t: &str| -> serde_json::Value {

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # One command for a machine with a GPU driver and nothing else (no compiler,
 # no network): lists the devices, renders every technique against its ground
-# truth with validation on, runs `bench sync`, `bench ipsvi --breakdown` and a
-# short `bench lights`, and writes one report (report.json + report.md) into
+# truth with validation on, runs `bench sync`, `bench ipsvi --breakdown`, IPSVI's
+# error against time per mode (`bench ipsvi`) and a short `bench lights`, and writes one report (report.json + report.md) into
 # OUT. A part that fails is recorded (exit status, time, log tail) and the
 # next one runs. See docs/bench-on-your-gpu.md.
 #
@@ -21,6 +21,9 @@
 #   GPU_CHECK_SYNC_ARGS    extra arguments of bench sync (default: a bounded run)
 #   GPU_CHECK_IPSVI_ARGS   extra arguments of bench ipsvi --breakdown (default: 6 to 30 rounds
 #                          within 2 minutes, never fewer than 6)
+#   GPU_CHECK_MODES_ARGS   arguments of bench ipsvi's error against time (default: every mode at
+#                          caches 256 and 512, line width 1, one factor at a time, 6 to 12
+#                          rounds within a minute)
 #   GPU_CHECK_LIGHTS_ARGS  arguments of bench lights (default: a short run)
 #   GPU_CHECK_AO_SET       --set value for the ao comparison (default: none)
 #   GPU_CHECK_BENCHES      0: the comparisons only (default 1)
@@ -55,6 +58,7 @@ size=${GPU_CHECK_SIZE:-256}
 bench_size=${GPU_CHECK_BENCH_SIZE:-512}
 techniques=${GPU_CHECK_TECHNIQUES:-dvr,phong,reference,ipsvi,half-angle,lightvolume,ao}
 sync_args=${GPU_CHECK_SYNC_ARGS:---line-widths 1,4,16,32 --max-rounds 12 --max-minutes 1.5}
+modes_args=${GPU_CHECK_MODES_ARGS:---one-at-a-time --line-widths 1 --cache-sizes 256,512 --half-angle-slices --repeat 6 --max-rounds 12 --max-minutes 1}
 lights_args=${GPU_CHECK_LIGHTS_ARGS:---scales 4 --light-counts 2 --scaling-counts 1,4 --error-scales 4 --incremental-passes 1 --repeat 1}
 device_args=()
 [ -n "${GPU_CHECK_DEVICE:-}" ] && device_args=(--device "$GPU_CHECK_DEVICE")
@@ -115,6 +119,9 @@ if [ "${GPU_CHECK_BENCHES:-1}" = 1 ]; then
     part bench-ipsvi-breakdown "$bin" bench ipsvi --breakdown --scene "$scene" --sizes "$bench_size" "${device_args[@]}" \
         --out "$out/bench-ipsvi" $ipsvi_args
     # shellcheck disable=SC2086
+    part bench-ipsvi-modes "$bin" bench ipsvi --scene "$scene" --sizes "$bench_size" "${device_args[@]}" \
+        --out "$out/bench-ipsvi-modes" $modes_args
+    # shellcheck disable=SC2086
     part bench-lights "$bin" bench lights --scene "$scene" "${device_args[@]}" --out "$out/bench-lights" $lights_args
 fi
 
@@ -147,7 +154,7 @@ failed=$(grep -c '"rc": [1-9]' "$parts_json")
         echo "| $name | $rc | $secs | $val | logs/$name.log |"
     done < "$parts_json"
     echo
-    echo "Errors against the ground truth: compare/*.json; benches: bench-sync/, bench-ipsvi/, bench-lights/."
+    echo "Errors against the ground truth: compare/*.json; benches: bench-sync/, bench-ipsvi/, bench-ipsvi-modes/, bench-lights/."
     for f in "$out"/compare/*.json; do
         [ -e "$f" ] || continue
         echo
