@@ -569,3 +569,77 @@ fn empty_runs_move_depth_is_exact_without_empty_runs_and_bounded_with_them() {
 /// from 1.0% to 3.6% on the directional case: an empty run just above a
 /// surface moves the depth across the surface's edge on the texel's ray).
 const EMPTY_RUN_CHANGE_BOUND: f64 = 0.05;
+
+/// `fit_to_visible`: a sphere of radius 7 voxels in a 32^3 box, lit by a
+/// directional and a point light. Fitted to the box of the cells the transfer
+/// function can show, every mode stays within its stated tolerance; light rays
+/// (both lights) and view samples (directional light, both write rules) come
+/// nearer the ground truth than with the volume box; with the point light,
+/// view samples do not (every-sample 0.0037 -> 0.0047, printed). Where every
+/// value is visible that box is the volume's and the image the same bit for bit.
+#[test]
+fn the_cache_fitted_to_the_visible_cells_keeps_its_tolerance_and_is_exact_where_all_is_visible() {
+    let ctx = validated_context();
+    let lights = [directional(Vec3::new(0.3, -1.0, 0.2), 2.0), point(Vec3::new(1.6, 0.4, 0.3))];
+    let modes = [
+        IpsviSettings { write_rule: WriteRule::NonEmpty, ..view_samples(FED_CACHE, CacheWrite::Farthest) },
+        IpsviSettings { write_rule: WriteRule::EverySample, ..view_samples(FED_CACHE, CacheWrite::Farthest) },
+        IpsviSettings { cache_update: CacheUpdate::LightRays, ..view_samples(FED_CACHE, CacheWrite::Farthest) },
+    ];
+    for light in lights {
+        let mut scene = scene_with(sphere_volume(32, 7.0), vec![light], SIZE, SIZE);
+        reference_settings(&mut scene);
+        scene.transfer = TransferFunction {
+            points: vec![
+                ControlPoint { value: 0.0, rgba: [0.0, 0.0, 0.0, 0.0] },
+                ControlPoint { value: 0.3, rgba: [0.9, 0.6, 0.3, 0.0] },
+                ControlPoint { value: 1.0, rgba: [0.9, 0.8, 0.7, 0.6] },
+            ],
+        };
+        let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
+        let truth = reference(&ctx, &gpu);
+        for volume_box in &modes {
+            let fitted = IpsviSettings { fit_to_visible: true, ..volume_box.clone() };
+            let (a, b) = (
+                ipsvi(&ctx, &gpu, volume_box, SyncStrategy::BarrierGlobal),
+                ipsvi(&ctx, &gpu, &fitted, SyncStrategy::BarrierGlobal),
+            );
+            let (ea, eb) = (relative_rmse(&a, &truth), relative_rmse(&b, &truth));
+            let what = format!("{:?}, {:?} {:?}", light.kind, volume_box.cache_update, volume_box.write_rule);
+            println!("{what}: relative RMSE volume box {ea:.5}, visible box {eb:.5}");
+            assert!(a != b, "{what}: the fitted cache should change the image");
+            // Measured: directional 0.0053 -> 0.0048 (non-empty), 0.0040 -> 0.0028 (every-sample),
+            // 0.0040 -> 0.0013 (light rays); point 0.0051 -> 0.0051, 0.0037 -> 0.0047 (every-sample
+            // farther, not explained), 0.0037 -> 0.0009 (light rays).
+            let directional = matches!(light.kind, LightKind::Directional { .. });
+            let tolerance = if directional { DIRECTIONAL_TOLERANCE } else { POINT_TOLERANCE };
+            assert!(eb <= tolerance, "{what}: {eb:.5} past the stated tolerance {tolerance}");
+            if directional || volume_box.cache_update == CacheUpdate::LightRays {
+                assert!(eb < ea, "{what}: the visible box {eb:.5} is not nearer the truth than the volume box {ea:.5}");
+            }
+        }
+        // Every value visible: the lit box is the volume box.
+        let mut all = scene.clone();
+        all.transfer = TransferFunction {
+            points: vec![
+                ControlPoint { value: 0.0, rgba: [0.5, 0.5, 0.5, 0.02] },
+                ControlPoint { value: 1.0, rgba: [0.9, 0.8, 0.7, 0.6] },
+            ],
+        };
+        let gpu = GpuScene::upload_with(&ctx, &all, VolumeTexels::Float32).unwrap();
+        for volume_box in &modes {
+            let fitted = IpsviSettings { fit_to_visible: true, ..volume_box.clone() };
+            let (a, b) = (
+                ipsvi(&ctx, &gpu, volume_box, SyncStrategy::BarrierGlobal),
+                ipsvi(&ctx, &gpu, &fitted, SyncStrategy::BarrierGlobal),
+            );
+            assert!(
+                a == b,
+                "{:?} {:?}: the volume box, fitted, must give the same image",
+                light.kind,
+                volume_box.cache_update
+            );
+        }
+    }
+    assert_validation_clean(&ctx);
+}

@@ -6,7 +6,6 @@
 //! image was last written two blocks ago), so nothing stale is ever read.
 
 use crate::render::light_space::{LightProjection, LightSpacePlane};
-use crate::scene::VolumeBox;
 use glam::Vec3;
 
 /// Texels [x0, x0 + w) x [y0, y0 + h) of the cache.
@@ -45,15 +44,14 @@ impl TexelRect {
 const EDGES: [(usize, usize); 12] =
     [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (1, 3), (4, 6), (5, 7), (0, 4), (1, 5), (2, 6), (3, 7)];
 
-/// Texels whose rays cross plane (n, d) inside the box, one texel of margin.
-pub fn plane_region(geometry: &LightSpacePlane, bx: &VolumeBox, plane: [f32; 4]) -> TexelRect {
+/// Texels whose rays cross plane (n, d) inside the box of `corners`, one texel of margin.
+pub fn plane_region(geometry: &LightSpacePlane, corners: &[Vec3; 8], plane: [f32; 4]) -> TexelRect {
     let size = geometry.size;
     if geometry.projection == LightProjection::Octahedral {
         // The octahedral map does not keep polygons convex: update it all.
         return TexelRect::full(size);
     }
     let n = Vec3::new(plane[0], plane[1], plane[2]);
-    let corners = bx.corners();
     let side: Vec<f32> = corners.iter().map(|c| n.dot(*c) + plane[3]).collect();
     let mut lo = (f32::INFINITY, f32::INFINITY);
     let mut hi = (f32::NEG_INFINITY, f32::NEG_INFINITY);
@@ -86,15 +84,15 @@ mod tests {
 
     #[test]
     fn plane_across_the_light_is_a_thin_band_and_outside_the_box_is_empty() {
-        let bx = VolumeBox::new(UVec3::splat(32), Vec3::ONE);
+        let bx = crate::scene::VolumeBox::new(UVec3::splat(32), Vec3::ONE);
         // Light from +x; a plane x = 0.1 contains no light ray direction, every ray crosses it.
         let g = LightSpacePlane::fit(&LightKind::Directional { direction: Vec3::NEG_X }, &bx, 64);
-        let across = plane_region(&g, &bx, [1.0, 0.0, 0.0, -0.1]);
+        let across = plane_region(&g, &bx.corners(), [1.0, 0.0, 0.0, -0.1]);
         assert!(across.count() > 60 * 60, "{across:?}");
         // A plane containing the light direction (y = 0.1) is crossed by one band of rays.
-        let along = plane_region(&g, &bx, [0.0, 1.0, 0.0, -0.1]);
+        let along = plane_region(&g, &bx.corners(), [0.0, 1.0, 0.0, -0.1]);
         assert!(along.w.min(along.h) <= 4, "{along:?}");
-        assert_eq!(plane_region(&g, &bx, [0.0, 1.0, 0.0, -3.0]).count(), 0);
+        assert_eq!(plane_region(&g, &bx.corners(), [0.0, 1.0, 0.0, -3.0]).count(), 0);
     }
 
     #[test]

@@ -2,6 +2,7 @@
 
 use super::light_anchor::LightAnchor;
 use crate::render::light_space::LightSpacePlane;
+use crate::scene::framing::WorldBox;
 use crate::scene::RayBasis;
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
@@ -36,6 +37,10 @@ pub struct SweepParams {
     /// Full-resolution pixels per pre-pass pixel.
     pub ert_scale: f32,
     pub pad: f32,
+    /// The box light rays are clipped to (world; w unused): the volume box, or
+    /// with `fit_to_visible` the lit box.
+    pub lit_min: [f32; 4],
+    pub lit_max: [f32; 4],
 }
 
 crate::assert_gpu_layout!(
@@ -57,6 +62,8 @@ crate::assert_gpu_layout!(
         cone_tan,
         ert_scale,
         pad,
+        lit_min,
+        lit_max,
     ]
 );
 
@@ -125,6 +132,7 @@ pub struct SweepInputs<'a> {
     pub albedo: f32,
     pub cone_angle_deg: f32,
     pub ert_scale: u32,
+    pub lit_box: WorldBox,
 }
 
 pub fn sweep_params(s: &SweepInputs) -> SweepParams {
@@ -149,6 +157,8 @@ pub fn sweep_params(s: &SweepInputs) -> SweepParams {
         cone_tan: s.cone_angle_deg.to_radians().tan(),
         ert_scale: s.ert_scale as f32,
         pad: 0.0,
+        lit_min: s.lit_box.min.extend(0.0).to_array(),
+        lit_max: s.lit_box.max.extend(0.0).to_array(),
     }
 }
 

@@ -15,6 +15,7 @@ pub mod exit_points;
 pub mod gpu_params;
 pub mod light_anchor;
 pub mod line_group;
+pub mod lit_box;
 pub mod merged_steps;
 pub mod paper_table1;
 pub mod renderer;

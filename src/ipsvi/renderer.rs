@@ -10,6 +10,7 @@ use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
 use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_FIRST_LIGHT};
 use super::line_group::{lavapipe_threads, line_group_size, median_pixels};
+use super::lit_box::lit_box;
 use super::merged_steps::{self, LineDispatch};
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
@@ -23,8 +24,9 @@ use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
 use crate::render::light_space::LightSpacePlane;
 use crate::render::{GpuScene, OutputImage, RecordedFrame, RenderError};
+use crate::scene::framing::WorldBox;
 use crate::scene::settings_table::SettingsTable;
-use crate::scene::Scene;
+use crate::scene::{Scene, TransferLut};
 use crate::shaders::{ipsvi_cache_init, ipsvi_line, ipsvi_sweep_sum};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait_or, SecondaryCommands};
@@ -310,8 +312,18 @@ impl<'a> IpsviRenderer<'a> {
         let planes_host = line_planes(&space.basis, width, height);
         let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let lights = scene.rendered_lights();
-        let geometries: Vec<LightSpacePlane> =
-            lights.iter().map(|l| LightSpacePlane::fit(&l.kind, &bx, settings.cache_size)).collect();
+        // The box the cache is fitted to and the light rays are clipped to.
+        let lit = if settings.fit_to_visible {
+            lit_box(&scene.volume, &scene.transfer.bake(TransferLut::DEFAULT_SIZE), &bx)
+        } else {
+            WorldBox::of_volume(&bx)
+        };
+        let lit_corners = lit.corners();
+        let radius = bx.half_extent.length();
+        let geometries: Vec<LightSpacePlane> = lights
+            .iter()
+            .map(|l| LightSpacePlane::fit_to(&l.kind, &lit_corners, radius, settings.cache_size))
+            .collect();
         let light_scale = |i: usize| lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
         let sweep_records: Vec<SweepParams> = (0..scene.lights.len())
             .map(|i| {
@@ -326,12 +338,13 @@ impl<'a> IpsviRenderer<'a> {
                     albedo: settings.albedo,
                     cone_angle_deg: settings.cone_angle_deg,
                     ert_scale: settings.ert_scale,
+                    lit_box: lit,
                 })
             })
             .collect();
         let sweeps = Buffer::with_data(ctx, "ipsvi sweeps", &sweep_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let (mut block_records, sweep_records) =
-            block_params(&plans, &geometries, &bx, &planes_host, height, settings)?;
+            block_params(&plans, &geometries, &lit_corners, &planes_host, height, settings)?;
         if slots > 1 {
             for (slot, &(first, count)) in sweep_records.iter().enumerate() {
                 for r in &mut block_records[first..first + count] {
@@ -747,7 +760,7 @@ type SweepRecords = (usize, usize);
 fn block_params(
     plans: &[SweepPlan],
     geometries: &[LightSpacePlane],
-    bx: &crate::scene::VolumeBox,
+    lit_corners: &[glam::Vec3; 8],
     planes: &[[f32; 4]],
     height: u32,
     settings: &IpsviSettings,
@@ -761,7 +774,7 @@ fn block_params(
             let first_record = out.len();
             let columns = sweep.axis == LineAxis::Columns;
             let plane_of = |line: u32| if columns { height + line } else { line };
-            let region_of = |line: u32| plane_region(&geometries[li], bx, planes[plane_of(line) as usize]);
+            let region_of = |line: u32| plane_region(&geometries[li], lit_corners, planes[plane_of(line) as usize]);
             let mut previous_region = TexelRect::default();
             let mut before_previous = TexelRect::default();
             if claims {

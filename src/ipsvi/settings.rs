@@ -56,6 +56,11 @@ pub struct IpsviSettings {
     /// its code: one store and one load per texel instead of two. The same
     /// image bit for bit (`tests/ipsvi_view_samples.rs`).
     pub packed_store: bool,
+    /// Fit the cache, and clip the light rays, to the box of the volume's cells
+    /// the transfer function can make visible (`lit_box.rs`), not the whole
+    /// volume box: the medium outside it is exactly empty, so the light is the
+    /// same, the texels smaller and the marches to a ray's box entry shorter.
+    pub fit_to_visible: bool,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
@@ -124,6 +129,7 @@ impl Default for IpsviSettings {
             write_rule: WriteRule::NonEmpty,
             empty_runs_move_depth: false,
             packed_store: false,
+            fit_to_visible: false,
             sync: SyncStrategy::BarrierGlobal,
             merge_sweeps: false,
             single_dispatch_baseline: false,

@@ -35,13 +35,18 @@ pub struct LightSpacePlane {
 
 impl LightSpacePlane {
     pub fn fit(light: &LightKind, bx: &VolumeBox, size: u32) -> LightSpacePlane {
+        LightSpacePlane::fit_to(light, &bx.corners(), bx.half_extent.length(), size)
+    }
+
+    /// Fitted to the box of `corners`; `radius` is the volume's bounding sphere
+    /// (about the origin), which decides whether a point light is inside it.
+    pub fn fit_to(light: &LightKind, corners: &[Vec3; 8], radius: f32, size: u32) -> LightSpacePlane {
         let size = size.max(2);
-        let radius = bx.half_extent.length();
         match *light {
             LightKind::Directional { direction } => {
                 let axis = direction.normalize_or(Vec3::NEG_Y);
                 let (u, v) = axis.any_orthonormal_pair();
-                let (lo, hi) = extent(bx.corners().iter().map(|c| (c.dot(u), c.dot(v))));
+                let (lo, hi) = extent(corners.iter().map(|c| (c.dot(u), c.dot(v))));
                 let (a0, b0, texel) = square(lo, hi, size);
                 LightSpacePlane {
                     projection: LightProjection::Orthographic,
@@ -59,7 +64,7 @@ impl LightSpacePlane {
                 if position.length() > radius * 1.05 {
                     let axis = (-position).normalize();
                     let (u, v) = axis.any_orthonormal_pair();
-                    let (lo, hi) = extent(bx.corners().iter().map(|c| {
+                    let (lo, hi) = extent(corners.iter().map(|c| {
                         let q = *c - position;
                         let z = q.dot(axis);
                         (q.dot(u) / z, q.dot(v) / z)

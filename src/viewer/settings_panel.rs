@@ -127,6 +127,7 @@ pub fn controls() -> Vec<Control> {
             Bool(s.settings.get::<IpsviSettings>().empty_runs_move_depth)
         }),
         control("ipsvi", "packed_store", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().packed_store)),
+        control("ipsvi", "fit_to_visible", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().fit_to_visible)),
         control("ipsvi", "sync", Choice(names(&SyncStrategy::ALL.map(|c| c.name()))), |s| {
             Name(s.settings.get::<IpsviSettings>().sync.name())
         }),

@@ -82,9 +82,14 @@ fn modes(base: &IpsviSettings) -> Vec<IpsviSettings> {
 
 /// A mode as the plot's legend and the `mode` column name it.
 fn mode_name(s: &IpsviSettings) -> String {
-    match s.cache_update {
+    let mode = match s.cache_update {
         CacheUpdate::ViewSamples => format!("view samples, {}", s.write_rule.name()),
         CacheUpdate::LightRays => "light rays".to_string(),
+    };
+    if s.fit_to_visible {
+        format!("{mode}, visible box")
+    } else {
+        mode
     }
 }
 
@@ -121,6 +126,8 @@ impl IpsviPlan {
             // error of each mode most (docs/ipsvi.md).
             for mode in modes(base) {
                 push(mode.clone());
+                // The box the cache is fitted to, the other way than the scene's.
+                push(IpsviSettings { fit_to_visible: !mode.fit_to_visible, ..mode.clone() });
                 for &c in &self.cache_sizes {
                     push(IpsviSettings { cache_size: c, ..mode.clone() });
                 }
@@ -304,7 +311,7 @@ pub fn run(
                 row.set("line_width", s.line_width).set("cache_size", s.cache_size);
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
                 row.set("mode", mode_name(s)).set("cache_update", s.cache_update.name());
-                row.set("write_rule", s.write_rule.name());
+                row.set("write_rule", s.write_rule.name()).set("fit_to_visible", s.fit_to_visible);
                 row.set_timing("gpu_ms", t);
                 set_errors(&mut row, &stats);
                 row.set("lines", lines).set("dispatches", t.last.dispatches).set("barriers", t.last.barriers);
@@ -459,7 +466,14 @@ fn ipsvi_rows(table: &BenchTable, size: u32) -> Vec<usize> {
 /// of the legend, where it would say nothing.
 fn error_vs_time_series(table: &BenchTable, size: u32, line_widths: &[u32], base: &IpsviSettings) -> Vec<Series> {
     let idx = ipsvi_rows(table, size);
-    let modes: Vec<String> = modes(base).iter().map(mode_name).collect();
+    // The scene's modes first, then any other the rows hold (the other box).
+    let mut modes: Vec<String> = modes(base).iter().map(mode_name).collect();
+    for &i in &idx {
+        let mode = table.rows[i].text("mode");
+        if !mode.is_empty() && !modes.contains(&mode) {
+            modes.push(mode);
+        }
+    }
     line_widths
         .iter()
         .flat_map(|&lw| modes.iter().map(move |mode| (lw, mode)))
@@ -587,6 +601,8 @@ mod tests {
             for c in [64, 256] {
                 assert!(one.iter().any(|s| mode_name(s) == *name && s.cache_size == c), "{name} at cache {c}");
             }
+            let boxed = format!("{name}, visible box");
+            assert!(one.iter().any(|s| mode_name(s) == boxed && s.fit_to_visible), "{boxed}");
         }
     }
 
