@@ -46,25 +46,27 @@ Ray camera_ray_at(vec2 pos) {
 
 Ray camera_ray(uvec2 pixel) { return camera_ray_at(vec2(pixel) + 0.5); }
 
-// Slab test against [-half, half]; zero direction components never divide.
+// Slab test against [lo, hi]; zero direction components never divide.
 // Returns (t_near, t_far) with t_near >= 0; t_near >= t_far means a miss.
-vec2 intersect_box(vec3 o, vec3 d) {
-    vec3 h = frame.box_half;
+vec2 intersect_aabb(vec3 o, vec3 d, vec3 lo, vec3 hi) {
     float t0 = 0.0;
     float t1 = 3.0e38;
     for (int a = 0; a < 3; ++a) {
         if (abs(d[a]) < 1e-30) {
-            if (o[a] < -h[a] || o[a] > h[a]) return vec2(1.0, 0.0);
+            if (o[a] < lo[a] || o[a] > hi[a]) return vec2(1.0, 0.0);
             continue;
         }
         float inv = 1.0 / d[a];
-        float ta = (-h[a] - o[a]) * inv;
-        float tb = (h[a] - o[a]) * inv;
+        float ta = (lo[a] - o[a]) * inv;
+        float tb = (hi[a] - o[a]) * inv;
         t0 = max(t0, min(ta, tb));
         t1 = min(t1, max(ta, tb));
     }
     return vec2(t0, t1);
 }
+
+// The volume box, [-half, half].
+vec2 intersect_box(vec3 o, vec3 d) { return intersect_aabb(o, d, -frame.box_half, frame.box_half); }
 
 vec3 to_uvw(vec3 p) { return (p + frame.box_half) / (2.0 * frame.box_half); }
 

@@ -79,28 +79,13 @@ float front_param(Ray r, uint code, vec2 enter_exit) {
     return clamp(plane_hit(r, code, enter_exit.x), enter_exit.x, enter_exit.y);
 }
 
-// Extent of light ray r inside the lit box: (enter, exit); enter > exit on a
-// miss. Rays of point lights start at the light. The slab test of
-// intersect_box (frame.glsl) with the lit box's bounds, so the volume box gives
-// the same figures to the bit.
+// Extent of light ray r inside the lit box (the volume box, or with
+// fit_to_visible the box of the cells that can be visible): (enter, exit);
+// enter > exit on a miss. Rays of point lights start at the light.
 vec2 ray_in_box(Ray r) {
-    vec3 lo = sweep.lit_min.xyz;
-    vec3 hi = sweep.lit_max.xyz;
-    float t0 = 0.0;
-    float t1 = 3.0e38;
-    for (int a = 0; a < 3; ++a) {
-        if (abs(r.dir[a]) < 1e-30) {
-            if (r.origin[a] < lo[a] || r.origin[a] > hi[a]) return vec2(1.0, 0.0);
-            continue;
-        }
-        float inv = 1.0 / r.dir[a];
-        float ta = (lo[a] - r.origin[a]) * inv;
-        float tb = (hi[a] - r.origin[a]) * inv;
-        t0 = max(t0, min(ta, tb));
-        t1 = min(t1, max(ta, tb));
-    }
-    if (t0 >= t1) return vec2(1.0, 0.0);
-    return vec2(t0, t1);
+    vec2 t = intersect_aabb(r.origin, r.dir, sweep.lit_min.xyz, sweep.lit_max.xyz);
+    if (t.x >= t.y) return vec2(1.0, 0.0);
+    return t;
 }
 
 // Integrates `len` world units from x toward the light with at most `max_steps`
