@@ -28,6 +28,9 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     for warning in technique.warnings(&scene).into_iter().chain(technique.unused_settings(&scene)) {
         eprintln!("warning: {warning}");
     }
+    if let Some(note) = technique.settings_note(&scene) {
+        eprintln!("{note}");
+    }
     let ctx = session::open(&args.gpu)?;
     session::report_long_waits(&ctx);
     let texels = session::volume_texels(&args.gpu);

@@ -9,6 +9,7 @@
 //! and one barrier ([`merged_steps`]).
 
 pub mod breakdown;
+pub mod cache_plane;
 pub mod cache_region;
 pub mod cache_update;
 pub mod exit_points;

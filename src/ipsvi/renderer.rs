@@ -5,12 +5,12 @@
 //! cache initialised at once, one dispatch per step of all sweeps
 //! (`super::merged_steps`), then their colour accumulations summed.
 
+use super::cache_plane::{cache_planes, CachePlanes};
 use super::cache_region::{plane_region, TexelRect};
 use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
 use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_FIRST_LIGHT};
 use super::line_group::{lavapipe_threads, line_group_size, median_pixels};
-use super::lit_box::lit_box;
 use super::merged_steps::{self, LineDispatch};
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
@@ -24,9 +24,8 @@ use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
 use crate::render::light_space::LightSpacePlane;
 use crate::render::{GpuScene, OutputImage, RecordedFrame, RenderError};
-use crate::scene::framing::WorldBox;
 use crate::scene::settings_table::SettingsTable;
-use crate::scene::{Scene, TransferLut};
+use crate::scene::Scene;
 use crate::shaders::{ipsvi_cache_init, ipsvi_line, ipsvi_sweep_sum};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait_or, SecondaryCommands};
@@ -277,7 +276,6 @@ impl<'a> IpsviRenderer<'a> {
             )));
         }
         let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
-        let bx = scene.volume_box();
         let plans = plans(gpu, settings, width, height);
 
         let steps = MarchSteps { shadow_step_voxels: settings.light_step_voxels, ..MarchSteps::render(scene) };
@@ -313,17 +311,8 @@ impl<'a> IpsviRenderer<'a> {
         let planes = Buffer::with_data(ctx, "ipsvi line planes", &planes_host, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let lights = scene.rendered_lights();
         // The box the cache is fitted to and the light rays are clipped to.
-        let lit = if settings.fit_to_visible {
-            lit_box(&scene.volume, &scene.transfer.bake(TransferLut::DEFAULT_SIZE), &bx)
-        } else {
-            WorldBox::of_volume(&bx)
-        };
+        let CachePlanes { lit, planes: geometries } = cache_planes(scene, settings);
         let lit_corners = lit.corners();
-        let radius = bx.half_extent.length();
-        let geometries: Vec<LightSpacePlane> = lights
-            .iter()
-            .map(|l| LightSpacePlane::fit_to(&l.kind, &lit_corners, radius, settings.cache_size))
-            .collect();
         let light_scale = |i: usize| lights[i].radiance().max_element().max(scene.render.emission).max(1e-30);
         let sweep_records: Vec<SweepParams> = (0..scene.lights.len())
             .map(|i| {

@@ -139,6 +139,10 @@ impl RenderTechnique for Ipsvi {
             CacheUpdate::ViewSamples => format!(", cache_write: {}", s.cache_write.name()),
             CacheUpdate::LightRays => String::new(),
         };
-        Some(format!("ipsvi sync strategy: {}; cache_update: {}{write}", s.sync, s.cache_update.name()))
+        // View samples err least near a texel of about one pixel (docs/ipsvi.md).
+        let texel = super::cache_plane::texel_pixels(scene, s)
+            .map(|px| format!("; cache texel {px:.2} px at the lit box's centre"))
+            .unwrap_or_default();
+        Some(format!("ipsvi sync strategy: {}; cache_update: {}{write}{texel}", s.sync, s.cache_update.name()))
     }
 }
