@@ -1,17 +1,15 @@
 //! `sweeplab bench sync`: arguments to a [`SyncPlan`], the study
-//! (`sweeplab::bench::experiments::sync`), its files after every round, and
-//! the verdict.
+//! (`sweeplab::bench::experiments::sync`, its files written after every round
+//! by `sync_progress`), and the verdict.
 
 use super::args::BenchSyncArgs;
 use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Duration;
-use sweeplab::bench::estimate::MIN_SAMPLES;
-use sweeplab::bench::experiments::sync::{self, Eta, SyncObserver, SyncPlan, SyncReport, Workload};
-use sweeplab::bench::experiments::sync_budget::LeftOut;
-use sweeplab::bench::experiments::{sync_report, ExperimentError};
-use sweeplab::bench::progress::format_duration;
+use sweeplab::bench::experiments::sync::{self, SyncPlan, Workload};
+use sweeplab::bench::experiments::sync_progress::RoundFiles;
+use sweeplab::bench::experiments::sync_report;
 use sweeplab::bench::{OutFolder, Protocol, RunInfo};
 use sweeplab::ipsvi::IpsviSettings;
 use sweeplab::ipsvi::SyncStrategy;
@@ -64,51 +62,6 @@ fn plan(args: &BenchSyncArgs, width: u32, height: u32) -> anyhow::Result<SyncPla
     })
 }
 
-/// Writes the files after every round and shows where the rounds stand.
-struct Files<'a> {
-    out: &'a std::path::Path,
-    configurations: usize,
-}
-
-impl SyncObserver for Files<'_> {
-    fn warm_up(&mut self, workload: Workload, configurations: usize) {
-        eprintln!(
-            "{} workload: {configurations} configurations; a warm-up round, then shuffled timed rounds",
-            workload.name()
-        );
-    }
-
-    fn planned(&mut self, workload: Workload, configurations: usize, fewest: Duration, left_out: Option<&LeftOut>) {
-        let (name, about) = (workload.name(), format_duration(fewest));
-        self.configurations = configurations;
-        left_out.inspect(|left| eprintln!("warning: {name} workload: {}", left.describe()));
-        eprintln!("{name} workload: {configurations} configurations; its fewest rounds take about {about}");
-    }
-
-    fn round(&mut self, report: &SyncReport, eta: Eta) -> Result<(), ExperimentError> {
-        sync_report::write(report, self.out)?;
-        let state = if eta.round >= MIN_SAMPLES {
-            if report.precise_in(eta.workload) {
-                "intervals as narrow as asked".to_string()
-            } else {
-                "intervals not yet as narrow as asked".to_string()
-            }
-        } else {
-            format!("intervals from round {}", MIN_SAMPLES)
-        };
-        eprintln!(
-            "{} workload: round {} done in {} ({} configurations); {state}; at most {} more round(s), about {} left",
-            eta.workload.name(),
-            eta.round,
-            format_duration(eta.last_round),
-            self.configurations,
-            eta.rounds_left,
-            format_duration(eta.time_left)
-        );
-        Ok(())
-    }
-}
-
 pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
     let mut scene_args = args.scene.clone();
     if scene_args.size.is_none() {
@@ -128,7 +81,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
         .input("line_widths", format!("{:?}", plan.line_widths))
         .input("workloads", plan.workloads.iter().map(|w| w.name()).collect::<Vec<_>>().join(","))
         .input("validation", ctx.validation_enabled());
-    let mut files = Files { out: &args.out, configurations: 0 };
+    let mut files = RoundFiles::new(&args.out);
     let report = sync::run(&ctx, &gpu, &scene.settings.get::<IpsviSettings>(), &plan, run_info, &mut files)?;
     sync_report::write(&report, &args.out)?;
     sync_report::write_charts(&report, &args.out)?;

@@ -14,6 +14,7 @@ pub mod stability_bench;
 pub mod stability_cases;
 pub mod sync;
 pub mod sync_budget;
+pub mod sync_progress;
 pub mod sync_report;
 pub mod table1_bench;
 
