@@ -56,6 +56,7 @@ fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
             r["time_over_scene_settings_hi"].as_f64().unwrap(),
         );
         assert!(lo > 0.0 && lo <= v && v <= hi, "{r}");
+        assert!(r["cache_texel_px"].as_f64().is_some_and(|px| px > 0.0), "{r}");
     }
     let own = &ipsvi[0];
     assert_eq!(own["time_over_scene_settings"].as_f64(), Some(1.0), "the scene's settings against themselves: {own}");

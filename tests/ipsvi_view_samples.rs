@@ -721,9 +721,9 @@ fn the_visible_box_errs_for_view_samples_only_by_refining_the_cache_past_their_s
     assert_validation_clean(&ctx);
 }
 
-/// The cache texel's width in pixels that `render` and `compare` print with the
-/// settings: half as wide for twice the texels or twice the pixels, narrower
-/// with the visible box, none without a light.
+/// The cache texel's width in pixels that `render`, `compare` and `bench ipsvi`
+/// report: half as wide for twice the texels, twice as wide for twice the
+/// pixels, narrower with the visible box, none without a light.
 #[test]
 fn the_printed_texel_width_follows_the_cache_the_image_and_the_box() {
     use sweeplab::ipsvi::cache_plane::texel_pixels;
@@ -731,16 +731,15 @@ fn the_printed_texel_width_follows_the_cache_the_image_and_the_box() {
         let mut scene = visible_sphere(light, 64);
         // square()'s texel is side / (size - 2).
         let s = IpsviSettings { cache_size: 66, ..IpsviSettings::default() };
-        let base = texel_pixels(&scene, &s).unwrap();
-        let finer = texel_pixels(&scene, &IpsviSettings { cache_size: 130, ..s.clone() }).unwrap();
+        let width = |s: &IpsviSettings, side: u32| texel_pixels(&scene, s, side, side);
+        let base = width(&s, 64).unwrap();
+        let finer = width(&IpsviSettings { cache_size: 130, ..s.clone() }, 64).unwrap();
         assert!((finer / base - 0.5).abs() < 1e-4, "{:?}: {base} {finer}", light.kind);
-        let fitted = texel_pixels(&scene, &IpsviSettings { fit_to_visible: true, ..s.clone() }).unwrap();
+        let fitted = width(&IpsviSettings { fit_to_visible: true, ..s.clone() }, 64).unwrap();
         assert!(fitted < 0.7 * base, "{:?}: visible box {fitted} against {base}", light.kind);
-        scene.render.width = 128;
-        scene.render.height = 128;
-        let more_pixels = texel_pixels(&scene, &s).unwrap();
+        let more_pixels = width(&s, 128).unwrap();
         assert!((more_pixels / base - 2.0).abs() < 1e-3, "{:?}: {base} {more_pixels}", light.kind);
         scene.lights.clear();
-        assert_eq!(texel_pixels(&scene, &s), None);
+        assert_eq!(texel_pixels(&scene, &s, 64, 64), None);
     }
 }

@@ -35,12 +35,11 @@ pub fn cache_planes(scene: &Scene, settings: &IpsviSettings) -> CachePlanes {
     CachePlanes { lit, planes }
 }
 
-/// The narrowest light's cache texel at the lit box's centre, in pixels of the
-/// scene's image there (None without lights).
-pub fn texel_pixels(scene: &Scene, settings: &IpsviSettings) -> Option<f32> {
+/// The narrowest light's cache texel at the lit box's centre, in pixels of a
+/// `width` x `height` image of the scene there (None without lights).
+pub fn texel_pixels(scene: &Scene, settings: &IpsviSettings, width: u32, height: u32) -> Option<f32> {
     let CachePlanes { lit, planes } = cache_planes(scene, settings);
     let centre = (lit.min + lit.max) * 0.5;
-    let (width, height) = (scene.render.width, scene.render.height);
     let basis = scene.camera.basis(width, height);
     let depth = if basis.orthographic { 1.0 } else { (centre - basis.origin).dot(basis.forward).max(1e-6) };
     let pixel = 2.0 * basis.up.length() * depth / height.max(1) as f32;

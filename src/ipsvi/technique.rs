@@ -140,7 +140,7 @@ impl RenderTechnique for Ipsvi {
             CacheUpdate::LightRays => String::new(),
         };
         // View samples err least near a texel of about one pixel (docs/ipsvi.md).
-        let texel = super::cache_plane::texel_pixels(scene, s)
+        let texel = super::cache_plane::texel_pixels(scene, s, scene.render.width, scene.render.height)
             .map(|px| format!("; cache texel {px:.2} px at the lit box's centre"))
             .unwrap_or_default();
         Some(format!("ipsvi sync strategy: {}; cache_update: {}{write}{texel}", s.sync, s.cache_update.name()))

@@ -14,6 +14,7 @@ use crate::bench::{
     ExperimentError, Interleaved, OutFolder, Progress, RunInfo, Sample, Series,
 };
 use crate::half_angle::HalfAngleSettings;
+use crate::ipsvi::cache_plane::texel_pixels;
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
 use crate::ipsvi::{CacheUpdate, EarlyTermination, IpsviSettings, SyncStrategy, WriteRule};
 use crate::linear_image::LinearImage;
@@ -312,6 +313,10 @@ pub fn run(
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
                 row.set("mode", mode_name(s)).set("cache_update", s.cache_update.name());
                 row.set("write_rule", s.write_rule.name()).set("fit_to_visible", s.fit_to_visible);
+                // Which side of the view samples' optimum (about a pixel) the cache is on.
+                if let Some(px) = texel_pixels(&scene, s, size, size) {
+                    row.set("cache_texel_px", px as f64);
+                }
                 row.set_timing("gpu_ms", t);
                 set_errors(&mut row, &stats);
                 row.set("lines", lines).set("dispatches", t.last.dispatches).set("barriers", t.last.barriers);
