@@ -40,9 +40,7 @@ pub fn cache_planes(scene: &Scene, settings: &IpsviSettings) -> CachePlanes {
 pub fn texel_pixels(scene: &Scene, settings: &IpsviSettings, width: u32, height: u32) -> Option<f32> {
     let CachePlanes { lit, planes } = cache_planes(scene, settings);
     let centre = (lit.min + lit.max) * 0.5;
-    let basis = scene.camera.basis(width, height);
-    let depth = if basis.orthographic { 1.0 } else { (centre - basis.origin).dot(basis.forward).max(1e-6) };
-    let pixel = 2.0 * basis.up.length() * depth / height.max(1) as f32;
+    let pixel = scene.camera.basis(width, height).pixel_size_at(centre, height);
     planes
         .iter()
         .map(|g| {

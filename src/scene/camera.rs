@@ -75,6 +75,13 @@ impl Camera {
 }
 
 impl RayBasis {
+    /// The width of one pixel of an image `height` pixels high at world point
+    /// `p` (pixels are square): its height at p's depth along the view.
+    pub fn pixel_size_at(&self, p: Vec3, height: u32) -> f32 {
+        let depth = if self.orthographic { 1.0 } else { (p - self.origin).dot(self.forward).max(1e-6) };
+        2.0 * self.up.length() * depth / height.max(1) as f32
+    }
+
     pub fn ndc(x: u32, y: u32, width: u32, height: u32) -> (f32, f32) {
         ((x as f32 + 0.5) / width as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / height as f32 * 2.0)
     }
@@ -89,6 +96,25 @@ impl RayBasis {
             ((o + r * nx + u * ny).to_array(), f.to_array())
         } else {
             (o.to_array(), (f + r * nx + u * ny).normalize().to_array())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pixel_grows_with_depth_in_perspective_and_not_in_orthographic_views() {
+        let perspective = Camera::orbit(Vec3::ZERO, 2.0, 0.0, 0.0, Projection::Perspective { fov_y_deg: 90.0 });
+        let b = perspective.basis(100, 100);
+        // 90 degrees: the view is 2 * depth high, over 100 pixels.
+        let at = |d: f32| b.pixel_size_at(b.origin + b.forward * d, 100);
+        assert!((at(1.0) - 0.02).abs() < 1e-6 && (at(2.0) - 0.04).abs() < 1e-6, "{} {}", at(1.0), at(2.0));
+        let ortho = Camera::orbit(Vec3::ZERO, 2.0, 0.0, 0.0, Projection::Orthographic { height: 3.0 });
+        let o = ortho.basis(100, 50);
+        for d in [0.5, 4.0] {
+            assert!((o.pixel_size_at(o.origin + o.forward * d, 50) - 0.06).abs() < 1e-6);
         }
     }
 }
