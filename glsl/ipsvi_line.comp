@@ -65,6 +65,10 @@ layout(constant_id = 12) const bool EMPTY_RUNS_MOVE_DEPTH = false;
 // packHalf2x16) and depth code / stamp in one texel: one store and one load
 // per texel instead of two (bindings 8-11; else 0-7, the others 1x1, unused).
 layout(constant_id = 13) const bool PACKED = false;
+// ipsvi.write_pass = "texel" (texel-ray writes): the claim march names the
+// texels where this block's runs end; its texel invocations march and store
+// them (write_claimed_texel), the pixels' sample loop stores nothing.
+layout(constant_id = 14) const bool TEXEL_PASS = false;
 const uint TERMINATION_OFF = 0u;
 const uint TERMINATION_PLAIN = 1u;
 const uint TERMINATION_EXIT_POINTS = 2u;
@@ -426,6 +430,19 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel, bool empty) 
     sample_store(k, l, (block.stamp << 16) | code);
 }
 
+// write_pass = "texel": texel k stores here if one of this block's runs ends in
+// it (its claim key carries this block's record), as that run's writer would:
+// the value and depth depend only on the texel's state and the writer's line
+// plane, which the key's pixel names; the key's depth stands in for the
+// writer's only where the texel's ray runs parallel to the plane.
+void write_claimed_texel(ivec2 k) {
+    uint64_t key = keys[key_index(KEY_HALF_IN, k)];
+    if (uint(key >> 44) != block_index + 1u) return;
+    uint d27 = uint(key >> 17) & 0x7FFFFFFu;
+    float depth = uintBitsToFloat((NEAREST ? 0x7FFFFFFu - d27 : d27) << 5);
+    store_sample(k, vec3(0.0), depth, vec4(0.0), uint(key) & 0x1FFFFu, false);
+}
+
 uvec2 block_pixel(BlockParams b, uint index) {
     uint along = b.line_first + index / b.span_len;
     uint across = b.span_start + index % b.span_len;
@@ -494,12 +511,12 @@ void shade_pixel(uint index) {
             float alpha = 1.0 - exp(-m.a * v.hv);
             bool shaded = alpha > 0.0;
             vec4 l = vec4(0.0, 0.0, 0.0, 1.0);
-            if (shaded || (VIEW_SAMPLES && EVERY_SAMPLE && STEP >= STEP_READS)) {
+            if (shaded || (VIEW_SAMPLES && EVERY_SAMPLE && !TEXEL_PASS && STEP >= STEP_READS)) {
                 if (STEP == 0u) {
                 } else if (VIEW_SAMPLES) {
                     vec3 c = cache_coord(p);
                     ivec2 k = sample_texel(c);
-                    if (run.x >= 0 && k != run) store_sample(run, run_p, run_depth, run_light, index, run_empty);
+                    if (run.x >= 0 && k != run && !TEXEL_PASS) store_sample(run, run_p, run_depth, run_light, index, run_empty);
                     run_empty = (run_empty || k != run) && !shaded;
                     bool writer = k != run || !run_keeps_nearest() || c.z < run_depth;
                     // An empty sample (every-sample) needs its light only where it
@@ -525,7 +542,7 @@ void shade_pixel(uint index) {
             if (ert && view_ray_opaque(T) && v.t_enter + (float(i) + 1.0) * v.h >= keep_going) break;
         }
     }
-    if (VIEW_SAMPLES && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index, run_empty);
+    if (VIEW_SAMPLES && run.x >= 0 && !TEXEL_PASS) store_sample(run, run_p, run_depth, run_light, index, run_empty);
     // Cleared to the background: the first light replaces it by what shows through.
     if (first_light) C += (T - 1.0) * frame.background;
     ivec2 ip = ivec2(px) + ivec2(0, int(block.out_row));
@@ -533,8 +550,10 @@ void shade_pixel(uint index) {
 }
 
 // view-samples: the history pair takes the previous block's state of texel k.
+ivec2 region_texel(uint index) { return ivec2(block.region.xy + uvec2(index % block.region.z, index / block.region.z)); }
+
 void carry_texel(uint index) {
-    ivec2 k = ivec2(block.region.xy + uvec2(index % block.region.z, index / block.region.z));
+    ivec2 k = region_texel(index);
     uint code;
     vec4 v = state_load(k, code);
     cache_store(k, v, code);
@@ -610,6 +629,7 @@ void main() {
         uint texel = id - block.pixel_count;
         if (VIEW_SAMPLES) {
             carry_texel(texel);
+            if (TEXEL_PASS && STEP >= STEP_STORES) write_claimed_texel(region_texel(texel));
         } else {
             advance_texel(texel);
         }

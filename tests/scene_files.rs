@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 use glam::Vec3;
 use sweeplab::ao::AoSettings;
 use sweeplab::half_angle::HalfAngleSettings;
-use sweeplab::ipsvi::{CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WriteRule, WriteValue};
+use sweeplab::ipsvi::{
+    CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WritePass, WriteRule, WriteValue,
+};
 use sweeplab::lightvolume::{CostEstimate, LightVolumeSettings};
 use sweeplab::scene::framing::{visible_box, FRAME_FILL};
 use sweeplab::scene::loaders::data_dir;
@@ -499,7 +501,7 @@ fn technique_tables_are_read_into_typed_settings() {
         "[ipsvi]\nline_width = 4\ncache_size = 128\npiecewise = false\nearly_termination = \"exit-points\"\n\
          albedo = 0.5\ncone_angle = 30\nzone_blend = 4.5\nlight_step = 0.125\nert_scale = 2\nsync = \"events\"\n\
          cache_update = \"light-rays\"\ncache_write = \"racy\"\nwrite_value = \"sample\"\nmerge_sweeps = true\n\
-         write_rule = \"every-sample\"\nempty_runs_move_depth = true\npacked_store = true\nfit_to_visible = true\n\
+         write_rule = \"every-sample\"\nempty_runs_move_depth = true\npacked_store = true\nfit_to_visible = true\nwrite_pass = \"texel\"\n\
          [lightvolume]\nscale = 4\ncoherent = false\ncompensated = false\ncost_estimate = \"selective\"\n\
          max_passes_per_frame = 3\npass_lights = 8\nrebase_tolerance = 1e-3\nsubstep = 0.5\nshared_medium = false\n\
          chromatic = false\nracy = true\n[half_angle]\nslice_step = 0.25\nlight_buffer_size = 64\n[ao]\nradius = 4\nclusters = 64\n",
@@ -520,6 +522,7 @@ fn technique_tables_are_read_into_typed_settings() {
         write_value: WriteValue::Sample,
         write_rule: WriteRule::EverySample,
         empty_runs_move_depth: true,
+        write_pass: WritePass::Texel,
         packed_store: true,
         fit_to_visible: true,
         sync: SyncStrategy::Events,

@@ -1,7 +1,8 @@
 //! How the illumination cache is fed (`ipsvi.cache_update`) and, when view
 //! samples feed it, how the many samples of a line that write one texel are
 //! resolved (`ipsvi.cache_write`), what a write stores (`ipsvi.write_value`)
-//! and which samples take part in writes (`ipsvi.write_rule`).
+//! which samples take part in writes (`ipsvi.write_rule`) and which
+//! invocation computes and stores a write (`ipsvi.write_pass`).
 //! docs/ipsvi.md compares the modes.
 
 use crate::scene::suggest::nearest;
@@ -59,6 +60,40 @@ pub enum WriteRule {
     /// unchanged but moves the texel's depth to the current line, so the next
     /// line's piecewise march is about one line long.
     EverySample,
+}
+
+/// Which invocation computes and stores a view-sample write (texel-ray writes
+/// with piecewise integration, where the stored value is a function of the
+/// texel's state and its writer's line plane alone).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WritePass {
+    /// The paper's: the run's writing sample, in its own pixel's invocation,
+    /// at the end of the run inside the view march.
+    Sample,
+    /// The view samples' runs name the texels (the claim march of the block,
+    /// one dispatch ahead, as for `cache_write = "farthest"`); one invocation
+    /// per texel of the block's region then marches and stores each named
+    /// texel. Same texels, same values, same image; the sample loop keeps
+    /// no store code, and the marches of neighbouring lanes are neighbouring
+    /// texels' rays.
+    Texel,
+}
+
+impl WritePass {
+    pub const ALL: [WritePass; 2] = [WritePass::Sample, WritePass::Texel];
+    pub fn name(self) -> &'static str {
+        match self {
+            WritePass::Sample => "sample",
+            WritePass::Texel => "texel",
+        }
+    }
+}
+
+impl FromStr for WritePass {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        parse(s, &WritePass::ALL, WritePass::name)
+    }
 }
 
 impl WriteRule {
@@ -161,6 +196,10 @@ mod tests {
         for w in WriteRule::ALL {
             assert_eq!(w.name().parse::<WriteRule>().unwrap(), w);
         }
+        for w in WritePass::ALL {
+            assert_eq!(w.name().parse::<WritePass>().unwrap(), w);
+        }
+        assert!("texels".parse::<WritePass>().unwrap_err().contains("`texel`"));
         assert!("every-samples".parse::<WriteRule>().unwrap_err().contains("`every-sample`"));
         assert!("texel_ray".parse::<WriteValue>().unwrap_err().contains("`texel-ray`"));
         let e = "view-sample".parse::<CacheUpdate>().unwrap_err();

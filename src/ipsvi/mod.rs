@@ -29,7 +29,7 @@ pub mod technique;
 pub mod view_budget;
 
 pub use breakdown::BreakdownStep;
-pub use cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
+pub use cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
 pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};
 pub use sync_strategy::SyncStrategy;

@@ -5,6 +5,7 @@
 //! cache initialised at once, one dispatch per step of all sweeps
 //! (`super::merged_steps`), then their colour accumulations summed.
 
+use super::breakdown::BreakdownStep;
 use super::cache_plane::{cache_planes, CachePlanes};
 use super::cache_region::{plane_region, TexelRect};
 use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
@@ -385,6 +386,7 @@ impl<'a> IpsviRenderer<'a> {
             (11, (view_samples && settings.write_rule == WriteRule::EverySample) as u32),
             (12, (view_samples && settings.empty_runs_move_depth) as u32),
             (13, settings.packed_store as u32),
+            (14, settings.texel_pass() as u32),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",
@@ -775,7 +777,11 @@ fn block_params(
                 let (region, update) = if view_samples {
                     let written = (block.first..block.first + block.width)
                         .fold(TexelRect::default(), |r, l| r.union(&region_of(l)));
-                    (written, previous_region.union(&before_previous))
+                    let carried = previous_region.union(&before_previous);
+                    // write_pass = "texel": the block's own texels store in its texel
+                    // invocations too (carrying one more texel writes its true state).
+                    let texels = if settings.texel_pass() { carried.union(&written) } else { carried };
+                    (written, texels)
                 } else {
                     let region = region_of(block.last_line);
                     (region, region.union(&previous_region))
@@ -807,7 +813,11 @@ fn block_params(
                     r.region = [0; 4];
                 }
             }
-            if claims && settings.breakdown_step.claims() {
+            // write_pass = "texel" stores only the texels the claim keys name,
+            // so its stores step brings the claim pass with it.
+            let step = settings.breakdown_step;
+            let texel_stores = settings.texel_pass() && step.shader_step() >= BreakdownStep::Stores.shader_step();
+            if claims && (step.claims() || texel_stores) {
                 for r in first_record..first_record + count - 1 {
                     out[r].claim_count = out[r + 1].pixel_count;
                 }

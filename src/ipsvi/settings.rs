@@ -2,7 +2,7 @@
 //! read when the scene is read ([`crate::scene::settings_table`]).
 
 use super::breakdown::BreakdownStep;
-use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
+use super::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
 use super::sync_strategy::SyncStrategy;
 use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
 use serde::Deserialize;
@@ -51,6 +51,12 @@ pub struct IpsviSettings {
     /// unchanged at the new depth, without marching the texel's own ray there.
     /// Cheaper; drops what medium that ray crosses over about one line.
     pub empty_runs_move_depth: bool,
+    /// view-samples with texel-ray writes: the writing sample stores (the
+    /// paper's) or one invocation per texel of the block's region stores the
+    /// texels the block's runs end in (found by the claim march). The same
+    /// image bit for bit (`tests/ipsvi_write_pass.rs`).
+    #[serde(deserialize_with = "from_name")]
+    pub write_pass: WritePass,
     /// Each ping-pong pair (history: value and front; samples: value and
     /// stamp | depth) as one rgba32ui image, the value as four halves beside
     /// its code: one store and one load per texel instead of two. The same
@@ -128,6 +134,7 @@ impl Default for IpsviSettings {
             write_value: WriteValue::TexelRay,
             write_rule: WriteRule::NonEmpty,
             empty_runs_move_depth: false,
+            write_pass: WritePass::Sample,
             packed_store: false,
             fit_to_visible: false,
             sync: SyncStrategy::BarrierGlobal,
@@ -150,13 +157,26 @@ impl IpsviSettings {
     /// writing sample's own point). Saves the claim pass's medium march and
     /// atomics and the keys buffer; `tests/ipsvi_view_samples.rs` checks the
     /// image is the same bit for bit.
+    /// With `write_pass = "texel"` the pass is always recorded: its keys name
+    /// the texels each block writes.
     pub fn records_claims(&self) -> bool {
         let claims = self.cache_update == CacheUpdate::ViewSamples && self.cache_write.claims();
+        if claims && self.texel_pass() {
+            return true;
+        }
         let same_value_from_every_writer = self.line_width == 1
             && self.write_value == WriteValue::TexelRay
             && self.piecewise
             && !self.empty_runs_move_depth;
         claims && (self.keep_redundant_claims || !same_value_from_every_writer)
+    }
+}
+
+impl IpsviSettings {
+    /// Whether view-sample writes are computed and stored per texel
+    /// (`write_pass = "texel"`; `validate` refuses it where it cannot apply).
+    pub fn texel_pass(&self) -> bool {
+        self.cache_update == CacheUpdate::ViewSamples && self.write_pass == WritePass::Texel
     }
 }
 
@@ -178,6 +198,21 @@ impl SettingsTable for IpsviSettings {
                  neighbouring light rays, which view samples do not advance",
                 self.albedo
             )));
+        }
+        if self.texel_pass() {
+            // A texel's write is then computed without its writing sample.
+            let needs = [
+                (self.write_value == WriteValue::TexelRay, "write_value = \"texel-ray\""),
+                (self.piecewise, "piecewise = true"),
+                (!self.empty_runs_move_depth, "empty_runs_move_depth = false"),
+                (self.cache_write.claims(), "cache_write = \"farthest\" or \"nearest\""),
+            ];
+            if let Some((_, need)) = needs.iter().find(|(ok, _)| !ok) {
+                return Err(SettingsError::Technique(format!(
+                    "{t}.write_pass = \"texel\" needs {t}.{need}: a texel's write is computed from its own \
+                     state and its writer's line plane, named by the claim keys, with no sample's light"
+                )));
+            }
         }
         Ok(())
     }

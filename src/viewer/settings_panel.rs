@@ -13,7 +13,7 @@ use crate::ao::render_settings::{AoMode, MAX_GLOW, MAX_PHASE_G};
 use crate::ao::settings::{Metric, TrainingSet};
 use crate::ao::AoSettings;
 use crate::half_angle::HalfAngleSettings;
-use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
+use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
 use crate::ipsvi::settings::EarlyTermination;
 use crate::ipsvi::sync_strategy::SyncStrategy;
 use crate::ipsvi::IpsviSettings;
@@ -122,6 +122,9 @@ pub fn controls() -> Vec<Control> {
         }),
         control("ipsvi", "write_rule", Choice(names(&WriteRule::ALL.map(|c| c.name()))), |s| {
             Name(s.settings.get::<IpsviSettings>().write_rule.name())
+        }),
+        control("ipsvi", "write_pass", Choice(names(&WritePass::ALL.map(|c| c.name()))), |s| {
+            Name(s.settings.get::<IpsviSettings>().write_pass.name())
         }),
         control("ipsvi", "empty_runs_move_depth", Toggle, |s| {
             Bool(s.settings.get::<IpsviSettings>().empty_runs_move_depth)

@@ -19,8 +19,9 @@ use crate::bench::{
     Interleaved, OutFolder, Progress, RunInfo, StackedBar, Timings,
 };
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
-use crate::ipsvi::{BreakdownStep, CacheUpdate, IpsviSettings, SyncStrategy, WriteRule};
+use crate::ipsvi::{BreakdownStep, CacheUpdate, IpsviSettings, SyncStrategy, WritePass, WriteRule};
 use crate::render::{GpuScene, VolumeTexels};
+use crate::scene::settings_table::SettingsTable;
 use crate::scene::Scene;
 use crate::techniques::Technique;
 use crate::vk::{Context, Profiler};
@@ -67,10 +68,12 @@ fn runs_step(s: &IpsviSettings, step: BreakdownStep) -> bool {
 
 /// A bar label's name for a configuration.
 fn short_mode(s: &IpsviSettings) -> &'static str {
-    match (s.cache_update, s.write_rule) {
-        (CacheUpdate::ViewSamples, WriteRule::NonEmpty) => "view",
-        (CacheUpdate::ViewSamples, WriteRule::EverySample) => "view every",
-        (CacheUpdate::LightRays, _) => "rays",
+    match (s.cache_update, s.write_rule, s.texel_pass()) {
+        (CacheUpdate::ViewSamples, WriteRule::NonEmpty, false) => "view",
+        (CacheUpdate::ViewSamples, WriteRule::NonEmpty, true) => "view, texel pass",
+        (CacheUpdate::ViewSamples, WriteRule::EverySample, false) => "view every",
+        (CacheUpdate::ViewSamples, WriteRule::EverySample, true) => "view every, texel pass",
+        (CacheUpdate::LightRays, ..) => "rays",
     }
 }
 
@@ -86,13 +89,29 @@ impl BreakdownPlan {
     }
 }
 
-/// The modes of `base`: view samples with both write rules, then light rays.
+/// The modes of `base`: view samples with both write rules, each with both
+/// write passes where `base`'s writes allow the texel pass, then light rays.
 pub fn configurations(base: &IpsviSettings) -> Vec<IpsviSettings> {
+    let view = |write_rule, write_pass| IpsviSettings {
+        cache_update: CacheUpdate::ViewSamples,
+        write_rule,
+        write_pass,
+        ..base.clone()
+    };
     WriteRule::ALL
         .iter()
-        .map(|&write_rule| IpsviSettings { cache_update: CacheUpdate::ViewSamples, write_rule, ..base.clone() })
+        .flat_map(|&rule| WritePass::ALL.map(|pass| view(rule, pass)))
+        .filter(|s| s.write_pass == WritePass::Sample || s.validate().is_ok())
         .chain(std::iter::once(IpsviSettings { cache_update: CacheUpdate::LightRays, ..base.clone() }))
         .collect()
+}
+
+/// A row's `write_pass`: empty for light rays, which have none.
+fn write_pass(s: &IpsviSettings) -> &'static str {
+    match s.cache_update {
+        CacheUpdate::ViewSamples => s.write_pass.name(),
+        CacheUpdate::LightRays => "",
+    }
 }
 
 /// The steps of one mode, in the order they stack: the DVR, then [`STEPS`].
@@ -240,7 +259,7 @@ impl BreakdownReport {
             let (estimate, cost) = step_cost(t, k.checked_sub(1).map(|p| steps[p].1));
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name()).set("step", *label);
-            row.set("write_rule", s.write_rule.name());
+            row.set("write_rule", s.write_rule.name()).set("write_pass", write_pass(s));
             row.set_timing("gpu_ms", t);
             match estimate {
                 Some(_) => {
@@ -290,6 +309,7 @@ impl BreakdownReport {
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name());
             row.set("line_width", line_width).set("write_rule", s.write_rule.name());
+            row.set("write_pass", write_pass(s));
             row.set_timing("gpu_ms", t).set("dispatches", t.last.dispatches);
             if let Some(lw1) = lw1 {
                 row.set("speedup_over_lw1", lw1.median() / t.median());
@@ -319,7 +339,11 @@ impl BreakdownReport {
     /// and its largest step; every step is in the files.
     pub fn print_summary(&self) {
         let table = &self.table;
-        let mode = |r: &BenchRow| format!("{} {}", r.text("cache_update"), r.text("write_rule"));
+        let mode = |r: &BenchRow| {
+            format!("{} {} {}", r.text("cache_update"), r.text("write_rule"), r.text("write_pass"))
+                .trim_end()
+                .to_string()
+        };
         let mut groups: Vec<(String, String)> = Vec::new();
         for r in &table.rows {
             let key = (r.text("width"), mode(r));
