@@ -293,7 +293,7 @@ fn bench_output_folders_hold_no_stale_files() {
 }
 
 /// `bench ipsvi --breakdown`: six steps per cache-update mode (eleven for view
-/// samples, whose write path is split, under each write rule), each with its
+/// samples, whose write path is split, under each write rule and write pass), each with its
 /// time, share and time per line. Run without validation: step b is the sweep
 /// with no barriers, which synchronization validation reports by design.
 #[test]
@@ -313,18 +313,27 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
     assert_names_its_run(&out.join("ipsvi_breakdown.csv"), &out.join("ipsvi_breakdown.md"));
     assert_every_output_names_its_run(&out);
     // View samples split the write path (e1-e5) under both write rules.
-    for (mode, rule, count) in
-        [("view-samples", "non-empty", 11), ("view-samples", "every-sample", 11), ("light-rays", "non-empty", 6)]
-    {
-        let steps: Vec<&serde_json::Value> =
-            rows.iter().filter(|r| r["cache_update"] == mode && r["write_rule"] == rule).collect();
-        assert_eq!(steps.len(), count, "{mode} {rule}: a to f: {steps:?}");
+    let modes = [
+        ("view-samples", "non-empty", "sample", 11),
+        ("view-samples", "non-empty", "texel", 11),
+        ("view-samples", "every-sample", "sample", 11),
+        ("view-samples", "every-sample", "texel", 11),
+        ("light-rays", "non-empty", "", 6),
+    ];
+    assert_eq!(rows.len(), modes.iter().map(|m| m.3).sum::<usize>(), "no other rows");
+    for (mode, rule, pass, count) in modes {
+        let steps: Vec<&serde_json::Value> = rows
+            .iter()
+            .filter(|r| r["cache_update"] == mode && r["write_rule"] == rule)
+            .filter(|r| r["write_pass"].as_str().unwrap_or("") == pass)
+            .collect();
+        assert_eq!(steps.len(), count, "{mode} {rule} {pass}: a to f: {steps:?}");
         assert!(steps[0]["step"].as_str().unwrap().starts_with("a:"));
         assert!(steps[count - 1]["step"].as_str().unwrap().starts_with("f:"));
         assert_eq!(steps[count - 1]["step_share"].as_f64().map(|s| s.is_finite()), Some(true));
-        assert!(steps.iter().all(|r| r["gpu_ms"].as_f64().is_some_and(|v| v > 0.0)), "{mode}: {steps:?}");
+        assert!(steps.iter().all(|r| r["gpu_ms"].as_f64().is_some_and(|v| v > 0.0)), "{mode} {pass}: {steps:?}");
         // Step b has no barriers between blocks; step c adds one per block.
-        assert!(steps[2]["barriers"].as_u64() > steps[1]["barriers"].as_u64(), "{mode}: {steps:?}");
+        assert!(steps[2]["barriers"].as_u64() > steps[1]["barriers"].as_u64(), "{mode} {pass}: {steps:?}");
     }
 }
 

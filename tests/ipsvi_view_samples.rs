@@ -7,12 +7,14 @@ mod common;
 use common::*;
 use glam::{UVec3, Vec3};
 use sweeplab::ipsvi::{
-    render_with, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WriteRule, WriteValue,
+    render_with, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WritePass, WriteRule,
+    WriteValue,
 };
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::CpuRenderKind;
 use sweeplab::render::{GpuScene, VolumeTexels};
+use sweeplab::scene::settings_table::SettingsTable;
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{
     presets, Camera, ControlPoint, Falloff, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction,
@@ -326,7 +328,8 @@ fn line_barrier_is_reported_missing_in_both_modes() {
             if cache_update == CacheUpdate::LightRays && write_rule != WriteRule::NonEmpty {
                 continue; // light rays do not use the rule
             }
-            for (write_value, packed_store) in WriteValue::ALL.into_iter().flat_map(|v| [(v, false), (v, true)]) {
+            let writes = WriteValue::ALL.into_iter().flat_map(|v| [(v, false), (v, true)]);
+            for ((write_value, packed_store), write_pass) in writes.flat_map(|w| WritePass::RUN.map(|p| (w, p))) {
                 if cache_update == CacheUpdate::LightRays && write_value != WriteValue::TexelRay {
                     continue;
                 }
@@ -337,16 +340,23 @@ fn line_barrier_is_reported_missing_in_both_modes() {
                     write_rule,
                     write_value,
                     packed_store,
+                    write_pass,
                     // The claim pass's barriers too, where line width 1 leaves it out.
                     keep_redundant_claims: true,
                     ..IpsviSettings::default()
                 };
+                if (write_pass == WritePass::Texel && !s.texel_pass()) || s.validate().is_err() {
+                    continue; // light rays have no write pass; the texel pass needs texel-ray claims
+                }
                 assert_ipsvi_line_barrier_load_bearing(
                     &ctx,
                     &gpu,
                     &s,
                     &mut profiler,
-                    &format!("{cache_update:?}/{cache_write:?}/{write_rule:?}/{write_value:?}/packed {packed_store}"),
+                    &format!(
+                        "{cache_update:?}/{cache_write:?}/{write_rule:?}/{write_value:?}/packed {packed_store}/{} pass",
+                        write_pass.name()
+                    ),
                 );
             }
         }
@@ -380,7 +390,9 @@ fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
         for write in [CacheWrite::Farthest, CacheWrite::Nearest] {
             for write_rule in WriteRule::ALL {
-                let left_out = IpsviSettings { write_rule, ..view_samples(FED_CACHE, write) };
+                // The sample pass: the texel pass needs the claims.
+                let left_out =
+                    IpsviSettings { write_rule, write_pass: WritePass::Sample, ..view_samples(FED_CACHE, write) };
                 let kept = IpsviSettings { keep_redundant_claims: true, ..left_out.clone() };
                 assert!(!left_out.records_claims() && kept.records_claims());
                 let (a, b) = (
@@ -393,7 +405,8 @@ fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
     }
     // Blocks of two lines lie in two planes: there the winner matters, and the
     // comparison above would see it (racy stores against the claimed ones).
-    let two_lines = IpsviSettings { line_width: 2, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
+    let two_lines =
+        IpsviSettings { line_width: 2, write_pass: WritePass::Sample, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
     assert!(two_lines.records_claims());
     let gpu = GpuScene::upload_with(&ctx, &scenes[1].1, VolumeTexels::Float32).unwrap();
     let claimed = ipsvi(&ctx, &gpu, &two_lines, SyncStrategy::BarrierGlobal);
@@ -438,6 +451,61 @@ fn the_packed_store_is_bit_identical_to_two_stores() {
             );
             assert!(a.pixels.iter().any(|p| p[0] > 0.0), "{mode}: the image is black");
             assert!(a == b, "{mode}: the packed store changed the image");
+        }
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// `write_pass = "texel"` (the claim march names the texels a block's runs end
+/// in; the block's texel invocations march and store them) gives the image of
+/// the sample loop's stores bit for bit: both claimed resolutions, both write
+/// rules, one and two lines per block (where the key's pixel picks the plane),
+/// packed and two stores, on directional, point (outside and inside the
+/// volume) and spot lights; and with merged sweeps, exit points and the
+/// visible box. The claim pass is then recorded even at one line per block.
+#[test]
+fn the_texel_write_pass_is_bit_identical_to_the_sample_loop() {
+    let ctx = validated_context();
+    let mut modes = Vec::new();
+    for write in [CacheWrite::Farthest, CacheWrite::Nearest] {
+        for write_rule in WriteRule::ALL {
+            for line_width in [1, 2] {
+                modes.push(IpsviSettings { write_rule, line_width, ..view_samples(FED_CACHE, write) });
+            }
+        }
+    }
+    let base = view_samples(FED_CACHE, CacheWrite::Farthest);
+    modes.push(IpsviSettings { packed_store: true, ..base.clone() });
+    modes.push(IpsviSettings { packed_store: true, line_width: 2, ..base.clone() });
+    modes.push(IpsviSettings { merge_sweeps: true, ..base.clone() });
+    modes.push(IpsviSettings { early_termination: EarlyTermination::ExitPoints, ..base.clone() });
+    modes.push(IpsviSettings { fit_to_visible: true, ..base.clone() });
+    for (what, scene) in &four_light_setups() {
+        let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
+        for mode in &modes {
+            let sample = &IpsviSettings { write_pass: WritePass::Sample, ..mode.clone() };
+            let texel = IpsviSettings { write_pass: WritePass::Texel, ..mode.clone() };
+            assert!(texel.texel_pass() && texel.records_claims() && texel.validate().is_ok());
+            assert!(!sample.texel_pass() && mode.texel_pass(), "auto takes the texel pass");
+            let (a, b) = (
+                ipsvi(&ctx, &gpu, sample, SyncStrategy::BarrierGlobal),
+                ipsvi(&ctx, &gpu, &texel, SyncStrategy::BarrierGlobal),
+            );
+            let mode = format!(
+                "{what}, {} {:?} lw {} packed {} merged {} {:?} visible box {}",
+                sample.cache_write.name(),
+                sample.write_rule,
+                sample.line_width,
+                sample.packed_store,
+                sample.merge_sweeps,
+                sample.early_termination,
+                sample.fit_to_visible
+            );
+            assert!(a.pixels.iter().any(|p| p[0] > 0.0), "{mode}: the image is black");
+            if a != b {
+                let d = compare(&b, &a).unwrap();
+                panic!("{mode}: the texel pass changed the image (rmse {:e}, max {:e})", d.rmse, d.max_abs);
+            }
         }
     }
     assert_validation_clean(&ctx);
@@ -494,12 +562,14 @@ fn breakdown_steps_end_in_the_ipsvi_frame() {
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let carry = BreakdownStep::ALL.iter().position(|s| *s == BreakdownStep::Carry).unwrap();
     let cases = [
-        (CacheUpdate::ViewSamples, WriteRule::NonEmpty),
-        (CacheUpdate::ViewSamples, WriteRule::EverySample),
-        (CacheUpdate::LightRays, WriteRule::NonEmpty),
+        (CacheUpdate::ViewSamples, WriteRule::NonEmpty, WritePass::Sample),
+        (CacheUpdate::ViewSamples, WriteRule::EverySample, WritePass::Sample),
+        (CacheUpdate::ViewSamples, WriteRule::NonEmpty, WritePass::Texel),
+        (CacheUpdate::ViewSamples, WriteRule::EverySample, WritePass::Texel),
+        (CacheUpdate::LightRays, WriteRule::NonEmpty, WritePass::Sample),
     ];
-    for (cache_update, write_rule) in cases {
-        let s = IpsviSettings { cache_update, write_rule, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
+    for (cache_update, write_rule, write_pass) in cases {
+        let s = IpsviSettings { cache_update, write_rule, write_pass, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
         let frame = ipsvi(&ctx, &gpu, &s, SyncStrategy::BarrierGlobal);
         let steps: Vec<LinearImage> = BreakdownStep::ALL
             .iter()
@@ -507,7 +577,7 @@ fn breakdown_steps_end_in_the_ipsvi_frame() {
                 ipsvi(&ctx, &gpu, &IpsviSettings { breakdown_step, ..s.clone() }, SyncStrategy::BarrierGlobal)
             })
             .collect();
-        let what = format!("{cache_update:?}/{write_rule:?}");
+        let what = format!("{cache_update:?}/{write_rule:?}/{write_pass:?}");
         assert_eq!(steps.last(), Some(&frame), "{what}: the full step is the frame");
         for (i, step) in steps[..steps.len() - 1].iter().enumerate() {
             let rmse = compare(step, &frame).unwrap().rmse;

@@ -627,6 +627,28 @@ fn technique_values_out_of_range_name_key_value_and_range() {
     assert_mentions(&e, &["render.filter", "did you mean `gpu-8bit`"]);
     let e = error_of(&format!("{MINIMAL}[ipsvi]\nalbedo = 0.5\n"), &[]);
     assert_mentions(&e, &["ipsvi.albedo = 0.5 needs ipsvi.cache_update = \"light-rays\""]);
+    // The texel write pass computes a write without its sample: it refuses
+    // what would need one, naming the setting.
+    let e = error_of(&format!("{MINIMAL}[ipsvi]\nwrite_pass = \"texels\"\n"), &[]);
+    assert_mentions(&e, &["ipsvi.write_pass", "did you mean `texel`"]);
+    let refused = [
+        ("write_value = \"sample\"", "ipsvi.write_pass = \"texel\" needs ipsvi.write_value = \"texel-ray\""),
+        ("piecewise = false", "needs ipsvi.piecewise = true"),
+        ("cache_write = \"racy\"", "needs ipsvi.cache_write = \"farthest\" or \"nearest\""),
+        ("write_rule = \"every-sample\"\nempty_runs_move_depth = true", "needs ipsvi.empty_runs_move_depth = false"),
+    ];
+    for (setting, message) in refused {
+        let e = error_of(&format!("{MINIMAL}[ipsvi]\nwrite_pass = \"texel\"\n{setting}\n"), &[]);
+        assert_mentions(&e, &[message]);
+    }
+    // Light rays have no view-sample writes: the key is then without effect, as cache_write is.
+    assert!(parse_scene_str(
+        &format!("{MINIMAL}[ipsvi]\nwrite_pass = \"texel\"\ncache_update = \"light-rays\"\npiecewise = false\n"),
+        Path::new(""),
+        "t",
+        &[]
+    )
+    .is_ok());
     // Wrong types and unknown names name the key too.
     let cases: &[(&str, &[&str])] = &[
         ("[ipsvi]\nline_width = \"wide\"", &["ipsvi.line_width", "a whole number in 1..=32", "\"wide\""]),

@@ -67,6 +67,9 @@ pub enum WriteRule {
 /// texel's state and its writer's line plane alone).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WritePass {
+    /// `Texel` where the writes allow it (texel-ray writes, piecewise
+    /// integration, claimed resolution, every run marching), else `Sample`.
+    Auto,
     /// The paper's: the run's writing sample, in its own pixel's invocation,
     /// at the end of the run inside the view march.
     Sample,
@@ -80,9 +83,12 @@ pub enum WritePass {
 }
 
 impl WritePass {
-    pub const ALL: [WritePass; 2] = [WritePass::Sample, WritePass::Texel];
+    pub const ALL: [WritePass; 3] = [WritePass::Auto, WritePass::Sample, WritePass::Texel];
+    /// The two passes a frame can run (`Auto` resolves to one of them).
+    pub const RUN: [WritePass; 2] = [WritePass::Sample, WritePass::Texel];
     pub fn name(self) -> &'static str {
         match self {
+            WritePass::Auto => "auto",
             WritePass::Sample => "sample",
             WritePass::Texel => "texel",
         }

@@ -52,9 +52,10 @@ pub struct IpsviSettings {
     /// Cheaper; drops what medium that ray crosses over about one line.
     pub empty_runs_move_depth: bool,
     /// view-samples with texel-ray writes: the writing sample stores (the
-    /// paper's) or one invocation per texel of the block's region stores the
-    /// texels the block's runs end in (found by the claim march). The same
-    /// image bit for bit (`tests/ipsvi_write_pass.rs`).
+    /// paper's placement) or one invocation per texel of the block's region
+    /// stores the texels the block's runs end in (found by the claim march);
+    /// the same image bit for bit (`tests/ipsvi_view_samples.rs`). `auto`
+    /// (default): the texel pass wherever the writes allow it.
     #[serde(deserialize_with = "from_name")]
     pub write_pass: WritePass,
     /// Each ping-pong pair (history: value and front; samples: value and
@@ -134,7 +135,7 @@ impl Default for IpsviSettings {
             write_value: WriteValue::TexelRay,
             write_rule: WriteRule::NonEmpty,
             empty_runs_move_depth: false,
-            write_pass: WritePass::Sample,
+            write_pass: WritePass::Auto,
             packed_store: false,
             fit_to_visible: false,
             sync: SyncStrategy::BarrierGlobal,
@@ -173,10 +174,42 @@ impl IpsviSettings {
 }
 
 impl IpsviSettings {
-    /// Whether view-sample writes are computed and stored per texel
-    /// (`write_pass = "texel"`; `validate` refuses it where it cannot apply).
+    /// Whether view-sample writes are computed and stored per texel:
+    /// `write_pass = "texel"` (`validate` refuses it where it cannot apply),
+    /// or `"auto"` where it can.
     pub fn texel_pass(&self) -> bool {
-        self.cache_update == CacheUpdate::ViewSamples && self.write_pass == WritePass::Texel
+        let view_samples = self.cache_update == CacheUpdate::ViewSamples;
+        match self.write_pass {
+            WritePass::Texel => view_samples,
+            WritePass::Sample => false,
+            WritePass::Auto => self.texel_pass_allowed(),
+        }
+    }
+
+    /// Whether the writes allow the texel pass (view samples; `auto` takes it).
+    pub fn texel_pass_allowed(&self) -> bool {
+        self.cache_update == CacheUpdate::ViewSamples && self.texel_pass_needs().is_none()
+    }
+
+    /// The pass a frame runs (`auto` resolved); None for light rays, which have no view-sample writes.
+    pub fn write_pass_run(&self) -> Option<WritePass> {
+        match self.cache_update {
+            CacheUpdate::ViewSamples if self.texel_pass() => Some(WritePass::Texel),
+            CacheUpdate::ViewSamples => Some(WritePass::Sample),
+            CacheUpdate::LightRays => None,
+        }
+    }
+
+    /// The first setting that keeps the texel pass from computing a write
+    /// without its sample, as `table.key = value` to ask for; None if none does.
+    fn texel_pass_needs(&self) -> Option<&'static str> {
+        let needs = [
+            (self.write_value == WriteValue::TexelRay, "write_value = \"texel-ray\""),
+            (self.piecewise, "piecewise = true"),
+            (!self.empty_runs_move_depth, "empty_runs_move_depth = false"),
+            (self.cache_write.claims(), "cache_write = \"farthest\" or \"nearest\""),
+        ];
+        needs.iter().find(|(ok, _)| !ok).map(|(_, need)| *need)
     }
 }
 
@@ -199,15 +232,9 @@ impl SettingsTable for IpsviSettings {
                 self.albedo
             )));
         }
-        if self.texel_pass() {
+        if self.write_pass == WritePass::Texel && self.cache_update == CacheUpdate::ViewSamples {
             // A texel's write is then computed without its writing sample.
-            let needs = [
-                (self.write_value == WriteValue::TexelRay, "write_value = \"texel-ray\""),
-                (self.piecewise, "piecewise = true"),
-                (!self.empty_runs_move_depth, "empty_runs_move_depth = false"),
-                (self.cache_write.claims(), "cache_write = \"farthest\" or \"nearest\""),
-            ];
-            if let Some((_, need)) = needs.iter().find(|(ok, _)| !ok) {
+            if let Some(need) = self.texel_pass_needs() {
                 return Err(SettingsError::Technique(format!(
                     "{t}.write_pass = \"texel\" needs {t}.{need}: a texel's write is computed from its own \
                      state and its writer's line plane, named by the claim keys, with no sample's light"

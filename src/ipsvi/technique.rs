@@ -136,7 +136,10 @@ impl RenderTechnique for Ipsvi {
     fn settings_note(&self, scene: &Scene) -> Option<String> {
         let s = &scene.settings.get::<IpsviSettings>();
         let write = match s.cache_update {
-            CacheUpdate::ViewSamples => format!(", cache_write: {}", s.cache_write.name()),
+            CacheUpdate::ViewSamples => {
+                let pass = if s.texel_pass() { "texel" } else { "sample" };
+                format!(", cache_write: {}, write_pass: {pass}", s.cache_write.name())
+            }
             CacheUpdate::LightRays => String::new(),
         };
         // View samples err least near a texel of about one pixel (docs/ipsvi.md).

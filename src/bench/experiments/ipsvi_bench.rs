@@ -16,7 +16,7 @@ use crate::bench::{
 use crate::half_angle::HalfAngleSettings;
 use crate::ipsvi::cache_plane::texel_pixels;
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
-use crate::ipsvi::{CacheUpdate, EarlyTermination, IpsviSettings, SyncStrategy, WriteRule};
+use crate::ipsvi::{CacheUpdate, EarlyTermination, IpsviSettings, SyncStrategy, WritePass, WriteRule};
 use crate::linear_image::LinearImage;
 use crate::metrics::compare;
 use crate::render::{GpuScene, RenderTechnique, VolumeTexels};
@@ -87,11 +87,10 @@ fn mode_name(s: &IpsviSettings) -> String {
         CacheUpdate::ViewSamples => format!("view samples, {}", s.write_rule.name()),
         CacheUpdate::LightRays => "light rays".to_string(),
     };
-    if s.fit_to_visible {
-        format!("{mode}, visible box")
-    } else {
-        mode
-    }
+    // The sample pass is named where `auto` would take the texel pass.
+    let pass = if s.texel_pass_allowed() && !s.texel_pass() { ", sample pass" } else { "" };
+    let boxed = if s.fit_to_visible { ", visible box" } else { "" };
+    format!("{mode}{pass}{boxed}")
 }
 
 impl IpsviPlan {
@@ -129,6 +128,11 @@ impl IpsviPlan {
                 push(mode.clone());
                 // The box the cache is fitted to, the other way than the scene's.
                 push(IpsviSettings { fit_to_visible: !mode.fit_to_visible, ..mode.clone() });
+                // The write pass the other way, where the mode's writes allow the texel pass.
+                if mode.texel_pass_allowed() {
+                    let other = if mode.texel_pass() { WritePass::Sample } else { WritePass::Texel };
+                    push(IpsviSettings { write_pass: other, ..mode.clone() });
+                }
                 for &c in &self.cache_sizes {
                     push(IpsviSettings { cache_size: c, ..mode.clone() });
                 }
@@ -313,6 +317,9 @@ pub fn run(
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
                 row.set("mode", mode_name(s)).set("cache_update", s.cache_update.name());
                 row.set("write_rule", s.write_rule.name()).set("fit_to_visible", s.fit_to_visible);
+                if let Some(pass) = s.write_pass_run() {
+                    row.set("write_pass", pass.name());
+                }
                 // Which side of the view samples' optimum (about a pixel) the cache is on.
                 if let Some(px) = texel_pixels(&scene, s, size, size) {
                     row.set("cache_texel_px", px as f64);
@@ -609,6 +616,18 @@ mod tests {
             let boxed = format!("{name}, visible box");
             assert!(one.iter().any(|s| mode_name(s) == boxed && s.fit_to_visible), "{boxed}");
         }
+        // Each view-sample mode with the other write pass; light rays have none.
+        for rule in ["non-empty", "every-sample"] {
+            let sample = format!("view samples, {rule}, sample pass");
+            assert!(one.iter().any(|s| mode_name(s) == sample && !s.texel_pass()), "{sample}");
+            let texel = format!("view samples, {rule}");
+            assert!(one.iter().any(|s| mode_name(s) == texel && s.texel_pass()), "{texel}");
+        }
+        assert!(!one.iter().any(|s| s.cache_update == CacheUpdate::LightRays && s.write_pass != base.write_pass));
+        let sample_writes = IpsviSettings { write_value: crate::ipsvi::WriteValue::Sample, ..base.clone() };
+        let one = sizes.configurations(&sample_writes).unwrap();
+        assert!(!one.iter().any(|s| s.texel_pass()), "sample writes have no texel pass");
+        assert!(!one.iter().any(|s| mode_name(s).contains("pass")), "nor a pass to name");
     }
 
     #[test]

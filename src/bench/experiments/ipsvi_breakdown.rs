@@ -21,7 +21,6 @@ use crate::bench::{
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
 use crate::ipsvi::{BreakdownStep, CacheUpdate, IpsviSettings, SyncStrategy, WritePass, WriteRule};
 use crate::render::{GpuScene, VolumeTexels};
-use crate::scene::settings_table::SettingsTable;
 use crate::scene::Scene;
 use crate::techniques::Technique;
 use crate::vk::{Context, Profiler};
@@ -68,11 +67,11 @@ fn runs_step(s: &IpsviSettings, step: BreakdownStep) -> bool {
 
 /// A bar label's name for a configuration.
 fn short_mode(s: &IpsviSettings) -> &'static str {
-    match (s.cache_update, s.write_rule, s.texel_pass()) {
-        (CacheUpdate::ViewSamples, WriteRule::NonEmpty, false) => "view",
-        (CacheUpdate::ViewSamples, WriteRule::NonEmpty, true) => "view, texel pass",
-        (CacheUpdate::ViewSamples, WriteRule::EverySample, false) => "view every",
-        (CacheUpdate::ViewSamples, WriteRule::EverySample, true) => "view every, texel pass",
+    match (s.cache_update, s.write_rule, s.write_pass_run()) {
+        (CacheUpdate::ViewSamples, WriteRule::NonEmpty, Some(WritePass::Sample)) => "view, sample pass",
+        (CacheUpdate::ViewSamples, WriteRule::NonEmpty, _) => "view",
+        (CacheUpdate::ViewSamples, WriteRule::EverySample, Some(WritePass::Sample)) => "view every, sample pass",
+        (CacheUpdate::ViewSamples, WriteRule::EverySample, _) => "view every",
         (CacheUpdate::LightRays, ..) => "rays",
     }
 }
@@ -100,17 +99,16 @@ pub fn configurations(base: &IpsviSettings) -> Vec<IpsviSettings> {
     };
     WriteRule::ALL
         .iter()
-        .flat_map(|&rule| WritePass::ALL.map(|pass| view(rule, pass)))
-        .filter(|s| s.write_pass == WritePass::Sample || s.validate().is_ok())
+        .flat_map(|&rule| WritePass::RUN.map(|pass| view(rule, pass)))
+        .filter(|s| s.write_pass == WritePass::Sample || s.texel_pass_allowed())
         .chain(std::iter::once(IpsviSettings { cache_update: CacheUpdate::LightRays, ..base.clone() }))
         .collect()
 }
 
-/// A row's `write_pass`: empty for light rays, which have none.
-fn write_pass(s: &IpsviSettings) -> &'static str {
-    match s.cache_update {
-        CacheUpdate::ViewSamples => s.write_pass.name(),
-        CacheUpdate::LightRays => "",
+/// A row's `write_pass`, for view samples only: light rays have none.
+fn set_write_pass(row: &mut BenchRow, s: &IpsviSettings) {
+    if let Some(pass) = s.write_pass_run() {
+        row.set("write_pass", pass.name());
     }
 }
 
@@ -259,7 +257,8 @@ impl BreakdownReport {
             let (estimate, cost) = step_cost(t, k.checked_sub(1).map(|p| steps[p].1));
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name()).set("step", *label);
-            row.set("write_rule", s.write_rule.name()).set("write_pass", write_pass(s));
+            row.set("write_rule", s.write_rule.name());
+            set_write_pass(&mut row, s);
             row.set_timing("gpu_ms", t);
             match estimate {
                 Some(_) => {
@@ -309,7 +308,7 @@ impl BreakdownReport {
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name());
             row.set("line_width", line_width).set("write_rule", s.write_rule.name());
-            row.set("write_pass", write_pass(s));
+            set_write_pass(&mut row, s);
             row.set_timing("gpu_ms", t).set("dispatches", t.last.dispatches);
             if let Some(lw1) = lw1 {
                 row.set("speedup_over_lw1", lw1.median() / t.median());
@@ -407,6 +406,18 @@ mod tests {
     }
 
     #[test]
+    fn both_write_passes_are_measured_where_the_writes_allow_the_texel_pass() {
+        let modes = |base: &IpsviSettings| configurations(base).iter().map(short_mode).collect::<Vec<_>>();
+        let all = ["view, sample pass", "view", "view every, sample pass", "view every", "rays"];
+        assert_eq!(modes(&IpsviSettings::default()), all);
+        let sample_writes = IpsviSettings { write_value: crate::ipsvi::WriteValue::Sample, ..Default::default() };
+        assert_eq!(modes(&sample_writes), ["view, sample pass", "view every, sample pass", "rays"]);
+        // The scene's own pass does not matter: both are measured.
+        let sample = IpsviSettings { write_pass: WritePass::Sample, ..Default::default() };
+        assert_eq!(modes(&sample), all);
+    }
+
+    #[test]
     fn the_line_widths_are_checked_by_name() {
         let plan = BreakdownPlan {
             sizes: vec![16],
@@ -418,6 +429,7 @@ mod tests {
         assert!(e.starts_with("--line-widths") && e.contains("line_width"), "{e}");
         let e = BreakdownPlan { sizes: vec![0], ..plan.clone() }.check(&IpsviSettings::default()).unwrap_err();
         assert!(e.to_string().starts_with("--sizes"), "{e}");
-        assert_eq!(configurations(&IpsviSettings::default()).len(), 3, "view samples twice, light rays once");
+        // View samples under each write rule and write pass, light rays once.
+        assert_eq!(configurations(&IpsviSettings::default()).len(), 5);
     }
 }
