@@ -5,7 +5,6 @@
 //! cache initialised at once, one dispatch per step of all sweeps
 //! (`super::merged_steps`), then their colour accumulations summed.
 
-use super::breakdown::BreakdownStep;
 use super::cache_plane::{cache_planes, CachePlanes};
 use super::cache_region::{plane_region, TexelRect};
 use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
@@ -813,11 +812,9 @@ fn block_params(
                     r.region = [0; 4];
                 }
             }
-            // write_pass = "texel" stores only the texels the claim keys name,
-            // so its stores step brings the claim pass with it.
-            let step = settings.breakdown_step;
-            let texel_stores = settings.texel_pass() && step.shader_step() >= BreakdownStep::Stores.shader_step();
-            if claims && (step.claims() || texel_stores) {
+            // (write_pass = "texel" stores only the texels the claim keys name: its
+            // stores come on with the claim pass, docs/ipsvi.md "Cost breakdown".)
+            if claims && settings.breakdown_step.claims() {
                 for r in first_record..first_record + count - 1 {
                     out[r].claim_count = out[r + 1].pixel_count;
                 }

@@ -123,11 +123,11 @@ pub fn controls() -> Vec<Control> {
         control("ipsvi", "write_rule", Choice(names(&WriteRule::ALL.map(|c| c.name()))), |s| {
             Name(s.settings.get::<IpsviSettings>().write_rule.name())
         }),
-        control("ipsvi", "write_pass", Choice(names(&WritePass::ALL.map(|c| c.name()))), |s| {
-            Name(s.settings.get::<IpsviSettings>().write_pass.name())
-        }),
         control("ipsvi", "empty_runs_move_depth", Toggle, |s| {
             Bool(s.settings.get::<IpsviSettings>().empty_runs_move_depth)
+        }),
+        control("ipsvi", "write_pass", Choice(names(&WritePass::ALL.map(|c| c.name()))), |s| {
+            Name(s.settings.get::<IpsviSettings>().write_pass.name())
         }),
         control("ipsvi", "packed_store", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().packed_store)),
         control("ipsvi", "fit_to_visible", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().fit_to_visible)),
