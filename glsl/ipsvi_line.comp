@@ -513,10 +513,13 @@ void shade_pixel(uint index) {
             vec4 l = vec4(0.0, 0.0, 0.0, 1.0);
             if (shaded || (VIEW_SAMPLES && EVERY_SAMPLE && !TEXEL_PASS && STEP >= STEP_READS)) {
                 if (STEP == 0u) {
+                } else if (VIEW_SAMPLES && TEXEL_PASS) {
+                    // The texel invocations store (write_claimed_texel): no runs here.
+                    l = light_from_samples(p, cache_coord(p));
                 } else if (VIEW_SAMPLES) {
                     vec3 c = cache_coord(p);
                     ivec2 k = sample_texel(c);
-                    if (run.x >= 0 && k != run && !TEXEL_PASS) store_sample(run, run_p, run_depth, run_light, index, run_empty);
+                    if (run.x >= 0 && k != run) store_sample(run, run_p, run_depth, run_light, index, run_empty);
                     run_empty = (run_empty || k != run) && !shaded;
                     bool writer = k != run || !run_keeps_nearest() || c.z < run_depth;
                     // An empty sample (every-sample) needs its light only where it
@@ -542,7 +545,7 @@ void shade_pixel(uint index) {
             if (ert && view_ray_opaque(T) && v.t_enter + (float(i) + 1.0) * v.h >= keep_going) break;
         }
     }
-    if (VIEW_SAMPLES && run.x >= 0 && !TEXEL_PASS) store_sample(run, run_p, run_depth, run_light, index, run_empty);
+    if (VIEW_SAMPLES && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index, run_empty);
     // Cleared to the background: the first light replaces it by what shows through.
     if (first_light) C += (T - 1.0) * frame.background;
     ivec2 ip = ivec2(px) + ivec2(0, int(block.out_row));

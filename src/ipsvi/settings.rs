@@ -162,18 +162,13 @@ impl IpsviSettings {
     /// the texels each block writes.
     pub fn records_claims(&self) -> bool {
         let claims = self.cache_update == CacheUpdate::ViewSamples && self.cache_write.claims();
-        if claims && self.texel_pass() {
-            return true;
-        }
         let same_value_from_every_writer = self.line_width == 1
             && self.write_value == WriteValue::TexelRay
             && self.piecewise
             && !self.empty_runs_move_depth;
-        claims && (self.keep_redundant_claims || !same_value_from_every_writer)
+        claims && (self.keep_redundant_claims || self.texel_pass() || !same_value_from_every_writer)
     }
-}
 
-impl IpsviSettings {
     /// Whether view-sample writes are computed and stored per texel:
     /// `write_pass = "texel"` (`validate` refuses it where it cannot apply),
     /// or `"auto"` where it can.

@@ -135,12 +135,9 @@ impl RenderTechnique for Ipsvi {
 
     fn settings_note(&self, scene: &Scene) -> Option<String> {
         let s = &scene.settings.get::<IpsviSettings>();
-        let write = match s.cache_update {
-            CacheUpdate::ViewSamples => {
-                let pass = if s.texel_pass() { "texel" } else { "sample" };
-                format!(", cache_write: {}, write_pass: {pass}", s.cache_write.name())
-            }
-            CacheUpdate::LightRays => String::new(),
+        let write = match s.write_pass_run() {
+            Some(pass) => format!(", cache_write: {}, write_pass: {}", s.cache_write.name(), pass.name()),
+            None => String::new(),
         };
         // View samples err least near a texel of about one pixel (docs/ipsvi.md).
         let texel = super::cache_plane::texel_pixels(scene, s, scene.render.width, scene.render.height)
