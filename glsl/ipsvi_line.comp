@@ -69,6 +69,13 @@ layout(constant_id = 13) const bool PACKED = false;
 // texels where this block's runs end; its texel invocations march and store
 // them (write_claimed_texel), the pixels' sample loop stores nothing.
 layout(constant_id = 14) const bool TEXEL_PASS = false;
+// ipsvi.per_texel_fronts (piecewise integration): a read carries each of its
+// four texels' values from that texel's own depth along the light to the
+// sample (one march, the medium fetched once per step for all four), not
+// their blend from the blended depth (the paper's one `res` lookup). Texels
+// written at different lines then no longer average a fresh and a stale
+// depth into one that fits neither (see through_fronts).
+layout(constant_id = 15) const bool PER_TEXEL_FRONTS = false;
 const uint TERMINATION_OFF = 0u;
 const uint TERMINATION_PLAIN = 1u;
 const uint TERMINATION_EXIT_POINTS = 2u;
@@ -245,6 +252,38 @@ Footprint bilinear_footprint(vec2 c) {
     return fp;
 }
 
+// The light arriving at p from four texels of footprint fp, texel j's value
+// `value[j]` lying `back[j]` (>= 0) from p toward the light: each carried to
+// p over its own stretch, then blended. One midpoint march as long as the
+// longest stretch; each step counts for each texel as far as its stretch
+// reaches. With all four stretches equal it is the blend carried over one
+// stretch (light_segment's march, step for step).
+vec4 through_fronts(vec3 p, Footprint fp, vec4 value[4], vec4 back) {
+    float longest = max(max(back.x, back.y), max(back.z, back.w));
+    vec4 tau = vec4(0.0);
+    vec3 emitted[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+    if (longest > 0.0) {
+        float vl = frame.voxel_length;
+        float m = clamp(ceil(longest / (frame.shadow_step * vl)), 1.0, float(sweep.max_piecewise_steps));
+        float g = longest / m;
+        vec3 dir = to_light(p);
+        for (int i = 0; i < int(m); ++i) {
+            vec4 med = medium(p + dir * ((float(i) + 0.5) * g));
+            vec4 depth = med.a * clamp(back - float(i) * g, 0.0, g) / vl;
+            if (EMISSIVE)
+                for (int j = 0; j < 4; ++j) emitted[j] += exp(-tau[j]) * (1.0 - exp(-depth[j])) * med.rgb;
+            tau += depth;
+        }
+    }
+    float scale = frame.emission / sweep.light_scale;
+    vec4 sum = vec4(0.0);
+    for (int j = 0; j < 4; ++j) {
+        float tr = exp(-tau[j]);
+        sum += fp.weight[j] * vec4(value[j].rgb * tr + emitted[j] * scale, value[j].a * tr);
+    }
+    return sum;
+}
+
 // Light at sample p: (direct transmittance, emission arriving / scale): the
 // four texels bilinearly (E / scale: rgb, transmittance: a), and with piecewise
 // integration the path from p back to their fronts, weighted as their values.
@@ -257,16 +296,22 @@ vec4 light_at(vec3 p) {
     bool piecewise = PIECEWISE && STEP >= STEP_PIECEWISE;
     vec4 cached = vec4(0.0);
     float front = 0.0;
+    vec4 value[4];
+    vec4 back;
     for (int j = 0; j < 4; ++j) {
         uint code;
-        cached += fp.weight[j] * history_load(fp.texel[j], code);
+        value[j] = history_load(fp.texel[j], code);
+        cached += fp.weight[j] * value[j];
         if (piecewise) {
             Ray r = cache_ray(uvec2(fp.texel[j]));
             vec2 io = ray_in_box(r);
-            front += fp.weight[j] * (io.x <= io.y ? front_param(r, code, io) : c.z);
+            float d = io.x <= io.y ? front_param(r, code, io) : c.z;
+            front += fp.weight[j] * d;
+            back[j] = max(c.z - d, 0.0);
         }
     }
     if (!piecewise) return cached;
+    if (PER_TEXEL_FRONTS) return through_fronts(p, fp, value, back);
     // Piecewise integration: march from p toward the light back to the cache front.
     return through_segment(cached, light_segment(p, to_light(p), max(c.z - front, 0.0), sweep.max_piecewise_steps, EMISSIVE));
 }
@@ -322,15 +367,21 @@ vec4 light_from_samples(vec3 p, vec3 c) {
     bool piecewise = PIECEWISE && STEP >= STEP_PIECEWISE;
     vec4 sum = vec4(0.0);
     float front = 0.0;
+    vec4 value[4];
+    vec4 back;
     for (int j = 0; j < 4; ++j) {
         uint code;
-        sum += fp.weight[j] * state_load(fp.texel[j], code);
+        value[j] = state_load(fp.texel[j], code);
+        sum += fp.weight[j] * value[j];
         if (piecewise) {
             vec2 io = ray_in_box(cache_ray(uvec2(fp.texel[j])));
-            front += fp.weight[j] * (io.x <= io.y ? depth_of(code, io) : c.z);
+            float d = io.x <= io.y ? depth_of(code, io) : c.z;
+            front += fp.weight[j] * d;
+            back[j] = max(c.z - d, 0.0);
         }
     }
     if (!piecewise) return sum;
+    if (PER_TEXEL_FRONTS) return through_fronts(p, fp, value, back);
     return through_segment(sum, light_segment(p, to_light(p), max(c.z - front, 0.0), sweep.max_piecewise_steps, EMISSIVE));
 }
 

@@ -17,6 +17,12 @@ pub struct IpsviSettings {
     pub cache_size: u32,
     /// Piecewise integration from each sample toward the cache front (section 4.4).
     pub piecewise: bool,
+    /// Piecewise integration reads each of the four texels' depths on its
+    /// own: each value is carried to the sample from its own texel's depth
+    /// (one march for all four), not their blend from the blended depth (the
+    /// paper's single `res` lookup). Texels written at different lines no
+    /// longer average into a depth that fits none of them.
+    pub per_texel_fronts: bool,
     /// When view rays stop (section 5.1).
     pub early_termination: EarlyTermination,
     /// Share of light scattered in the forward cone (equation 2's albedo), 0..=1.
@@ -124,6 +130,7 @@ impl Default for IpsviSettings {
             line_width: 1,
             cache_size: 256,
             piecewise: true,
+            per_texel_fronts: false,
             early_termination: EarlyTermination::Plain,
             albedo: 0.0,
             cone_angle_deg: 15.0,

@@ -88,6 +88,7 @@ pub fn controls() -> Vec<Control> {
             Number(s.settings.get::<IpsviSettings>().cache_size as f64)
         }),
         control("ipsvi", "piecewise", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().piecewise)),
+        control("ipsvi", "per_texel_fronts", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().per_texel_fronts)),
         control(
             "ipsvi",
             "early_termination",
