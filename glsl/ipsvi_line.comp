@@ -69,7 +69,7 @@ layout(constant_id = 13) const bool PACKED = false;
 // texels where this block's runs end; its texel invocations march and store
 // them (write_claimed_texel), the pixels' sample loop stores nothing.
 layout(constant_id = 14) const bool TEXEL_PASS = false;
-// ipsvi.per_texel_fronts (piecewise integration): a read carries each of its
+// ipsvi.read_fronts = "per-texel" (piecewise integration): a read carries each of its
 // four texels' values from that texel's own depth along the light to the
 // sample (one march, the medium fetched once per step for all four), not
 // their blend from the blended depth (the paper's one `res` lookup). Texels

@@ -5,7 +5,7 @@ mod common;
 use common::*;
 use glam::Vec3;
 use sweeplab::ipsvi::renderer::plans;
-use sweeplab::ipsvi::{render_with, CacheUpdate, IpsviSettings, SyncStrategy};
+use sweeplab::ipsvi::{render_with, CacheUpdate, IpsviSettings, ReadFronts, SyncStrategy, WriteRule};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::{compare, ErrorStats};
 use sweeplab::render::{GpuScene, VolumeTexels};
@@ -122,6 +122,107 @@ fn point_light_in_each_zone_and_inside_the_volume_matches_the_reference() {
     ] {
         check_against_reference(&slab_scene(vec![point(position)]), what);
     }
+}
+
+/// The tolerance scenes: a directional light, a point light in each zone and
+/// inside the volume, an orthographic camera with a spot light.
+fn tolerance_scenes() -> Vec<(&'static str, Scene)> {
+    let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
+    let basis = camera.basis(SIZE, SIZE);
+    let (r, u) = (basis.right.normalize(), basis.up.normalize());
+    let mut spot = slab_scene(vec![spot_light(2.0)]);
+    spot.camera.projection = Projection::Orthographic { height: 1.8 };
+    vec![
+        ("directional", slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)])),
+        ("right zone", slab_scene(vec![point(r * 1.2 + u * 0.3)])),
+        ("left zone", slab_scene(vec![point(-r * 1.2 + u * 0.2)])),
+        ("up zone", slab_scene(vec![point(u * 1.2 + r * 0.2)])),
+        ("down zone", slab_scene(vec![point(-u * 1.2 - r * 0.2)])),
+        ("inside the volume", slab_scene(vec![point(Vec3::new(0.15, 0.35, 0.1))])),
+        ("orthographic, spot", spot),
+    ]
+}
+
+/// The relative RMSE and p99 of `s` on `scene` against its reference.
+fn relative_errors(ctx: &Context, scene: &Scene, s: &IpsviSettings) -> (f64, f64) {
+    let (ipsvi, reference) = ipsvi_and_reference(ctx, scene, s);
+    assert!(ipsvi.image.all_finite());
+    let (rmse, _) = relative(&compare(&ipsvi.image, &reference).unwrap(), &reference);
+    (rmse, p99_error(&ipsvi.image, &reference) / reference.max_value() as f64)
+}
+
+/// `write_rule = "every-sample"` (the default, the paper's) on the tolerance
+/// scenes, held to bounds four times tighter than the stated tolerance of
+/// every mode: relative RMSE within EVERY_RMSE and p99 within EVERY_P99 on
+/// each. Measured on lavapipe: at most 0.17 % RMSE and 0.87 % p99 (summed RMSE
+/// 0.0071), so the bounds keep about half as margin. Non-empty is printed
+/// beside it and is the closer rule on this cache (summed 0.0054; on a like
+/// scene 32-bit cache texels err the same, so it is not the halves' rounding). Our reading: at about
+/// 0.16 px most texels a non-empty sample reads were never written, so its
+/// march goes back to the box entry along its own light ray, which is exact,
+/// where every-sample's reads blend texels carried along their own rays, a
+/// fraction of a pixel to the side. On texels near a pixel every-sample is
+/// the closer rule (tests/ipsvi_view_samples.rs; docs/ipsvi.md).
+const EVERY_RMSE: f64 = 0.005;
+const EVERY_P99: f64 = 0.02;
+
+#[test]
+fn every_sample_meets_bounds_four_times_tighter_than_the_stated_tolerance() {
+    let ctx = validated_context();
+    let every = settings();
+    assert_eq!(every.write_rule, WriteRule::EverySample, "the default rule");
+    let non_empty = IpsviSettings { write_rule: WriteRule::NonEmpty, ..settings() };
+    let (mut every_sum, mut non_empty_sum) = (0.0, 0.0);
+    for (what, scene) in tolerance_scenes() {
+        let (e_rmse, e_p99) = relative_errors(&ctx, &scene, &every);
+        let (n_rmse, n_p99) = relative_errors(&ctx, &scene, &non_empty);
+        println!("{what}: every-sample rmse {e_rmse:.4} p99 {e_p99:.4}; non-empty rmse {n_rmse:.4} p99 {n_p99:.4}");
+        assert!(e_rmse <= EVERY_RMSE && e_p99 <= EVERY_P99, "{what}: every-sample rmse {e_rmse:.4}, p99 {e_p99:.4}");
+        assert!(
+            n_rmse <= RMSE_TOLERANCE && n_p99 <= P99_TOLERANCE,
+            "{what}: non-empty rmse {n_rmse:.4}, p99 {n_p99:.4}"
+        );
+        every_sum += e_rmse;
+        non_empty_sum += n_rmse;
+    }
+    println!("summed relative rmse: every-sample {every_sum:.4}, non-empty {non_empty_sum:.4}");
+    assert_validation_clean(&ctx);
+}
+
+/// `read_fronts = "auto"` takes per-texel fronts on this cache (256 texels,
+/// about 0.16 px), and they are what holds either rule to the tolerance
+/// there: blended fronts mix texels written at this line with texels no
+/// sample reached for many lines into one depth that fits neither. Bound:
+/// per texel at most PER_TEXEL_OVER_BLENDED of blended's relative RMSE on the
+/// point light inside the volume (measured every-sample 0.0007 against
+/// 0.0144, p99 0.0036 against 0.0862, beyond the stated 8 %; non-empty 0.0004
+/// against 0.0038).
+const PER_TEXEL_OVER_BLENDED: f64 = 0.25;
+
+#[test]
+fn per_texel_fronts_hold_both_rules_on_texels_finer_than_pixels() {
+    let ctx = validated_context();
+    let scene = slab_scene(vec![point(Vec3::new(0.15, 0.35, 0.1))]);
+    for write_rule in [WriteRule::EverySample, WriteRule::NonEmpty] {
+        let auto = IpsviSettings { write_rule, ..settings() };
+        assert_eq!(auto.read_fronts, ReadFronts::Auto);
+        assert!(auto.per_texel_fronts(&scene, SIZE, SIZE), "auto should take per-texel fronts at cache 256");
+        let per_texel = IpsviSettings { read_fronts: ReadFronts::PerTexel, ..auto.clone() };
+        let blended = IpsviSettings { read_fronts: ReadFronts::Blended, ..auto.clone() };
+        let (p_rmse, p_p99) = relative_errors(&ctx, &scene, &per_texel);
+        let (b_rmse, b_p99) = relative_errors(&ctx, &scene, &blended);
+        let (a_rmse, _) = relative_errors(&ctx, &scene, &auto);
+        println!(
+            "inside the volume, {}: per-texel rmse {p_rmse:.4} p99 {p_p99:.4}, blended rmse {b_rmse:.4} p99 {b_p99:.4}",
+            write_rule.name()
+        );
+        assert_eq!(a_rmse, p_rmse, "auto is per-texel here");
+        assert!(
+            p_rmse <= PER_TEXEL_OVER_BLENDED * b_rmse,
+            "{write_rule:?}: per-texel {p_rmse:.4} vs blended {b_rmse:.4}"
+        );
+    }
+    assert_validation_clean(&ctx);
 }
 
 #[test]

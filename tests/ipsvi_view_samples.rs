@@ -211,7 +211,8 @@ fn view_samples_match_the_reference_on_the_ipsvi_scenes() {
         let light_rays =
             IpsviSettings { cache_update: CacheUpdate::LightRays, ..view_samples(FED_CACHE, CacheWrite::Racy) };
         let lr = relative_rmse(&ipsvi(&ctx, &gpu, &light_rays, SyncStrategy::BarrierGlobal), &truth);
-        let vs_settings = view_samples(FED_CACHE, CacheWrite::Farthest);
+        let vs_settings =
+            IpsviSettings { write_rule: WriteRule::NonEmpty, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
         assert_eq!(vs_settings.write_value, WriteValue::TexelRay);
         let vs_image = ipsvi(&ctx, &gpu, &vs_settings, SyncStrategy::BarrierGlobal);
         assert!(vs_image.all_finite(), "{what}: non-finite pixels");
@@ -611,7 +612,8 @@ fn empty_runs_move_depth_is_exact_without_empty_runs_and_bounded_with_them() {
     for (what, scene) in &cases {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
         let truth = reference(&ctx, &gpu);
-        let non_empty = view_samples(FED_CACHE, CacheWrite::Farthest);
+        let non_empty =
+            IpsviSettings { write_rule: WriteRule::NonEmpty, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
         let moved = IpsviSettings { empty_runs_move_depth: true, ..non_empty.clone() };
         assert_eq!(
             ipsvi(&ctx, &gpu, &non_empty, SyncStrategy::BarrierGlobal),

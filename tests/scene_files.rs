@@ -7,7 +7,8 @@ use glam::Vec3;
 use sweeplab::ao::AoSettings;
 use sweeplab::half_angle::HalfAngleSettings;
 use sweeplab::ipsvi::{
-    CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WritePass, WriteRule, WriteValue,
+    CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, ReadFronts, SyncStrategy, WritePass, WriteRule,
+    WriteValue,
 };
 use sweeplab::lightvolume::{CostEstimate, LightVolumeSettings};
 use sweeplab::scene::framing::{visible_box, FRAME_FILL};
@@ -498,7 +499,7 @@ fn all_keys_example_names_every_technique_key_at_its_default() {
 #[test]
 fn technique_tables_are_read_into_typed_settings() {
     let s = settings_of(
-        "[ipsvi]\nline_width = 4\ncache_size = 128\npiecewise = false\nper_texel_fronts = true\nearly_termination = \"exit-points\"\n\
+        "[ipsvi]\nline_width = 4\ncache_size = 128\npiecewise = false\nread_fronts = \"per-texel\"\nearly_termination = \"exit-points\"\n\
          albedo = 0.5\ncone_angle = 30\nzone_blend = 4.5\nlight_step = 0.125\nert_scale = 2\nsync = \"events\"\n\
          cache_update = \"light-rays\"\ncache_write = \"racy\"\nwrite_value = \"sample\"\nmerge_sweeps = true\n\
          write_rule = \"every-sample\"\nempty_runs_move_depth = true\npacked_store = true\nfit_to_visible = true\nwrite_pass = \"texel\"\n\
@@ -511,7 +512,7 @@ fn technique_tables_are_read_into_typed_settings() {
         line_width: 4,
         cache_size: 128,
         piecewise: false,
-        per_texel_fronts: true,
+        read_fronts: ReadFronts::PerTexel,
         early_termination: EarlyTermination::ExitPoints,
         albedo: 0.5,
         cone_angle_deg: 30.0,

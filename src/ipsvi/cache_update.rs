@@ -98,7 +98,7 @@ impl WritePass {
 impl FromStr for WritePass {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        parse(s, &WritePass::ALL, WritePass::name)
+        parse_name(s, &WritePass::ALL, WritePass::name)
     }
 }
 
@@ -115,7 +115,7 @@ impl WriteRule {
 impl FromStr for WriteRule {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        parse(s, &WriteRule::ALL, WriteRule::name)
+        parse_name(s, &WriteRule::ALL, WriteRule::name)
     }
 }
 
@@ -132,7 +132,7 @@ impl WriteValue {
 impl FromStr for WriteValue {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        parse(s, &WriteValue::ALL, WriteValue::name)
+        parse_name(s, &WriteValue::ALL, WriteValue::name)
     }
 }
 
@@ -162,7 +162,8 @@ impl CacheWrite {
     }
 }
 
-fn parse<T: Copy>(s: &str, all: &[T], name: impl Fn(T) -> &'static str) -> Result<T, String> {
+/// `s` as one of `all` by name; else an error with the nearest name.
+pub(super) fn parse_name<T: Copy>(s: &str, all: &[T], name: impl Fn(T) -> &'static str) -> Result<T, String> {
     all.iter().copied().find(|t| name(*t) == s).ok_or_else(|| {
         let names: Vec<&str> = all.iter().map(|t| name(*t)).collect();
         let near = nearest(s, names.iter().copied()).map(|n| format!(" (did you mean `{n}`?)")).unwrap_or_default();
@@ -173,14 +174,14 @@ fn parse<T: Copy>(s: &str, all: &[T], name: impl Fn(T) -> &'static str) -> Resul
 impl FromStr for CacheUpdate {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        parse(s, &CacheUpdate::ALL, CacheUpdate::name)
+        parse_name(s, &CacheUpdate::ALL, CacheUpdate::name)
     }
 }
 
 impl FromStr for CacheWrite {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        parse(s, &CacheWrite::ALL, CacheWrite::name)
+        parse_name(s, &CacheWrite::ALL, CacheWrite::name)
     }
 }
 

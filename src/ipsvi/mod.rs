@@ -19,6 +19,7 @@ pub mod line_group;
 pub mod lit_box;
 pub mod merged_steps;
 pub mod paper_table1;
+pub mod read_fronts;
 pub mod renderer;
 pub mod session;
 pub mod settings;
@@ -30,6 +31,7 @@ pub mod view_budget;
 
 pub use breakdown::BreakdownStep;
 pub use cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
+pub use read_fronts::ReadFronts;
 pub use renderer::{render, render_with};
 pub use settings::{EarlyTermination, IpsviSettings};
 pub use sync_strategy::SyncStrategy;

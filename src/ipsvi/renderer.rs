@@ -386,7 +386,7 @@ impl<'a> IpsviRenderer<'a> {
             (12, (view_samples && settings.empty_runs_move_depth) as u32),
             (13, settings.packed_store as u32),
             (14, settings.texel_pass() as u32),
-            (15, (settings.piecewise && settings.per_texel_fronts) as u32),
+            (15, settings.per_texel_fronts(gpu.scene, width, height) as u32),
         ];
         let line_desc = ComputePipelineDesc {
             name: "ipsvi_line",

@@ -2,9 +2,12 @@
 //! read when the scene is read ([`crate::scene::settings_table`]).
 
 use super::breakdown::BreakdownStep;
+use super::cache_plane::texel_pixels;
 use super::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
+use super::read_fronts::ReadFronts;
 use super::sync_strategy::SyncStrategy;
 use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
+use crate::scene::Scene;
 use serde::Deserialize;
 
 /// The file's key names are those of the fields unless renamed; defaults below.
@@ -17,12 +20,11 @@ pub struct IpsviSettings {
     pub cache_size: u32,
     /// Piecewise integration from each sample toward the cache front (section 4.4).
     pub piecewise: bool,
-    /// Piecewise integration reads each of the four texels' depths on its
-    /// own: each value is carried to the sample from its own texel's depth
-    /// (one march for all four), not their blend from the blended depth (the
-    /// paper's single `res` lookup). Texels written at different lines no
-    /// longer average into a depth that fits none of them.
-    pub per_texel_fronts: bool,
+    /// Piecewise integration: the march back to the cache from the blended
+    /// depth of the four texels read (the paper's) or from each texel's own
+    /// depth; `auto` (default): per texel on texels finer than half a pixel.
+    #[serde(deserialize_with = "from_name")]
+    pub read_fronts: ReadFronts,
     /// When view rays stop (section 5.1).
     pub early_termination: EarlyTermination,
     /// Share of light scattered in the forward cone (equation 2's albedo), 0..=1.
@@ -130,7 +132,7 @@ impl Default for IpsviSettings {
             line_width: 1,
             cache_size: 256,
             piecewise: true,
-            per_texel_fronts: false,
+            read_fronts: ReadFronts::Auto,
             early_termination: EarlyTermination::Plain,
             albedo: 0.0,
             cone_angle_deg: 15.0,
@@ -140,7 +142,7 @@ impl Default for IpsviSettings {
             cache_update: CacheUpdate::ViewSamples,
             cache_write: CacheWrite::Farthest,
             write_value: WriteValue::TexelRay,
-            write_rule: WriteRule::NonEmpty,
+            write_rule: WriteRule::EverySample,
             empty_runs_move_depth: false,
             write_pass: WritePass::Auto,
             packed_store: false,
@@ -174,6 +176,13 @@ impl IpsviSettings {
             && self.piecewise
             && !self.empty_runs_move_depth;
         claims && (self.keep_redundant_claims || self.texel_pass() || !same_value_from_every_writer)
+    }
+
+    /// Whether piecewise integration marches from each texel's own depth
+    /// (`read_fronts` resolved against the cache texel's width in a `width` x
+    /// `height` image of `scene`).
+    pub fn per_texel_fronts(&self, scene: &Scene, width: u32, height: u32) -> bool {
+        self.piecewise && self.read_fronts.per_texel(texel_pixels(scene, self, width, height))
     }
 
     /// Whether view-sample writes are computed and stored per texel:

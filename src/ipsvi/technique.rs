@@ -139,10 +139,16 @@ impl RenderTechnique for Ipsvi {
             Some(pass) => format!(", cache_write: {}, write_pass: {}", s.cache_write.name(), pass.name()),
             None => String::new(),
         };
+        let (width, height) = (scene.render.width, scene.render.height);
+        let fronts = match (s.piecewise, s.per_texel_fronts(scene, width, height)) {
+            (false, _) => "",
+            (true, false) => ", read_fronts: blended",
+            (true, true) => ", read_fronts: per-texel",
+        };
         // View samples err least near a texel of about one pixel (docs/ipsvi.md).
-        let texel = super::cache_plane::texel_pixels(scene, s, scene.render.width, scene.render.height)
+        let texel = super::cache_plane::texel_pixels(scene, s, width, height)
             .map(|px| format!("; cache texel {px:.2} px at the lit box's centre"))
             .unwrap_or_default();
-        Some(format!("ipsvi sync strategy: {}; cache_update: {}{write}{texel}", s.sync, s.cache_update.name()))
+        Some(format!("ipsvi sync strategy: {}; cache_update: {}{write}{fronts}{texel}", s.sync, s.cache_update.name()))
     }
 }

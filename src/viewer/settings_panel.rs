@@ -14,6 +14,7 @@ use crate::ao::settings::{Metric, TrainingSet};
 use crate::ao::AoSettings;
 use crate::half_angle::HalfAngleSettings;
 use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
+use crate::ipsvi::read_fronts::ReadFronts;
 use crate::ipsvi::settings::EarlyTermination;
 use crate::ipsvi::sync_strategy::SyncStrategy;
 use crate::ipsvi::IpsviSettings;
@@ -88,7 +89,9 @@ pub fn controls() -> Vec<Control> {
             Number(s.settings.get::<IpsviSettings>().cache_size as f64)
         }),
         control("ipsvi", "piecewise", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().piecewise)),
-        control("ipsvi", "per_texel_fronts", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().per_texel_fronts)),
+        control("ipsvi", "read_fronts", Choice(names(&ReadFronts::ALL.map(|c| c.name()))), |s| {
+            Name(s.settings.get::<IpsviSettings>().read_fronts.name())
+        }),
         control(
             "ipsvi",
             "early_termination",

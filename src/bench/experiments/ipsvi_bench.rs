@@ -16,7 +16,7 @@ use crate::bench::{
 use crate::half_angle::HalfAngleSettings;
 use crate::ipsvi::cache_plane::texel_pixels;
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
-use crate::ipsvi::{CacheUpdate, EarlyTermination, IpsviSettings, SyncStrategy, WritePass, WriteRule};
+use crate::ipsvi::{CacheUpdate, EarlyTermination, IpsviSettings, ReadFronts, SyncStrategy, WritePass, WriteRule};
 use crate::linear_image::LinearImage;
 use crate::metrics::compare;
 use crate::render::{GpuScene, RenderTechnique, VolumeTexels};
@@ -89,8 +89,13 @@ fn mode_name(s: &IpsviSettings) -> String {
     };
     // The sample pass is named where `auto` would take the texel pass.
     let pass = if s.texel_pass_allowed() && !s.texel_pass() { ", sample pass" } else { "" };
+    let fronts = match (s.piecewise, s.read_fronts) {
+        (true, ReadFronts::PerTexel) => ", per-texel fronts",
+        (true, ReadFronts::Blended) => ", blended fronts",
+        _ => "",
+    };
     let boxed = if s.fit_to_visible { ", visible box" } else { "" };
-    format!("{mode}{pass}{boxed}")
+    format!("{mode}{pass}{fronts}{boxed}")
 }
 
 impl IpsviPlan {
@@ -132,6 +137,11 @@ impl IpsviPlan {
                 if mode.texel_pass_allowed() {
                     let other = if mode.texel_pass() { WritePass::Sample } else { WritePass::Texel };
                     push(IpsviSettings { write_pass: other, ..mode.clone() });
+                }
+                // Per-texel fronts where the mode leaves them to `auto` (which
+                // takes them only on texels finer than half a pixel).
+                if mode.piecewise && mode.read_fronts == ReadFronts::Auto {
+                    push(IpsviSettings { read_fronts: ReadFronts::PerTexel, ..mode.clone() });
                 }
                 for &c in &self.cache_sizes {
                     push(IpsviSettings { cache_size: c, ..mode.clone() });
@@ -319,6 +329,10 @@ pub fn run(
                 row.set("write_rule", s.write_rule.name()).set("fit_to_visible", s.fit_to_visible);
                 if let Some(pass) = s.write_pass_run() {
                     row.set("write_pass", pass.name());
+                }
+                if s.piecewise {
+                    let per_texel = s.per_texel_fronts(&scene, size, size);
+                    row.set("read_fronts", if per_texel { "per-texel" } else { "blended" });
                 }
                 // Which side of the view samples' optimum (about a pixel) the cache is on.
                 if let Some(px) = texel_pixels(&scene, s, size, size) {
@@ -598,7 +612,7 @@ mod tests {
         let grid = plan().configurations(&base).unwrap();
         assert_eq!(grid.len(), 36);
         let names: Vec<String> = modes(&base).iter().map(mode_name).collect();
-        assert_eq!(names, ["view samples, non-empty", "view samples, every-sample", "light rays"]);
+        assert_eq!(names, ["view samples, every-sample", "view samples, non-empty", "light rays"]);
         for name in &names {
             assert_eq!(grid.iter().filter(|s| mode_name(s) == *name).count(), 12, "{name}");
         }
@@ -624,6 +638,11 @@ mod tests {
             assert!(one.iter().any(|s| mode_name(s) == texel && s.texel_pass()), "{texel}");
         }
         assert!(!one.iter().any(|s| s.cache_update == CacheUpdate::LightRays && s.write_pass != base.write_pass));
+        // Each mode with per-texel fronts beside `auto`.
+        for name in &names {
+            let fronts = format!("{name}, per-texel fronts");
+            assert!(one.iter().any(|s| mode_name(s) == fronts && s.read_fronts == ReadFronts::PerTexel), "{fronts}");
+        }
         let sample_writes = IpsviSettings { write_value: crate::ipsvi::WriteValue::Sample, ..base.clone() };
         let one = sizes.configurations(&sample_writes).unwrap();
         assert!(!one.iter().any(|s| s.texel_pass()), "sample writes have no texel pass");
@@ -643,8 +662,8 @@ mod tests {
         assert_eq!(
             names,
             [
-                "line width 1, view samples, non-empty",
                 "line width 1, view samples, every-sample",
+                "line width 1, view samples, non-empty",
                 "line width 1, light rays"
             ]
         );
