@@ -252,13 +252,38 @@ Footprint bilinear_footprint(vec2 c) {
     return fp;
 }
 
+// Fronts within a voxel (or a light step, if longer) of each other lie on one
+// cache plane, apart by the plane's tilt across a texel: a read's texels on
+// one plane share their blended depth, which is where the sample's own light
+// ray crosses that plane (the paper's one lookup; carrying each value from
+// its own depth would put it off the plane, measured far worse in a stiff
+// medium). Texels whose fronts lie lines apart keep their group's own depth.
+vec4 grouped_back(Footprint fp, vec4 back) {
+    float near = max(frame.shadow_step, 1.0) * frame.voxel_length;
+    vec4 grouped;
+    for (int j = 0; j < 4; ++j) {
+        float sum = 0.0;
+        float weight = 0.0;
+        for (int k = 0; k < 4; ++k) {
+            if (abs(back[k] - back[j]) <= near) {
+                sum += fp.weight[k] * back[k];
+                weight += fp.weight[k];
+            }
+        }
+        grouped[j] = max(weight > 0.0 ? sum / weight : back[j], 0.0);
+    }
+    return grouped;
+}
+
 // The light arriving at p from four texels of footprint fp, texel j's value
-// `value[j]` lying `back[j]` (>= 0) from p toward the light: each carried to
-// p over its own stretch, then blended. One midpoint march as long as the
-// longest stretch; each step counts for each texel as far as its stretch
-// reaches. With all four stretches equal it is the blend carried over one
-// stretch (light_segment's march, step for step).
-vec4 through_fronts(vec3 p, Footprint fp, vec4 value[4], vec4 back) {
+// `value[j]` lying `to_front[j]` from p toward the light: the texels grouped
+// by plane (grouped_back), each value carried to p over its group's stretch,
+// then blended. One midpoint march as long as the longest stretch; each step
+// counts for each texel as far as its stretch reaches. With all four on one
+// plane it is the blend carried over one stretch (light_segment's march,
+// step for step).
+vec4 through_fronts(vec3 p, Footprint fp, vec4 value[4], vec4 to_front) {
+    vec4 back = grouped_back(fp, to_front);
     float longest = max(max(back.x, back.y), max(back.z, back.w));
     vec4 tau = vec4(0.0);
     vec3 emitted[4] = vec3[4](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
@@ -307,7 +332,7 @@ vec4 light_at(vec3 p) {
             vec2 io = ray_in_box(r);
             float d = io.x <= io.y ? front_param(r, code, io) : c.z;
             front += fp.weight[j] * d;
-            back[j] = max(c.z - d, 0.0);
+            back[j] = c.z - d;
         }
     }
     if (!piecewise) return cached;
@@ -377,7 +402,7 @@ vec4 light_from_samples(vec3 p, vec3 c) {
             vec2 io = ray_in_box(cache_ray(uvec2(fp.texel[j])));
             float d = io.x <= io.y ? depth_of(code, io) : c.z;
             front += fp.weight[j] * d;
-            back[j] = max(c.z - d, 0.0);
+            back[j] = c.z - d;
         }
     }
     if (!piecewise) return sum;

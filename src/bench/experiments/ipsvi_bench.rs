@@ -326,9 +326,10 @@ pub fn run(
                 row.set("line_width", s.line_width).set("cache_size", s.cache_size);
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
                 row.set("mode", mode_name(s)).set("cache_update", s.cache_update.name());
-                row.set("write_rule", s.write_rule.name()).set("fit_to_visible", s.fit_to_visible);
+                row.set("fit_to_visible", s.fit_to_visible);
+                // Light rays have no view-sample writes.
                 if let Some(pass) = s.write_pass_run() {
-                    row.set("write_pass", pass.name());
+                    row.set("write_rule", s.write_rule.name()).set("write_pass", pass.name());
                 }
                 if s.piecewise {
                     let per_texel = s.per_texel_fronts(&scene, size, size);

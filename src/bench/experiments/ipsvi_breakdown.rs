@@ -105,10 +105,10 @@ pub fn configurations(base: &IpsviSettings) -> Vec<IpsviSettings> {
         .collect()
 }
 
-/// A row's `write_pass`, for view samples only: light rays have none.
-fn set_write_pass(row: &mut BenchRow, s: &IpsviSettings) {
+/// A row's `write_rule` and `write_pass`, for view samples only: light rays have neither.
+fn set_view_sample_writes(row: &mut BenchRow, s: &IpsviSettings) {
     if let Some(pass) = s.write_pass_run() {
-        row.set("write_pass", pass.name());
+        row.set("write_rule", s.write_rule.name()).set("write_pass", pass.name());
     }
 }
 
@@ -257,8 +257,7 @@ impl BreakdownReport {
             let (estimate, cost) = step_cost(t, k.checked_sub(1).map(|p| steps[p].1));
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name()).set("step", *label);
-            row.set("write_rule", s.write_rule.name());
-            set_write_pass(&mut row, s);
+            set_view_sample_writes(&mut row, s);
             row.set_timing("gpu_ms", t);
             match estimate {
                 Some(_) => {
@@ -307,8 +306,8 @@ impl BreakdownReport {
         for &(line_width, t) in widths {
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name());
-            row.set("line_width", line_width).set("write_rule", s.write_rule.name());
-            set_write_pass(&mut row, s);
+            row.set("line_width", line_width);
+            set_view_sample_writes(&mut row, s);
             row.set_timing("gpu_ms", t).set("dispatches", t.last.dispatches);
             if let Some(lw1) = lw1 {
                 row.set("speedup_over_lw1", lw1.median() / t.median());
