@@ -69,12 +69,13 @@ layout(constant_id = 13) const bool PACKED = false;
 // texels where this block's runs end; its texel invocations march and store
 // them (write_claimed_texel), the pixels' sample loop stores nothing.
 layout(constant_id = 14) const bool TEXEL_PASS = false;
-// ipsvi.read_fronts = "per-texel" (piecewise integration): a read carries each of its
-// four texels' values from that texel's own depth along the light to the
-// sample (one march, the medium fetched once per step for all four), not
-// their blend from the blended depth (the paper's one `res` lookup). Texels
-// written at different lines then no longer average a fresh and a stale
-// depth into one that fits neither (see through_fronts).
+// ipsvi.read_fronts = "per-texel" (piecewise integration): a read groups its
+// four texels by the cache plane their fronts lie on and carries each value
+// from its group's blended depth to the sample (one march, the medium fetched
+// once per step for all four), not all four from one blended depth (the
+// paper's one `res` lookup). Texels written lines apart then no longer
+// average a fresh and a stale depth into one that fits neither (see
+// through_fronts).
 layout(constant_id = 15) const bool PER_TEXEL_FRONTS = false;
 const uint TERMINATION_OFF = 0u;
 const uint TERMINATION_PLAIN = 1u;

@@ -21,8 +21,9 @@ pub struct IpsviSettings {
     /// Piecewise integration from each sample toward the cache front (section 4.4).
     pub piecewise: bool,
     /// Piecewise integration: the march back to the cache from the blended
-    /// depth of the four texels read (the paper's) or from each texel's own
-    /// depth; `auto` (default): per texel on texels finer than half a pixel.
+    /// depth of the four texels read (the paper's) or per group of them on
+    /// one cache plane; `auto` (default): per texel on texels finer than half
+    /// a pixel.
     #[serde(deserialize_with = "from_name")]
     pub read_fronts: ReadFronts,
     /// When view rays stop (section 5.1).
@@ -182,7 +183,7 @@ impl IpsviSettings {
     /// (`read_fronts` resolved against the cache texel's width in a `width` x
     /// `height` image of `scene`).
     pub fn per_texel_fronts(&self, scene: &Scene, width: u32, height: u32) -> bool {
-        self.piecewise && self.read_fronts.per_texel(texel_pixels(scene, self, width, height))
+        self.piecewise && self.read_fronts.per_texel(|| texel_pixels(scene, self, width, height))
     }
 
     /// Whether view-sample writes are computed and stored per texel:
