@@ -169,16 +169,17 @@ const POINT_TOLERANCE: f64 = 0.035;
 /// measured 1.13 (storing at the sample's own depth instead of the plane
 /// crossing: 1.25, which this bound rejects).
 const NON_EMPTY_OVER_LIGHT_RAYS: f64 = 1.2;
-/// `write_rule = "every-sample"` (Listing 4.1: empty samples write too), same
-/// scenes and cache: 1.5% directional, 3% point and spot. Measured on lavapipe
-/// 0.95% directional and 0.36-1.96% point and spot (non-empty 0.97% and
-/// 0.38-2.36%), so the bounds keep about half of the measured error as margin.
+/// `write_rule = "every-sample"` (Listing 4.1: empty samples write too; the
+/// default), same scenes and cache: 1.4% directional, 3% point and spot, each
+/// tighter than non-empty's. Measured on lavapipe 0.95% directional and
+/// 0.36-1.96% point and spot (non-empty 0.97% and 0.38-2.36%), so the bounds
+/// keep about half of the measured error as margin.
 /// Why it is tighter: every run end, empty ones included, moves its texel's
 /// depth to the current line, so a reader marches back about one line, never
 /// to a depth written many lines before, and a reader nearer the light than the
 /// stored depth (over-attenuated, see above) is rare: the writes keep pace with
 /// the sweep.
-const EVERY_SAMPLE_DIRECTIONAL_TOLERANCE: f64 = 0.015;
+const EVERY_SAMPLE_DIRECTIONAL_TOLERANCE: f64 = 0.014;
 const EVERY_SAMPLE_POINT_TOLERANCE: f64 = 0.03;
 
 #[test]
