@@ -68,6 +68,13 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     }
     assert!(ok, "the script exits 0 when every part passed");
     assert_eq!(report["failed_parts"], 0);
+    // The layer's version beside the driver's API version, for every reader of the report.
+    let layer = report["validation_layer"].as_str().unwrap_or_default();
+    assert!(layer.starts_with("VK_LAYER_KHRONOS_validation 1."), "{report:#}");
+    let validated = report["validated_device"].as_str().unwrap_or_default();
+    assert!(validated.contains("Vulkan 1.") && validated.contains("validation on (layer 1."), "{report:#}");
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("- validation layer: VK_LAYER_KHRONOS_validation 1."), "{md}");
     assert!(out.join("compare/ipsvi.json").exists() && out.join("bench-sync").is_dir());
     assert!(out.join("bench-ipsvi-modes/ipsvi.json").exists(), "the error against time per mode");
     // The ground truth is rendered once per model: phong, reference and ao reuse dvr's

@@ -111,3 +111,27 @@ fn calibrated_timestamps_put_gpu_scopes_on_the_host_timeline() {
     assert!((ts * 1e3 - origin).abs() < 1e3, "trace ts {ts} us against origin {origin} ns");
     assert_validation_clean(&ctx);
 }
+
+/// A validated context names its layer's version (every validated run's
+/// header prints it beside the driver's API version) and enables no device
+/// extension that layer does not know, so a layer older than the driver
+/// cannot fail a run with a warning about the engine's own choice.
+#[test]
+fn a_validated_context_names_its_layer_and_enables_only_extensions_it_knows() {
+    use std::ffi::CString;
+    use sweeplab::vk::layer_extensions::layer_knows;
+    let ctx = validated_context();
+    let layer = ctx.validation_layer.clone().expect("the layer's version");
+    assert!(ctx.summary().contains(&format!("validation on (layer {layer})")), "{}", ctx.summary());
+    let parts: Vec<u32> = layer.split('.').map(|p| p.parse().unwrap()).collect();
+    let version = ash::vk::make_api_version(0, parts[0], parts[1], parts[2]);
+    assert!(!ctx.device_extensions.is_empty(), "lavapipe offers calibration and push descriptors");
+    for name in &ctx.device_extensions {
+        let c = CString::new(name.as_str()).unwrap();
+        assert!(layer_knows(&c, Some(version)), "{name} enabled, unknown to the layer {layer}");
+    }
+    if ctx.calibrator.is_some() {
+        assert!(ctx.device_extensions.iter().any(|n| n.contains("calibrated_timestamps")), "{:?}", ctx.device_extensions);
+    }
+    assert!(ctx.take_validation_messages().is_empty(), "creating the device warned");
+}

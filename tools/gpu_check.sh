@@ -18,7 +18,8 @@
 #   GPU_CHECK_SIZE         image side of the comparisons (default 256)
 #   GPU_CHECK_BENCH_SIZE   image side of bench sync and bench ipsvi --breakdown (default 512)
 #   GPU_CHECK_TECHNIQUES   comma-separated (default: every technique)
-#   GPU_CHECK_SYNC_ARGS    extra arguments of bench sync (default: a bounded run)
+#   GPU_CHECK_SYNC_ARGS    extra arguments of bench sync (default: every workload, the chain
+#                          calibration included, line widths 1,4,16,32, 6 to 12 rounds within 2 minutes)
 #   GPU_CHECK_IPSVI_ARGS   extra arguments of bench ipsvi --breakdown (default: 6 to 30 rounds
 #                          within 2 minutes, never fewer than 6)
 #   GPU_CHECK_MODES_ARGS   arguments of bench ipsvi's error against time (default: every mode at
@@ -57,7 +58,7 @@ ipsvi_args=${GPU_CHECK_IPSVI_ARGS:---repeat 6 --max-rounds 30 --max-minutes 2}
 size=${GPU_CHECK_SIZE:-256}
 bench_size=${GPU_CHECK_BENCH_SIZE:-512}
 techniques=${GPU_CHECK_TECHNIQUES:-dvr,phong,reference,ipsvi,half-angle,lightvolume,ao}
-sync_args=${GPU_CHECK_SYNC_ARGS:---line-widths 1,4,16,32 --max-rounds 12 --max-minutes 1.5}
+sync_args=${GPU_CHECK_SYNC_ARGS:---line-widths 1,4,16,32 --max-rounds 12 --max-minutes 2}
 modes_args=${GPU_CHECK_MODES_ARGS:---one-at-a-time --line-widths 1 --cache-sizes 256,512 --half-angle-slices --repeat 6 --max-rounds 12 --max-minutes 1}
 lights_args=${GPU_CHECK_LIGHTS_ARGS:---scales 4 --light-counts 2 --scaling-counts 1,4 --error-scales 4 --incremental-passes 1 --repeat 1}
 device_args=()
@@ -127,12 +128,20 @@ fi
 
 total=$(awk -v a="$started_all" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b - a}')
 device=$(grep -m1 -E '^\s*(\*|0)' "$out/logs/devices.log" 2>/dev/null | sed 's/^[ *]*//')
+# The layer's version beside the driver's API version: a layer older than the
+# driver does not know its newest extensions. `sweeplab devices` names the
+# layer; a validated part's first line names the device, its API version and
+# the layer it ran with (and any extension left out for it).
+layer=$(grep -m1 '^validation layer:' "$out/logs/devices.log" 2>/dev/null | sed 's/^validation layer: //')
+validated=$(grep -h -m1 '^device: .*validation on' "$out"/logs/compare-*.log 2>/dev/null | head -n 1)
 failed=$(grep -c '"rc": [1-9]' "$parts_json")
 {
     printf '{\n  "tool": "tools/gpu_check.sh",\n  "date": %s,\n  "host": %s,\n  "device": %s,\n' \
         "$(json_string "$(date -u +%Y-%m-%dT%H:%M:%SZ)")" "$(json_string "$(uname -srm)")" "$(json_string "$device")"
-    printf '  "vulkan": %s,\n  "sizes": {"compare": %d, "bench": %d},\n  "total_seconds": %s,\n  "failed_parts": %d,\n' \
-        "$(json_string "$vulkan_from")" "$size" "$bench_size" "$total" "$failed"
+    printf '  "vulkan": %s,\n  "validation_layer": %s,\n  "validated_device": %s,\n' \
+        "$(json_string "$vulkan_from")" "$(json_string "${layer:-unknown}")" "$(json_string "${validated:-none}")"
+    printf '  "sizes": {"compare": %d, "bench": %d},\n  "total_seconds": %s,\n  "failed_parts": %d,\n' \
+        "$size" "$bench_size" "$total" "$failed"
     printf '  "parts": [\n'
     sed -e 's/^/    /' -e '$!s/$/,/' "$parts_json"
     printf '  ]\n}\n'
@@ -141,6 +150,7 @@ failed=$(grep -c '"rc": [1-9]' "$parts_json")
     echo "# GPU check"
     echo
     echo "- device: ${device:-unknown} (Vulkan loader and layer: $vulkan_from)"
+    echo "- validation layer: ${layer:-unknown}; validated runs: ${validated:-none}"
     echo "- host: $(uname -srm); $(date -u +%Y-%m-%dT%H:%M:%SZ)"
     echo "- comparisons at ${size}x${size}, benches at ${bench_size}; total ${total} s; failed parts: $failed"
     echo

@@ -24,6 +24,9 @@ pub struct RunInfo {
     pub api_version: String,
     pub timestamp_period_ns: f64,
     pub timestamp_valid_bits: u32,
+    /// The validation layer's version where validation was on (empty where off).
+    #[serde(default)]
+    pub validation_layer: String,
     pub host_cpu: String,
     pub host_cores: usize,
     pub sweeplab_version: String,
@@ -52,6 +55,7 @@ impl RunInfo {
             api_version: i.api_version.clone(),
             timestamp_period_ns: f64::from(i.timestamp_period_ns),
             timestamp_valid_bits: i.timestamp_valid_bits,
+            validation_layer: ctx.validation_layer.clone().filter(|_| ctx.validation_enabled()).unwrap_or_default(),
             ..RunInfo::host()
         }
     }
@@ -88,6 +92,7 @@ impl RunInfo {
             ("api_version", self.api_version.clone()),
             ("timestamp_period_ns", self.timestamp_period_ns.to_string()),
             ("timestamp_valid_bits", self.timestamp_valid_bits.to_string()),
+            ("validation_layer", if self.validation_layer.is_empty() { "off".into() } else { self.validation_layer.clone() }),
             ("host_cpu", format!("{} ({} cores)", self.host_cpu, self.host_cores)),
             ("sweeplab", format!("{} at {}", self.sweeplab_version, self.git_commit)),
             ("date", self.date.clone()),

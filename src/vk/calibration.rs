@@ -1,9 +1,10 @@
-//! Calibrated timestamps (`VK_KHR_calibrated_timestamps`, or the EXT version
-//! lavapipe has): one device timestamp and the host's `CLOCK_MONOTONIC` read
+//! Calibrated timestamps (`VK_EXT_calibrated_timestamps`, or the KHR it was
+//! promoted to): one device timestamp and the host's `CLOCK_MONOTONIC` read
 //! together, so the profiler can put GPU scopes on the host's timeline (the
 //! Perfetto trace). Absent on devices without either extension.
 
 use super::error::{VkError, VkResultExt};
+use super::layer_extensions::{self, LeftOut};
 use ash::vk;
 use std::ffi::CStr;
 
@@ -22,21 +23,28 @@ pub struct Calibration {
     pub max_deviation_ns: u64,
 }
 
-/// The calibration extension to enable: KHR where present, else EXT, and only
-/// where the device can calibrate against `CLOCK_MONOTONIC`.
+/// The calibration extension to enable, where the device can calibrate
+/// against `CLOCK_MONOTONIC`: the EXT where the device offers it (the same
+/// functions as the KHR it was promoted to, and known to every validation
+/// layer since 2018), else the KHR where the running validation layer
+/// (`layer`: its header version, `None` without validation) knows it
+/// ([`super::layer_extensions`]). What was left out for the layer comes back
+/// to be said.
 pub fn extension_to_enable(
     entry: &ash::Entry,
     instance: &ash::Instance,
     physical_device: vk::PhysicalDevice,
     available: &[vk::ExtensionProperties],
-) -> Option<&'static CStr> {
+    layer: Option<u32>,
+) -> (Option<&'static CStr>, Vec<LeftOut>) {
     let has = |name: &CStr| available.iter().any(|e| e.extension_name_as_c_str() == Ok(name));
-    let name = if has(ash::khr::calibrated_timestamps::NAME) {
-        ash::khr::calibrated_timestamps::NAME
-    } else if has(ash::ext::calibrated_timestamps::NAME) {
-        ash::ext::calibrated_timestamps::NAME
-    } else {
-        return None;
+    let offered: Vec<&'static CStr> = [ash::ext::calibrated_timestamps::NAME, ash::khr::calibrated_timestamps::NAME]
+        .into_iter()
+        .filter(|n| has(n))
+        .collect();
+    let (usable, left_out) = layer_extensions::choose(&offered, layer);
+    let Some(&name) = usable.first() else {
+        return (None, left_out);
     };
     // SAFETY: a query on a valid physical device; the KHR and EXT entry points
     // are aliases, and the loader resolves whichever the driver exposes.
@@ -48,10 +56,10 @@ pub fn extension_to_enable(
             ash::ext::calibrated_timestamps::Instance::new(entry, instance)
                 .get_physical_device_calibrateable_time_domains(physical_device)
         }
-    }
-    .ok()?;
+    };
     let wanted = [vk::TimeDomainKHR::DEVICE, vk::TimeDomainKHR::CLOCK_MONOTONIC];
-    wanted.iter().all(|d| domains.contains(d)).then_some(name)
+    let calibrates = domains.is_ok_and(|d| wanted.iter().all(|w| d.contains(w)));
+    (calibrates.then_some(name), left_out)
 }
 
 impl Calibrator {

@@ -5,6 +5,7 @@ use super::creation_counts::{CreationCounters, CreationCounts};
 use super::descriptor_pool_shelf::PoolShelf;
 use super::device_info::{self, DeviceInfo};
 use super::error::{VkError, VkResultExt};
+use super::layer_extensions::{self, LeftOut};
 use super::memory::GpuMemory;
 use super::pipeline_cache::{CacheDevice, PipelineCache, PipelineCacheDir};
 use super::pipeline_store::PipelineStore;
@@ -86,6 +87,13 @@ pub struct Context {
     /// Device and host clocks read together, where the device can
     /// ([`super::calibration`]).
     pub calibrator: Option<Arc<Calibrator>>,
+    /// The validation layer's header version (`1.3.239`), where validation is on.
+    pub validation_layer: Option<String>,
+    /// The device extensions enabled.
+    pub device_extensions: Vec<String>,
+    /// Device extensions left out because the validation layer would not know
+    /// them ([`super::layer_extensions`]), each described.
+    pub extensions_left_out: Vec<String>,
     /// The driver's pipeline cache, loaded from and saved to its file.
     pub pipeline_cache: PipelineCache,
     /// Pipelines compiled once and handed out again ([`super::pipeline_store`]).
@@ -109,10 +117,18 @@ fn load_entry() -> Result<ash::Entry, VkError> {
     unsafe { ash::Entry::load() }.map_err(|e| VkError::Loader(e.to_string()))
 }
 
-fn has_layer(entry: &ash::Entry, name: &CStr) -> Result<bool, VkError> {
+/// The header version (`specVersion`) of layer `name`, where it is installed.
+fn layer_version(entry: &ash::Entry, name: &CStr) -> Result<Option<u32>, VkError> {
     // SAFETY: plain enumeration call on a loaded entry.
     let layers = unsafe { entry.enumerate_instance_layer_properties() }.call("vkEnumerateInstanceLayerProperties")?;
-    Ok(layers.iter().any(|l| l.layer_name_as_c_str().map(|n| n == name).unwrap_or(false)))
+    Ok(layers.iter().find(|l| l.layer_name_as_c_str() == Ok(name)).map(|l| l.spec_version))
+}
+
+/// The Khronos validation layer's header version where it is installed
+/// (`sweeplab devices` prints it; a validated run's header too).
+pub fn validation_layer_version() -> Result<Option<String>, VkError> {
+    let entry = load_entry()?;
+    Ok(layer_version(&entry, VALIDATION_LAYER)?.map(device_info::version_string))
 }
 
 fn has_instance_extension(entry: &ash::Entry, layer: Option<&CStr>, name: &CStr) -> Result<bool, VkError> {
@@ -147,7 +163,7 @@ fn create_instance(
     }
     let mut validation_features_ext = false;
     if validate {
-        if !has_layer(entry, VALIDATION_LAYER)? {
+        if layer_version(entry, VALIDATION_LAYER)?.is_none() {
             return Err(VkError::NoValidationLayer);
         }
         layers.push(VALIDATION_LAYER.as_ptr());
@@ -250,6 +266,7 @@ impl Context {
 
     fn create(options: &ContextOptions, surface_extensions: &[&CStr]) -> Result<Context, VkError> {
         let entry = load_entry()?;
+        let layer = if options.validate { layer_version(&entry, VALIDATION_LAYER)? } else { None };
         let debug_utils_ext = has_instance_extension(&entry, None, ash::ext::debug_utils::NAME)? || options.validate;
         let instance =
             create_instance(&entry, options.validate, options.best_practices, debug_utils_ext, surface_extensions)?;
@@ -315,8 +332,8 @@ impl Context {
             }));
         }
         let swapchain = !surface_extensions.is_empty();
-        let (device, int64_atomics, calibration_ext, push_descriptor) =
-            match create_device(&entry, &instance, cand, queue_family, swapchain) {
+        let CreatedDevice { device, int64_atomics, calibration_ext, push_descriptor, enabled, left_out } =
+            match create_device(&entry, &instance, cand, queue_family, swapchain, layer) {
                 Ok(d) => d,
                 Err(e) => return Err(cleanup_instance(e)),
             };
@@ -371,6 +388,9 @@ impl Context {
             wait_reporter: Mutex::new(None),
             shared_specialization: Mutex::new(Vec::new()),
             calibrator,
+            validation_layer: layer.map(device_info::version_string),
+            device_extensions: enabled.iter().map(|n| n.to_string_lossy().into_owned()).collect(),
+            extensions_left_out: left_out.iter().map(|l| l.describe()).collect(),
             descriptor_pools,
             pipeline_cache,
             pipelines: PipelineStore::default(),
@@ -427,14 +447,20 @@ impl Context {
         self.validation.is_some()
     }
 
-    /// The `device:` line the commands print: name, driver, API version, validation.
+    /// The `device:` line the commands print: name, driver, API version, and
+    /// with validation the layer's version beside it (a layer older than the
+    /// driver's extensions is what this line lets a reader see), with what
+    /// was left out for it.
     pub fn summary(&self) -> String {
+        let validation = match &self.validation_layer {
+            Some(layer) if self.validation_enabled() => format!(", validation on (layer {layer})"),
+            _ if self.validation_enabled() => ", validation on".to_string(),
+            _ => String::new(),
+        };
+        let left_out: String = self.extensions_left_out.iter().map(|l| format!("; {l}")).collect();
         format!(
-            "device: {} ({}, Vulkan {}){}",
-            self.info.name,
-            self.info.driver_info,
-            self.info.api_version,
-            if self.validation_enabled() { ", validation on" } else { "" }
+            "device: {} ({}, Vulkan {}){validation}{left_out}",
+            self.info.name, self.info.driver_info, self.info.api_version
         )
     }
 
@@ -489,7 +515,8 @@ fn create_device(
     cand: &Candidate,
     queue_family: u32,
     swapchain: bool,
-) -> Result<(ash::Device, bool, Option<&'static CStr>, bool), VkError> {
+    layer: Option<u32>,
+) -> Result<CreatedDevice, VkError> {
     let mut have12 = vk::PhysicalDeviceVulkan12Features::default();
     let mut have13 = vk::PhysicalDeviceVulkan13Features::default();
     let mut have = vk::PhysicalDeviceFeatures2::default().push_next(&mut have12).push_next(&mut have13);
@@ -531,18 +558,20 @@ fn create_device(
     if !missing.is_empty() {
         return Err(VkError::MissingFeature { device: cand.info.name.clone(), missing: missing.join(", ") });
     }
-    let mut extensions = if swapchain { vec![ash::khr::swapchain::NAME.as_ptr()] } else { Vec::new() };
+    let mut enabled: Vec<&'static CStr> = if swapchain { vec![ash::khr::swapchain::NAME] } else { Vec::new() };
     // Calibrated timestamps put GPU scopes on the host's timeline (the trace).
-    let calibration_ext = calibration::extension_to_enable(entry, instance, cand.physical_device, &device_extensions);
-    if let Some(name) = calibration_ext {
-        extensions.push(name.as_ptr());
-    }
-    let push_descriptor = device_extensions
+    let (calibration_ext, mut left_out) =
+        calibration::extension_to_enable(entry, instance, cand.physical_device, &device_extensions, layer);
+    enabled.extend(calibration_ext);
+    let offers_push_descriptor = device_extensions
         .iter()
         .any(|e| e.extension_name_as_c_str().map(|n| n == ash::khr::push_descriptor::NAME).unwrap_or(false));
-    if push_descriptor {
-        extensions.push(ash::khr::push_descriptor::NAME.as_ptr());
-    }
+    let (pushed, push_left_out) =
+        layer_extensions::choose(if offers_push_descriptor { &[ash::khr::push_descriptor::NAME] } else { &[] }, layer);
+    left_out.extend(push_left_out);
+    let push_descriptor = !pushed.is_empty();
+    enabled.extend(pushed);
+    let extensions: Vec<*const std::ffi::c_char> = enabled.iter().map(|n| n.as_ptr()).collect();
     // 64-bit atomicMax of IPSVI's deterministic cache writes: enabled where the
     // device has it; IPSVI refuses to render without it (`Context::int64_atomics`).
     let int64_atomics = int64 == vk::TRUE && have12.shader_buffer_int64_atomics == vk::TRUE;
@@ -567,7 +596,17 @@ fn create_device(
         .push_next(&mut want13);
     // SAFETY: all pointers in `info` refer to locals that outlive the call.
     let device = unsafe { instance.create_device(cand.physical_device, &info, None) }.call("vkCreateDevice")?;
-    Ok((device, int64_atomics, calibration_ext, push_descriptor))
+    Ok(CreatedDevice { device, int64_atomics, calibration_ext, push_descriptor, enabled, left_out })
+}
+
+/// What [`create_device`] made and chose.
+struct CreatedDevice {
+    device: ash::Device,
+    int64_atomics: bool,
+    calibration_ext: Option<&'static CStr>,
+    push_descriptor: bool,
+    enabled: Vec<&'static CStr>,
+    left_out: Vec<LeftOut>,
 }
 
 impl Drop for Context {

@@ -13,6 +13,7 @@ pub mod device_info;
 pub mod error;
 pub mod events;
 pub mod interface;
+pub mod layer_extensions;
 pub mod limits;
 pub mod memory;
 pub mod pipeline;

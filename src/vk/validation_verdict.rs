@@ -1,5 +1,8 @@
 //! What a run's validation messages amount to: best-practices advice is
 //! counted per message id (advice, not a failure); anything else fails the run.
+//! A layer that does not know an enabled extension fails it too, and says so
+//! by name: the layer is older than the driver, which no test on one machine
+//! would catch (`super::layer_extensions` keeps such extensions out).
 
 use std::collections::BTreeMap;
 
@@ -11,13 +14,21 @@ pub struct ValidationVerdict {
     pub advice: BTreeMap<String, usize>,
     /// Messages that are not best-practices advice.
     pub failures: usize,
+    /// Extensions the layer said it does not know (among the failures).
+    pub unknown_extensions: Vec<String>,
 }
 
 impl ValidationVerdict {
     pub fn of(messages: Vec<String>) -> ValidationVerdict {
         let mut advice = BTreeMap::new();
         let mut failures = 0;
+        let mut unknown_extensions: Vec<String> = Vec::new();
         for m in &messages {
+            if let Some(name) = super::layer_extensions::unknown_extension_in(m) {
+                if !unknown_extensions.iter().any(|n| n == name) {
+                    unknown_extensions.push(name.to_string());
+                }
+            }
             if m.contains("BestPractices") {
                 // The layer writes the id as `[ BestPractices-... ]`.
                 let id = m.split("[ ").nth(1).and_then(|r| r.split(' ').next()).unwrap_or("?");
@@ -26,7 +37,7 @@ impl ValidationVerdict {
                 failures += 1;
             }
         }
-        ValidationVerdict { messages, advice, failures }
+        ValidationVerdict { messages, advice, failures, unknown_extensions }
     }
 
     pub fn failed(&self) -> bool {
@@ -44,6 +55,14 @@ impl ValidationVerdict {
         if !self.advice.is_empty() {
             lines.push(format!("best practices: {} message(s)", self.advice.values().sum::<usize>()));
             lines.extend(self.advice.iter().map(|(id, n)| format!("  {n:>5}  {id}")));
+        }
+        if !self.unknown_extensions.is_empty() {
+            lines.push(format!(
+                "validation: the layer does not know {}, which the device enabled: the layer is older than \
+                 the driver, and its checks may miss what that extension does (add the extension to \
+                 src/vk/layer_extensions.rs, which leaves such extensions out for older layers)",
+                self.unknown_extensions.join(", ")
+            ));
         }
         lines
     }
@@ -75,5 +94,23 @@ mod tests {
             "Validation Error: [ SYNC-HAZARD-READ-AFTER-WRITE ] ...".into(),
         ]);
         assert_eq!((hazard.failures, hazard.failed()), (1, true));
+        assert!(hazard.unknown_extensions.is_empty());
+    }
+
+    /// The H200 run's one message: a layer older than the driver's extension.
+    /// It fails the run, and the report names it as that, not as an error of
+    /// the engine's own.
+    #[test]
+    fn a_layer_that_does_not_know_an_extension_fails_the_run_and_says_why() {
+        let message = "[WARNING VALIDATION] Validation Warning: [ VUID_Undefined ] Object 0: handle = 0x1, type = \
+                       VK_OBJECT_TYPE_DEVICE; | MessageID = 0x79de34d4 | Device Extension \
+                       VK_KHR_calibrated_timestamps is not supported by this layer.  Using this extension may \
+                       adversely affect validation results and/or produce undefined behavior.";
+        let v = ValidationVerdict::of(vec![message.into()]);
+        assert!(v.failed(), "never passed over in silence");
+        assert_eq!(v.unknown_extensions, ["VK_KHR_calibrated_timestamps"]);
+        let lines = v.report_lines(true);
+        let named = lines.iter().find(|l| l.contains("the layer does not know VK_KHR_calibrated_timestamps"));
+        assert!(named.is_some_and(|l| l.contains("older than the driver")), "{lines:?}");
     }
 }
