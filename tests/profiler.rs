@@ -131,7 +131,11 @@ fn a_validated_context_names_its_layer_and_enables_only_extensions_it_knows() {
         assert!(layer_knows(&c, Some(version)), "{name} enabled, unknown to the layer {layer}");
     }
     if ctx.calibrator.is_some() {
-        assert!(ctx.device_extensions.iter().any(|n| n.contains("calibrated_timestamps")), "{:?}", ctx.device_extensions);
+        assert!(
+            ctx.device_extensions.iter().any(|n| n.contains("calibrated_timestamps")),
+            "{:?}",
+            ctx.device_extensions
+        );
     }
     assert!(ctx.take_validation_messages().is_empty(), "creating the device warned");
 }

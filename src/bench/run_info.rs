@@ -92,7 +92,10 @@ impl RunInfo {
             ("api_version", self.api_version.clone()),
             ("timestamp_period_ns", self.timestamp_period_ns.to_string()),
             ("timestamp_valid_bits", self.timestamp_valid_bits.to_string()),
-            ("validation_layer", if self.validation_layer.is_empty() { "off".into() } else { self.validation_layer.clone() }),
+            (
+                "validation_layer",
+                if self.validation_layer.is_empty() { "off".into() } else { self.validation_layer.clone() },
+            ),
             ("host_cpu", format!("{} ({} cores)", self.host_cpu, self.host_cores)),
             ("sweeplab", format!("{} at {}", self.sweeplab_version, self.git_commit)),
             ("date", self.date.clone()),

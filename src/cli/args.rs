@@ -210,8 +210,9 @@ pub struct BenchSyncArgs {
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4, 8, 16, 32])]
     pub line_widths: Vec<u32>,
     /// What each line dispatch does: `sweep` (the scene's IPSVI frame),
-    /// `empty` (shaders that return at once: dispatches and sync alone).
-    /// Comma-separated; default both (with --quick: empty).
+    /// `empty` (shaders that return at once: dispatches and sync alone),
+    /// `chain` (the calibration: per line a dependent chain of known length).
+    /// Comma-separated; default all three (with --quick: empty).
     #[arg(long, value_delimiter = ',')]
     pub workloads: Option<Vec<String>>,
     /// Untimed rounds of every configuration first (shader compiles, caches).
@@ -237,7 +238,8 @@ pub struct BenchSyncArgs {
     /// Seed of the shuffled round orders (default: from the clock; recorded in sync.json).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Leave out the frames with a timestamp around every line dispatch.
+    /// Leave out the baseline's frames with a timestamp around every line
+    /// dispatch (the timestamps' own effect) and the traced frames.
     #[arg(long)]
     pub no_line_timestamps: bool,
     /// About a minute on lavapipe: the empty workload (the sync primitives

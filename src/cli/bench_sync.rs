@@ -1,15 +1,14 @@
 //! `sweeplab bench sync`: arguments to a [`SyncPlan`], the study
 //! (`sweeplab::bench::experiments::sync`, its files written after every round
-//! by `sync_progress`), and the verdict.
+//! by `sync::progress`), and the verdict.
 
 use super::args::BenchSyncArgs;
 use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Duration;
-use sweeplab::bench::experiments::sync::{self, SyncPlan, Workload};
-use sweeplab::bench::experiments::sync_progress::RoundFiles;
-use sweeplab::bench::experiments::sync_report;
+use sweeplab::bench::experiments::sync::progress::RoundFiles;
+use sweeplab::bench::experiments::sync::{self, files, SyncPlan, Workload};
 use sweeplab::bench::{OutFolder, Protocol, RunInfo};
 use sweeplab::ipsvi::IpsviSettings;
 use sweeplab::ipsvi::SyncStrategy;
@@ -83,16 +82,17 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
         .input("validation", ctx.validation_enabled());
     let mut files = RoundFiles::new(&args.out);
     let report = sync::run(&ctx, &gpu, &scene.settings.get::<IpsviSettings>(), &plan, run_info, &mut files)?;
-    sync_report::write(&report, &args.out)?;
-    sync_report::write_charts(&report, &args.out)?;
+    files::write(&report, &args.out)?;
+    files::write_charts(&report, &args.out)?;
     drop(gpu);
     println!("{}", report.verdict().join("\n"));
     if ctx.validation_enabled() {
         println!("(validation on: these times include the layers' work and say nothing about the device)");
     }
     println!(
-        "wrote {}/sync.md (verdict and tables), sync.json, sync.csv, sync_configurations.csv, \
-         sync_frames_<workload>.png, sync_cost_<workload>.png, sync_gaps_<workload>.png (and .svg)",
+        "wrote {}/sync.md (verdict and tables), sync.json, sync.csv, sync_calibration.csv, \
+         sync_configurations.csv, trace_<workload>_<strategy>.json (Perfetto), sync_frames_<workload>.png, \
+         sync_cost_<workload>.png, sync_calibration.png, sync_gaps_<workload>.png (and .svg)",
         args.out.display()
     );
     out_folder.finish()?;

@@ -1,46 +1,22 @@
 //! `sweeplab report A.json B.json ...`: `bench sync` runs from several devices
-//! side by side (one table, one chart).
+//! side by side (one table, one chart per quantity), every record re-estimated
+//! by this build's estimators.
 
 use super::args::ReportArgs;
 use anyhow::Context as _;
 use std::process::ExitCode;
-use sweeplab::bench::experiments::sync::Workload;
-use sweeplab::bench::experiments::sync_report;
+use sweeplab::bench::experiments::sync::{compare, files};
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
-    let reports = args.inputs.iter().map(|p| sync_report::read(p)).collect::<Result<Vec<_>, _>>()?;
+    let reports = args.inputs.iter().map(|p| files::read(p)).collect::<Result<Vec<_>, _>>()?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
-    let table = sync_report::side_by_side(&reports);
+    let table = compare::side_by_side(&reports);
     table.write_csv(args.out.join("report.csv"))?;
-    let mut md = String::from("# bench sync, side by side\n\n");
-    for (path, r) in args.inputs.iter().zip(&reports) {
-        md.push_str(&format!(
-            "- `{}`: {} ({} {}), {}x{}, rounds {}, {} at {}, {}\n",
-            path.display(),
-            r.run.device,
-            r.run.driver_name,
-            r.run.driver_version,
-            r.width,
-            r.height,
-            r.rounds_text(),
-            r.run.sweeplab_version,
-            r.run.git_commit,
-            r.run.date
-        ));
-    }
-    md.push('\n');
-    md.push_str(&table.to_markdown());
-    std::fs::write(args.out.join("report.md"), &md).context("writing report.md")?;
-    for workload in Workload::ALL {
-        if reports.iter().any(|r| r.rounds_of(workload) > 0) {
-            sync_report::plot_side_by_side(
-                &reports,
-                workload,
-                &args.out.join(format!("report_{}.png", workload.name())),
-            )?;
-        }
-    }
+    let named: Vec<(String, _)> =
+        args.inputs.iter().map(|p| p.display().to_string()).zip(reports.iter().cloned()).collect();
+    std::fs::write(args.out.join("report.md"), compare::markdown(&named)).context("writing report.md")?;
+    let charts = compare::plot_side_by_side(&reports, &args.out)?;
     println!("{}", table.to_markdown());
-    println!("wrote {}/report.md, report.csv and report_<workload>.png (and .svg)", args.out.display());
+    println!("wrote {}/report.md, report.csv and {} (and .svg)", args.out.display(), charts.join(", "));
     Ok(ExitCode::SUCCESS)
 }

@@ -15,7 +15,7 @@ use super::merged_steps::{self, LineDispatch};
 use super::settings::{EarlyTermination, IpsviSettings};
 use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
 use super::sync::{
-    record_sweeps, EveryOther, GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, RerecordedSweeps, SplitBarriers,
+    record_sweeps, GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, RerecordedSweeps, SplitBarriers,
     SubmissionPerBlock, Unsynchronized,
 };
 use super::sync_strategy::SyncStrategy;
@@ -520,17 +520,13 @@ impl<'a> IpsviRenderer<'a> {
         Ok(self.secondaries.get_or_init(|| recorded))
     }
 
-    /// The synchronization object of `sync` for one frame; `every_other`: only
-    /// after blocks 0, 2, 4, ... ([`EveryOther`], `bench sync`'s per-line timing).
-    fn line_sync(&self, sync: SyncStrategy, every_other: bool) -> Result<Box<dyn LineSync + '_>, RenderError> {
-        if every_other {
-            // Per-line timestamps need the frame's queries in the secondary, so
-            // `secondary` records its sweeps for this frame instead of replaying.
-            let inner: Box<dyn LineSync + '_> = match sync {
-                SyncStrategy::Secondary => Box::new(RerecordedSweeps::default()),
-                _ => self.line_sync(sync, false)?,
-            };
-            return Ok(Box::new(EveryOther::new(inner)));
+    /// The synchronization object of `sync` for one frame; `timed_lines`
+    /// (the profiler's per-line scopes on): `secondary` records its sweeps
+    /// into secondaries for this frame, since a recording replayed every frame
+    /// cannot hold one frame's queries (`bench sync`'s traces).
+    fn line_sync(&self, sync: SyncStrategy, timed_lines: bool) -> Result<Box<dyn LineSync + '_>, RenderError> {
+        if timed_lines && sync == SyncStrategy::Secondary {
+            return Ok(Box::new(RerecordedSweeps::default()));
         }
         let cache = &self.cache;
         Ok(match sync {
@@ -551,32 +547,14 @@ impl<'a> IpsviRenderer<'a> {
 
     /// Records, submits and waits for one frame with the given synchronization:
     /// [`record`](Self::record) and the read-back, in one submission (several
-    /// for `submits`).
+    /// for `submits`). With the profiler's per-line scopes on, `secondary`'s
+    /// sweeps are recorded for the frame so that its lines are timed too.
     pub fn frame(&mut self, profiler: &mut Profiler, sync: SyncStrategy) -> Result<FrameResult, RenderError> {
-        self.frame_at(profiler, sync, false)
-    }
-
-    /// [`frame`](Self::frame) with `sync` after every other block only
-    /// ([`EveryOther`]): racy, for timing boundaries with and without it in
-    /// one frame (`bench sync`); its image is undefined.
-    pub fn frame_every_other(
-        &mut self,
-        profiler: &mut Profiler,
-        sync: SyncStrategy,
-    ) -> Result<FrameResult, RenderError> {
-        self.frame_at(profiler, sync, true)
-    }
-
-    fn frame_at(
-        &mut self,
-        profiler: &mut Profiler,
-        sync: SyncStrategy,
-        every_other: bool,
-    ) -> Result<FrameResult, RenderError> {
         let this = &*self;
+        let timed_lines = profiler.detail();
         // The recorded frame (and what it keeps alive) outlives the submission.
         let (frame, dispatches, barriers) = submit_and_wait_or(this.ctx, "frame", |rec| {
-            let frame = this.record_with(rec, profiler, this.line_sync(sync, every_other)?)?;
+            let frame = this.record_with(rec, profiler, this.line_sync(sync, timed_lines)?)?;
             frame.output.record_readback(rec, &this.readback);
             Ok::<_, RenderError>((frame, rec.dispatch_count, rec.barrier_count))
         })?;

@@ -20,6 +20,9 @@ pub struct Chart {
     /// A line under the chart naming what produced it (device, driver,
     /// commit, date: [`RunInfo::caption`](crate::bench::RunInfo::caption)).
     pub caption: Option<String>,
+    /// Names of a categorical x axis: category i is drawn at x = i and its
+    /// name stands under it (empty: a numeric axis).
+    pub categories: Vec<String>,
 }
 
 impl Chart {
@@ -34,7 +37,15 @@ impl Chart {
             width: 900,
             height: 600,
             caption: None,
+            categories: Vec::new(),
         }
+    }
+
+    /// A categorical x axis: the points of category i at x = i (offsets within
+    /// +-0.5 keep several series apart), its name under it.
+    pub fn categories(mut self, names: impl IntoIterator<Item = impl Into<String>>) -> Self {
+        self.categories = names.into_iter().map(Into::into).collect();
+        self
     }
 
     pub fn x_scale(mut self, scale: AxisScale) -> Self {

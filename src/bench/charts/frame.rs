@@ -43,11 +43,21 @@ pub(super) fn xy_frame<'a, DB: DrawingBackend>(
         .y_label_area_size(widest_y + (size * 2.2) as u32);
     let mut context = builder.build_cartesian_2d(x_axis, y_axis)?;
     let format = |v: &f64| tick_label(*v);
+    // A categorical axis ticks on whole numbers (at most ten categories take
+    // a step of 1) and names each.
+    let category = |v: &f64| {
+        let i = v.round();
+        let named = (v - i).abs() < 1e-6 && i >= 0.0;
+        named.then(|| chart.categories.get(i as usize).cloned()).flatten().unwrap_or_default()
+    };
+    let x_format: &dyn Fn(&f64) -> String = if chart.categories.is_empty() { &format } else { &category };
+    let x_labels = if chart.categories.is_empty() { 10 } else { chart.categories.len().clamp(1, 10) };
     context
         .configure_mesh()
         .x_desc(chart.x_label.as_str())
         .y_desc(chart.y_label.as_str())
-        .x_label_formatter(&format)
+        .x_labels(x_labels)
+        .x_label_formatter(x_format)
         .y_label_formatter(&format)
         .label_style(text(size))
         .axis_desc_style(text(size))

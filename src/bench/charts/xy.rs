@@ -16,7 +16,7 @@ use super::figure::{render, write, Figure, Target};
 use super::frame::{xy_frame, XyChart};
 use super::legend::{Entry, Legend, Sample, MARKER_RADIUS};
 use super::marker::draw_marker;
-use super::scale::ScaledAxis;
+use super::scale::{AxisScale, ScaledAxis};
 use super::series::{Point, Series};
 use super::style::{label_size, palette_color, rgb, series_marker, text, FRONT};
 use crate::bench::pareto::pareto_front;
@@ -158,7 +158,11 @@ impl Figure for XyFigure<'_> {
         let shows = |p: &Point| x_scale.transform(p.x).is_some() && y_scale.transform(p.y).is_some();
         let hidden = self.points().filter(|p| !shows(p)).count();
         let shown = || self.points().filter(|p| shows(p));
-        let x_axis = ScaledAxis::fitting(x_scale, shown().map(|p| p.x));
+        let x_axis = if self.chart.categories.is_empty() {
+            ScaledAxis::fitting(x_scale, shown().map(|p| p.x))
+        } else {
+            ScaledAxis::between(AxisScale::Linear, -0.5, self.chart.categories.len() as f64 - 0.5)
+        };
         let y_values = shown().flat_map(|p| {
             let (low, high) = p.interval.unwrap_or((p.y, p.y));
             [p.y, low, high]

@@ -13,9 +13,6 @@ pub mod stability;
 pub mod stability_bench;
 pub mod stability_cases;
 pub mod sync;
-pub mod sync_budget;
-pub mod sync_progress;
-pub mod sync_report;
 pub mod table1_bench;
 
 pub use error::ExperimentError;

@@ -7,7 +7,6 @@
 mod barrier_global;
 mod barrier_image;
 mod events;
-mod every_other;
 mod racy;
 mod secondary;
 mod submits;
@@ -15,7 +14,6 @@ mod submits;
 pub use barrier_global::GlobalBarrier;
 pub use barrier_image::ImageBarriers;
 pub use events::SplitBarriers;
-pub use every_other::EveryOther;
 pub use racy::Unsynchronized;
 pub use secondary::{record_sweeps, ReplayedSweeps, RerecordedSweeps};
 pub use submits::SubmissionPerBlock;

@@ -31,10 +31,10 @@ impl LineSync for ReplayedSweeps<'_> {
     }
 }
 
-/// `secondary` with per-line timestamps (`bench sync`'s in-frame pairing):
-/// each sweep's blocks and the global barrier after each, recorded into a
-/// secondary command buffer for this frame (the profiler's queries are the
-/// frame's) and executed from the primary. The device runs what
+/// `secondary` with per-line timestamps (`bench sync`'s traces): each sweep's
+/// blocks and the global barrier after each, recorded into a secondary
+/// command buffer for this frame (the profiler's queries are the frame's)
+/// and executed from the primary. The device runs what
 /// [`ReplayedSweeps`] replays, barriers inside a secondary; only the host's
 /// recording is per frame, and that is outside the timestamps.
 #[derive(Default)]

@@ -1,11 +1,12 @@
 //! `bench sync` as it runs: its files rewritten after every round (so an
-//! interrupted run leaves the rows measured so far) and one line on stderr per
-//! round saying where the rounds stand and how long is left.
+//! interrupted run leaves the rows measured so far), each trace written as it
+//! is taken, and one line on stderr per round saying where the rounds stand
+//! and how long is left.
 
-use super::sync::{Eta, SyncObserver, SyncReport, Workload};
-use super::sync_budget::LeftOut;
-use super::{sync_report, ExperimentError};
+use super::budget::LeftOut;
+use super::{files, Eta, SyncObserver, SyncReport, Workload};
 use crate::bench::estimate::MIN_SAMPLES;
+use crate::bench::experiments::ExperimentError;
 use crate::bench::progress::format_duration;
 use std::path::Path;
 use std::time::Duration;
@@ -39,7 +40,7 @@ impl SyncObserver for RoundFiles<'_> {
     }
 
     fn round(&mut self, report: &SyncReport, eta: Eta) -> Result<(), ExperimentError> {
-        sync_report::write(report, self.out)?;
+        files::write(report, self.out)?;
         let state = if eta.round >= MIN_SAMPLES {
             if report.precise_in(eta.workload) {
                 "intervals as narrow as asked".to_string()
@@ -58,6 +59,11 @@ impl SyncObserver for RoundFiles<'_> {
             eta.rounds_left,
             format_duration(eta.time_left)
         );
+        Ok(())
+    }
+
+    fn trace(&mut self, file: &str, trace: &serde_json::Value) -> Result<(), ExperimentError> {
+        files::write_json(&self.out.join(file), trace)?;
         Ok(())
     }
 }

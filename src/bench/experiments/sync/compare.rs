@@ -1,0 +1,183 @@
+//! Several runs (devices) side by side (`sweeplab report`): one table with a
+//! row per device and strategy, each quantity in its own columns ((a) the
+//! fixed cost, (b) the cost per sweep line and its share of the frame, the
+//! calibration's fitted pair), and one chart per quantity, strategies named
+//! on the axis, one series per device, every point with its interval.
+
+use super::files::{verdict_word, y_scale};
+use super::report::SyncReport;
+use super::{Workload, BASELINE, CONTROL};
+use crate::bench::estimate::Estimate;
+use crate::bench::rows::{BenchRow, BenchTable};
+use crate::bench::{plot_points, BenchError, Chart, Point, Series};
+use std::path::Path;
+
+/// The strategies any report measured, in first-seen order, the baseline and
+/// control left out.
+fn strategies(reports: &[SyncReport]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for r in reports {
+        let from_rows = r.strategies.iter().map(|s| s.strategy.as_str());
+        let from_fits = r.calibration.iter().map(|f| f.strategy.as_str());
+        for name in from_rows.chain(from_fits) {
+            if name != BASELINE && name != CONTROL && !names.iter().any(|n| n == name) {
+                names.push(name.to_string());
+            }
+        }
+    }
+    names
+}
+
+/// A device's label: name, driver, date.
+pub fn device_label(r: &SyncReport) -> String {
+    format!("{} ({}), {}", r.run.device, r.run.driver_version, r.run.date.get(..10).unwrap_or(&r.run.date))
+}
+
+/// One row per device and arm (the baseline, the control, each strategy).
+pub fn side_by_side(reports: &[SyncReport]) -> BenchTable {
+    let mut table = BenchTable::new();
+    for report in reports {
+        let arms =
+            [BASELINE.to_string(), CONTROL.to_string()].into_iter().chain(strategies(std::slice::from_ref(report)));
+        for arm in arms {
+            let empty = report.row(Workload::Empty, &arm);
+            let sweep = report.row(Workload::Sweep, &arm);
+            let fit = report.calibration.iter().find(|f| f.strategy == arm);
+            if empty.is_none() && sweep.is_none() && fit.is_none() {
+                continue;
+            }
+            let mut row = BenchRow::new();
+            row.set("device", report.run.device.as_str()).set("driver", report.run.driver_version.as_str());
+            row.set("commit", report.run.git_commit.as_str()).set("date", report.run.date.as_str());
+            row.set("size", format!("{}x{}", report.width, report.height)).set("strategy", arm.as_str());
+            if arm == BASELINE {
+                // The dispatch alone, and the frame without barriers.
+                row.set_estimate("fixed_us", empty.and_then(|r| r.boundary_us));
+                row.set_estimate("sweep_frame_ms", sweep.and_then(|r| r.frame_ms));
+            } else {
+                let fixed = empty.and_then(|r| r.fixed_cost());
+                let per_line = sweep.and_then(|r| r.serialization());
+                row.set_estimate("fixed_us", fixed).set("fixed_verdict", verdict_word(fixed));
+                row.set_estimate("sweep_per_line_us", per_line).set("sweep_verdict", verdict_word(per_line));
+                row.set_estimate("sweep_share", sweep.and_then(|r| r.frame_share));
+                row.set_estimate("sweep_frame_ms", sweep.and_then(|r| r.frame_ms));
+            }
+            row.set_estimate("chain_fixed_us", fit.and_then(|f| f.fixed_us));
+            row.set_estimate("chain_fraction", fit.and_then(|f| f.fraction));
+            table.push(row);
+        }
+    }
+    table
+}
+
+/// The Markdown of `sweeplab report`: each input named with its run, the
+/// table, and per device the per-line timestamps' effect.
+pub fn markdown(inputs: &[(String, SyncReport)]) -> String {
+    let mut md = String::from("# bench sync, side by side\n\n");
+    for (path, r) in inputs {
+        md.push_str(&format!(
+            "- `{path}`: {} ({} {}), {}x{}, rounds {}, {} at {}, {}; command: `{}`\n",
+            r.run.device,
+            r.run.driver_name,
+            r.run.driver_version,
+            r.width,
+            r.height,
+            r.rounds_text(),
+            r.run.sweeplab_version,
+            r.run.git_commit,
+            r.run.date,
+            r.run.command
+        ));
+    }
+    let reports: Vec<SyncReport> = inputs.iter().map(|(_, r)| r.clone()).collect();
+    md.push_str(
+        "\nus per line boundary over no barriers with 95 % intervals: `fixed_us` is (a), the empty workload \
+         (for no-barriers: the dispatch alone); `sweep_per_line_us` is (b), the sweep's frame minus the frame \
+         without barriers per line, `sweep_share` its share of the frame; `chain_*` the calibration's fitted \
+         fixed cost and serialized fraction.\n\n",
+    );
+    md.push_str(&side_by_side(&reports).to_markdown());
+    md.push_str("\n## Verdicts\n\n");
+    for (path, r) in inputs {
+        md.push_str(&format!("### {} (`{path}`)\n\n```\n", device_label(r)));
+        for line in r.verdict() {
+            md.push_str(&line);
+            md.push('\n');
+        }
+        md.push_str("```\n\n");
+    }
+    md
+}
+
+/// One chart of one quantity: per device a series over the strategies.
+fn quantity_chart(
+    reports: &[SyncReport],
+    names: &[String],
+    path: &Path,
+    title: &str,
+    y_label: &str,
+    pick: &dyn Fn(&SyncReport, &str) -> Option<Estimate>,
+) -> Result<(), BenchError> {
+    // Each device a little apart at its strategy, so that intervals do not hide each other.
+    let spread = |d: usize| (d as f64 - (reports.len() as f64 - 1.0) / 2.0) * 0.12;
+    let series: Vec<Series> = reports
+        .iter()
+        .enumerate()
+        .map(|(d, r)| {
+            let points = names
+                .iter()
+                .enumerate()
+                .filter_map(|(i, name)| {
+                    let e = pick(r, name)?;
+                    Some(Point::new(i as f64 + spread(d), e.value).with_interval(e.lo, e.hi))
+                })
+                .collect();
+            Series::with_points(device_label(r), points)
+        })
+        .collect();
+    let chart = Chart::new(title, "strategy", y_label).categories(names.iter().cloned()).y_scale(y_scale(&series));
+    plot_points(path, &chart, &series)
+}
+
+/// `report_fixed_cost.png` (a), `report_sweep.png` (b) and, where a report
+/// has the chain workload, `report_calibration.png` (the serialized fraction):
+/// the quantities apart, each with its intervals.
+pub fn plot_side_by_side(reports: &[SyncReport], folder: &Path) -> Result<Vec<String>, BenchError> {
+    let mut written = Vec::new();
+    let names = strategies(reports);
+    if reports.iter().any(|r| r.rounds_of(Workload::Empty) > 0) {
+        quantity_chart(
+            reports,
+            &names,
+            &folder.join("report_fixed_cost.png"),
+            "(a) fixed cost of a line boundary over no barriers (empty workload), 95 % CI",
+            "us per boundary",
+            &|r, s| r.row(Workload::Empty, s).and_then(|r| r.fixed_cost()),
+        )?;
+        written.push("report_fixed_cost.png".into());
+    }
+    if reports.iter().any(|r| r.rounds_of(Workload::Sweep) > 0) {
+        quantity_chart(
+            reports,
+            &names,
+            &folder.join("report_sweep.png"),
+            "(b) cost per line of the sweep over no barriers (frames without per-line timestamps), 95 % CI",
+            "us per line",
+            &|r, s| r.row(Workload::Sweep, s).and_then(|r| r.serialization()),
+        )?;
+        written.push("report_sweep.png".into());
+    }
+    if reports.iter().any(|r| !r.calibration.is_empty()) {
+        let with_baseline: Vec<String> = std::iter::once(BASELINE.to_string()).chain(names.iter().cloned()).collect();
+        quantity_chart(
+            reports,
+            &with_baseline,
+            &folder.join("report_calibration.png"),
+            "calibration: the share of a line's chain latency a boundary exposes, 95 % CI",
+            "serialized fraction",
+            &|r, s| r.calibration.iter().find(|f| f.strategy == s).and_then(|f| f.fraction),
+        )?;
+        written.push("report_calibration.png".into());
+    }
+    Ok(written)
+}
