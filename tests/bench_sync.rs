@@ -17,6 +17,9 @@ fn bench(dir: &Path, extra: &[&str]) -> std::process::Output {
         "sync",
         "--size",
         "12x12",
+        // A small light cache: the sweep's lines stay short (13 ms frames, not 900).
+        "--set",
+        "ipsvi.cache_size=16",
         "--line-widths",
         "1,2",
         "--strategies",
@@ -213,7 +216,8 @@ fn the_chain_workload_fits_a_fraction_near_one_for_every_arm_on_lavapipe() {
 fn a_budget_too_short_for_every_configuration_leaves_some_out_and_says_so() {
     let dir = temp_dir("sync-budget");
     let run = |minutes: &str, line_widths: &str| {
-        let mut args = vec!["bench", "sync", "--size", "12x12", "--strategies", "barrier-global"];
+        let mut args =
+            vec!["bench", "sync", "--size", "12x12", "--set", "ipsvi.cache_size=16", "--strategies", "barrier-global"];
         args.extend(["--min-rounds", "6", "--max-rounds", "6", "--seed", "7", "--workloads", "sweep"]);
         args.extend(["--line-widths", line_widths, "--max-minutes", minutes, "--out", dir.to_str().unwrap()]);
         sweeplab(&args)
@@ -389,7 +393,7 @@ fn a_warm_up_of_long_frames_runs_each_set_of_shaders_once() {
     let mut scene = sweeplab::techniques::default_scene(&[]).unwrap();
     (scene.render.width, scene.render.height) = (12, 12);
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
-    let base = scene.settings.get::<IpsviSettings>();
+    let base = IpsviSettings { cache_size: 16, ..scene.settings.get::<IpsviSettings>().into_owned() };
     let plan = |min_run: Duration, workloads: &[Workload]| SyncPlan {
         width: 12,
         height: 12,

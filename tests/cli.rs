@@ -274,21 +274,21 @@ fn bench_output_folders_hold_no_stale_files() {
         assert!(o.status.success(), "{}", stderr(&o));
     };
     run("barrier-global,events,secondary");
-    assert!(dir.join("lines_sweep_events.json").exists());
-    // Every strategy has per-line timestamps (secondary's from a secondary
-    // recorded for the timestamped frame): gaps that are numbers, not 0 or NaN.
+    assert!(dir.join("trace_sweep_events.json").exists());
+    // Every strategy's traced frame has per-line timestamps (secondary's from
+    // a secondary recorded for that frame): line times that are numbers, not 0 or NaN.
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("sync.json")).unwrap()).unwrap();
-    let row = |s: &str| report["strategies"].as_array().unwrap().iter().find(|r| r["strategy"] == s).unwrap().clone();
+    let trace = |s: &str| report["traces"].as_array().unwrap().iter().find(|r| r["strategy"] == s).unwrap().clone();
     for strategy in ["barrier-global", "secondary"] {
-        let lines = &row(strategy)["line_gaps"]["line_median_us"];
-        assert!(lines.as_f64().is_some_and(|v| v > 0.0), "{strategy}: {}", row(strategy));
+        let lines = &trace(strategy)["line_median_us"];
+        assert!(lines.as_f64().is_some_and(|v| v > 0.0), "{strategy}: {}", trace(strategy));
     }
-    assert!(dir.join("lines_sweep_secondary.json").exists());
+    assert!(dir.join("trace_sweep_secondary.json").exists());
     run("barrier-global");
-    assert!(!dir.join("lines_sweep_events.json").exists(), "a stale file of the first run is left");
-    assert!(!dir.join("lines_sweep_secondary.json").exists(), "a stale file of the first run is left");
-    assert!(dir.join("lines_sweep_barrier-global.json").exists() && dir.join("sync.csv").exists());
+    assert!(!dir.join("trace_sweep_events.json").exists(), "a stale file of the first run is left");
+    assert!(!dir.join("trace_sweep_secondary.json").exists(), "a stale file of the first run is left");
+    assert!(dir.join("trace_sweep_barrier-global.json").exists() && dir.join("sync.csv").exists());
     assert!(dir.join("mine.txt").exists(), "a file the bench did not write was removed");
 }
 

@@ -43,11 +43,13 @@ pub enum BenchCommand {
     /// defaults (450 configurations per size; the progress line shows the time left);
     /// --breakdown takes about 2.5 min at 128-512 on lavapipe with 2 cores.
     Ipsvi(BenchIpsviArgs),
-    /// What one block boundary of the IPSVI sweep costs per sync strategy: the
-    /// slope of frame time over the number of blocks (line widths 1..32), against
-    /// the same dispatches with no barriers, with 95 % intervals from shuffled,
-    /// paired rounds; empty and real workloads; per-line gaps. About 10 minutes
-    /// on lavapipe at the defaults, a minute with --quick.
+    /// What a line boundary of the IPSVI sweep costs per sync strategy, each
+    /// quantity apart with its 95 % interval from shuffled, paired rounds: (a)
+    /// its fixed cost (empty workload), (b) what it costs the sweep per line
+    /// (frames without per-line timestamps), (c) the per-line timestamps' own
+    /// effect, and the calibration (chain workload: fixed cost + serialized
+    /// fraction x chain latency); one Perfetto trace per strategy and
+    /// workload. About 10 minutes on lavapipe at the defaults, a minute with --quick.
     Sync(BenchSyncArgs),
     /// The IPSVI paper's Table 1: frame rates over image size and line width for
     /// engine (CT Engine), aneurism (beside US Baby) and LIDC2 (anisotropic, beside

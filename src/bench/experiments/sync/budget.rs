@@ -5,14 +5,16 @@
 //! budget, the workload measures fewer configurations instead of overrunning:
 //! first the interior line widths (a slope needs the narrowest and the widest;
 //! the ones between only check that frame time is a line), keeping the one
-//! nearest the middle longest; then the widest, after which the workload's
-//! costs come from frame differences at the narrowest width alone (no slope).
+//! nearest the middle longest; then, in the sweep workload, the widest, after
+//! which its costs come from frame differences at the narrowest width alone
+//! (no slope). The empty workload keeps its narrowest and widest: its answer
+//! is a slope, and its frames are short.
 //! The narrowest line width, the A/A control and the baseline's per-line
 //! timestamp frames always stay: they are what the verdict's serialization,
 //! its control and the timestamps' effect read. What was left out, and why,
 //! goes into the report and the verdict.
 
-use super::ConfigKey;
+use super::{ConfigKey, Workload};
 use serde::{Deserialize, Serialize};
 use std::time::Duration;
 
@@ -99,7 +101,7 @@ pub fn fit(keys: &[ConfigKey], run_s: &[f64], rounds: u32, extra_s: f64, time_le
     let all_rounds_s = seconds(&kept);
     let budget = time_left.as_secs_f64();
     let mut dropped = Vec::new();
-    for width in drop_order(keys) {
+    for width in drop_order(keys, keys.first().is_some_and(|k| k.workload != Workload::Empty)) {
         if seconds(&kept) <= budget {
             break;
         }
@@ -131,9 +133,9 @@ pub fn fit(keys: &[ConfigKey], run_s: &[f64], rounds: u32, extra_s: f64, time_le
 }
 
 /// Interior line widths, least wanted first (the one nearest the middle, in
-/// log scale, last; the narrower on a tie), then the widest. The narrowest
-/// always stays.
-fn drop_order(keys: &[ConfigKey]) -> Vec<u32> {
+/// log scale, last; the narrower on a tie), then (`drop_widest`) the widest.
+/// The narrowest always stays.
+fn drop_order(keys: &[ConfigKey], drop_widest: bool) -> Vec<u32> {
     let mut widths: Vec<u32> = keys.iter().map(|k| k.line_width).collect();
     widths.sort_unstable();
     widths.dedup();
@@ -148,14 +150,16 @@ fn drop_order(keys: &[ConfigKey]) -> Vec<u32> {
         d(*a).total_cmp(&d(*b)).then(a.cmp(b))
     });
     let mut order: Vec<u32> = interior.into_iter().rev().collect();
-    order.push(widths[widths.len() - 1]);
+    if drop_widest {
+        order.push(widths[widths.len() - 1]);
+    }
     order
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::experiments::sync::{Arm, Workload};
+    use crate::bench::experiments::sync::Arm;
     use crate::ipsvi::SyncStrategy;
 
     fn keys(widths: &[u32]) -> Vec<ConfigKey> {
@@ -205,6 +209,16 @@ mod tests {
         let out = out.unwrap();
         assert!(out.one_width && out.line_widths == [2, 4, 8, 16, 32] && !out.control, "{out:?}");
         assert!(out.describe().contains("frame differences at it"), "{}", out.describe());
+    }
+
+    #[test]
+    fn the_empty_workload_keeps_its_slope() {
+        let k: Vec<ConfigKey> =
+            keys(&[1, 4, 32]).into_iter().map(|k| ConfigKey { workload: Workload::Empty, ..k }).collect();
+        let f = fit(&k, &vec![1.0; k.len()], 1, 0.0, Duration::ZERO);
+        let widths: std::collections::BTreeSet<u32> = f.kept.iter().map(|&i| k[i].line_width).collect();
+        assert_eq!(widths.into_iter().collect::<Vec<_>>(), [1, 32]);
+        assert!(!f.left_out.unwrap().one_width);
     }
 
     #[test]

@@ -241,7 +241,7 @@ impl<'a> ChainLines<'a> {
         let n = self.invocations as usize;
         let values: Vec<f32> = self.readback.read(2 * n)?;
         // The last line (index lines - 1) wrote the half its side writes.
-        let out = if (self.lines - 1) % 2 == 0 { &values[n..] } else { &values[..n] };
+        let out = if (self.lines - 1).is_multiple_of(2) { &values[n..] } else { &values[..n] };
         let expected = |i: usize| seed(i as u32) + self.lines as f32;
         match (0..n).find(|&i| out[i] != expected(i)) {
             None => Ok(()),

@@ -39,18 +39,16 @@ pub struct ChainSetup {
     pub reduced: Option<String>,
 }
 
-/// The trips of each latency multiple up to `max_multiple`, distinct, ascending.
+/// The trips of each latency multiple up to `max_multiple`, distinct,
+/// ascending. Where the longest would pass [`MAX_TRIPS`], every length keeps
+/// its share of the longest and the longest is the cap (the verdict names the
+/// line latencies reached).
 pub fn trips_for(line_latency_us: f64, trip_ns: f64, max_multiple: f64) -> Vec<u32> {
+    let longest = (max_multiple * line_latency_us * 1e3 / trip_ns.max(1e-3)).min(MAX_TRIPS as f64);
     let mut trips: Vec<u32> = LATENCY_MULTIPLES
         .iter()
         .filter(|&&m| m <= max_multiple + 1e-9)
-        .map(|&m| {
-            if m == 0.0 {
-                0
-            } else {
-                ((m * line_latency_us * 1e3 / trip_ns.max(1e-3)).round() as u64).clamp(1, MAX_TRIPS as u64) as u32
-            }
-        })
+        .map(|&m| if m == 0.0 { 0 } else { ((m / max_multiple * longest).round() as u32).clamp(1, MAX_TRIPS) })
         .collect();
     trips.dedup();
     trips
@@ -126,7 +124,9 @@ mod tests {
         assert!((trips[4] as f64 * 130e-3 - 560.0).abs() < 1.0, "{trips:?}");
         // lavapipe's 15 ms lines at 1.4 us a trip would need 43,000 trips: under the cap.
         assert!(trips_for(15_000.0, 1_400.0, 4.0).iter().all(|&t| t <= MAX_TRIPS));
-        assert_eq!(*trips_for(1e6, 1.0, 4.0).last().unwrap(), MAX_TRIPS, "clamped to the cap");
+        // Past the cap, the lengths keep their shares of the longest.
+        let capped = trips_for(1e6, 1.0, 4.0);
+        assert_eq!(capped, [0, 8192, 16384, 32768, MAX_TRIPS], "{capped:?}");
         assert_eq!(trips_for(0.001, 1e6, 4.0), [0, 1], "lengths that coincide are measured once");
     }
 

@@ -32,13 +32,19 @@ pub(super) fn slope_word(e: Option<Estimate>) -> &'static str {
     }
 }
 
-/// One row per strategy and workload.
-pub fn strategy_table(report: &SyncReport) -> BenchTable {
-    let mut table = BenchTable::with_run(report.run.clone());
-    for r in &report.strategies {
-        table.push(strategy_row(r));
+/// A table of one row per item, named with `report`'s run (for files that
+/// stand alone) or not (for sections of `sync.md`, under its run).
+fn table<T>(report: &SyncReport, named: bool, items: &[T], row: fn(&T) -> BenchRow) -> BenchTable {
+    let mut table = if named { BenchTable::with_run(report.run.clone()) } else { BenchTable::new() };
+    for item in items {
+        table.push(row(item));
     }
     table
+}
+
+/// One row per strategy and workload.
+pub fn strategy_table(report: &SyncReport) -> BenchTable {
+    table(report, true, &report.strategies, strategy_row)
 }
 
 fn strategy_row(r: &StrategyRow) -> BenchRow {
@@ -71,11 +77,7 @@ fn strategy_row(r: &StrategyRow) -> BenchRow {
 
 /// One row per arm of the chain workload's fit.
 pub fn calibration_table(report: &SyncReport) -> BenchTable {
-    let mut table = BenchTable::with_run(report.run.clone());
-    for f in &report.calibration {
-        table.push(calibration_row(f));
-    }
-    table
+    table(report, true, &report.calibration, calibration_row)
 }
 
 fn calibration_row(f: &ChainFit) -> BenchRow {
@@ -93,11 +95,7 @@ fn calibration_row(f: &ChainFit) -> BenchRow {
 
 /// One row per workload: the per-line timestamps' effect.
 pub fn timestamps_table(report: &SyncReport) -> BenchTable {
-    let mut table = BenchTable::new();
-    for t in &report.timestamps {
-        table.push(timestamps_row(t));
-    }
-    table
+    table(report, false, &report.timestamps, timestamps_row)
 }
 
 fn timestamps_row(t: &TimestampEffect) -> BenchRow {
@@ -123,11 +121,7 @@ fn timestamps_row(t: &TimestampEffect) -> BenchRow {
 
 /// One row per traced frame.
 pub fn traces_table(report: &SyncReport) -> BenchTable {
-    let mut table = BenchTable::new();
-    for t in &report.traces {
-        table.push(trace_row(t));
-    }
-    table
+    table(report, false, &report.traces, trace_row)
 }
 
 fn trace_row(t: &TraceSummary) -> BenchRow {
@@ -141,11 +135,7 @@ fn trace_row(t: &TraceSummary) -> BenchRow {
 
 /// One row per configuration.
 pub fn configuration_table(report: &SyncReport) -> BenchTable {
-    let mut table = BenchTable::with_run(report.run.clone());
-    for c in &report.configurations {
-        table.push(configuration_row(c));
-    }
-    table
+    table(report, true, &report.configurations, configuration_row)
 }
 
 fn configuration_row(c: &ConfigRow) -> BenchRow {

@@ -9,10 +9,11 @@ use crate::linear_image::LinearImage;
 use crate::vk::Profiler;
 use ash::vk;
 
-/// One configuration's renderer.
+/// One configuration's renderer (boxed: a renderer holds its descriptors and
+/// images inline, and a study holds dozens).
 pub enum StudyLines<'a> {
-    Ipsvi(IpsviRenderer<'a>),
-    Chain(ChainLines<'a>),
+    Ipsvi(Box<IpsviRenderer<'a>>),
+    Chain(Box<ChainLines<'a>>),
 }
 
 /// What one frame recorded, and its image (the IPSVI frames').

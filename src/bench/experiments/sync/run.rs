@@ -89,6 +89,23 @@ struct Configuration<'a> {
     left_out: bool,
 }
 
+impl<'a> Configuration<'a> {
+    fn new(key: ConfigKey, lines: StudyLines<'a>, line_count: u32, blocks: u32) -> Configuration<'a> {
+        Configuration {
+            key,
+            lines,
+            line_count,
+            blocks,
+            dispatches: 0,
+            barriers: 0,
+            hazards: 0,
+            frames_per_run: 1,
+            last_image: None,
+            left_out: false,
+        }
+    }
+}
+
 /// What the rounds measured so far: every configuration's runs (paired by
 /// index within a workload), each workload's rounds, the chain's set-up and
 /// the traces.
@@ -189,18 +206,9 @@ fn add_line_configs<'a>(
     for key in plan::configurations(study.plan, workload) {
         let s = settings_for(study.base, key.line_width, key.arm.sync(), key.workload);
         let plans = plans(study.gpu, &s, width, height);
-        configs.push(Configuration {
-            key,
-            lines: StudyLines::Ipsvi(IpsviRenderer::with_line_group(study.gpu, &s, width, height, study.line_group)?),
-            line_count: plans.iter().map(|p| p.lines()).sum(),
-            blocks: plans.iter().map(|p| p.dispatches()).sum(),
-            dispatches: 0,
-            barriers: 0,
-            hazards: 0,
-            frames_per_run: 1,
-            last_image: None,
-            left_out: false,
-        });
+        let renderer = IpsviRenderer::with_line_group(study.gpu, &s, width, height, study.line_group)?;
+        let (lines, blocks) = (plans.iter().map(|p| p.lines()).sum(), plans.iter().map(|p| p.dispatches()).sum());
+        configs.push(Configuration::new(key, StudyLines::Ipsvi(Box::new(renderer)), lines, blocks));
     }
     Ok(())
 }
@@ -293,18 +301,8 @@ fn add_chain_configs<'a>(
 ) -> Result<(), ExperimentError> {
     for key in chain_plan::configurations(&study.plan.arms(), &setup.trips) {
         let lines = if key.arm == Arm::Alone { 1 } else { setup.lines };
-        configs.push(Configuration {
-            key,
-            lines: StudyLines::Chain(ChainLines::new(study.ctx, lines, setup.invocations, key.chain_trips)?),
-            line_count: lines,
-            blocks: lines,
-            dispatches: 0,
-            barriers: 0,
-            hazards: 0,
-            frames_per_run: 1,
-            last_image: None,
-            left_out: false,
-        });
+        let chain = ChainLines::new(study.ctx, lines, setup.invocations, key.chain_trips)?;
+        configs.push(Configuration::new(key, StudyLines::Chain(Box::new(chain)), lines, lines));
     }
     Ok(())
 }
