@@ -28,9 +28,13 @@ fn strategies(reports: &[SyncReport]) -> Vec<String> {
     names
 }
 
-/// A device's label: name, driver, date.
+/// A record's label: the device, what ran (scene, size) and when (to the
+/// minute), so that two runs of one device stay apart.
 pub fn device_label(r: &SyncReport) -> String {
-    format!("{} ({}), {}", r.run.device, r.run.driver_version, r.run.date.get(..10).unwrap_or(&r.run.date))
+    let scene = r.run.inputs.iter().find(|(k, _)| k == "scene").map(|(_, v)| v.as_str()).unwrap_or("");
+    let scene = std::path::Path::new(scene).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let when = r.run.date.get(..16).unwrap_or(&r.run.date).replace('T', " ");
+    format!("{}, {scene} {}x{}, {when}", r.run.device, r.width, r.height)
 }
 
 /// One row per device and arm (the baseline, the control, each strategy).
