@@ -30,7 +30,7 @@ use crate::bench::protocol::{Next, Protocol, Rounds};
 use crate::bench::run_info::RunInfo;
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
 use crate::ipsvi::sync::EveryOther;
-use crate::ipsvi::{BreakdownStep, IpsviSettings, SyncStrategy};
+use crate::ipsvi::{BreakdownStep, IpsviSettings, IpsviStudy, SyncStrategy};
 use crate::linear_image::LinearImage;
 use crate::metrics::compare;
 use crate::render::GpuScene;
@@ -611,17 +611,17 @@ pub fn run(
     // One workgroup size for every line width, so the work per pixel is the
     // same and only the number of blocks changes.
     let narrowest = plan.line_widths.iter().copied().min().unwrap_or(1);
-    let first =
-        IpsviRenderer::new(gpu, &settings_for(base, narrowest, SyncStrategy::Racy, Workload::Sweep), width, height)?;
+    let (s, study) = settings_for(base, narrowest, SyncStrategy::Racy, Workload::Sweep);
+    let first = IpsviRenderer::build(gpu, &s, &study, width, height, None)?;
     let line_group = first.line_group();
     drop(first);
     let mut configs = Vec::with_capacity(keys.len());
     for key in keys {
-        let s = settings_for(base, key.line_width, key.arm.sync(), key.workload);
+        let (s, study) = settings_for(base, key.line_width, key.arm.sync(), key.workload);
         let plans = plans(gpu, &s, width, height);
         configs.push(Configuration {
             key,
-            renderer: IpsviRenderer::with_line_group(gpu, &s, width, height, Some(line_group))?,
+            renderer: IpsviRenderer::build(gpu, &s, &study, width, height, Some(line_group))?,
             lines: plans.iter().map(|p| p.lines()).sum(),
             blocks: plans.iter().map(|p| p.dispatches()).sum(),
             dispatches: 0,
@@ -815,19 +815,19 @@ fn fit_members(
     kept
 }
 
-/// A configuration's settings. Every line width does the same work: the claim
-/// pass, which a frame leaves out at line width 1 where it cannot change the
-/// image (`IpsviSettings::records_claims`), stays in at every width, or the
-/// slope over blocks would carry the pass's cost.
-fn settings_for(base: &IpsviSettings, line_width: u32, sync: SyncStrategy, workload: Workload) -> IpsviSettings {
-    IpsviSettings {
-        line_width,
-        sync,
-        breakdown_step: workload.breakdown_step(),
-        merge_sweeps: false,
-        keep_redundant_claims: true,
-        ..base.clone()
-    }
+/// A configuration's settings and study. Every line width does the same work:
+/// the claim pass, which a frame leaves out at line width 1 where it cannot
+/// change the image (`IpsviSettings::records_claims`), stays in at every
+/// width, or the slope over blocks would carry the pass's cost.
+fn settings_for(
+    base: &IpsviSettings,
+    line_width: u32,
+    sync: SyncStrategy,
+    workload: Workload,
+) -> (IpsviSettings, IpsviStudy) {
+    let study =
+        IpsviStudy { breakdown_step: workload.breakdown_step(), keep_redundant_claims: true, ..IpsviStudy::default() };
+    (IpsviSettings { line_width, sync, merge_sweeps: false, ..base.clone() }, study)
 }
 
 /// What one workload's warm-up has run so far.
@@ -1167,8 +1167,8 @@ mod tests {
         let base = IpsviSettings { write_pass: crate::ipsvi::WritePass::Sample, ..IpsviSettings::default() };
         assert!(!base.records_claims(), "line width 1 leaves the claim pass out of a frame");
         for line_width in [1, 2, 32] {
-            let s = settings_for(&base, line_width, SyncStrategy::BarrierGlobal, Workload::Sweep);
-            assert!(s.records_claims(), "line width {line_width}");
+            let (s, study) = settings_for(&base, line_width, SyncStrategy::BarrierGlobal, Workload::Sweep);
+            assert!(s.claims_recorded(study.keep_redundant_claims), "line width {line_width}");
         }
     }
 
