@@ -36,6 +36,10 @@ layout(local_size_x_id = 8) in;
 const uint SEGMENTS = 1u;
 uint line_local_index() { return gl_LocalInvocationID.x; }
 bool line_kernel_ready() { return true; }
+// One atomic per invocation that ran a chain, into one of the block's slots.
+void report_chain() {
+    if (chain > 0u) atomicMax(chains[block_index * CHAIN_SLOTS + gl_LocalInvocationIndex % CHAIN_SLOTS], chain);
+}
 
 // cache_write = "farthest"/"nearest", one dispatch ahead: marches pixel `index`
 // of the next block exactly as shade_pixel will (same samples, same stop) and

@@ -139,11 +139,13 @@ layout(set = 0, binding = 16, r32f) readonly uniform image2D lmax;
 layout(std430, set = 0, binding = 25) buffer Keys { uint64_t keys[]; };
 
 // The frame's shape (src/ipsvi/line_shape.rs), cleared every frame: flags
-// (SHAPE_*), then per block record the longest serial chain any of its
+// (SHAPE_*), then per block record CHAIN_SLOTS maxima of the serial chains its
 // invocations ran (view samples marched, in every pass, plus the steps of
-// every march toward the light). With DIGESTS (tests only) also order-free
-// sums of a hash of every claim and of where every view ray stopped, which
-// two kernels, or two splits of the rays, must give alike.
+// every march toward the light); the host takes the largest. Spread over
+// slots so that a GPU does not serialize a dispatch's atomics on one
+// address. With DIGESTS (tests only) also order-free sums of a hash of
+// every claim and of where every view ray stopped, which two kernels, or two
+// splits of the rays, must give alike.
 layout(constant_id = 18) const bool DIGESTS = false;
 layout(std430, set = 0, binding = 27) buffer Shape {
     uint64_t claim_digest;
@@ -152,6 +154,7 @@ layout(std430, set = 0, binding = 27) buffer Shape {
     uint chains[];
 };
 const uint SHAPE_PARTIAL_SUBGROUPS = 1u; // the segmented kernel found a subgroup it cannot split a ray over
+const uint CHAIN_SLOTS = 32u;
 
 // splitmix64's finalizer.
 uint64_t digest_hash(uint64_t x) {

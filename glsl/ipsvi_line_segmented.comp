@@ -58,6 +58,15 @@ bool line_kernel_ready() {
 
 #include "ipsvi_segment_scan.glsl"
 
+// The subgroup's longest chain (a butterfly over all its lanes, active again
+// after line_invocation), one atomic per subgroup.
+void report_chain() {
+    uint longest = chain;
+    for (uint d = 1u; d < gl_SubgroupSize; d <<= 1) longest = max(longest, subgroupShuffleXor(longest, d));
+    if (gl_SubgroupInvocationID == 0u && longest > 0u)
+        atomicMax(chains[block_index * CHAIN_SLOTS + gl_SubgroupID % CHAIN_SLOTS], longest);
+}
+
 // Samples per segment and round for a ray of n samples.
 int segment_length(int n) {
     int per_round = int(SEGMENTS * (may_stop() ? SEGMENT_ROUNDS : 1u));

@@ -120,20 +120,12 @@ fn matches_serial(modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
     assert_validation_clean(&ctx);
 }
 
+/// Every light placement in one test: one context, so each kernel's pipeline
+/// is compiled once (most of these tests' time on lavapipe).
 #[test]
-fn segmented_matches_serial_for_lights_outside_the_volume() {
+fn segmented_matches_serial_for_lights_outside_behind_and_inside_the_volume() {
     let modes = [("every-sample", settings(LineKernel::Auto, 0, 4))];
-    let scenes = light_placements();
-    let outside: Vec<_> = scenes.into_iter().filter(|(w, _)| !w.contains("behind") && !w.contains("inside")).collect();
-    matches_serial(&modes, &outside);
-}
-
-#[test]
-fn segmented_matches_serial_for_lights_behind_and_inside_the_volume() {
-    let modes = [("every-sample", settings(LineKernel::Auto, 0, 4))];
-    let scenes = light_placements();
-    let rest: Vec<_> = scenes.into_iter().filter(|(w, _)| w.contains("behind") || w.contains("inside")).collect();
-    matches_serial(&modes, &rest);
+    matches_serial(&modes, &light_placements());
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! The counters behind an IPSVI frame's [`LineShape`]: a small buffer the line
 //! kernels add to (glsl/ipsvi_line_interface.glsl `Shape`: flags, and per block
-//! record the longest serial chain of any of its invocations, one atomic per
-//! workgroup), cleared at the start of every frame and copied back at its end.
+//! record [`CHAIN_SLOTS`] maxima of its invocations' serial chains), cleared at
+//! the start of every frame and copied back at its end.
 
 use super::gpu_params::BlockParams;
 use super::merged_steps::LineDispatch;
@@ -17,6 +17,9 @@ const HEADER_BYTES: u64 = 20;
 /// glsl/ipsvi_line_interface.glsl SHAPE_PARTIAL_SUBGROUPS.
 const PARTIAL_SUBGROUPS: u32 = 1;
 
+/// glsl/ipsvi_line_interface.glsl CHAIN_SLOTS: maxima per block record.
+const CHAIN_SLOTS: usize = 32;
+
 pub struct ShapeCounters {
     /// Written by the line dispatches (device-local: every workgroup adds to it).
     pub counters: Buffer,
@@ -26,7 +29,7 @@ pub struct ShapeCounters {
 
 impl ShapeCounters {
     pub fn new(ctx: &Context, records: usize) -> Result<ShapeCounters, VkError> {
-        let bytes = (HEADER_BYTES + 4 * records as u64).next_multiple_of(8);
+        let bytes = (HEADER_BYTES + 4 * (records * CHAIN_SLOTS) as u64).next_multiple_of(8);
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER
             | vk::BufferUsageFlags::TRANSFER_DST
             | vk::BufferUsageFlags::TRANSFER_SRC;
@@ -69,7 +72,7 @@ impl ShapeCounters {
         group: u32,
         digests: bool,
     ) -> Result<LineShape, RenderError> {
-        let words: Vec<u32> = self.readback.read(HEADER_BYTES as usize / 4 + self.records)?;
+        let words: Vec<u32> = self.readback.read(HEADER_BYTES as usize / 4 + self.records * CHAIN_SLOTS)?;
         if words[4] & PARTIAL_SUBGROUPS != 0 {
             return Err(RenderError::Invalid(
                 "ipsvi.line_kernel = \"segmented\": this device ran the line dispatches in partial subgroups, \
@@ -77,13 +80,14 @@ impl ShapeCounters {
                     .into(),
             ));
         }
-        let chains = &words[HEADER_BYTES as usize / 4..];
+        let slots = &words[HEADER_BYTES as usize / 4..];
+        let chain_of = |b: u32| slots[b as usize * CHAIN_SLOTS..][..CHAIN_SLOTS].iter().copied().max().unwrap_or(0);
         let per_dispatch: Vec<(u32, u32)> = dispatches
             .iter()
             .filter_map(|d| {
                 let blocks = blocks_of(d);
                 let shades = blocks.iter().any(|&b| records[b as usize].pixel_count > 0);
-                let chain = blocks.iter().map(|&b| chains[b as usize]).max().unwrap_or(0);
+                let chain = blocks.iter().map(|&b| chain_of(b)).max().unwrap_or(0);
                 shades.then_some((d.groups * group, chain))
             })
             .collect();

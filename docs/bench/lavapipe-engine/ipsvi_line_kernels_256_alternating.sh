@@ -11,12 +11,13 @@
 set -eu
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
 vol=${VOLUME:-../shared/data/engine.vti}
-before=${BEFORE:-../main/target/release/sweeplab}
+before=${BEFORE:-../../main/target/release/sweeplab}
 rounds=${ROUNDS:-6}
+# CONFIGS: a subset of the configurations below, in this order within a round.
 echo "commit $(git rev-parse --short HEAD), before: $before ($(git -C "$(dirname "$before")/../.." rev-parse --short HEAD 2>/dev/null || echo ?)), $(date -u +%FT%TZ), volume $vol, load $(cut -d' ' -f1-3 /proc/loadavg)"
 ./target/release/sweeplab render --volume "$vol" --size 8x8 --technique dvr --out /tmp/line_kernels_device.png 2>&1 | grep -m1 '^device:' || true
 for r in $(seq 1 "$rounds"); do
-  for cfg in before auto segmented-8-4 segmented-4-4 segmented-8-1; do
+  for cfg in ${CONFIGS:-before auto segmented-8-4 segmented-4-4 segmented-8-1}; do
     bin=./target/release/sweeplab
     extra=()
     case $cfg in
