@@ -11,6 +11,8 @@ fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
     // Without validation: the breakdown's step b has no barriers by design.
     let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
         .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--line-widths", "1,4"])
+        // The segmented kernel's modes only (the serial kernel's: tests/bench_ipsvi_experiment.rs).
+        .args(["--kernels", "segmented"])
         .args(["--out", dir.to_str().unwrap()])
         .env_remove("SWEEPLAB_VALIDATE")
         .output()
@@ -31,5 +33,7 @@ fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
         assert!((four["speedup_over_lw1"].as_f64().unwrap() - expected).abs() < 1e-9 * expected, "{four}");
         // Four lines per dispatch: fewer dispatches for the same frame.
         assert!(four["dispatches"].as_u64() < one["dispatches"].as_u64(), "{one} {four}");
+        assert_eq!(one["line_kernel"], "segmented", "{one}");
+        assert!(one["longest_chain"].as_u64().is_some_and(|c| c > 0), "the frame's shape: {one}");
     }
 }

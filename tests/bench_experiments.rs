@@ -12,6 +12,7 @@ use sweeplab::bench::experiments::stability_bench::{self, StabilityPlan};
 use sweeplab::bench::experiments::table1_bench::{self, Table1Plan};
 use sweeplab::bench::{Harness, Interleaved, OutFolder, RunInfo};
 use sweeplab::ipsvi::paper_table1::{CT_ENGINE, LINE_WIDTHS};
+use sweeplab::ipsvi::LineKernel;
 use sweeplab::scene::loaders::data_dir;
 
 fn out(name: &str) -> std::path::PathBuf {
@@ -19,23 +20,29 @@ fn out(name: &str) -> std::path::PathBuf {
 }
 
 #[test]
-fn table1_gives_a_row_per_size_and_line_width_with_its_rounds_recorded() {
+fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() {
     let ctx = validated_context();
     let plan = Table1Plan {
         sizes: vec![8, 16],
         interleaved: Interleaved::fixed(1, 5).unwrap(),
         set: Vec::new(),
         data_sets: vec![(data_dir().join("engine.vti"), &CT_ENGINE)],
+        kernels: vec![LineKernel::Serial, LineKernel::Segmented],
     };
     let folder = OutFolder::prepare(&out("table1")).unwrap();
     let table = table1_bench::run(&ctx, &plan, RunInfo::collect(&ctx), &folder, 4096).unwrap();
-    assert_eq!(table.rows.len(), 2 * LINE_WIDTHS.len());
-    for r in &table.rows {
+    assert_eq!(table.rows.len(), 2 * 2 * LINE_WIDTHS.len());
+    for (i, r) in table.rows.iter().enumerate() {
         assert!(r.get_f64("fps").is_some_and(|f| f.is_finite() && f > 0.0), "{r:?}");
         assert_eq!(r.get("fps_lo"), None, "one round gives no interval");
         assert_eq!(r.get_f64("line_width") == Some(1.0), r.get("fps_over_lw1").is_none(), "{r:?}");
+        // Per size: the serial kernel's line widths, then the segmented one's beside them.
+        let segmented = i % 6 >= 3;
+        assert_eq!(r.text("line_kernel"), if segmented { "segmented x8" } else { "serial" }, "{r:?}");
+        assert_eq!(r.get("fps_over_first_kernel").is_some(), segmented, "{r:?}");
+        assert!(r.get_f64("longest_chain").is_some_and(|c| c > 0.0), "{r:?}");
     }
-    assert!(table.rows[3..].iter().all(|r| r.get_f64("fps_over_half_size").is_some()), "16 is twice 8");
+    assert!(table.rows[6..].iter().all(|r| r.get_f64("fps_over_half_size").is_some()), "16 is twice 8");
     let inputs = &table.run.as_ref().unwrap().inputs;
     assert!(inputs.iter().any(|(k, v)| k == "seed" && v == "5"), "{inputs:?}");
     assert!(folder.path().join("table1.json").is_file(), "saved as measured");

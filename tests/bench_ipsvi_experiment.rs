@@ -9,6 +9,7 @@ use glam::Vec3;
 use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
 use sweeplab::bench::experiments::ipsvi_breakdown::{self, BreakdownPlan};
 use sweeplab::bench::{Interleaved, OutFolder, RunInfo};
+use sweeplab::ipsvi::LineKernel;
 use sweeplab::render::VolumeTexels;
 
 fn scene() -> sweeplab::scene::Scene {
@@ -27,6 +28,7 @@ fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
         interleaved: Interleaved::fixed(6, 11).unwrap(),
         volume_texels: VolumeTexels::Native,
         group_bytes: DEFAULT_GROUP_BYTES,
+        kernels: vec![LineKernel::Auto],
     };
     let ctx = common::validated_context();
     let out = OutFolder::prepare(&dir).unwrap();
@@ -78,6 +80,7 @@ fn bench_ipsvi_without_half_angle_runs_measures_every_mode() {
         interleaved: Interleaved::fixed(1, 3).unwrap(),
         volume_texels: VolumeTexels::Native,
         group_bytes: DEFAULT_GROUP_BYTES,
+        kernels: vec![LineKernel::Serial, LineKernel::Segmented],
     };
     let ctx = common::validated_context();
     let out = OutFolder::prepare(&dir).unwrap();
@@ -86,9 +89,16 @@ fn bench_ipsvi_without_half_angle_runs_measures_every_mode() {
     out.finish().unwrap();
     let rows = bench_rows(&dir.join("ipsvi.json"));
     assert!(rows.iter().all(|r| r["technique"] != "half-angle"));
-    for mode in ["view samples, non-empty", "view samples, every-sample", "light rays"] {
-        let at_32 = rows.iter().filter(|r| r["mode"] == mode && r["cache_size"].as_f64() == Some(32.0)).count();
-        assert_eq!(at_32, 1, "{mode} at cache 32: {rows:?}");
+    // Both kernels, each row naming the one it ran and its frame's shape.
+    for (kernel, label) in [("serial", "serial"), ("segmented", "segmented x8")] {
+        for mode in ["view samples, non-empty", "view samples, every-sample", "light rays"] {
+            let mode = format!("{mode}, {kernel}");
+            let at_32: Vec<_> =
+                rows.iter().filter(|r| r["mode"] == mode && r["cache_size"].as_f64() == Some(32.0)).collect();
+            assert_eq!(at_32.len(), 1, "{mode} at cache 32: {rows:?}");
+            assert_eq!(at_32[0]["line_kernel"], label, "{mode}");
+            assert!(at_32[0]["longest_chain"].as_u64().is_some_and(|c| c > 0), "{mode}: {}", at_32[0]);
+        }
     }
 }
 
@@ -100,6 +110,7 @@ fn the_breakdown_at_8x8_with_six_rounds_publishes_no_cost_within_noise() {
         line_widths: vec![1, 2],
         interleaved: Interleaved::fixed(6, 5).unwrap(),
         volume_texels: VolumeTexels::Native,
+        kernels: vec![LineKernel::Serial],
     };
     // Without validation: step b has no barriers between blocks by design.
     let ctx = common::unvalidated_context();

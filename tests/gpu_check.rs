@@ -20,6 +20,7 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
         .env("GPU_CHECK_SYNC_ARGS", "--quick --min-rounds 6 --max-rounds 6 --max-minutes 0.2 --line-widths 1,4")
         .env("GPU_CHECK_IPSVI_ARGS", "--line-widths 1,4 --repeat 1")
         .env("GPU_CHECK_MODES_ARGS", "--one-at-a-time --line-widths 1 --cache-sizes 16 --half-angle-slices --repeat 1")
+        .env("GPU_CHECK_TABLE1_ARGS", "--data-sets engine.vti --sizes 8,16 --kernels serial,segmented --repeat 1")
         .env(
             "GPU_CHECK_LIGHTS_ARGS",
             "--size 16x16 --scales 4 --light-counts 2 --scaling-counts 1 --error-scales 4 --incremental-passes 1 \
@@ -58,7 +59,9 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     let names: Vec<&str> = parts.iter().map(|p| p.0.as_str()).collect();
     let mut expected = vec!["devices".to_string()];
     expected.extend(all.split(',').map(|t| format!("compare-{t}")));
-    expected.extend(["bench-sync", "bench-ipsvi-breakdown", "bench-ipsvi-modes", "bench-lights"].map(String::from));
+    expected.extend(
+        ["bench-sync", "bench-ipsvi-breakdown", "bench-ipsvi-modes", "bench-table1", "bench-lights"].map(String::from),
+    );
     assert_eq!(names, expected);
     for (name, rc, validation) in &parts {
         assert_eq!(*rc, 0, "{name} failed: {report:#}");
@@ -90,6 +93,11 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     assert_eq!(compared("reference")["rmse"], 0.0, "{}", compared("reference"));
     let markdown = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(markdown.contains("| compare-ao | 0 |"), "{markdown}");
+    // Table 1 beside the paper's figures, both kernels.
+    assert!(
+        markdown.contains("engine.vti 16x16 lw=4 segmented x8:") && markdown.contains("paper, CT Engine"),
+        "{markdown}"
+    );
 
     // A part that fails is recorded, and the check goes on.
     let failing = out.join("failing");

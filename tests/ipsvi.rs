@@ -10,7 +10,7 @@ use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::{compare, ErrorStats};
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
-use sweeplab::scene::{presets, Falloff, Light, LightKind, OpticalModel, Projection, Scene};
+use sweeplab::scene::{Light, Projection, Scene};
 use sweeplab::techniques::{render, RenderOutput, Technique};
 use sweeplab::vk::{Context, Profiler};
 
@@ -18,25 +18,10 @@ const SIZE: u32 = 48;
 
 /// The known-shadow scene: a sphere over a slab (synthetic::slab_under_sphere).
 fn slab_scene(lights: Vec<Light>) -> Scene {
-    let mut scene = scene_with(slab_under_sphere(32), lights, SIZE, SIZE);
-    scene.transfer = presets::preset("slab-sphere").unwrap();
-    scene.reference.model = OpticalModel::EmissiveScattering;
-    scene.reference.step_voxels = scene.render.step_voxels;
-    scene.reference.shadow_step_voxels = 0.125;
-    scene.reference.min_transmittance = 1e-4;
-    scene.render.emission = 0.2;
+    let mut scene = ipsvi_slab_scene(lights, SIZE);
     // What `render` (no explicit settings) uses: the settings of the tolerance.
     scene.settings.set(IpsviSettings { cache_size: 256, light_step_voxels: 0.125, ..IpsviSettings::default() });
     scene
-}
-
-fn point(position: Vec3) -> Light {
-    Light {
-        kind: LightKind::Point { position },
-        color: Vec3::new(1.0, 0.9, 0.8),
-        intensity: 1.5,
-        falloff: Falloff::None,
-    }
 }
 
 fn ipsvi_and_reference(ctx: &Context, scene: &Scene, settings: &IpsviSettings) -> (RenderOutput, LinearImage) {
@@ -51,6 +36,7 @@ fn ipsvi_and_reference(ctx: &Context, scene: &Scene, settings: &IpsviSettings) -
         profile,
         dispatches: frame.dispatches,
         barriers: frame.barriers,
+        shape: frame.shape,
     };
     let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
     (ipsvi, reference)
@@ -256,7 +242,7 @@ fn sweep_without_line_barriers_is_reported_by_synchronization_validation() {
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     let s = IpsviSettings { cache_size: 32, ..IpsviSettings::default() };
-    assert_ipsvi_line_barrier_load_bearing(&ctx, &gpu, &s, &mut profiler, "default settings");
+    assert_ipsvi_line_barrier_load_bearing(&ctx, &gpu, &s, &Default::default(), &mut profiler, "default settings");
 }
 
 #[test]

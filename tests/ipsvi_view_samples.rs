@@ -7,8 +7,8 @@ mod common;
 use common::*;
 use glam::{UVec3, Vec3};
 use sweeplab::ipsvi::{
-    render_with, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, SyncStrategy, WritePass, WriteRule,
-    WriteValue,
+    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, SyncStrategy, WritePass,
+    WriteRule, WriteValue,
 };
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
@@ -17,36 +17,16 @@ use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::settings_table::SettingsTable;
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{
-    presets, Camera, ControlPoint, Falloff, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction,
-    Volume, VolumeFilter, VoxelData,
+    Camera, ControlPoint, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction, Volume, VolumeFilter,
+    VoxelData,
 };
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 48;
 
-fn reference_settings(scene: &mut Scene) {
-    scene.transfer = presets::preset("slab-sphere").unwrap();
-    scene.reference.model = OpticalModel::EmissiveScattering;
-    scene.reference.step_voxels = scene.render.step_voxels;
-    scene.reference.shadow_step_voxels = 0.125;
-    scene.reference.min_transmittance = 1e-4;
-    scene.render.emission = 0.2;
-}
-
 fn slab_scene(lights: Vec<Light>) -> Scene {
-    let mut scene = scene_with(slab_under_sphere(32), lights, SIZE, SIZE);
-    reference_settings(&mut scene);
-    scene
-}
-
-fn point(position: Vec3) -> Light {
-    Light {
-        kind: LightKind::Point { position },
-        color: Vec3::new(1.0, 0.9, 0.8),
-        intensity: 1.5,
-        falloff: Falloff::None,
-    }
+    ipsvi_slab_scene(lights, SIZE)
 }
 
 fn view_samples(cache_size: u32, cache_write: CacheWrite) -> IpsviSettings {
@@ -60,9 +40,19 @@ fn view_samples(cache_size: u32, cache_write: CacheWrite) -> IpsviSettings {
 }
 
 fn ipsvi(ctx: &Context, gpu: &GpuScene, s: &IpsviSettings, sync: SyncStrategy) -> LinearImage {
+    ipsvi_study(ctx, gpu, s, &IpsviStudy::default(), sync)
+}
+
+fn ipsvi_study(
+    ctx: &Context,
+    gpu: &GpuScene,
+    s: &IpsviSettings,
+    study: &IpsviStudy,
+    sync: SyncStrategy,
+) -> LinearImage {
     let mut profiler = Profiler::new(ctx, 8192).unwrap();
     profiler.reset();
-    render_with(gpu, s, SIZE, SIZE, &mut profiler, sync).unwrap().image
+    render_study(gpu, s, study, SIZE, SIZE, &mut profiler, sync).unwrap().image
 }
 
 fn reference(ctx: &Context, gpu: &GpuScene) -> LinearImage {
@@ -343,10 +333,10 @@ fn line_barrier_is_reported_missing_in_both_modes() {
                     write_value,
                     packed_store,
                     write_pass,
-                    // The claim pass's barriers too, where line width 1 leaves it out.
-                    keep_redundant_claims: true,
                     ..IpsviSettings::default()
                 };
+                // The claim pass's barriers too, where line width 1 leaves it out.
+                let study = IpsviStudy { keep_redundant_claims: true, ..IpsviStudy::default() };
                 if (write_pass == WritePass::Texel && !s.texel_pass()) || s.validate().is_err() {
                     continue; // light rays have no write pass; the texel pass needs texel-ray claims
                 }
@@ -354,6 +344,7 @@ fn line_barrier_is_reported_missing_in_both_modes() {
                     &ctx,
                     &gpu,
                     &s,
+                    &study,
                     &mut profiler,
                     &format!(
                         "{cache_update:?}/{cache_write:?}/{write_rule:?}/{write_value:?}/packed {packed_store}/{} pass",
@@ -395,11 +386,11 @@ fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
                 // The sample pass: the texel pass needs the claims.
                 let left_out =
                     IpsviSettings { write_rule, write_pass: WritePass::Sample, ..view_samples(FED_CACHE, write) };
-                let kept = IpsviSettings { keep_redundant_claims: true, ..left_out.clone() };
-                assert!(!left_out.records_claims() && kept.records_claims());
+                let kept = IpsviStudy { keep_redundant_claims: true, ..IpsviStudy::default() };
+                assert!(!left_out.records_claims() && left_out.claims_recorded(kept.keep_redundant_claims));
                 let (a, b) = (
                     ipsvi(&ctx, &gpu, &left_out, SyncStrategy::BarrierGlobal),
-                    ipsvi(&ctx, &gpu, &kept, SyncStrategy::BarrierGlobal),
+                    ipsvi_study(&ctx, &gpu, &left_out, &kept, SyncStrategy::BarrierGlobal),
                 );
                 assert!(a == b, "{what}, {}, {write_rule:?}: the image changed without the claim pass", write.name());
             }
@@ -576,7 +567,8 @@ fn breakdown_steps_end_in_the_ipsvi_frame() {
         let steps: Vec<LinearImage> = BreakdownStep::ALL
             .iter()
             .map(|&breakdown_step| {
-                ipsvi(&ctx, &gpu, &IpsviSettings { breakdown_step, ..s.clone() }, SyncStrategy::BarrierGlobal)
+                let study = IpsviStudy { breakdown_step, ..IpsviStudy::default() };
+                ipsvi_study(&ctx, &gpu, &s, &study, SyncStrategy::BarrierGlobal)
             })
             .collect();
         let what = format!("{cache_update:?}/{write_rule:?}/{write_pass:?}");

@@ -469,7 +469,8 @@ fn technique_defaults_are_the_documented_ones() {
     assert_eq!((ipsvi.line_width, ipsvi.cache_size, ipsvi.piecewise), (1, 256, true));
     assert_eq!((ipsvi.early_termination, ipsvi.albedo, ipsvi.cone_angle_deg), (EarlyTermination::Plain, 0.0, 15.0));
     assert_eq!((ipsvi.zone_blend_px, ipsvi.light_step_voxels, ipsvi.ert_scale), (2.0, 0.5, 4));
-    assert_eq!((ipsvi.sync, ipsvi.single_dispatch_baseline), (SyncStrategy::BarrierGlobal, false));
+    assert_eq!(ipsvi.sync, SyncStrategy::BarrierGlobal);
+    assert_eq!((ipsvi.line_kernel, ipsvi.segments, ipsvi.segment_rounds), (sweeplab::ipsvi::LineKernel::Auto, 0, 4));
     assert_eq!((ipsvi.cache_update, ipsvi.cache_write), (CacheUpdate::ViewSamples, CacheWrite::Farthest));
     let lv = LightVolumeSettings::default();
     assert_eq!((lv.scale, lv.coherent, lv.compensated, lv.cost_estimate), (2, true, true, CostEstimate::Passes));
@@ -503,6 +504,7 @@ fn technique_tables_are_read_into_typed_settings() {
          albedo = 0.5\ncone_angle = 30\nzone_blend = 4.5\nlight_step = 0.125\nert_scale = 2\nsync = \"events\"\n\
          cache_update = \"light-rays\"\ncache_write = \"racy\"\nwrite_value = \"sample\"\nmerge_sweeps = true\n\
          write_rule = \"every-sample\"\nempty_runs_move_depth = true\npacked_store = true\nfit_to_visible = true\nwrite_pass = \"texel\"\n\
+         line_kernel = \"segmented\"\nsegments = 4\nsegment_rounds = 2\n\
          [lightvolume]\nscale = 4\ncoherent = false\ncompensated = false\ncost_estimate = \"selective\"\n\
          max_passes_per_frame = 3\npass_lights = 8\nrebase_tolerance = 1e-3\nsubstep = 0.5\nshared_medium = false\n\
          chromatic = false\nracy = true\n[half_angle]\nslice_step = 0.25\nlight_buffer_size = 64\n[ao]\nradius = 4\nclusters = 64\n",
@@ -529,9 +531,9 @@ fn technique_tables_are_read_into_typed_settings() {
         fit_to_visible: true,
         sync: SyncStrategy::Events,
         merge_sweeps: true,
-        single_dispatch_baseline: false,
-        breakdown_step: sweeplab::ipsvi::BreakdownStep::Full,
-        keep_redundant_claims: false,
+        line_kernel: sweeplab::ipsvi::LineKernel::Segmented,
+        segments: 4,
+        segment_rounds: 2,
     };
     let lightvolume = LightVolumeSettings {
         scale: 4,

@@ -2,7 +2,8 @@
 # One command for a machine with a GPU driver and nothing else (no compiler,
 # no network): lists the devices, renders every technique against its ground
 # truth with validation on, runs `bench sync`, `bench ipsvi --breakdown`, IPSVI's
-# error against time per mode (`bench ipsvi`) and a short `bench lights`, and writes one report (report.json + report.md) into
+# error against time per mode (`bench ipsvi`), the IPSVI paper's Table 1 on the CT
+# engine with both line kernels (`bench table1`) and a short `bench lights`, and writes one report (report.json + report.md) into
 # OUT. A part that fails is recorded (exit status, time, log tail) and the
 # next one runs. See docs/bench-on-your-gpu.md.
 #
@@ -25,6 +26,9 @@
 #   GPU_CHECK_MODES_ARGS   arguments of bench ipsvi's error against time (default: every mode at
 #                          caches 256 and 512, line width 1, one factor at a time, 6 to 12
 #                          rounds within a minute)
+#   GPU_CHECK_TABLE1_ARGS  arguments of bench table1 (default: the CT engine at 256 and 512,
+#                          line widths 1, 2, 4, the serial and the segmented line kernel,
+#                          6 rounds; needs engine.vti in the data folder, $SWEEPLAB_DATA)
 #   GPU_CHECK_LIGHTS_ARGS  arguments of bench lights (default: a short run)
 #   GPU_CHECK_AO_SET       --set value for the ao comparison (default: none)
 #   GPU_CHECK_BENCHES      0: the comparisons only (default 1)
@@ -60,6 +64,7 @@ bench_size=${GPU_CHECK_BENCH_SIZE:-512}
 techniques=${GPU_CHECK_TECHNIQUES:-dvr,phong,reference,ipsvi,half-angle,lightvolume,ao}
 sync_args=${GPU_CHECK_SYNC_ARGS:---line-widths 1,4,16,32 --max-rounds 12 --max-minutes 2}
 modes_args=${GPU_CHECK_MODES_ARGS:---one-at-a-time --line-widths 1 --cache-sizes 256,512 --half-angle-slices --repeat 6 --max-rounds 12 --max-minutes 1}
+table1_args=${GPU_CHECK_TABLE1_ARGS:---data-sets engine.vti --sizes 256,512 --kernels serial,segmented --repeat 6}
 lights_args=${GPU_CHECK_LIGHTS_ARGS:---scales 4 --light-counts 2 --scaling-counts 1,4 --error-scales 4 --incremental-passes 1 --repeat 1}
 device_args=()
 [ -n "${GPU_CHECK_DEVICE:-}" ] && device_args=(--device "$GPU_CHECK_DEVICE")
@@ -122,6 +127,9 @@ if [ "${GPU_CHECK_BENCHES:-1}" = 1 ]; then
     # shellcheck disable=SC2086
     part bench-ipsvi-modes "$bin" bench ipsvi --scene "$scene" --sizes "$bench_size" "${device_args[@]}" \
         --out "$out/bench-ipsvi-modes" $modes_args
+    # The paper's Table 1 (frames per second beside its GTX 580 figures), both line kernels.
+    # shellcheck disable=SC2086
+    part bench-table1 "$bin" bench table1 "${device_args[@]}" --out "$out/bench-table1" $table1_args
     # shellcheck disable=SC2086
     part bench-lights "$bin" bench lights --scene "$scene" "${device_args[@]}" --out "$out/bench-lights" $lights_args
 fi
@@ -164,7 +172,15 @@ failed=$(grep -c '"rc": [1-9]' "$parts_json")
         echo "| $name | $rc | $secs | $val | logs/$name.log |"
     done < "$parts_json"
     echo
-    echo "Errors against the ground truth: compare/*.json; benches: bench-sync/, bench-ipsvi/, bench-ipsvi-modes/, bench-lights/."
+    echo "Errors against the ground truth: compare/*.json; benches: bench-sync/, bench-ipsvi/, bench-ipsvi-modes/, bench-table1/, bench-lights/."
+    if [ -f "$out/bench-table1/table1.md" ]; then
+        echo
+        echo "### The IPSVI paper's Table 1 (CT engine; fps, the paper's GTX 580 beside)"
+        echo
+        echo '```'
+        grep -E ' lw=' "$out/logs/bench-table1.log"
+        echo '```'
+    fi
     for f in "$out"/compare/*.json; do
         [ -e "$f" ] || continue
         echo

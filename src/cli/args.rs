@@ -192,6 +192,13 @@ pub struct BenchTable1Args {
     /// Extra scene overrides applied to every data set.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
+    /// Only these data sets (engine.vti, aneurism.vti, LIDC2.mha); default all three.
+    #[arg(long, value_delimiter = ',')]
+    pub data_sets: Vec<String>,
+    /// IPSVI line kernels measured side by side (auto, serial, segmented);
+    /// each row names the kernel as it ran.
+    #[arg(long, value_delimiter = ',', default_value = "auto")]
+    pub kernels: Vec<String>,
 }
 
 #[derive(Args, Debug)]
@@ -297,6 +304,12 @@ pub struct BenchIpsviArgs {
     /// value leaves them out.
     #[arg(long, value_delimiter = ',', num_args = 0.., default_values_t = vec![1.0, 0.5, 0.25])]
     pub half_angle_slices: Vec<f32>,
+    /// IPSVI line kernels measured (serial, segmented, auto: the device's).
+    /// Comma-separated. With several, the grid runs with the device's and
+    /// every mode at every cache size with the others; the breakdown runs
+    /// every mode with each.
+    #[arg(long, value_delimiter = ',', default_value = "serial,segmented")]
+    pub kernels: Vec<String>,
     /// Instead of the grid: the cost of one frame of the scene's settings, step
     /// by step (DVR as one dispatch; the same pixels ray-cast line by line in the
     /// sweep's order without and with the barriers; + cache reads; + piecewise

@@ -15,6 +15,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         line_widths: args.line_widths.clone(),
         interleaved: super::bench_ipsvi::rounds(args)?,
         volume_texels: session::volume_texels(&args.gpu),
+        kernels: super::bench_ipsvi::kernels(args)?,
     };
     let scene = scene_args::load(&args.scene)?;
     plan.check(&scene.settings.get::<IpsviSettings>())?;

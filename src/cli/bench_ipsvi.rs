@@ -8,7 +8,7 @@ use super::{scene_args, session};
 use std::process::ExitCode;
 use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
 use sweeplab::bench::{Interleaved, OutFolder};
-use sweeplab::ipsvi::IpsviSettings;
+use sweeplab::ipsvi::{IpsviSettings, LineKernel};
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     if args.breakdown {
@@ -23,6 +23,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         interleaved: rounds(args)?,
         volume_texels: session::volume_texels(&args.gpu),
         group_bytes: DEFAULT_GROUP_BYTES,
+        kernels: kernels(args)?,
     };
     plan.check()?;
     let scene = scene_args::load(&args.scene)?;
@@ -44,4 +45,9 @@ pub fn rounds(args: &BenchIpsviArgs) -> anyhow::Result<Interleaved> {
     let rounds = session::interleaved(args.repeat, &args.rounds)?;
     let Some(minutes) = args.max_minutes else { return Ok(rounds) };
     rounds.within_minutes(minutes).map_err(|e| anyhow::anyhow!("--max-minutes: {e}"))
+}
+
+/// `--kernels` by name.
+pub fn kernels(args: &BenchIpsviArgs) -> anyhow::Result<Vec<LineKernel>> {
+    args.kernels.iter().map(|k| k.parse::<LineKernel>().map_err(|e| anyhow::anyhow!("--kernels: {e}"))).collect()
 }

@@ -8,11 +8,17 @@ use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::experiments::table1_bench::{self, Table1Plan};
 use sweeplab::bench::OutFolder;
+use sweeplab::ipsvi::LineKernel;
 
 pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     let interleaved = session::interleaved(args.repeat, &args.rounds)?;
     sweeplab::bench::experiments::image_sizes::check_sizes("--sizes", &args.sizes)?;
-    let plan = Table1Plan::paper(args.sizes.clone(), interleaved, args.set.clone());
+    let mut plan = Table1Plan::paper(args.sizes.clone(), interleaved, args.set.clone()).only(&args.data_sets)?;
+    plan.kernels = args
+        .kernels
+        .iter()
+        .map(|k| k.parse::<LineKernel>().map_err(|e| anyhow::anyhow!("--kernels: {e}")))
+        .collect::<anyhow::Result<_>>()?;
     let out_folder = OutFolder::prepare(&args.out)?;
     let ctx = session::open(&args.gpu)?;
     let table = table1_bench::run(&ctx, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY)?;

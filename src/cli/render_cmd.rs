@@ -41,6 +41,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     if let Some(note) = technique.settings_note(&scene) {
         println!("{note}");
     }
+    if let Some(shape) = &output.shape {
+        println!("{}", shape.summary());
+    }
     println!(
         "{technique}: {}x{} -> {} ({} dispatches, {} barriers)",
         scene.render.width,
@@ -50,7 +53,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         output.barriers
     );
     if let Some(path) = &args.profile_json {
-        write_json(path, &output.profile.to_json())?;
+        let mut profile = output.profile.to_json();
+        if let (Some(shape), Some(fields)) = (&output.shape, profile.as_object_mut()) {
+            fields.insert("line_shape".into(), serde_json::to_value(shape)?);
+        }
+        write_json(path, &profile)?;
     }
     if let Some(path) = &args.trace {
         write_json(path, &output.profile.chrome_trace())?;

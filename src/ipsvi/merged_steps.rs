@@ -22,19 +22,24 @@ pub struct LineDispatch {
 /// A step-table entry of a sweep that has no block at that step.
 pub const NO_BLOCK: u32 = u32::MAX;
 
-/// Workgroups of a block's line dispatch: one invocation per pixel of the
-/// block, then one per texel of the cache region it updates, then (farthest)
-/// one per pixel of the next block it claims texels for; `group` invocations each.
-pub fn block_groups(record: &BlockParams, group: u32) -> u32 {
-    (record.pixel_count + record.region[2] * record.region[3] + record.claim_count).div_ceil(group)
+/// Workgroups of a block's line dispatch: `segments` invocations per pixel
+/// of the block (1: the serial kernel), then one per texel of the cache region
+/// it updates, then (farthest), from the next multiple of `segments` on,
+/// `segments` per pixel of the next block it claims texels for; `group`
+/// invocations each (glsl/ipsvi_line_main.glsl).
+pub fn block_groups(record: &BlockParams, group: u32, segments: u32) -> u32 {
+    let pixels_and_texels = record.pixel_count * segments + record.region[2] * record.region[3];
+    let claims = record.claim_count * segments;
+    let claims_first = if claims > 0 { pixels_and_texels.next_multiple_of(segments) } else { pixels_and_texels };
+    (claims_first + claims).div_ceil(group)
 }
 
 /// One dispatch per block record, in record order (the unmerged frame).
-pub fn per_block(records: &[BlockParams], group: u32) -> Vec<LineDispatch> {
+pub fn per_block(records: &[BlockParams], group: u32, segments: u32) -> Vec<LineDispatch> {
     records
         .iter()
         .enumerate()
-        .map(|(i, r)| LineDispatch { index: i as u32, parity: r.parity, groups: block_groups(r, group) })
+        .map(|(i, r)| LineDispatch { index: i as u32, parity: r.parity, groups: block_groups(r, group, segments) })
         .collect()
 }
 
@@ -47,7 +52,7 @@ pub struct MergedSteps {
 }
 
 /// Merges sweeps given as (first record, record count) of `records`.
-pub fn merge(sweeps: &[(usize, usize)], records: &[BlockParams], group: u32) -> MergedSteps {
+pub fn merge(sweeps: &[(usize, usize)], records: &[BlockParams], group: u32, segments: u32) -> MergedSteps {
     let steps = sweeps.iter().map(|s| s.1).max().unwrap_or(0);
     let mut table = vec![sweeps.len() as u32, 0];
     let mut dispatches = Vec::with_capacity(steps);
@@ -56,7 +61,7 @@ pub fn merge(sweeps: &[(usize, usize)], records: &[BlockParams], group: u32) -> 
         for &(first, count) in sweeps {
             if k < count {
                 table.extend([(first + k) as u32, groups]);
-                groups += block_groups(&records[first + k], group);
+                groups += block_groups(&records[first + k], group, segments);
             } else {
                 table.extend([NO_BLOCK, 0]);
             }
@@ -66,8 +71,28 @@ pub fn merge(sweeps: &[(usize, usize)], records: &[BlockParams], group: u32) -> 
     MergedSteps { dispatches, table }
 }
 
+impl MergedSteps {
+    /// The block records step `step` runs (one per sweep that has one).
+    pub fn blocks_of(table: &[u32], step: u32) -> Vec<u32> {
+        let sweeps = table.first().copied().unwrap_or(0) as usize;
+        (0..sweeps).map(|s| table[2 + 2 * (step as usize * sweeps + s)]).filter(|&b| b != NO_BLOCK).collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn segments_multiply_the_pixel_and_claim_invocations_and_claims_start_aligned() {
+        let r = BlockParams { pixel_count: 10, region: [0, 0, 3, 1], claim_count: 5, ..BlockParams::default() };
+        // Serial: 10 + 3 + 5 = 18 invocations.
+        assert_eq!(block_groups(&r, 1, 1), 18);
+        // 4 segments: 40 + 3 = 43, claims from 44, 20 more: 64.
+        assert_eq!(block_groups(&r, 1, 4), 64);
+        assert_eq!(block_groups(&r, 8, 4), 8);
+        let no_claims = BlockParams { claim_count: 0, ..r };
+        assert_eq!(block_groups(&no_claims, 1, 4), 43);
+    }
+
     use super::*;
 
     fn record(pixels: u32, parity: u32) -> BlockParams {
@@ -78,7 +103,7 @@ mod tests {
     fn each_step_lists_every_sweep_that_reaches_it_with_its_workgroups() {
         // Sweep 0: 3 blocks, sweep 1: 1 block, sweep 2: 2 blocks.
         let records = [record(10, 0), record(8, 1), record(8, 0), record(16, 0), record(3, 0), record(20, 1)];
-        let merged = merge(&[(0, 3), (3, 1), (4, 2)], &records, 8);
+        let merged = merge(&[(0, 3), (3, 1), (4, 2)], &records, 8, 1);
         assert_eq!(merged.dispatches.len(), 3, "as many steps as the longest sweep has blocks");
         assert_eq!(merged.dispatches[0], LineDispatch { index: 0, parity: 0, groups: 2 + 2 + 1 });
         assert_eq!(merged.dispatches[1], LineDispatch { index: 1, parity: 1, groups: 1 + 3 });
@@ -92,12 +117,13 @@ mod tests {
                 }
             }
         }
+        assert_eq!(MergedSteps::blocks_of(&merged.table, 1), [1, 5]);
     }
 
     #[test]
     fn unmerged_is_one_dispatch_per_record() {
         let records = [record(10, 0), record(0, 1)];
-        let d = per_block(&records, 4);
+        let d = per_block(&records, 4, 1);
         assert_eq!(
             d,
             [LineDispatch { index: 0, parity: 0, groups: 3 }, LineDispatch { index: 1, parity: 1, groups: 0 }]

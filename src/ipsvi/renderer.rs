@@ -5,15 +5,20 @@
 //! cache initialised at once, one dispatch per step of all sweeps
 //! (`super::merged_steps`), then their colour accumulations summed.
 
+use super::block_records::{block_params, SweepRecords};
+use super::cache_images::Cache;
 use super::cache_plane::{cache_planes, CachePlanes};
-use super::cache_region::{plane_region, TexelRect};
 use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
 use super::exit_points::{self, ExitPoints};
 use super::gpu_params::{line_planes, sweep_params, BlockParams, SweepInputs, SweepParams, FLAG_FIRST_LIGHT};
 use super::line_group::{lavapipe_threads, line_group_size, median_pixels};
-use super::merged_steps::{self, LineDispatch};
+use super::line_kernel::{self, KernelChoice};
+use super::line_shape::ShapeCounters;
+use super::merged_output::MergedOutput;
+use super::merged_steps::{self, LineDispatch, MergedSteps};
 use super::settings::{EarlyTermination, IpsviSettings};
-use super::sweep_plan::{plan, LineAxis, LineBlock, SweepPlan};
+use super::study::IpsviStudy;
+use super::sweep_plan::{plan, LineBlock, SweepPlan};
 use super::sync::{
     record_sweeps, GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, RerecordedSweeps, SplitBarriers,
     SubmissionPerBlock, Unsynchronized,
@@ -22,96 +27,19 @@ use super::sync_strategy::SyncStrategy;
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
-use crate::render::light_space::LightSpacePlane;
-use crate::render::{GpuScene, OutputImage, RecordedFrame, RenderError};
+use crate::render::{GpuScene, LineShape, OutputImage, RecordedFrame, RenderError};
 use crate::scene::settings_table::SettingsTable;
 use crate::scene::Scene;
-use crate::shaders::{ipsvi_cache_init, ipsvi_line, ipsvi_sweep_sum};
+use crate::shaders::{ipsvi_cache_init, ipsvi_line, ipsvi_line_segmented};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait_or, SecondaryCommands};
 use crate::vk::descriptors::Resource;
 use crate::vk::pipeline::{ComputePipeline, ComputePipelineDesc};
+use crate::vk::subgroups::SubgroupSupport;
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
-use gpu_allocator::MemoryLocation;
 use std::cell::OnceCell;
 use std::sync::Arc;
-
-/// The ping-pong pair: illumination (E / scale, transmittance) and the position
-/// image (which sweep plane each light ray's front sits on, or with view
-/// samples the depth its value was computed at); with view samples a second
-/// pair that the samples of a block write (value, block stamp | depth), and
-/// the claim keys of `cache_write = "farthest"`. What a mode does not use is
-/// 1x1 (bound, never read). Merged sweeps stack one cache per sweep in rows
-/// (`slots`); keys likewise. With `packed_store` each pair is one rgba32ui
-/// image (`history`, `packed_samples`) and the four unpacked ones are 1x1.
-struct Cache {
-    light: [Arc<Image>; 2],
-    front: [Arc<Image>; 2],
-    samples: [Arc<Image>; 2],
-    stamps: [Arc<Image>; 2],
-    history: [Arc<Image>; 2],
-    packed_samples: [Arc<Image>; 2],
-    claim_keys: Buffer,
-}
-
-impl Cache {
-    fn new(gpu: &GpuScene, settings: &IpsviSettings, slots: u32) -> Result<Cache, RenderError> {
-        let size = settings.cache_size;
-        let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
-        let claims = settings.records_claims();
-        let sized = |name: &str, format, n: u32| {
-            gpu.frame_images.storage_2d(gpu.ctx, name, format, (n, n * slots), vk::ImageUsageFlags::empty())
-        };
-        let packed = settings.packed_store;
-        let unpacked_size = if packed { 1 } else { size };
-        let image = |name: &str, format| sized(name, format, unpacked_size);
-        let sample_size = if view_samples && !packed { size } else { 1 };
-        let sample = |name: &str, format| sized(name, format, sample_size);
-        let history_size = if packed { size } else { 1 };
-        let history = |name: &str| sized(name, vk::Format::R32G32B32A32_UINT, history_size);
-        let packed_sample_size = if packed && view_samples { size } else { 1 };
-        let packed_sample = |name: &str| sized(name, vk::Format::R32G32B32A32_UINT, packed_sample_size);
-        // Two halves (this block's claims, the next block's) of N x N 64-bit keys.
-        let key_bytes = if claims { 2 * 8 * u64::from(size) * u64::from(size) * u64::from(slots) } else { 16 };
-        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
-        Ok(Cache {
-            light: [
-                image("ipsvi cache a", vk::Format::R16G16B16A16_SFLOAT)?,
-                image("ipsvi cache b", vk::Format::R16G16B16A16_SFLOAT)?,
-            ],
-            front: [image("ipsvi front a", vk::Format::R16_UINT)?, image("ipsvi front b", vk::Format::R16_UINT)?],
-            samples: [
-                sample("ipsvi cache samples a", vk::Format::R16G16B16A16_SFLOAT)?,
-                sample("ipsvi cache samples b", vk::Format::R16G16B16A16_SFLOAT)?,
-            ],
-            stamps: [
-                sample("ipsvi cache stamps a", vk::Format::R32_UINT)?,
-                sample("ipsvi cache stamps b", vk::Format::R32_UINT)?,
-            ],
-            history: [history("ipsvi history a")?, history("ipsvi history b")?],
-            packed_samples: [packed_sample("ipsvi packed samples a")?, packed_sample("ipsvi packed samples b")?],
-            claim_keys: Buffer::new(gpu.ctx, "ipsvi claim keys", key_bytes, usage, MemoryLocation::GpuOnly)?,
-        })
-    }
-
-    fn images(&self) -> [&Image; 12] {
-        [
-            &self.light[0],
-            &self.light[1],
-            &self.front[0],
-            &self.front[1],
-            &self.samples[0],
-            &self.samples[1],
-            &self.stamps[0],
-            &self.stamps[1],
-            &self.history[0],
-            &self.history[1],
-            &self.packed_samples[0],
-            &self.packed_samples[1],
-        ]
-    }
-}
 
 /// Plans for every light, in light order.
 pub fn plans(gpu: &GpuScene, settings: &IpsviSettings, width: u32, height: u32) -> Vec<SweepPlan> {
@@ -120,6 +48,17 @@ pub fn plans(gpu: &GpuScene, settings: &IpsviSettings, width: u32, height: u32) 
 
 /// [`plans`] from the scene alone (what a frame will allocate, before it is rendered).
 pub fn scene_plans(scene: &Scene, settings: &IpsviSettings, width: u32, height: u32) -> Vec<SweepPlan> {
+    study_plans(scene, settings, &IpsviStudy::default(), width, height)
+}
+
+/// [`scene_plans`] for a study (its single-dispatch baseline).
+pub fn study_plans(
+    scene: &Scene,
+    settings: &IpsviSettings,
+    study: &IpsviStudy,
+    width: u32,
+    height: u32,
+) -> Vec<SweepPlan> {
     let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
     let bbox = space.projected_box(&scene.volume_box());
     scene
@@ -127,7 +66,7 @@ pub fn scene_plans(scene: &Scene, settings: &IpsviSettings, width: u32, height: 
         .iter()
         .map(|l| {
             let mut p = plan(bbox, space.light_anchor(&l.kind), settings.line_width, settings.zone_blend_px);
-            if settings.single_dispatch_baseline {
+            if study.single_dispatch_baseline {
                 for sweep in &mut p.sweeps {
                     sweep.blocks = vec![single_block(&sweep.blocks)];
                 }
@@ -167,6 +106,19 @@ pub fn render_with(
     IpsviRenderer::new(gpu, settings, width, height)?.frame(profiler, sync)
 }
 
+/// [`render_with`] for a study or test ([`IpsviStudy`]).
+pub fn render_study(
+    gpu: &GpuScene,
+    settings: &IpsviSettings,
+    study: &IpsviStudy,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+    sync: SyncStrategy,
+) -> Result<FrameResult, RenderError> {
+    IpsviRenderer::build(gpu, settings, study, width, height, None)?.frame(profiler, sync)
+}
+
 /// Everything one IPSVI configuration needs, created once: plans, parameter
 /// buffers, cache, pipelines, descriptor sets. `frame` records and runs a frame;
 /// benchmarks call it repeatedly without re-creating anything.
@@ -174,7 +126,15 @@ pub struct IpsviRenderer<'a> {
     ctx: &'a crate::vk::Context,
     background: glam::Vec3,
     settings: IpsviSettings,
+    study: IpsviStudy,
     plans: Vec<SweepPlan>,
+    /// The line kernel and its segments per pixel.
+    kernel: KernelChoice,
+    /// The block records, as the line dispatches read them.
+    block_records: Vec<BlockParams>,
+    /// Merged: the step table (which blocks each dispatch runs).
+    step_table: Vec<u32>,
+    shape: ShapeCounters,
     /// The line dispatches of a frame, in order.
     dispatches: Vec<LineDispatch>,
     /// (first dispatch, dispatch count) of every sweep, in frame order; one
@@ -205,45 +165,10 @@ pub struct IpsviRenderer<'a> {
     secondaries: OnceCell<SecondaryCommands>,
 }
 
-/// Merged sweeps: each sweep's colour in its own rows (sweeps of one step may
-/// shade the same pixel in one dispatch), added to the output by `ipsvi_sweep_sum`.
-struct MergedOutput {
-    slots: u32,
-    accumulation: Arc<Image>,
-    sum: ComputePipeline,
-    sum_set: vk::DescriptorSet,
-}
-
-impl MergedOutput {
-    fn new(gpu: &GpuScene, output: &OutputImage, slots: u32) -> Result<MergedOutput, RenderError> {
-        let accumulation = gpu.frame_images.storage_2d(
-            gpu.ctx,
-            "ipsvi sweep accumulation",
-            vk::Format::R32G32B32A32_SFLOAT,
-            (output.width, output.height * slots),
-            vk::ImageUsageFlags::TRANSFER_DST,
-        )?;
-        let mut sum = ComputePipeline::new(
-            gpu.ctx,
-            &ComputePipelineDesc {
-                name: "ipsvi_sweep_sum",
-                shader: &ipsvi_sweep_sum::INTERFACE,
-                specialization: &[],
-                max_sets: 1,
-            },
-        )?;
-        let sum_set = sum.create_set(&[
-            (ipsvi_sweep_sum::ACCUMULATION, Resource::StorageImage(&accumulation)),
-            (ipsvi_sweep_sum::OUT_IMAGE, Resource::StorageImage(&output.image)),
-        ])?;
-        Ok(MergedOutput { slots, accumulation, sum, sum_set })
-    }
-}
-
 impl<'a> IpsviRenderer<'a> {
     /// For a scene with at least one light.
     pub fn new(gpu: &GpuScene<'a>, settings: &IpsviSettings, width: u32, height: u32) -> Result<Self, RenderError> {
-        Self::with_line_group(gpu, settings, width, height, None)
+        Self::build(gpu, settings, &IpsviStudy::default(), width, height, None)
     }
 
     /// [`new`](Self::new) with the line dispatches' workgroup size given
@@ -251,6 +176,19 @@ impl<'a> IpsviRenderer<'a> {
     pub fn with_line_group(
         gpu: &GpuScene<'a>,
         settings: &IpsviSettings,
+        width: u32,
+        height: u32,
+        line_group: Option<u32>,
+    ) -> Result<Self, RenderError> {
+        Self::build(gpu, settings, &IpsviStudy::default(), width, height, line_group)
+    }
+
+    /// [`new`](Self::new) for a study or test ([`IpsviStudy`]), optionally with
+    /// the workgroup size given.
+    pub fn build(
+        gpu: &GpuScene<'a>,
+        settings: &IpsviSettings,
+        study: &IpsviStudy,
         width: u32,
         height: u32,
         line_group: Option<u32>,
@@ -275,8 +213,11 @@ impl<'a> IpsviRenderer<'a> {
                 ctx.info.name
             )));
         }
+        let kernel = line_kernel::choose(settings, &ctx.info.device_type, &SubgroupSupport::of(ctx))
+            .map_err(RenderError::Invalid)?;
         let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
-        let plans = plans(gpu, settings, width, height);
+        let plans = study_plans(scene, settings, study, width, height);
+        let claims = settings.claims_recorded(study.keep_redundant_claims);
 
         let steps = MarchSteps { shadow_step_voxels: settings.light_step_voxels, ..MarchSteps::render(scene) };
         let params = frame_params(scene, width, height, gpu.lut_size, steps);
@@ -293,7 +234,7 @@ impl<'a> IpsviRenderer<'a> {
                 ctx.limits.max_image_dimension2_d
             )));
         }
-        let cache = Cache::new(gpu, settings, slots)?;
+        let cache = Cache::new(gpu, settings, claims, slots)?;
 
         let max_piecewise_steps = super::view_budget::piecewise_steps(scene)?;
 
@@ -333,7 +274,7 @@ impl<'a> IpsviRenderer<'a> {
             .collect();
         let sweeps = Buffer::with_data(ctx, "ipsvi sweeps", &sweep_records, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let (mut block_records, sweep_records) =
-            block_params(&plans, &geometries, &lit_corners, &planes_host, height, settings)?;
+            block_params(&plans, &geometries, &lit_corners, &planes_host, height, settings, study)?;
         if slots > 1 {
             for (slot, &(first, count)) in sweep_records.iter().enumerate() {
                 for r in &mut block_records[first..first + count] {
@@ -356,27 +297,34 @@ impl<'a> IpsviRenderer<'a> {
             },
         )?;
         let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
-        let claims = settings.records_claims();
         let nearest = settings.cache_write == CacheWrite::Nearest;
         let termination = match settings.early_termination {
             EarlyTermination::Off => 0,
             EarlyTermination::Plain => 1,
             EarlyTermination::ExitPoints => 2,
         };
+        let segments = kernel.segments;
         let line_group = line_group.unwrap_or_else(|| {
             line_group_size(
                 &ctx.info.device_type,
                 lavapipe_threads(),
-                median_pixels(block_records.iter().map(|r| r.pixel_count)),
+                median_pixels(block_records.iter().map(|r| r.pixel_count)) * segments,
             )
         });
+        if kernel.is_segmented() && !line_group.is_multiple_of(SubgroupSupport::of(ctx).size.max(segments)) {
+            return Err(RenderError::Invalid(format!(
+                "the segmented line kernel needs whole subgroups per workgroup; {line_group} invocations is not a \
+                 multiple of this device's subgroup of {}",
+                SubgroupSupport::of(ctx).size
+            )));
+        }
         let specialization = [
             (0, emissive as u32),
             (1, scatter as u32),
             (2, view_samples as u32),
             (3, claims as u32),
             (4, nearest as u32),
-            (5, settings.breakdown_step.shader_step()),
+            (5, study.breakdown_step.shader_step()),
             (6, settings.piecewise as u32),
             (7, termination),
             (8, line_group),
@@ -387,24 +335,31 @@ impl<'a> IpsviRenderer<'a> {
             (13, settings.packed_store as u32),
             (14, settings.texel_pass() as u32),
             (15, settings.per_texel_fronts(gpu.scene, width, height) as u32),
+            // The segmented kernel's (the serial one has no constants 16 and 17).
+            (16, segments),
+            (17, kernel.rounds),
+            (18, study.digests as u32),
         ];
-        let line_desc = ComputePipelineDesc {
-            name: "ipsvi_line",
-            shader: &ipsvi_line::INTERFACE,
-            specialization: &specialization,
-            max_sets: 1,
+        // Both kernels declare the same bindings (glsl/ipsvi_line_interface.glsl):
+        // the sets below serve either.
+        let (name, shader) = if kernel.is_segmented() {
+            ("ipsvi_line_segmented", &ipsvi_line_segmented::INTERFACE)
+        } else {
+            ("ipsvi_line", &ipsvi_line::INTERFACE)
         };
+        let line_desc = ComputePipelineDesc { name, shader, specialization: &specialization, max_sets: 1 };
         // One pipeline: set 0 bound once per sweep, a block's parity picks its set 1.
         let mut line = ComputePipeline::new(ctx, &line_desc)?;
         let (dispatches, sweep_dispatches, step_table) = if slots > 1 {
-            let merged = merged_steps::merge(&sweep_records, &block_records, line_group);
+            let merged = merged_steps::merge(&sweep_records, &block_records, line_group, segments);
             let all = vec![(0, merged.dispatches.len())];
             (merged.dispatches, all, merged.table)
         } else {
             // Read only by the merged shader; a storage buffer is never empty.
-            (merged_steps::per_block(&block_records, line_group), sweep_records, vec![0; 4])
+            (merged_steps::per_block(&block_records, line_group, segments), sweep_records, vec![0; 4])
         };
         let steps = Buffer::with_data(ctx, "ipsvi steps", &step_table, vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let shape = ShapeCounters::new(ctx, block_records.len())?;
         let merged = if slots > 1 { Some(MergedOutput::new(gpu, &output, slots)?) } else { None };
         let [a, b] = [&cache.light[0], &cache.light[1]];
         let [fa, fb] = [&cache.front[0], &cache.front[1]];
@@ -433,6 +388,7 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_line::LMAX, Resource::StorageImage(lmax)),
             (ipsvi_line::KEYS, Resource::StorageBuffer(&cache.claim_keys)),
             (ipsvi_line::STEPS, Resource::StorageBuffer(&steps)),
+            (ipsvi_line::SHAPE, Resource::StorageBuffer(&shape.counters)),
         ])?;
         let mut side = |from: usize, to: usize| {
             line.create_set1(&[
@@ -457,7 +413,12 @@ impl<'a> IpsviRenderer<'a> {
             ctx,
             background: scene.render.background,
             settings: settings.clone(),
+            study: *study,
             plans,
+            kernel,
+            block_records,
+            step_table,
+            shape,
             dispatches,
             sweep_dispatches,
             _frame: frame,
@@ -484,6 +445,26 @@ impl<'a> IpsviRenderer<'a> {
     /// Invocations per workgroup of the line dispatches.
     pub fn line_group(&self) -> u32 {
         self.line_group
+    }
+
+    /// The line kernel this renderer runs.
+    pub fn kernel(&self) -> KernelChoice {
+        self.kernel
+    }
+
+    /// The last frame's shape (its submission finished).
+    fn read_shape(&self) -> Result<LineShape, RenderError> {
+        let merged = self.merged.is_some();
+        let blocks_of = |d: &LineDispatch| {
+            if merged {
+                MergedSteps::blocks_of(&self.step_table, d.index)
+            } else {
+                vec![d.index]
+            }
+        };
+        let records = &self.block_records;
+        let digests = self.study.digests;
+        self.shape.read(self.kernel.label(), &self.dispatches, blocks_of, records, self.line_group, digests)
     }
 
     /// Every pipeline a frame dispatches (shared with other renderers of the
@@ -532,11 +513,13 @@ impl<'a> IpsviRenderer<'a> {
         Ok(match sync {
             SyncStrategy::BarrierGlobal => Box::new(GlobalBarrier),
             SyncStrategy::BarrierImage => {
-                let claims = self.settings.records_claims();
+                let claims = self.settings.claims_recorded(self.study.keep_redundant_claims);
                 let mut images = cache.images().to_vec();
                 images.push(&self.output.image);
                 images.extend(self.merged.as_ref().map(|m| &*m.accumulation));
-                Box::new(ImageBarriers::new(&images, claims.then_some(&cache.claim_keys)))
+                let mut buffers = vec![&self.shape.counters];
+                buffers.extend(claims.then_some(&cache.claim_keys));
+                Box::new(ImageBarriers::new(&images, &buffers))
             }
             SyncStrategy::Events => Box::new(SplitBarriers::new(self.ctx, self.dispatches.len())?),
             SyncStrategy::Secondary => Box::new(ReplayedSweeps::new(self.recorded_sweeps()?)),
@@ -558,7 +541,8 @@ impl<'a> IpsviRenderer<'a> {
             frame.output.record_readback(rec, &this.readback);
             Ok::<_, RenderError>((frame, rec.dispatch_count, rec.barrier_count))
         })?;
-        Ok(FrameResult { image: frame.output.read(&this.readback)?, dispatches, barriers })
+        let shape = Some(this.read_shape()?);
+        Ok(FrameResult { image: frame.output.read(&this.readback)?, dispatches, barriers, shape })
     }
 
     /// Records one frame into `rec` (see [`RecordedFrame`]): what `frame` submits
@@ -668,6 +652,7 @@ impl<'a> IpsviRenderer<'a> {
         // Claims carry a frame-wide block number: cleared once per frame.
         rec.barrier(&Barrier::memory("claim_keys_previous_frame_to_clear", Access::ANY, Access::CLEAR_WRITE));
         rec.fill_buffer(&cache.claim_keys, 0);
+        self.shape.record_clear(rec);
         rec.barrier(&Barrier::memory(
             "claim_keys_clear_to_first_claim",
             Access::CLEAR_WRITE,
@@ -711,108 +696,9 @@ impl<'a> IpsviRenderer<'a> {
             }
         }
         line_sync.end_frame(rec);
+        self.shape.record_readback(rec);
         profiler.end(rec, frame_scope)?;
         let keep_alive = line_sync.frame_resources();
         Ok(RecordedFrame::counted(rec, output.clone(), keep_alive))
     }
-}
-
-/// A sweep's block records: (first, count).
-type SweepRecords = (usize, usize);
-
-/// The parameters of every line block of the frame, in dispatch order, and
-/// each sweep's (first record, record count). With `cache_update =
-/// "view-samples"` a block's region is the texels its samples may write (the
-/// union over its lines' planes) and it carries the previous two blocks'
-/// regions into the history pair; with "farthest" each sweep starts with a
-/// claim-only record for its first block.
-fn block_params(
-    plans: &[SweepPlan],
-    geometries: &[LightSpacePlane],
-    lit_corners: &[glam::Vec3; 8],
-    planes: &[[f32; 4]],
-    height: u32,
-    settings: &IpsviSettings,
-) -> Result<(Vec<BlockParams>, Vec<SweepRecords>), RenderError> {
-    let view_samples = settings.cache_update == CacheUpdate::ViewSamples;
-    let claims = settings.records_claims();
-    let mut out: Vec<BlockParams> = Vec::new();
-    let mut sweeps = Vec::new();
-    for (li, plan) in plans.iter().enumerate() {
-        for sweep in &plan.sweeps {
-            let first_record = out.len();
-            let columns = sweep.axis == LineAxis::Columns;
-            let plane_of = |line: u32| if columns { height + line } else { line };
-            let region_of = |line: u32| plane_region(&geometries[li], lit_corners, planes[plane_of(line) as usize]);
-            let mut previous_region = TexelRect::default();
-            let mut before_previous = TexelRect::default();
-            if claims {
-                // Claims for the first block; no pixels, no texels.
-                out.push(BlockParams { light: li as u32, zone: sweep.zone as u32, ..BlockParams::default() });
-            }
-            for block in sweep.blocks.iter() {
-                let plane = plane_of(block.last_line);
-                let (region, update) = if view_samples {
-                    let written = (block.first..block.first + block.width)
-                        .fold(TexelRect::default(), |r, l| r.union(&region_of(l)));
-                    let carried = previous_region.union(&before_previous);
-                    // write_pass = "texel": the block's own texels store in its texel
-                    // invocations too (carrying one more texel writes its true state).
-                    let texels = if settings.texel_pass() { carried.union(&written) } else { carried };
-                    (written, texels)
-                } else {
-                    let region = region_of(block.last_line);
-                    (region, region.union(&previous_region))
-                };
-                before_previous = previous_region;
-                previous_region = region;
-                let index = out.len() - first_record;
-                out.push(BlockParams {
-                    line_first: block.first,
-                    line_width: block.width,
-                    span_start: block.span_start,
-                    span_len: block.span_len,
-                    columns: columns as u32,
-                    zone: sweep.zone as u32,
-                    plane,
-                    pixel_count: block.width * block.span_len,
-                    region: [update.x0, update.y0, update.w, update.h],
-                    parity: (index % 2) as u32,
-                    light: li as u32,
-                    stamp: index as u32 + 1,
-                    claim_count: 0,
-                    ..BlockParams::default()
-                });
-            }
-            let count = out.len() - first_record;
-            if !settings.breakdown_step.writes_history() {
-                // Nothing written: no texel or claim invocations either.
-                for r in &mut out[first_record..] {
-                    r.region = [0; 4];
-                }
-            }
-            // (write_pass = "texel" stores only the texels the claim keys name: its
-            // stores come on with the claim pass, docs/ipsvi.md "Cost breakdown".)
-            if claims && settings.breakdown_step.claims() {
-                for r in first_record..first_record + count - 1 {
-                    out[r].claim_count = out[r + 1].pixel_count;
-                }
-            }
-            // Stamps are 16 bits in the stamp image.
-            if view_samples && count >= 0xFFFF {
-                return Err(RenderError::Invalid(format!(
-                    "a sweep of {count} line blocks; view samples stamp at most 65534"
-                )));
-            }
-            sweeps.push((first_record, count));
-        }
-    }
-    // Claim keys hold the frame-wide block number + 1 in 20 bits.
-    if claims && out.len() + 1 >= 1 << 20 {
-        return Err(RenderError::Invalid(format!(
-            "{} line blocks in a frame; farthest claims count at most 2^20 - 2",
-            out.len()
-        )));
-    }
-    Ok((out, sweeps))
 }

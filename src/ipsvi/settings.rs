@@ -1,9 +1,9 @@
 //! IPSVI parameters from the scene file's `[ipsvi]` table (or `--set ipsvi.key=value`),
 //! read when the scene is read ([`crate::scene::settings_table`]).
 
-use super::breakdown::BreakdownStep;
 use super::cache_plane::texel_pixels;
 use super::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
+use super::line_kernel::{segmented_refusal, LineKernel, DEFAULT_ROUNDS};
 use super::read_fronts::ReadFronts;
 use super::sync_strategy::SyncStrategy;
 use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
@@ -77,6 +77,21 @@ pub struct IpsviSettings {
     /// volume box: the medium outside it is exactly empty, so the light is the
     /// same, the texels smaller and the marches to a ray's box entry shorter.
     pub fit_to_visible: bool,
+    /// Which kernel marches a block's pixels: `serial` (one invocation per
+    /// pixel, its whole view ray), `segmented` (`segments` invocations per
+    /// pixel, one depth segment each, combined by subgroup shuffles; the
+    /// same dispatch and barrier per line block), `auto` (default): serial
+    /// on a CPU device, segmented on a GPU where the modes allow it.
+    #[serde(deserialize_with = "from_name")]
+    pub line_kernel: LineKernel,
+    /// Segmented kernel: invocations per pixel, a power of two no larger than
+    /// the device's smallest subgroup; 0 (default): the device's choice (32 on
+    /// a GPU, capped by the subgroup; 8 on a CPU device).
+    pub segments: u32,
+    /// Segmented kernel with early termination: a ray's samples are marched
+    /// in up to this many rounds of `segments` segments, each round's opacity
+    /// pass telling where the ray stops before the next round starts.
+    pub segment_rounds: u32,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]
     pub sync: SyncStrategy,
@@ -85,20 +100,6 @@ pub struct IpsviSettings {
     /// each sweep with its own cache and colour accumulation (`merged_steps.rs`);
     /// false: the sweeps one after the other (what the sync study measures).
     pub merge_sweeps: bool,
-    /// Study baseline, not an illumination result: every sweep is one dispatch
-    /// over all its lines (the same shader and pixels with no sweep to sync).
-    /// Set in code only, never from a file.
-    #[serde(skip)]
-    pub single_dispatch_baseline: bool,
-    /// Study baseline: which parts of the line shader run (`bench ipsvi
-    /// --breakdown`); `Full` is IPSVI. Set in code only, never from a file.
-    #[serde(skip)]
-    pub breakdown_step: BreakdownStep,
-    /// Records the claim pass even where it cannot change the image (see
-    /// [`IpsviSettings::records_claims`]): for the test that proves it cannot.
-    /// Set in code only, never from a file.
-    #[serde(skip)]
-    pub keep_redundant_claims: bool,
 }
 
 /// When the view rays of the main pass stop.
@@ -148,11 +149,11 @@ impl Default for IpsviSettings {
             write_pass: WritePass::Auto,
             packed_store: false,
             fit_to_visible: false,
+            line_kernel: LineKernel::Auto,
+            segments: 0,
+            segment_rounds: DEFAULT_ROUNDS,
             sync: SyncStrategy::BarrierGlobal,
             merge_sweeps: false,
-            single_dispatch_baseline: false,
-            breakdown_step: BreakdownStep::Full,
-            keep_redundant_claims: false,
         }
     }
 }
@@ -171,12 +172,19 @@ impl IpsviSettings {
     /// With `write_pass = "texel"` the pass is always recorded: its keys name
     /// the texels each block writes.
     pub fn records_claims(&self) -> bool {
+        self.claims_recorded(false)
+    }
+
+    /// [`records_claims`](Self::records_claims), or with
+    /// `keep_redundant_claims` (a study's, [`super::study::IpsviStudy`]) also
+    /// where the pass cannot change the image.
+    pub fn claims_recorded(&self, keep_redundant_claims: bool) -> bool {
         let claims = self.cache_update == CacheUpdate::ViewSamples && self.cache_write.claims();
         let same_value_from_every_writer = self.line_width == 1
             && self.write_value == WriteValue::TexelRay
             && self.piecewise
             && !self.empty_runs_move_depth;
-        claims && (self.keep_redundant_claims || self.texel_pass() || !same_value_from_every_writer)
+        claims && (keep_redundant_claims || self.texel_pass() || !same_value_from_every_writer)
     }
 
     /// Whether piecewise integration marches from each texel's own depth
@@ -214,7 +222,7 @@ impl IpsviSettings {
 
     /// The first setting that keeps the texel pass from computing a write
     /// without its sample, as `table.key = value` to ask for; None if none does.
-    fn texel_pass_needs(&self) -> Option<&'static str> {
+    pub(super) fn texel_pass_needs(&self) -> Option<&'static str> {
         let needs = [
             (self.write_value == WriteValue::TexelRay, "write_value = \"texel-ray\""),
             (self.piecewise, "piecewise = true"),
@@ -237,6 +245,25 @@ impl SettingsTable for IpsviSettings {
         check_range(t, "zone_blend", self.zone_blend_px, 0.0, 64.0)?;
         check_range(t, "light_step", self.light_step_voxels, 0.01, 16.0)?;
         check_whole(t, "ert_scale", self.ert_scale, 1, 16)?;
+        check_whole(t, "segment_rounds", self.segment_rounds, 1, 64)?;
+        if self.segments != 0 && (!self.segments.is_power_of_two() || self.segments > 128) {
+            return Err(SettingsError::Technique(format!(
+                "{t}.segments = {} is not 0 (the device's choice) or a power of two up to 128",
+                self.segments
+            )));
+        }
+        if self.segments != 0 && self.line_kernel != LineKernel::Segmented {
+            return Err(SettingsError::Technique(format!(
+                "{t}.segments = {} needs {t}.line_kernel = \"segmented\" (it is \"{}\")",
+                self.segments,
+                self.line_kernel.name()
+            )));
+        }
+        if self.line_kernel == LineKernel::Segmented {
+            if let Some(why) = segmented_refusal(self) {
+                return Err(SettingsError::Technique(why));
+            }
+        }
         if self.albedo > 0.0 && self.cache_update == CacheUpdate::ViewSamples {
             return Err(SettingsError::Technique(format!(
                 "{t}.albedo = {} needs {t}.cache_update = \"light-rays\": forward-cone scattering blends \

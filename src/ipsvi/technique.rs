@@ -149,6 +149,15 @@ impl RenderTechnique for Ipsvi {
         let texel = super::cache_plane::texel_pixels(scene, s, width, height)
             .map(|px| format!("; cache texel {px:.2} px at the lit box's centre"))
             .unwrap_or_default();
-        Some(format!("ipsvi sync strategy: {}; cache_update: {}{write}{fronts}{texel}", s.sync, s.cache_update.name()))
+        // The kernel `auto` takes depends on the device: the frame's line shape names it.
+        let kernel = match s.segments {
+            0 => format!("; line_kernel: {}", s.line_kernel.name()),
+            n => format!("; line_kernel: {} x{n}", s.line_kernel.name()),
+        };
+        Some(format!(
+            "ipsvi sync strategy: {}; cache_update: {}{write}{fronts}{texel}{kernel}",
+            s.sync,
+            s.cache_update.name()
+        ))
     }
 }

@@ -29,7 +29,7 @@ impl FrameSession for LightVolumeSession<'_> {
         let out = self.renderer.render(lights, width, height, profiler, false)?;
         let image = out.image.ok_or_else(|| RenderError::Invalid("light volume frame without an image".into()))?;
         self.last = Some(out.update);
-        Ok(FrameResult { image, dispatches: out.dispatches, barriers: out.barriers })
+        Ok(FrameResult { image, dispatches: out.dispatches, barriers: out.barriers, shape: None })
     }
 
     fn record(

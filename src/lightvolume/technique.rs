@@ -88,6 +88,6 @@ impl RenderTechnique for LightVolume {
     ) -> Result<FrameResult, RenderError> {
         let out = render_frame(gpu, width, height, profiler, false)?;
         let image = out.image.ok_or_else(|| RenderError::Invalid("light volume frame without an image".into()))?;
-        Ok(FrameResult { image, dispatches: out.dispatches, barriers: out.barriers })
+        Ok(FrameResult { image, dispatches: out.dispatches, barriers: out.barriers, shape: None })
     }
 }

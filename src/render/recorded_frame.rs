@@ -52,5 +52,5 @@ pub fn render_recorded(
         frame.output.record_readback(rec, &readback);
         Ok::<_, RenderError>((frame, readback, rec.dispatch_count, rec.barrier_count))
     })?;
-    Ok(FrameResult { image: frame.output.read(&readback)?, dispatches, barriers })
+    Ok(FrameResult { image: frame.output.read(&readback)?, dispatches, barriers, shape: None })
 }

@@ -83,6 +83,9 @@ pub struct Comparison {
     pub dispatches: u32,
     pub gpu_memory_bytes: u64,
     pub device: String,
+    /// A line-sweep frame's shape (IPSVI).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line_shape: Option<crate::render::LineShape>,
     #[serde(skip)]
     pub image: LinearImage,
     #[serde(skip)]
@@ -155,6 +158,7 @@ pub fn compare_with_reference(
         dispatches: tested.dispatches,
         gpu_memory_bytes: tested.profile.gpu_memory_bytes,
         device: tested.profile.device.clone(),
+        line_shape: tested.shape,
         image: tested.image,
         reference_image,
     })
@@ -188,6 +192,7 @@ impl Comparison {
         }
         lines.push(format!("dispatches       {}", self.dispatches));
         lines.push(format!("gpu_memory_bytes {}", self.gpu_memory_bytes));
+        lines.extend(self.line_shape.as_ref().map(|s| s.summary()));
         lines
     }
 }

@@ -129,6 +129,8 @@ pub struct RenderOutput {
     /// Compute dispatches and pipeline barriers recorded for the frame.
     pub dispatches: u32,
     pub barriers: u32,
+    /// A line-sweep frame's shape (IPSVI: render prints it, profile.json holds it).
+    pub shape: Option<crate::render::LineShape>,
 }
 
 /// Renders one frame of `technique` at `width` x `height`.
@@ -168,7 +170,14 @@ pub fn profiled_frame(
         return Err(RenderError::NonFinite { technique: technique.name(), bad, total: frame.image.pixels.len() });
     }
     let profile = profiler.resolve(gpu.ctx.memory.device_local_peak())?;
-    Ok(RenderOutput { technique, image: frame.image, profile, dispatches: frame.dispatches, barriers: frame.barriers })
+    Ok(RenderOutput {
+        technique,
+        image: frame.image,
+        profile,
+        dispatches: frame.dispatches,
+        barriers: frame.barriers,
+        shape: frame.shape,
+    })
 }
 
 /// Frames of `technique` on `gpu` one after another: its own session where it

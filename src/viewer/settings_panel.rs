@@ -14,6 +14,7 @@ use crate::ao::settings::{Metric, TrainingSet};
 use crate::ao::AoSettings;
 use crate::half_angle::HalfAngleSettings;
 use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
+use crate::ipsvi::line_kernel::LineKernel;
 use crate::ipsvi::read_fronts::ReadFronts;
 use crate::ipsvi::settings::EarlyTermination;
 use crate::ipsvi::sync_strategy::SyncStrategy;
@@ -135,6 +136,15 @@ pub fn controls() -> Vec<Control> {
         }),
         control("ipsvi", "packed_store", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().packed_store)),
         control("ipsvi", "fit_to_visible", Toggle, |s| Bool(s.settings.get::<IpsviSettings>().fit_to_visible)),
+        control("ipsvi", "line_kernel", Choice(names(&LineKernel::ALL.map(|c| c.name()))), |s| {
+            Name(s.settings.get::<IpsviSettings>().line_kernel.name())
+        }),
+        control("ipsvi", "segments", Numbers(&[0, 1, 2, 4, 8, 16, 32, 64, 128]), |s| {
+            Number(s.settings.get::<IpsviSettings>().segments as f64)
+        }),
+        control("ipsvi", "segment_rounds", Whole { lo: 1, hi: 64 }, |s| {
+            Number(s.settings.get::<IpsviSettings>().segment_rounds as f64)
+        }),
         control("ipsvi", "sync", Choice(names(&SyncStrategy::ALL.map(|c| c.name()))), |s| {
             Name(s.settings.get::<IpsviSettings>().sync.name())
         }),

@@ -63,6 +63,12 @@ impl Access {
     };
 }
 
+/// Images an image barrier set holds: IPSVI's cache pairs, its output and its
+/// merged-sweep accumulation.
+pub const MAX_IMAGES: usize = 16;
+/// Buffers it holds beside them.
+pub const MAX_BUFFERS: usize = 2;
+
 /// A barrier about to be recorded: a global memory barrier or an image barrier
 /// (possibly with a layout transition).
 #[derive(Clone, Copy, Debug)]
@@ -84,12 +90,12 @@ pub(crate) enum BarrierKind {
         old_layout: vk::ImageLayout,
         new_layout: vk::ImageLayout,
     },
-    /// Up to 12 images in GENERAL layout, no transition, and a whole buffer
-    /// (null: none).
+    /// Up to [`MAX_IMAGES`] images in GENERAL layout, no transition, and up
+    /// to [`MAX_BUFFERS`] whole buffers (null: none).
     Images {
-        images: [vk::Image; 12],
+        images: [vk::Image; MAX_IMAGES],
         count: usize,
-        buffer: vk::Buffer,
+        buffers: [vk::Buffer; MAX_BUFFERS],
         src: Access,
         dst: Access,
     },
@@ -126,26 +132,31 @@ impl Barrier {
         Barrier { name, kind: BarrierKind::Image { image, src, dst, old_layout, new_layout } }
     }
 
-    /// Image barriers narrowed to `images` (GENERAL layout, at most 12).
+    /// Image barriers narrowed to `images` (GENERAL layout, at most [`MAX_IMAGES`]).
     pub fn images(name: &'static str, images: &[&Image], src: Access, dst: Access) -> Barrier {
-        Barrier::images_and_buffer(name, images, None, src, dst)
+        Barrier::images_and_buffers(name, images, &[], src, dst)
     }
 
-    /// [`Barrier::images`] plus a buffer barrier on the whole of `buffer`.
-    pub fn images_and_buffer(
+    /// [`Barrier::images`] plus buffer barriers on the whole of each of
+    /// `buffers` (at most [`MAX_BUFFERS`]). More images or buffers than fit
+    /// are a bug of the caller: it panics rather than leave one unprotected.
+    pub fn images_and_buffers(
         name: &'static str,
         images: &[&Image],
-        buffer: Option<&Buffer>,
+        buffers: &[&Buffer],
         src: Access,
         dst: Access,
     ) -> Barrier {
-        let mut raw = [vk::Image::null(); 12];
-        let count = images.len().min(12);
+        assert!(images.len() <= MAX_IMAGES && buffers.len() <= MAX_BUFFERS, "barrier {name}: too many resources");
+        let mut raw = [vk::Image::null(); MAX_IMAGES];
         for (r, i) in raw.iter_mut().zip(images) {
             *r = i.raw;
         }
-        let buffer = buffer.map_or(vk::Buffer::null(), |b| b.raw);
-        Barrier { name, kind: BarrierKind::Images { images: raw, count, buffer, src, dst } }
+        let mut raw_buffers = [vk::Buffer::null(); MAX_BUFFERS];
+        for (r, b) in raw_buffers.iter_mut().zip(buffers) {
+            *r = b.raw;
+        }
+        Barrier { name, kind: BarrierKind::Images { images: raw, count: images.len(), buffers: raw_buffers, src, dst } }
     }
 
     /// Calls `f` with this barrier as a `vk::DependencyInfo` (for barriers and events).
@@ -176,12 +187,14 @@ impl Barrier {
                 let b = [image_barrier(image, src, dst, old_layout, new_layout)];
                 f(&vk::DependencyInfo::default().image_memory_barriers(&b))
             }
-            BarrierKind::Images { images, count, buffer, src, dst } => {
+            BarrierKind::Images { images, count, buffers, src, dst } => {
                 let general = vk::ImageLayout::GENERAL;
                 let b: Vec<vk::ImageMemoryBarrier2> =
                     images[..count].iter().map(|&i| image_barrier(i, src, dst, general, general)).collect();
-                let buffers: Vec<vk::BufferMemoryBarrier2> = (buffer != vk::Buffer::null())
-                    .then(|| {
+                let buffers: Vec<vk::BufferMemoryBarrier2> = buffers
+                    .iter()
+                    .filter(|&&buffer| buffer != vk::Buffer::null())
+                    .map(|&buffer| {
                         vk::BufferMemoryBarrier2::default()
                             .src_stage_mask(src.stage)
                             .src_access_mask(src.access)
@@ -193,7 +206,6 @@ impl Barrier {
                             .offset(0)
                             .size(vk::WHOLE_SIZE)
                     })
-                    .into_iter()
                     .collect();
                 f(&vk::DependencyInfo::default().image_memory_barriers(&b).buffer_memory_barriers(&buffers))
             }

@@ -430,6 +430,14 @@ impl<'a> Recorder<'a> {
         };
     }
 
+    /// Copies the whole of `src` to the start of `dst` (at least as large).
+    pub fn copy_buffer(&self, src: &Buffer, dst: &Buffer) {
+        self.note_transfer();
+        let region = [vk::BufferCopy::default().size(src.size.min(dst.size))];
+        // SAFETY: src has TRANSFER_SRC and dst TRANSFER_DST usage; the region lies in both.
+        unsafe { self.ctx.device.cmd_copy_buffer(self.cb, src.raw, dst.raw, &region) };
+    }
+
     pub fn fill_buffer(&self, dst: &Buffer, value: u32) {
         self.note_transfer();
         // SAFETY: dst was created with TRANSFER_DST usage.

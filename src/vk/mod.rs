@@ -22,6 +22,7 @@ pub mod pipeline_store;
 pub mod profiler;
 pub mod resources;
 pub mod staging;
+pub mod subgroups;
 pub mod surface;
 pub mod swapchain;
 pub mod validation;

@@ -173,15 +173,16 @@ pub fn assert_ipsvi_line_barrier_load_bearing(
     ctx: &Context,
     gpu: &sweeplab::render::GpuScene,
     s: &sweeplab::ipsvi::IpsviSettings,
+    study: &sweeplab::ipsvi::IpsviStudy,
     profiler: &mut sweeplab::vk::Profiler,
     what: &str,
 ) {
-    use sweeplab::ipsvi::{render_with, SyncStrategy};
+    use sweeplab::ipsvi::{render_study, SyncStrategy};
     profiler.reset();
-    render_with(gpu, s, 16, 16, profiler, SyncStrategy::BarrierGlobal).unwrap();
+    render_study(gpu, s, study, 16, 16, profiler, SyncStrategy::BarrierGlobal).unwrap();
     assert_validation_clean(ctx);
     profiler.reset();
-    render_with(gpu, s, 16, 16, profiler, SyncStrategy::Racy).unwrap();
+    render_study(gpu, s, study, 16, 16, profiler, SyncStrategy::Racy).unwrap();
     let messages = ctx.take_validation_messages();
     assert!(
         messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
@@ -199,4 +200,33 @@ pub fn filter_bound_rms(scene: &Scene, kind: sweeplab::reference::CpuRenderKind,
     let bound = sweeplab::reference::filter_bound_image(scene, kind, scene.render.filter, size, size).unwrap();
     let squares: f64 = bound.pixels.iter().map(|p| (p[0] as f64).powi(2)).sum();
     (squares / bound.pixels.len() as f64).sqrt()
+}
+
+/// The reference of the IPSVI tests' scenes: model (ii), light step 0.125,
+/// the slab-and-sphere transfer function, emission 0.2.
+pub fn reference_settings(scene: &mut Scene) {
+    scene.transfer = presets::preset("slab-sphere").unwrap();
+    scene.reference.model = OpticalModel::EmissiveScattering;
+    scene.reference.step_voxels = scene.render.step_voxels;
+    scene.reference.shadow_step_voxels = 0.125;
+    scene.reference.min_transmittance = 1e-4;
+    scene.render.emission = 0.2;
+}
+
+/// The IPSVI tests' known-shadow scene: a sphere over a slab
+/// (synthetic::slab_under_sphere, 32^3) at `size`^2 with its reference.
+pub fn ipsvi_slab_scene(lights: Vec<Light>, size: u32) -> Scene {
+    let mut scene = scene_with(sweeplab::scene::synthetic::slab_under_sphere(32), lights, size, size);
+    reference_settings(&mut scene);
+    scene
+}
+
+/// The point light of the IPSVI tests.
+pub fn point(position: Vec3) -> Light {
+    Light {
+        kind: LightKind::Point { position },
+        color: Vec3::new(1.0, 0.9, 0.8),
+        intensity: 1.5,
+        falloff: Falloff::None,
+    }
 }

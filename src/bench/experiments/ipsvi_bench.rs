@@ -15,6 +15,7 @@ use crate::bench::{
 };
 use crate::half_angle::HalfAngleSettings;
 use crate::ipsvi::cache_plane::texel_pixels;
+use crate::ipsvi::line_kernel::{self, LineKernel};
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
 use crate::ipsvi::{CacheUpdate, EarlyTermination, IpsviSettings, ReadFronts, SyncStrategy, WritePass, WriteRule};
 use crate::linear_image::LinearImage;
@@ -52,6 +53,10 @@ pub struct IpsviPlan {
     /// (300 renderers, 60 of them with a 1024-texel cache) would hold about
     /// 5 GB at once.
     pub group_bytes: u64,
+    /// The line kernels measured (`auto`: the device's): the whole grid with
+    /// the first (the device's where listed), and every mode at every cache
+    /// size with each other one that runs it.
+    pub kernels: Vec<LineKernel>,
 }
 
 /// Every IPSVI configuration, checked as the scene file's `[ipsvi]` would be.
@@ -95,7 +100,11 @@ fn mode_name(s: &IpsviSettings) -> String {
         _ => "",
     };
     let boxed = if s.fit_to_visible { ", visible box" } else { "" };
-    format!("{mode}{pass}{fronts}{boxed}")
+    let kernel = match s.line_kernel {
+        LineKernel::Auto => String::new(),
+        k => format!(", {}", k.name()),
+    };
+    format!("{mode}{pass}{fronts}{boxed}{kernel}")
 }
 
 impl IpsviPlan {
@@ -110,11 +119,28 @@ impl IpsviPlan {
         Ok(())
     }
 
-    /// Every IPSVI configuration of `base` (the scene's settings), each
-    /// checked as the scene file's `[ipsvi]` would be.
+    /// Every IPSVI configuration of `base` (the scene's settings, its kernel
+    /// resolved for the device: [`line_kernel::resolved`]), each checked as
+    /// the scene file's `[ipsvi]` would be.
     pub fn configurations(&self, base: &IpsviSettings) -> Result<Vec<IpsviSettings>, ExperimentError> {
-        let configs = self.grid(base);
-        check_ipsvi("--line-widths/--cache-sizes", &configs)?;
+        let first = match self.kernels.first() {
+            Some(&k) if !self.kernels.contains(&base.line_kernel) => IpsviSettings { line_kernel: k, ..base.clone() },
+            _ => base.clone(),
+        };
+        let mut configs = self.grid(&first);
+        // The other kernels: every mode at every cache size, where they run it.
+        for &line_kernel in self.kernels.iter().filter(|&&k| k != first.line_kernel) {
+            for mode in modes(&first) {
+                for cache_size in std::iter::once(mode.cache_size).chain(self.cache_sizes.iter().copied()) {
+                    let s = IpsviSettings { line_kernel, segments: 0, cache_size, ..mode.clone() };
+                    let runs = line_kernel != LineKernel::Segmented || line_kernel::segmented_refusal(&s).is_none();
+                    if runs && !configs.contains(&s) {
+                        configs.push(s);
+                    }
+                }
+            }
+        }
+        check_ipsvi("--line-widths/--cache-sizes/--kernels", &configs)?;
         Ok(configs)
     }
 
@@ -206,7 +232,13 @@ pub fn run(
     plan.check()?;
     let mut scene = scene.clone();
     scene.reference.model = OpticalModel::EmissiveScattering;
-    let base = scene.settings.get::<IpsviSettings>().into_owned();
+    // With several kernels, the one the device takes for the scene named, the others beside it.
+    let subgroups = crate::vk::subgroups::SubgroupSupport::of(ctx);
+    let scene_settings = scene.settings.get::<IpsviSettings>().into_owned();
+    let base = match plan.kernels.as_slice() {
+        [only] => IpsviSettings { line_kernel: *only, ..scene_settings },
+        _ => line_kernel::resolved(&scene_settings, &ctx.info.device_type, &subgroups),
+    };
     let configs = plan.configurations(&base)?;
     let groups = groups(&scene, &configs, plan);
     let half_angle = if scene.lights.len() == 1 { plan.half_angle_slices.clone() } else { Vec::new() };
@@ -278,7 +310,7 @@ pub fn run(
                 let mut renderer = IpsviRenderer::new(&gpu, &configs[i], size, size)?;
                 let first = ipsvi_frame(ctx, &mut renderer, &mut profiler, SyncStrategy::BarrierGlobal)?.output;
                 let memory = first.profile.gpu_memory_bytes - before.saturating_sub(base_bytes);
-                renderers.push(Prepared { memory, run: renderer });
+                renderers.push(Prepared { memory, run: (renderer, first.frame.shape) });
             }
             progress.finish_step();
             // Configuration 0 is the DVR, then this group's IPSVI, then (in the first group) half-angle.
@@ -289,7 +321,7 @@ pub fn run(
                     let frame = if c == 0 {
                         technique_frame(&gpu, Technique::Dvr, (size, size), &mut profiler).map(from_output)?
                     } else if c <= group.len() {
-                        let r = &mut renderers[c - 1].run;
+                        let r = &mut renderers[c - 1].run.0;
                         ipsvi_frame(ctx, r, &mut profiler, SyncStrategy::BarrierGlobal).map(|s| Sample {
                             ms: s.ms,
                             output: Frame {
@@ -327,6 +359,10 @@ pub fn run(
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
                 row.set("mode", mode_name(s)).set("cache_update", s.cache_update.name());
                 row.set("fit_to_visible", s.fit_to_visible);
+                row.set("line_kernel", prepared.run.0.kernel().label());
+                if let Some(shape) = &prepared.run.1 {
+                    set_shape(&mut row, shape);
+                }
                 // Light rays have no view-sample writes.
                 if let Some(pass) = s.write_pass_run() {
                     row.set("write_rule", s.write_rule.name()).set("write_pass", pass.name());
@@ -386,6 +422,14 @@ fn from_output(s: Sample<crate::techniques::RenderOutput>) -> Sample<Frame> {
 
 fn size_row(technique: &str, size: u32) -> BenchRow {
     BenchRow::new().with("technique", technique).with("width", size).with("height", size)
+}
+
+/// A frame's line shape (device-independent): invocations per line dispatch
+/// and the longest serial chain of an invocation, medians and maxima.
+pub fn set_shape(row: &mut BenchRow, shape: &crate::render::LineShape) {
+    row.set("invocations_per_dispatch", shape.invocations_median);
+    row.set("invocations_per_dispatch_max", shape.invocations_max);
+    row.set("longest_chain", shape.chain_median).set("longest_chain_max", shape.chain_max);
 }
 
 fn set_errors<'r>(row: &'r mut BenchRow, stats: &crate::metrics::ErrorStats) -> &'r mut BenchRow {
@@ -603,7 +647,30 @@ mod tests {
             interleaved: Interleaved::fixed(1, 0).unwrap(),
             volume_texels: VolumeTexels::Native,
             group_bytes: DEFAULT_GROUP_BYTES,
+            kernels: vec![LineKernel::Auto],
         }
+    }
+
+    #[test]
+    fn the_other_kernel_measures_every_mode_at_every_cache_size_where_it_runs() {
+        let base = IpsviSettings { line_kernel: LineKernel::Serial, ..IpsviSettings::default() };
+        let both = IpsviPlan {
+            one_at_a_time: true,
+            cache_sizes: vec![64, 256],
+            kernels: vec![LineKernel::Serial, LineKernel::Segmented],
+            ..plan()
+        };
+        let one = both.configurations(&base).unwrap();
+        let serial = IpsviPlan { kernels: vec![LineKernel::Serial], ..both.clone() }.configurations(&base).unwrap();
+        assert_eq!(one[..serial.len()], serial[..], "the device's kernel's grid first");
+        let segmented: Vec<String> = one[serial.len()..].iter().map(mode_name).collect();
+        for mode in ["view samples, every-sample", "view samples, non-empty", "light rays"] {
+            let name = format!("{mode}, segmented");
+            // The scene's cache (256) and 64.
+            assert_eq!(segmented.iter().filter(|n| **n == name).count(), 2, "{name}: {segmented:?}");
+        }
+        assert!(!segmented.iter().any(|n| n.contains("sample pass")), "the segmented kernel runs no sample pass");
+        assert_eq!(mode_name(&base), "view samples, every-sample, serial");
     }
 
     #[test]

@@ -18,8 +18,9 @@ use crate::bench::{
     ipsvi_frame, plot_stacked_bars, technique_frame, BenchError, BenchRow, BenchTable, Chart, ExperimentError,
     Interleaved, OutFolder, Progress, RunInfo, StackedBar, Timings,
 };
+use crate::ipsvi::line_kernel::{self, LineKernel};
 use crate::ipsvi::renderer::{plans, IpsviRenderer};
-use crate::ipsvi::{BreakdownStep, CacheUpdate, IpsviSettings, SyncStrategy, WritePass, WriteRule};
+use crate::ipsvi::{BreakdownStep, CacheUpdate, IpsviSettings, IpsviStudy, SyncStrategy, WritePass, WriteRule};
 use crate::render::{GpuScene, VolumeTexels};
 use crate::scene::Scene;
 use crate::techniques::Technique;
@@ -54,6 +55,9 @@ pub struct BreakdownPlan {
     /// The rounds every configuration of a size shares.
     pub interleaved: Interleaved,
     pub volume_texels: VolumeTexels,
+    /// The line kernels every mode runs with, where it can (the segmented
+    /// kernel does not run the sample write pass).
+    pub kernels: Vec<LineKernel>,
 }
 
 /// Whether a configuration runs a step (see [`STEPS`]).
@@ -66,13 +70,17 @@ fn runs_step(s: &IpsviSettings, step: BreakdownStep) -> bool {
 }
 
 /// A bar label's name for a configuration.
-fn short_mode(s: &IpsviSettings) -> &'static str {
-    match (s.cache_update, s.write_rule, s.write_pass_run()) {
+fn short_mode(s: &IpsviSettings) -> String {
+    let mode = match (s.cache_update, s.write_rule, s.write_pass_run()) {
         (CacheUpdate::ViewSamples, WriteRule::NonEmpty, Some(WritePass::Sample)) => "view, sample pass",
         (CacheUpdate::ViewSamples, WriteRule::NonEmpty, _) => "view",
         (CacheUpdate::ViewSamples, WriteRule::EverySample, Some(WritePass::Sample)) => "view every, sample pass",
         (CacheUpdate::ViewSamples, WriteRule::EverySample, _) => "view every",
         (CacheUpdate::LightRays, ..) => "rays",
+    };
+    match s.line_kernel {
+        LineKernel::Segmented => format!("{mode}, segmented"),
+        _ => mode.to_string(),
     }
 }
 
@@ -81,7 +89,7 @@ impl BreakdownPlan {
     /// each mode, and at each line width) valid; the error names the flag.
     pub fn check(&self, base: &IpsviSettings) -> Result<(), ExperimentError> {
         check_sizes("--sizes", &self.sizes)?;
-        check_ipsvi("the scene's [ipsvi] settings", &configurations(base))?;
+        check_ipsvi("the scene's [ipsvi] settings", &configurations(base, &self.kernels))?;
         let widths: Vec<IpsviSettings> =
             self.line_widths.iter().map(|&line_width| IpsviSettings { line_width, ..base.clone() }).collect();
         check_ipsvi("--line-widths", &widths)
@@ -89,27 +97,39 @@ impl BreakdownPlan {
 }
 
 /// The modes of `base`: view samples with both write rules, each with both
-/// write passes where `base`'s writes allow the texel pass, then light rays.
-pub fn configurations(base: &IpsviSettings) -> Vec<IpsviSettings> {
-    let view = |write_rule, write_pass| IpsviSettings {
-        cache_update: CacheUpdate::ViewSamples,
-        write_rule,
-        write_pass,
-        ..base.clone()
-    };
-    WriteRule::ALL
+/// write passes where `base`'s writes allow the texel pass, then light rays;
+/// all with each of `kernels` that runs them (the segmented kernel runs no
+/// sample write pass).
+pub fn configurations(base: &IpsviSettings, kernels: &[LineKernel]) -> Vec<IpsviSettings> {
+    kernels
         .iter()
-        .flat_map(|&rule| WritePass::RUN.map(|pass| view(rule, pass)))
-        .filter(|s| s.write_pass == WritePass::Sample || s.texel_pass_allowed())
-        .chain(std::iter::once(IpsviSettings { cache_update: CacheUpdate::LightRays, ..base.clone() }))
+        .flat_map(|&line_kernel| {
+            let view = move |write_rule, write_pass| IpsviSettings {
+                cache_update: CacheUpdate::ViewSamples,
+                write_rule,
+                write_pass,
+                line_kernel,
+                segments: 0,
+                ..base.clone()
+            };
+            let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..view(base.write_rule, base.write_pass) };
+            WriteRule::ALL
+                .iter()
+                .flat_map(move |&rule| WritePass::RUN.map(|pass| view(rule, pass)))
+                .filter(|s| s.write_pass == WritePass::Sample || s.texel_pass_allowed())
+                .chain(std::iter::once(rays))
+                .filter(|s| s.line_kernel != LineKernel::Segmented || line_kernel::segmented_refusal(s).is_none())
+        })
         .collect()
 }
 
-/// A row's `write_rule` and `write_pass`, for view samples only: light rays have neither.
+/// A row's `write_rule` and `write_pass`, for view samples only (light rays
+/// have neither), and its line kernel.
 fn set_view_sample_writes(row: &mut BenchRow, s: &IpsviSettings) {
     if let Some(pass) = s.write_pass_run() {
         row.set("write_rule", s.write_rule.name()).set("write_pass", pass.name());
     }
+    row.set("line_kernel", s.line_kernel.name());
 }
 
 /// The steps of one mode, in the order they stack: the DVR, then [`STEPS`].
@@ -138,6 +158,7 @@ struct Run<'a> {
 struct Counts {
     dispatches: u32,
     barriers: u32,
+    shape: Option<crate::render::LineShape>,
 }
 
 /// Every size of `plan` on `scene`, rows saved in `out_folder` per size; the
@@ -152,7 +173,7 @@ pub fn run(
 ) -> Result<BreakdownReport, ExperimentError> {
     let base = scene.settings.get::<IpsviSettings>().into_owned();
     plan.check(&base)?;
-    let configs = configurations(&base);
+    let configs = configurations(&base, &plan.kernels);
     let gpu = GpuScene::upload_with(ctx, scene, plan.volume_texels)?;
     let mut profiler = Profiler::new(ctx, profiler_capacity)?;
     let per_size = configs.iter().map(|s| steps_of(s).count() + plan.line_widths.len()).sum::<usize>();
@@ -180,14 +201,15 @@ pub fn run(
         let dvr_first = technique_frame(&gpu, Technique::Dvr, (size, size), &mut profiler)?.output;
         let mut runs = Vec::with_capacity(per_size);
         for (mode, s) in configs.iter().enumerate() {
-            let steps = steps_of(s)
-                .map(|(label, step, sync)| (label, None, IpsviSettings { breakdown_step: step, ..s.clone() }, sync));
-            let widths = plan
-                .line_widths
-                .iter()
-                .map(|&lw| ("", Some(lw), IpsviSettings { line_width: lw, ..s.clone() }, SyncStrategy::BarrierGlobal));
-            for (label, line_width, settings, sync) in steps.chain(widths).collect::<Vec<_>>() {
-                let mut renderer = IpsviRenderer::new(&gpu, &settings, size, size)?;
+            let steps = steps_of(s).map(|(label, breakdown_step, sync)| {
+                (label, None, s.clone(), IpsviStudy { breakdown_step, ..IpsviStudy::default() }, sync)
+            });
+            let widths = plan.line_widths.iter().map(|&lw| {
+                let settings = IpsviSettings { line_width: lw, ..s.clone() };
+                ("", Some(lw), settings, IpsviStudy::default(), SyncStrategy::BarrierGlobal)
+            });
+            for (label, line_width, settings, study, sync) in steps.chain(widths).collect::<Vec<_>>() {
+                let mut renderer = IpsviRenderer::build(&gpu, &settings, &study, size, size, None)?;
                 ipsvi_frame(ctx, &mut renderer, &mut profiler, sync)?;
                 runs.push(Run { mode, label, line_width, sync, renderer });
             }
@@ -199,13 +221,14 @@ pub fn run(
                 let s = technique_frame(&gpu, Technique::Dvr, (size, size), &mut profiler)?;
                 crate::bench::Sample {
                     ms: s.ms,
-                    output: Counts { dispatches: s.output.dispatches, barriers: s.output.barriers },
+                    output: Counts { dispatches: s.output.dispatches, barriers: s.output.barriers, shape: None },
                 }
             } else {
                 let r = &mut runs[c - 1];
                 let s = ipsvi_frame(ctx, &mut r.renderer, &mut profiler, r.sync)?;
                 let f = &s.output.frame;
-                crate::bench::Sample { ms: s.ms, output: Counts { dispatches: f.dispatches, barriers: f.barriers } }
+                let output = Counts { dispatches: f.dispatches, barriers: f.barriers, shape: f.shape.clone() };
+                crate::bench::Sample { ms: s.ms, output }
             })
         })?;
         let measured = timings.split_off(1);
@@ -283,6 +306,9 @@ impl BreakdownReport {
                 as_zero.push(short);
             }
             row.set("lines", lines).set("dispatches", t.last.dispatches).set("barriers", t.last.barriers);
+            if let Some(shape) = &t.last.shape {
+                super::ipsvi_bench::set_shape(&mut row, shape);
+            }
             self.table.push(row);
             bar.segments.push((label.to_string(), cost.unwrap_or(0.0)));
         }
@@ -309,6 +335,9 @@ impl BreakdownReport {
             row.set("line_width", line_width);
             set_view_sample_writes(&mut row, s);
             row.set_timing("gpu_ms", t).set("dispatches", t.last.dispatches);
+            if let Some(shape) = &t.last.shape {
+                super::ipsvi_bench::set_shape(&mut row, shape);
+            }
             if let Some(lw1) = lw1 {
                 row.set("speedup_over_lw1", lw1.median() / t.median());
                 row.set_estimate("speedup_over_lw1", lw1.paired_ratio(t));
@@ -338,9 +367,15 @@ impl BreakdownReport {
     pub fn print_summary(&self) {
         let table = &self.table;
         let mode = |r: &BenchRow| {
-            format!("{} {} {}", r.text("cache_update"), r.text("write_rule"), r.text("write_pass"))
-                .trim_end()
-                .to_string()
+            format!(
+                "{} {} {} {}",
+                r.text("cache_update"),
+                r.text("write_rule"),
+                r.text("write_pass"),
+                r.text("line_kernel")
+            )
+            .trim_end()
+            .to_string()
         };
         let mut groups: Vec<(String, String)> = Vec::new();
         for r in &table.rows {
@@ -370,7 +405,10 @@ mod tests {
     use super::*;
 
     fn timings(rounds: &[f64]) -> Timings<Counts> {
-        Timings { rounds: rounds.iter().map(|&r| Some(r)).collect(), last: Counts { dispatches: 1, barriers: 0 } }
+        Timings {
+            rounds: rounds.iter().map(|&r| Some(r)).collect(),
+            last: Counts { dispatches: 1, barriers: 0, shape: None },
+        }
     }
 
     #[test]
@@ -406,11 +444,24 @@ mod tests {
 
     #[test]
     fn both_write_passes_are_measured_where_the_writes_allow_the_texel_pass() {
-        let modes = |base: &IpsviSettings| configurations(base).iter().map(short_mode).collect::<Vec<_>>();
-        let all = ["view, sample pass", "view", "view every, sample pass", "view every", "rays"];
+        let both = [LineKernel::Serial, LineKernel::Segmented];
+        let modes = |base: &IpsviSettings| configurations(base, &both).iter().map(short_mode).collect::<Vec<_>>();
+        let all = [
+            "view, sample pass",
+            "view",
+            "view every, sample pass",
+            "view every",
+            "rays",
+            "view, segmented",
+            "view every, segmented",
+            "rays, segmented",
+        ];
         assert_eq!(modes(&IpsviSettings::default()), all);
+        // The scene's kernel does not matter either: both are measured.
+        let segmented = IpsviSettings { line_kernel: LineKernel::Segmented, segments: 8, ..Default::default() };
+        assert_eq!(modes(&segmented), all);
         let sample_writes = IpsviSettings { write_value: crate::ipsvi::WriteValue::Sample, ..Default::default() };
-        assert_eq!(modes(&sample_writes), ["view, sample pass", "view every, sample pass", "rays"]);
+        assert_eq!(modes(&sample_writes), ["view, sample pass", "view every, sample pass", "rays", "rays, segmented"]);
         // The scene's own pass does not matter: both are measured.
         let sample = IpsviSettings { write_pass: WritePass::Sample, ..Default::default() };
         assert_eq!(modes(&sample), all);
@@ -423,12 +474,15 @@ mod tests {
             line_widths: vec![1, 99],
             interleaved: Interleaved::fixed(1, 0).unwrap(),
             volume_texels: VolumeTexels::Native,
+            kernels: vec![LineKernel::Serial],
         };
         let e = plan.check(&IpsviSettings::default()).unwrap_err().to_string();
         assert!(e.starts_with("--line-widths") && e.contains("line_width"), "{e}");
         let e = BreakdownPlan { sizes: vec![0], ..plan.clone() }.check(&IpsviSettings::default()).unwrap_err();
         assert!(e.to_string().starts_with("--sizes"), "{e}");
-        // View samples under each write rule and write pass, light rays once.
-        assert_eq!(configurations(&IpsviSettings::default()).len(), 5);
+        // View samples under each write rule and write pass, light rays once;
+        // the texel pass and light rays again segmented.
+        assert_eq!(configurations(&IpsviSettings::default(), &[LineKernel::Serial, LineKernel::Segmented]).len(), 8);
+        assert_eq!(configurations(&IpsviSettings::default(), &[LineKernel::Segmented]).len(), 3);
     }
 }

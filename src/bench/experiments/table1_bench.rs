@@ -1,12 +1,14 @@
 //! `sweeplab bench table1` as an experiment: the IPSVI paper's Table 1 on our
 //! data and device. Per data set and image size, the frames of every line
-//! width are measured side by side ([`Interleaved`]), so the frame rate of
-//! each and its ratio to line width 1 (paired round by round) see the same
-//! rounds of a shared machine.
+//! width and line kernel are measured side by side ([`Interleaved`]), so the
+//! frame rate of each, its ratio to line width 1 and the segmented kernel's
+//! ratio to the serial one (paired round by round) see the same rounds of a
+//! shared machine.
 
 use crate::bench::{
     ipsvi_frame, BenchRow, BenchTable, Estimate, ExperimentError, Interleaved, OutFolder, Progress, RunInfo, Sample,
 };
+use crate::ipsvi::line_kernel::LineKernel;
 use crate::ipsvi::paper_table1::{PaperColumn, CT_ENGINE, CT_GIRAFFE, LINE_WIDTHS, US_BABY};
 use crate::ipsvi::renderer::IpsviRenderer;
 use crate::ipsvi::{IpsviSettings, SyncStrategy};
@@ -32,14 +34,37 @@ pub struct Table1Plan {
     pub set: Vec<String>,
     /// The volume files and the paper columns they stand beside.
     pub data_sets: Vec<(PathBuf, &'static PaperColumn)>,
+    /// The line kernels measured (`auto`: the device's).
+    pub kernels: Vec<LineKernel>,
 }
 
 impl Table1Plan {
     /// The paper's three data sets, from the data folder.
     pub fn paper(sizes: Vec<u32>, interleaved: Interleaved, set: Vec<String>) -> Table1Plan {
         let data_sets = PAPER_PAIRS.iter().map(|(file, paper)| (data_dir().join(file), *paper)).collect();
-        Table1Plan { sizes, interleaved, set, data_sets }
+        Table1Plan { sizes, interleaved, set, data_sets, kernels: vec![LineKernel::Auto] }
     }
+
+    /// Only the data sets whose file names are in `files` (of [`PAPER_PAIRS`]);
+    /// the error names the unknown one.
+    pub fn only(mut self, files: &[String]) -> Result<Table1Plan, ExperimentError> {
+        if files.is_empty() {
+            return Ok(self);
+        }
+        for f in files {
+            if !PAPER_PAIRS.iter().any(|(file, _)| file == f) {
+                let known: Vec<&str> = PAPER_PAIRS.iter().map(|p| p.0).collect();
+                return Err(ExperimentError::Invalid(format!("--data-sets: {f:?} is not one of {}", known.join(", "))));
+            }
+        }
+        self.data_sets.retain(|(path, _)| files.iter().any(|f| path.file_name().is_some_and(|n| n == f.as_str())));
+        Ok(self)
+    }
+}
+
+/// A kernel as the rows name it before it is resolved.
+fn kernel_settings(base: &IpsviSettings, line_kernel: LineKernel, line_width: u32) -> IpsviSettings {
+    IpsviSettings { line_width, line_kernel, segments: 0, ..base.clone() }
 }
 
 /// Frames per second from a frame's GPU ms, its interval turned over with it.
@@ -47,13 +72,18 @@ fn fps_of(ms: &Estimate) -> Estimate {
     Estimate { value: 1000.0 / ms.value, lo: 1000.0 / ms.hi, hi: 1000.0 / ms.lo, n: ms.n }
 }
 
-/// One data set at one size: each line width's frame rate and its paired
-/// ratio to line width 1.
+/// One data set at one size: per (kernel, line width) the frame rate, its
+/// paired ratio to line width 1 of the same kernel and to the first kernel at
+/// the same line width, and the kernel as it ran.
 struct SizeMeasurement {
-    /// Per line width: median frame ms and its interval.
+    /// Median frame ms and its interval.
     gpu_ms: Vec<(f64, Option<Estimate>)>,
-    /// Per line width: lw1 time over its time, paired (how many times lw1's fps).
+    /// lw1 time over this time, paired (how many times lw1's fps).
     over_lw1: Vec<Option<Estimate>>,
+    /// The first kernel's time over this time, paired.
+    over_first_kernel: Vec<Option<Estimate>>,
+    /// The kernel's label (`serial`, `segmented x32`) and its frame's shape.
+    kernels: Vec<(String, Option<crate::render::LineShape>)>,
 }
 
 /// Every data set of `plan` at every size, the rows saved in `out_folder`
@@ -77,24 +107,36 @@ pub fn run(
         let base = IpsviSettings { piecewise: true, ..scene.settings.get::<IpsviSettings>().into_owned() };
         let gpu = GpuScene::upload(ctx, &scene)?;
         let mut measured = BTreeMap::new();
+        let n = LINE_WIDTHS.len();
         for &size in &plan.sizes {
-            let mut renderers = LINE_WIDTHS
+            let mut renderers = plan
+                .kernels
                 .iter()
-                .map(|&lw| IpsviRenderer::new(&gpu, &IpsviSettings { line_width: lw, ..base.clone() }, size, size))
+                .flat_map(|&k| LINE_WIDTHS.iter().map(move |&lw| (k, lw)))
+                .map(|(k, lw)| IpsviRenderer::new(&gpu, &kernel_settings(&base, k, lw), size, size))
                 .collect::<Result<Vec<_>, _>>()?;
-            let label = format!("{file} {size}x{size} lw={}", LINE_WIDTHS.map(|w| w.to_string()).join(","));
-            let timings = plan.interleaved.measure(&mut progress, &label, LINE_WIDTHS.len(), |c, _| {
+            let kernels: Vec<&str> = plan.kernels.iter().map(|k| k.name()).collect();
+            let label = format!(
+                "{file} {size}x{size} lw={} kernels={}",
+                LINE_WIDTHS.map(|w| w.to_string()).join(","),
+                kernels.join(",")
+            );
+            let timings = plan.interleaved.measure(&mut progress, &label, renderers.len(), |c, _| {
                 ipsvi_frame(ctx, &mut renderers[c], &mut profiler, SyncStrategy::BarrierGlobal)
-                    .map(|s| Sample { ms: s.ms, output: () })
+                    .map(|s| Sample { ms: s.ms, output: s.output.frame.shape })
                     .map_err(ExperimentError::from)
             })?;
             let gpu_ms = timings.iter().map(|t| (t.median(), t.estimate())).collect();
-            let over_lw1 = timings.iter().map(|t| timings[0].paired_ratio(t)).collect();
-            measured.insert(size, SizeMeasurement { gpu_ms, over_lw1 });
+            let over_lw1 = timings.iter().enumerate().map(|(c, t)| timings[c / n * n].paired_ratio(t)).collect();
+            let over_first_kernel = timings.iter().enumerate().map(|(c, t)| timings[c % n].paired_ratio(t)).collect();
+            let kernels = renderers.iter().zip(&timings).map(|(r, t)| (r.kernel().label(), t.last.clone())).collect();
+            measured.insert(size, SizeMeasurement { gpu_ms, over_lw1, over_first_kernel, kernels });
         }
         for &size in &plan.sizes {
-            for (i, &lw) in LINE_WIDTHS.iter().enumerate() {
-                table.push(row(&file, paper, plan, &measured, size, i, lw));
+            for k in 0..plan.kernels.len() {
+                for (i, &lw) in LINE_WIDTHS.iter().enumerate() {
+                    table.push(row(&file, paper, plan, &measured, size, k * n + i, lw));
+                }
             }
         }
         out_folder.save_rows("table1", &table)?;
@@ -103,7 +145,8 @@ pub fn run(
     Ok(table)
 }
 
-/// The row of line width `LINE_WIDTHS[i]` at `size`: ours beside the paper's.
+/// The row of configuration `i` (kernel `i / 3`, line width `LINE_WIDTHS[i %
+/// 3]`) at `size`: ours beside the paper's.
 fn row(
     file: &str,
     paper: &PaperColumn,
@@ -115,10 +158,13 @@ fn row(
 ) -> BenchRow {
     let fps = |size: u32, i: usize| 1000.0 / measured[&size].gpu_ms[i].0;
     let paper_fps = |size: u32, lw: u32| paper.fps_at(size, lw).unwrap_or(f64::NAN);
-    let (ms, ms_estimate) = measured[&size].gpu_ms[i];
+    let m = &measured[&size];
+    let (ms, ms_estimate) = m.gpu_ms[i];
     let ours = fps(size, i);
+    let lw1 = i / LINE_WIDTHS.len() * LINE_WIDTHS.len();
     let mut row = BenchRow::new();
     row.set("data_set", file).set("paper_data_set", paper.data_set).set("width", size).set("line_width", lw);
+    row.set("line_kernel", m.kernels[i].0.as_str());
     row.set("fps", ours);
     if let Some(e) = ms_estimate {
         row.set("fps_lo", fps_of(&e).lo).set("fps_hi", fps_of(&e).hi);
@@ -126,12 +172,20 @@ fn row(
     row.set("paper_fps", paper_fps(size, lw));
     row.set("gpu_ms", ms).set_estimate("gpu_ms", ms_estimate);
     if lw != 1 {
-        row.set("fps_over_lw1", ours / fps(size, 0)).set_estimate("fps_over_lw1", measured[&size].over_lw1[i]);
+        row.set("fps_over_lw1", ours / fps(size, lw1)).set_estimate("fps_over_lw1", m.over_lw1[i]);
         row.set("paper_fps_over_lw1", paper_fps(size, lw) / paper_fps(size, 1));
+    }
+    if i >= LINE_WIDTHS.len() {
+        let first = i % LINE_WIDTHS.len();
+        row.set("fps_over_first_kernel", ours / fps(size, first));
+        row.set_estimate("fps_over_first_kernel", m.over_first_kernel[i]);
     }
     if let Some(&half) = plan.sizes.iter().find(|&&h| h * 2 == size) {
         row.set("fps_over_half_size", ours / fps(half, i));
         row.set("paper_fps_over_half_size", paper_fps(size, lw) / paper_fps(half, lw));
+    }
+    if let Some(shape) = &m.kernels[i].1 {
+        super::ipsvi_bench::set_shape(&mut row, shape);
     }
     row
 }
@@ -146,7 +200,7 @@ fn step_weights(plan: &Table1Plan) -> Vec<f64> {
         let bytes = std::fs::metadata(path).map(|m| m.len() as f64).unwrap_or(1.0);
         for &size in &plan.sizes {
             let pixels = f64::from(size) * f64::from(size);
-            weights.push(pixels * bytes.max(1.0).cbrt() * LINE_WIDTHS.len() as f64);
+            weights.push(pixels * bytes.max(1.0).cbrt() * (LINE_WIDTHS.len() * plan.kernels.len()) as f64);
         }
     }
     weights
@@ -161,11 +215,12 @@ pub fn print_summary(table: &BenchTable) {
             _ => String::new(),
         };
         println!(
-            "{} {}x{} lw={}: {:.2} fps{interval} (paper, {}: {:.1} fps)",
+            "{} {}x{} lw={} {}: {:.2} fps{interval} (paper, {}: {:.1} fps)",
             r.text("data_set"),
             r.text("width"),
             r.text("width"),
             r.text("line_width"),
+            r.text("line_kernel"),
             r.get_f64("fps").unwrap_or(f64::NAN),
             r.text("paper_data_set"),
             r.get_f64("paper_fps").unwrap_or(f64::NAN)

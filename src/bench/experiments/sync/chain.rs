@@ -183,7 +183,7 @@ impl<'a> ChainLines<'a> {
     fn line_sync(&self, sync: SyncStrategy, timed_lines: bool) -> Result<Box<dyn LineSync + '_>, VkError> {
         Ok(match sync {
             SyncStrategy::BarrierGlobal => Box::new(GlobalBarrier),
-            SyncStrategy::BarrierImage => Box::new(ImageBarriers::new(&[], Some(&self.values))),
+            SyncStrategy::BarrierImage => Box::new(ImageBarriers::new(&[], &[&self.values])),
             SyncStrategy::Events => Box::new(SplitBarriers::new(self.ctx, self.lines as usize)?),
             SyncStrategy::Secondary if timed_lines => Box::new(RerecordedSweeps::default()),
             SyncStrategy::Secondary => Box::new(ReplayedSweeps::new(self.recorded()?)),

@@ -7,7 +7,7 @@
 use super::{Arm, ConfigKey, Workload};
 use crate::bench::experiments::ExperimentError;
 use crate::bench::protocol::Protocol;
-use crate::ipsvi::{IpsviSettings, SyncStrategy};
+use crate::ipsvi::{IpsviSettings, IpsviStudy, SyncStrategy};
 use crate::scene::settings_table::SettingsTable as _;
 use serde::{Deserialize, Serialize};
 use std::time::Duration;
@@ -128,19 +128,19 @@ pub fn later_share(workload: Workload) -> f64 {
     }
 }
 
-/// A configuration's IPSVI settings. Every line width does the same work: the
-/// claim pass, which a frame leaves out at line width 1 where it cannot change
-/// the image (`IpsviSettings::records_claims`), stays in at every width, or
-/// the slope over blocks would carry the pass's cost.
-pub fn settings_for(base: &IpsviSettings, line_width: u32, sync: SyncStrategy, workload: Workload) -> IpsviSettings {
-    IpsviSettings {
-        line_width,
-        sync,
-        breakdown_step: workload.breakdown_step(),
-        merge_sweeps: false,
-        keep_redundant_claims: true,
-        ..base.clone()
-    }
+/// A configuration's IPSVI settings and study. Every line width does the same
+/// work: the claim pass, which a frame leaves out at line width 1 where it
+/// cannot change the image (`IpsviSettings::records_claims`), stays in at every
+/// width, or the slope over blocks would carry the pass's cost.
+pub fn settings_for(
+    base: &IpsviSettings,
+    line_width: u32,
+    sync: SyncStrategy,
+    workload: Workload,
+) -> (IpsviSettings, IpsviStudy) {
+    let study =
+        IpsviStudy { breakdown_step: workload.breakdown_step(), keep_redundant_claims: true, ..IpsviStudy::default() };
+    (IpsviSettings { line_width, sync, merge_sweeps: false, ..base.clone() }, study)
 }
 
 #[cfg(test)]
@@ -162,8 +162,8 @@ mod tests {
         let base = IpsviSettings { write_pass: crate::ipsvi::WritePass::Sample, ..IpsviSettings::default() };
         assert!(!base.records_claims(), "line width 1 leaves the claim pass out of a frame");
         for line_width in [1, 2, 32] {
-            let s = settings_for(&base, line_width, SyncStrategy::BarrierGlobal, Workload::Sweep);
-            assert!(s.records_claims(), "line width {line_width}");
+            let (s, study) = settings_for(&base, line_width, SyncStrategy::BarrierGlobal, Workload::Sweep);
+            assert!(s.claims_recorded(study.keep_redundant_claims), "line width {line_width}");
         }
     }
 

@@ -151,8 +151,8 @@ pub fn run(
     // One workgroup size for every line width, so the work per pixel is the
     // same and only the number of blocks changes.
     let line_group = if plan.workloads.iter().any(|w| *w != Workload::Chain) {
-        let s = settings_for(base, plan.narrowest(), SyncStrategy::Racy, Workload::Sweep);
-        Some(IpsviRenderer::new(gpu, &s, plan.width, plan.height)?.line_group())
+        let (s, ipsvi_study) = settings_for(base, plan.narrowest(), SyncStrategy::Racy, Workload::Sweep);
+        Some(IpsviRenderer::build(gpu, &s, &ipsvi_study, plan.width, plan.height, None)?.line_group())
     } else {
         None
     };
@@ -204,9 +204,9 @@ fn add_line_configs<'a>(
 ) -> Result<(), ExperimentError> {
     let (width, height) = (study.plan.width, study.plan.height);
     for key in plan::configurations(study.plan, workload) {
-        let s = settings_for(study.base, key.line_width, key.arm.sync(), key.workload);
+        let (s, ipsvi_study) = settings_for(study.base, key.line_width, key.arm.sync(), key.workload);
         let plans = plans(study.gpu, &s, width, height);
-        let renderer = IpsviRenderer::with_line_group(study.gpu, &s, width, height, study.line_group)?;
+        let renderer = IpsviRenderer::build(study.gpu, &s, &ipsvi_study, width, height, study.line_group)?;
         let (lines, blocks) = (plans.iter().map(|p| p.lines()).sum(), plans.iter().map(|p| p.dispatches()).sum());
         configs.push(Configuration::new(key, StudyLines::Ipsvi(Box::new(renderer)), lines, blocks));
     }

@@ -1,0 +1,73 @@
+// IPSVI line kernels: which invocation of a block's dispatch does what, and the
+// shape report. A block's invocations (ids within its share of the dispatch):
+//   [0, P * SEGMENTS)        its P pixels, SEGMENTS invocations each (shade_pixel)
+//   [.., + T)                the T texels of its cache region (carry or advance;
+//                            texel pass: the stores its claims name)
+//   [aligned up to SEGMENTS, + C * SEGMENTS)
+//                            the C pixels of the next block, claimed for (claim_pixel)
+// The including kernel defines SEGMENTS, `segment` (this invocation's index
+// among its pixel's), line_local_index(), line_kernel_ready(), shade_pixel,
+// claim_pixel and report_chain (this invocation's chain into Shape), then
+// includes this file for main(). No workgroup barrier: on lavapipe a shader
+// with one runs as coroutines, measured 1.12-1.20x the serial kernel's CPU
+// time at 256 (docs/bench/lavapipe-engine/ipsvi_line_kernels_256_alternating.*).
+#ifndef IPSVI_LINE_MAIN_GLSL
+#define IPSVI_LINE_MAIN_GLSL
+
+// Invocations a block needs before its claim invocations (src/ipsvi/merged_steps.rs mirrors it).
+uint claims_first(uint pixel_and_texel_invocations) {
+    return (pixel_and_texel_invocations + SEGMENTS - 1u) / SEGMENTS * SEGMENTS;
+}
+
+void line_invocation(uint id) {
+    uint texels = block.region.z * block.region.w;
+    uint pixel_invocations = block.pixel_count * SEGMENTS;
+    if (id < pixel_invocations) {
+        shade_pixel(id / SEGMENTS);
+        return;
+    }
+    if (STEP < STEP_CARRY) return;
+    if (id < pixel_invocations + texels) {
+        uint texel = id - pixel_invocations;
+        if (VIEW_SAMPLES) {
+            carry_texel(texel);
+            if (TEXEL_PASS && STEP >= STEP_STORES) write_claimed_texel(region_texel(texel));
+        } else {
+            advance_texel(texel);
+        }
+        return;
+    }
+    uint first = claims_first(pixel_invocations + texels);
+    if (CLAIMS && STEP >= STEP_CLAIM_PASS && id >= first) {
+        uint claim = (id - first) / SEGMENTS;
+        if (claim < block.claim_count) claim_pixel(blocks[block_index + 1u], claim);
+    }
+}
+
+void main() {
+    if (STEP == STEP_EMPTY) return;
+    uint group = gl_WorkGroupID.x;
+    uint first_group = 0u;
+    block_index = push.block_index;
+    if (MERGED) {
+        // The step's sweeps own consecutive workgroup ranges: the last entry
+        // starting at or before this workgroup is this invocation's block.
+        block_index = NO_BLOCK;
+        for (uint s = 0u; s < step_sweeps; ++s) {
+            uvec2 e = step_entries[push.block_index * step_sweeps + s];
+            if (e.x != NO_BLOCK && e.y <= group) {
+                block_index = e.x;
+                first_group = e.y;
+            }
+        }
+    }
+    bool has_block = block_index != NO_BLOCK && line_kernel_ready();
+    if (has_block) {
+        block = blocks[block_index];
+        sweep = sweeps[block.light];
+        line_invocation((group - first_group) * gl_WorkGroupSize.x + line_local_index());
+    }
+    if (has_block) report_chain();
+}
+
+#endif

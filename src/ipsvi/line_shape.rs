@@ -1,0 +1,102 @@
+//! The counters behind an IPSVI frame's [`LineShape`]: a small buffer the line
+//! kernels add to (glsl/ipsvi_line_interface.glsl `Shape`: flags, and per block
+//! record [`CHAIN_SLOTS`] maxima of its invocations' serial chains), cleared at
+//! the start of every frame and copied back at its end.
+
+use super::gpu_params::BlockParams;
+use super::merged_steps::LineDispatch;
+use crate::render::{LineShape, RenderError};
+use crate::vk::barriers::{Access, Barrier};
+use crate::vk::{Buffer, Context, Recorder, VkError};
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+
+/// Bytes before the chains: the two 64-bit digests and the flags word.
+const HEADER_BYTES: u64 = 20;
+
+/// glsl/ipsvi_line_interface.glsl SHAPE_PARTIAL_SUBGROUPS.
+const PARTIAL_SUBGROUPS: u32 = 1;
+
+/// glsl/ipsvi_line_interface.glsl CHAIN_SLOTS: maxima per block record.
+const CHAIN_SLOTS: usize = 32;
+
+pub struct ShapeCounters {
+    /// Written by the line dispatches (device-local: every workgroup adds to it).
+    pub counters: Buffer,
+    readback: Buffer,
+    records: usize,
+}
+
+impl ShapeCounters {
+    pub fn new(ctx: &Context, records: usize) -> Result<ShapeCounters, VkError> {
+        let bytes = (HEADER_BYTES + 4 * (records * CHAIN_SLOTS) as u64).next_multiple_of(8);
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER
+            | vk::BufferUsageFlags::TRANSFER_DST
+            | vk::BufferUsageFlags::TRANSFER_SRC;
+        let counters = Buffer::new(ctx, "ipsvi line shape", bytes, usage, MemoryLocation::GpuOnly)?;
+        let readback = Buffer::staging(
+            ctx,
+            "ipsvi line shape readback",
+            bytes,
+            vk::BufferUsageFlags::TRANSFER_DST,
+            MemoryLocation::GpuToCpu,
+        )?;
+        Ok(ShapeCounters { counters, readback, records })
+    }
+
+    /// Zeroes the counters; the frame's clear barriers (global) order it
+    /// before the first line dispatch.
+    pub fn record_clear(&self, rec: &mut Recorder) {
+        rec.fill_buffer(&self.counters, 0);
+    }
+
+    /// After the frame's last line dispatch: the counters to the host.
+    pub fn record_readback(&self, rec: &mut Recorder) {
+        rec.barrier(&Barrier::memory(
+            "line_shape_write_to_readback_copy",
+            Access::COMPUTE_WRITE,
+            Access::TRANSFER_READ,
+        ));
+        rec.copy_buffer(&self.counters, &self.readback);
+        rec.barrier(&Barrier::memory("line_shape_copy_to_host_read", Access::TRANSFER_WRITE, Access::HOST_READ));
+    }
+
+    /// The frame's shape, once its submission finished: per line dispatch
+    /// its invocations and the longest chain of the blocks it ran.
+    pub fn read(
+        &self,
+        kernel: String,
+        dispatches: &[LineDispatch],
+        blocks_of: impl Fn(&LineDispatch) -> Vec<u32>,
+        records: &[BlockParams],
+        group: u32,
+        digests: bool,
+    ) -> Result<LineShape, RenderError> {
+        let words: Vec<u32> = self.readback.read(HEADER_BYTES as usize / 4 + self.records * CHAIN_SLOTS)?;
+        if words[4] & PARTIAL_SUBGROUPS != 0 {
+            return Err(RenderError::Invalid(
+                "ipsvi.line_kernel = \"segmented\": this device ran the line dispatches in partial subgroups, \
+                 over which a pixel's segments cannot be combined; use ipsvi.line_kernel = \"serial\""
+                    .into(),
+            ));
+        }
+        let slots = &words[HEADER_BYTES as usize / 4..];
+        let chain_of = |b: u32| slots[b as usize * CHAIN_SLOTS..][..CHAIN_SLOTS].iter().copied().max().unwrap_or(0);
+        let per_dispatch: Vec<(u32, u32)> = dispatches
+            .iter()
+            .filter_map(|d| {
+                let blocks = blocks_of(d);
+                let shades = blocks.iter().any(|&b| records[b as usize].pixel_count > 0);
+                let chain = blocks.iter().map(|&b| chain_of(b)).max().unwrap_or(0);
+                shades.then_some((d.groups * group, chain))
+            })
+            .collect();
+        let mut shape = LineShape::from_dispatches(kernel, &per_dispatch);
+        if digests {
+            let digest = |w: usize| u64::from(words[w]) | (u64::from(words[w + 1]) << 32);
+            shape.claim_digest = Some(digest(0));
+            shape.stop_digest = Some(digest(2));
+        }
+        Ok(shape)
+    }
+}

@@ -1,0 +1,82 @@
+//! The shape of a line-sweep frame (IPSVI): how wide its line dispatches are
+//! and how long the longest serial chain of work in them is. It does not
+//! depend on the device: it shows on lavapipe, where frame times cannot, that
+//! a frame of narrow dispatches with long chains leaves a large GPU idle and
+//! waiting on latency (the H200 keeps about 270,000 invocations in flight).
+
+use serde::Serialize;
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LineShape {
+    /// The line kernel, as `render` prints it (`serial`, `segmented x32`).
+    pub kernel: String,
+    /// Line dispatches that shade pixels (a sweep's claim-only dispatch excluded).
+    pub line_dispatches: u32,
+    /// Invocations dispatched per line dispatch (workgroups times their size),
+    /// median and largest over the frame's line dispatches.
+    pub invocations_median: u32,
+    pub invocations_max: u32,
+    /// The longest serial chain any invocation of a line dispatch ran (view
+    /// samples marched, in every pass, plus the steps of every march toward
+    /// the light), counted on the device; median and largest over the line
+    /// dispatches.
+    pub chain_median: u32,
+    pub chain_max: u32,
+    /// Tests only: order-free digests of every claim and of where every view
+    /// ray stopped (glsl/ipsvi_line_interface.glsl `DIGESTS`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub claim_digest: Option<u64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stop_digest: Option<u64>,
+}
+
+impl LineShape {
+    /// From each line dispatch's (invocations, longest chain).
+    pub fn from_dispatches(kernel: String, dispatches: &[(u32, u32)]) -> LineShape {
+        let median_max = |mut v: Vec<u32>| -> (u32, u32) {
+            v.sort_unstable();
+            (v.get(v.len() / 2).copied().unwrap_or(0), v.last().copied().unwrap_or(0))
+        };
+        let (invocations_median, invocations_max) = median_max(dispatches.iter().map(|d| d.0).collect());
+        let (chain_median, chain_max) = median_max(dispatches.iter().map(|d| d.1).collect());
+        LineShape {
+            kernel,
+            line_dispatches: dispatches.len() as u32,
+            invocations_median,
+            invocations_max,
+            chain_median,
+            chain_max,
+            claim_digest: None,
+            stop_digest: None,
+        }
+    }
+
+    /// One line for `render`, `compare` and the viewer's log.
+    pub fn summary(&self) -> String {
+        format!(
+            "line shape ({}): {} line dispatches, invocations per dispatch median {} max {}, longest serial \
+             chain per invocation median {} max {}",
+            self.kernel,
+            self.line_dispatches,
+            self.invocations_median,
+            self.invocations_max,
+            self.chain_median,
+            self.chain_max
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn medians_and_maxima_over_dispatches() {
+        let s = LineShape::from_dispatches("serial".into(), &[(64, 10), (512, 300), (128, 20)]);
+        assert_eq!((s.line_dispatches, s.invocations_median, s.invocations_max), (3, 128, 512));
+        assert_eq!((s.chain_median, s.chain_max), (20, 300));
+        assert!(s.summary().contains("median 128 max 512"), "{}", s.summary());
+        let none = LineShape::from_dispatches("serial".into(), &[]);
+        assert_eq!((none.line_dispatches, none.chain_max), (0, 0));
+    }
+}
