@@ -15,6 +15,7 @@ layout(local_size_x = 64) in;
 #include "volume.glsl"
 #include "lights.glsl"
 #include "light_space.glsl"
+#include "view_ray.glsl"
 
 layout(std430, set = 0, binding = 4) readonly buffer LightBuffers { LightSpace light_buffer; };
 
@@ -46,13 +47,18 @@ float light_bilinear(vec2 c) {
 bool inside_box(vec3 p) { return all(lessThanEqual(abs(p), frame.box_half)); }
 
 // The slice's sample on the view ray through `px`: (source, alpha); alpha 0
-// where the slice misses the ray or the medium is clear.
+// where the slice misses the ray or the medium is clear. The sample lies at
+// the pixel's phase within the slice's slab (view_ray.glsl: the midpoint, or
+// with render.jitter the pixel's own), so that the slice planes, which every
+// pixel would otherwise sample at the same depths, do not draw rings on
+// surfaces; the light buffer is attenuated at the slab's middle plane.
 vec4 slice_sample(uvec2 px) {
     Ray r = camera_ray(px);
     vec3 h = slice.half_vector.xyz;
     float dh = dot(r.dir, h);
     if (abs(dh) < 1e-6) return vec4(0.0);
-    float t = (slice.half_vector.w - dot(r.origin, h)) / dh;
+    float phase = ray_start_phase(px);
+    float t = (slice.half_vector.w + (phase - 0.5) * slice.spacing.x - dot(r.origin, h)) / dh;
     vec3 p = r.origin + r.dir * t;
     if (t <= 0.0 || !inside_box(p)) return vec4(0.0);
     vec4 m = medium(p);
@@ -61,10 +67,12 @@ vec4 slice_sample(uvec2 px) {
     Light l = lights[light_buffer.light];
     vec4 w = toward_light(l, p);
     // The light buffer holds what passed the slices before this one; the sample
-    // sits in the middle of its slice, so half the slice's own extinction along
-    // the light applies too (the midpoint rule of the reference's shadow rays).
+    // lies `phase` of the way through its slab from the light's side (slices
+    // run along +h, away from the light), so that share of the slab's own
+    // extinction along the light applies too (at midpoints, half: the midpoint
+    // rule of the reference's shadow rays).
     float dl = abs(dot(-w.xyz, h));
-    float lit = light_bilinear(light_space_coord(light_buffer, p).xy) * exp(-m.a * 0.5 * (slice.spacing.x / max(dl, 1e-6)) / frame.voxel_length);
+    float lit = light_bilinear(light_space_coord(light_buffer, p).xy) * exp(-m.a * phase * (slice.spacing.x / max(dl, 1e-6)) / frame.voxel_length);
     vec3 S = m.rgb * (frame.emission + l.radiance.rgb * light_shape(l, w) * lit);
     return vec4(S, alpha);
 }
@@ -100,7 +108,10 @@ void attenuate(uint index) {
     vec3 h = slice.half_vector.xyz;
     float dh = dot(r.dir, h);
     if (abs(dh) > 1e-6) {
-        float t = (slice.half_vector.w - dot(r.origin, h)) / dh;
+        // The slab's extinction taken at the texel's own phase within it, as the
+        // eye samples take theirs: at one plane for every texel, a surface's
+        // shadow would show the planes as rings.
+        float t = (slice.half_vector.w + (ray_start_phase(k) - 0.5) * slice.spacing.x - dot(r.origin, h)) / dh;
         vec3 q = r.origin + r.dir * t;
         if (t > 0.0 && inside_box(q)) T *= exp(-medium(q).a * (slice.spacing.x / abs(dh)) / frame.voxel_length);
     }

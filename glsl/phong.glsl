@@ -9,9 +9,9 @@
 vec3 gradient(vec3 uvw) {
     vec3 e = 1.0 / frame.dims;
     return vec3(
-        volume_at_uvw(uvw + vec3(e.x, 0, 0)) - volume_at_uvw(uvw - vec3(e.x, 0, 0)),
-        volume_at_uvw(uvw + vec3(0, e.y, 0)) - volume_at_uvw(uvw - vec3(0, e.y, 0)),
-        volume_at_uvw(uvw + vec3(0, 0, e.z)) - volume_at_uvw(uvw - vec3(0, 0, e.z))) * 0.5;
+        volume_smooth_at_uvw(uvw + vec3(e.x, 0, 0)) - volume_smooth_at_uvw(uvw - vec3(e.x, 0, 0)),
+        volume_smooth_at_uvw(uvw + vec3(0, e.y, 0)) - volume_smooth_at_uvw(uvw - vec3(0, e.y, 0)),
+        volume_smooth_at_uvw(uvw + vec3(0, 0, e.z)) - volume_smooth_at_uvw(uvw - vec3(0, 0, e.z))) * 0.5;
 }
 
 // Light i at p, shading normal n, view direction d: its radiance with falloff

@@ -1,10 +1,13 @@
 // The scalar volume (binding 1) and the one way every shader reads it at a
 // continuous position: trilinear filtering with clamp-to-edge, texel centres at
-// (i + 0.5) / n. VOLUME_FILTER (render.filter, docs/filtering.md) picks how:
+// (i + 0.5) / n. VOLUME_FILTER (render.filter, docs/filtering.md, and the volume's
+// interpolation) picks how:
 //   0 "exact":    the sampler's linear filter (exact on lavapipe for r32f);
 //   1 "gpu-8bit": the eight texels fetched and blended with sub-texel weights
 //                 rounded to 1/256, as NVIDIA, AMD and Intel filter every format,
 //                 so that lavapipe shows what a desktop GPU's filter gives.
+//   2 a labelled volume (Interpolation::Nearest, src/scene/volume.rs): the value
+//     of the voxel the position lies in, never a blend of two labels.
 // The constant id is src/vk/pipeline.rs's VOLUME_FILTER_CONSTANT_ID: every
 // pipeline gets it, the scene's choice.
 #ifndef VOLUME_FETCH_GLSL
@@ -19,6 +22,7 @@ vec3 quantized_weights(vec3 f) { return floor(f * 256.0 + 0.5) / 256.0; }
 float volume_at_uvw(vec3 uvw) {
     if (VOLUME_FILTER == 0u) return textureLod(volume_tex, uvw, 0.0).r;
     ivec3 size = textureSize(volume_tex, 0);
+    if (VOLUME_FILTER == 2u) return texelFetch(volume_tex, clamp(ivec3(floor(uvw * vec3(size))), ivec3(0), size - 1), 0).r;
     vec3 t = uvw * vec3(size) - 0.5;
     vec3 base = floor(t);
     vec3 w = quantized_weights(t - base);
@@ -37,6 +41,15 @@ float volume_at_uvw(vec3 uvw) {
     float x01 = mix(c001, c101, w.x);
     float x11 = mix(c011, c111, w.x);
     return mix(mix(x00, x10, w.y), mix(x01, x11, w.y), w.z);
+}
+
+// The field a shading normal is taken from (phong.glsl): the volume's own read,
+// but trilinear in a labelled volume too. Read nearest, a part's gradient would
+// be a slab one voxel deep with a hard inner edge, and whether a view ray's
+// second or third sample still lies in it would switch pixel by pixel with the
+// ray's phase (dots on every face); the trilinear field's gradient fades out.
+float volume_smooth_at_uvw(vec3 uvw) {
+    return VOLUME_FILTER == 2u ? textureLod(volume_tex, uvw, 0.0).r : volume_at_uvw(uvw);
 }
 
 #endif

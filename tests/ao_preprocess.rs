@@ -28,6 +28,7 @@ fn two_materials() -> Volume {
         data: VoxelData::U8(data),
         value_range: (100.0, 200.0),
         non_finite_voxels: 0,
+        interpolation: Default::default(),
     }
 }
 

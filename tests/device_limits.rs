@@ -25,6 +25,7 @@ fn long_volume(length: u32) -> Volume {
         data: VoxelData::U8(vec![100; (dims.x * dims.y * dims.z) as usize]),
         value_range: (0.0, 255.0),
         non_finite_voxels: 0,
+        interpolation: Default::default(),
     }
 }
 

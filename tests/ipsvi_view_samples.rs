@@ -90,6 +90,7 @@ fn figure5_scene(with_b: bool) -> Scene {
         data: VoxelData::U8(data),
         value_range: (0.0, 255.0),
         non_finite_voxels: 0,
+        interpolation: Default::default(),
     };
     let mut scene = scene_with(volume, vec![directional(Vec3::new(0.1, -1.0, 0.05), 2.0)], SIZE, SIZE);
     reference_settings(&mut scene);

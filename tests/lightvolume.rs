@@ -103,6 +103,7 @@ fn homogeneous(n: u32) -> Volume {
         data: VoxelData::U8(vec![255; (n * n * n) as usize]),
         value_range: (0.0, 255.0),
         non_finite_voxels: 0,
+        interpolation: Default::default(),
     }
 }
 

@@ -26,6 +26,7 @@ fn volume_from(n: u32, mut value: impl FnMut(u32, u32, u32) -> u8) -> Volume {
         data: VoxelData::U8(data),
         value_range: (0.0, 255.0),
         non_finite_voxels: 0,
+        interpolation: Default::default(),
     }
 }
 

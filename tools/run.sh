@@ -11,12 +11,7 @@ cd "$(dirname "$0")/.."
 source tools/setup.sh
 cargo build --release --quiet
 mkdir -p out
-# `sweeplab render` alone renders this scene with IPSVI, timed per line. The
-# cache is fed by each texel's light ray: fed by the view samples (the paper's
-# way), the jittered sample depths reach the cache as noise that the sweep
-# carries on (21.7 dB against the converged reference at 512x512, 36.4 dB so).
-if [ $# -eq 0 ]; then
-  set -- --set ipsvi.cache_update=light-rays
-fi
+# `sweeplab render` alone renders this scene with IPSVI's defaults (the paper's
+# view-sample cache), timed per line.
 ./target/release/sweeplab render --out out/render.png --profile-json out/profile.json --trace out/trace.json "$@"
 echo "wrote out/render.png (the sphere's shadow on the slab), out/profile.json (per-pass and per-line GPU times) and out/trace.json (open in Perfetto)"

@@ -438,6 +438,7 @@ mod tests {
             data: VoxelData::U8(data),
             value_range: (0.0, 255.0),
             non_finite_voxels: 0,
+            interpolation: Default::default(),
         };
         let h = LocalHistograms::new(&volume, 3, 6);
         let (mut fast, mut portable) = (h.scratch().lanes, h.scratch().lanes);

@@ -121,6 +121,7 @@ mod tests {
             data: VoxelData::F32(data),
             value_range: (0.0, 1.0),
             non_finite_voxels: 0,
+            interpolation: Default::default(),
         }
     }
 

@@ -22,16 +22,21 @@ pub enum ReadFronts {
 }
 
 /// Texels narrower than this (pixels, at the lit box's centre) take per-texel
-/// fronts under `Auto`. There a line's samples reach only some of the texels
-/// around the next line's samples, so a read blends texels written at this
-/// line with texels written many lines back, and the blended depth fits none
-/// of them. Measured (docs/ipsvi.md, "Piecewise fronts"): on a 48x48 slab and
-/// sphere, a point light inside the volume, every-sample RMSE 1.91e-2
-/// blended against 1.21e-2 per texel at 0.16 px, 1.46e-2 against 1.23e-2 at
-/// 0.31 px, and 1.70e-2 against 1.68e-2 at 0.84 px; on engine.vti at 512x512
-/// (2.30 px) 4.03e-3 against 3.87e-3 for 1.30x (1.16-1.53) the frame's time,
-/// where light rays are both faster and as near.
-pub const PER_TEXEL_BELOW_PX: f32 = 0.5;
+/// fronts under `Auto`. Below a pixel some texel columns hold no pixel's view
+/// ray, so a line's samples reach only some of the texels around the next
+/// line's samples: a read blends texels written at this line with texels
+/// written many lines back, and the blended depth fits none of them. Where
+/// every fourth or fifth column of texels is such a one, the blended fronts
+/// draw stripes along the sweep (tests/scenes/slab-under-sphere.toml at
+/// 256x256, 0.79 px: 30.85 dB blended against 35.71 dB per texel, before the
+/// preset's film was widened; docs/ipsvi.md, "Default images"). Measured
+/// below half a pixel too (docs/ipsvi.md, "Piecewise fronts"): on a 48x48 slab
+/// and sphere, a point light inside the volume, every-sample RMSE 1.91e-2
+/// blended against 1.21e-2 per texel at 0.16 px, and 1.70e-2 against 1.68e-2
+/// at 0.84 px. Above a pixel every texel column holds a ray and blended fronts
+/// are as near for less time: on engine.vti at 512x512 (2.30 px) 4.03e-3
+/// against 3.87e-3 for 1.30x (1.16-1.53) the frame's time.
+pub const PER_TEXEL_BELOW_PX: f32 = 1.0;
 
 impl ReadFronts {
     pub const ALL: [ReadFronts; 3] = [ReadFronts::Auto, ReadFronts::Blended, ReadFronts::PerTexel];
@@ -74,6 +79,7 @@ mod tests {
         assert!("per_texel".parse::<ReadFronts>().unwrap_err().contains("`per-texel`"));
         assert!(ReadFronts::Auto.per_texel(|| Some(0.16)));
         assert!(!ReadFronts::Auto.per_texel(|| Some(PER_TEXEL_BELOW_PX)));
+        assert!(ReadFronts::Auto.per_texel(|| Some(0.79)));
         assert!(!ReadFronts::Auto.per_texel(|| Some(1.15)));
         assert!(!ReadFronts::Auto.per_texel(|| None));
         let unasked = || -> Option<f32> { panic!("only auto needs the texel's width") };

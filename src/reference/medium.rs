@@ -55,9 +55,17 @@ impl<'a> Medium<'a> {
         (p + self.half_extent) / (2.0 * self.half_extent)
     }
 
-    /// Normalized scalar at texture coordinates `uvw` (GPU linear sampler).
+    /// Normalized scalar at texture coordinates `uvw` (GPU linear sampler, or
+    /// the voxel's own value in a labelled volume).
     pub fn scalar_at_uvw(&self, uvw: DVec3) -> f64 {
         self.volume.sample_f64(uvw.to_array())
+    }
+
+    /// The trilinear scalar at `uvw`, labelled volumes included: the field
+    /// the Phong gradient differentiates (volume_fetch.glsl's
+    /// `volume_smooth_at_uvw`).
+    pub fn smooth_scalar_at_uvw(&self, uvw: DVec3) -> f64 {
+        self.volume.trilinear_f64(uvw.to_array())
     }
 
     /// Transfer function applied to the scalar at world position `p`.

@@ -75,6 +75,7 @@ mod tests {
             data: VoxelData::U8(vec![255; (n * n * n) as usize]),
             value_range: (0.0, 255.0),
             non_finite_voxels: 0,
+            interpolation: Default::default(),
         };
         let transfer = TransferFunction { points: vec![ControlPoint { value: 0.0, rgba: [0.5, 0.25, 1.0, alpha] }] };
         (volume, transfer)

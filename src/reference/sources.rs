@@ -21,7 +21,7 @@ pub fn gradient(medium: &Medium, p: DVec3) -> DVec3 {
     for axis in 0..3 {
         let mut e = DVec3::ZERO;
         e[axis] = texel[axis];
-        g[axis] = (medium.scalar_at_uvw(uvw + e) - medium.scalar_at_uvw(uvw - e)) / 2.0;
+        g[axis] = (medium.smooth_scalar_at_uvw(uvw + e) - medium.smooth_scalar_at_uvw(uvw - e)) / 2.0;
     }
     g
 }

@@ -10,7 +10,7 @@
 use super::error::RenderError;
 use super::frame_images::FrameImages;
 use super::frame_params::{gpu_lights, GpuLight};
-use crate::scene::{Scene, TransferLut, VolumeFilter, VoxelData};
+use crate::scene::{Interpolation, Scene, TransferLut, VolumeFilter, VoxelData};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::submit_and_wait;
 use crate::vk::limits::{Limit, Need};
@@ -49,9 +49,21 @@ pub struct UploadedVolume {
 /// volume_fetch.glsl's `VOLUME_FILTER` constant id (no shader uses it for anything else).
 pub const VOLUME_FILTER_CONSTANT_ID: u32 = 900;
 
-/// The filter a scene is rendered with: `SWEEPLAB_FILTER` over `render.filter`.
+/// The filter a scene is rendered with: `SWEEPLAB_FILTER` over `render.filter`;
+/// `exact` for a labelled volume, which is read nearest and has no sub-texel
+/// weights to round (its variable is still checked).
 pub fn effective_filter(scene: &Scene) -> Result<VolumeFilter, RenderError> {
-    Ok(VolumeFilter::from_env().map_err(RenderError::Invalid)?.unwrap_or(scene.render.filter))
+    let filter = VolumeFilter::from_env().map_err(RenderError::Invalid)?.unwrap_or(scene.render.filter);
+    Ok(if scene.volume.interpolation == Interpolation::Nearest { VolumeFilter::Exact } else { filter })
+}
+
+/// volume_fetch.glsl's `VOLUME_FILTER`: the filter's mode, or 2 (nearest) for a
+/// labelled volume.
+fn volume_fetch_mode(scene: &Scene, filter: VolumeFilter) -> u32 {
+    match scene.volume.interpolation {
+        Interpolation::Trilinear => filter.shader_constant(),
+        Interpolation::Nearest => 2,
+    }
 }
 
 impl<'a> GpuScene<'a> {
@@ -76,7 +88,7 @@ impl<'a> GpuScene<'a> {
         let filter = effective_filter(scene)?;
         // Every pipeline created on this context from now on filters this way
         // (a context renders one uploaded scene at a time).
-        ctx.set_shared_specialization(VOLUME_FILTER_CONSTANT_ID, filter.shader_constant());
+        ctx.set_shared_specialization(VOLUME_FILTER_CONSTANT_ID, volume_fetch_mode(scene, filter));
         let lut_table: TransferLut = scene.transfer.bake(TransferLut::DEFAULT_SIZE);
         let lut = Buffer::with_data(ctx, "transfer lut", &lut_table.texels, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let mut lights_data = gpu_lights(scene);

@@ -123,11 +123,13 @@ mod tests {
         let v = slab_under_sphere(50);
         let vb = VolumeBox::new(v.dims, v.spacing);
         let b = visible_box(&v, &presets::preset("slab-sphere").unwrap(), &vb);
-        // Slab x, z in [5, 45) voxels, its ramp adds no visible layer outside
-        // (values below the slab's band); sphere top at 40 voxels.
+        // Slab x, z in [5, 45) voxels, sphere top at 40 voxels; the ramps add
+        // one visible layer of voxels outside (the first voxel outside a
+        // surface holds a sixth of its part's value, within the slab's band,
+        // which starts at 0.02), and no more.
         let w = |voxels: f32| voxels / 50.0 - 0.5;
-        assert!(b.min.abs_diff_eq(Vec3::new(w(5.0), w(5.0), w(5.0)), 1e-6), "{b:?}");
-        assert!(b.max.abs_diff_eq(Vec3::new(w(45.0), w(40.0), w(45.0)), 1e-6), "{b:?}");
+        assert!(b.min.abs_diff_eq(Vec3::new(w(4.0), w(4.0), w(4.0)), 1e-6), "{b:?}");
+        assert!(b.max.abs_diff_eq(Vec3::new(w(46.0), w(41.0), w(46.0)), 1e-6), "{b:?}");
         // Nothing visible: the whole volume.
         let none =
             TransferFunction { points: vec![crate::scene::ControlPoint { value: 0.0, rgba: [1.0, 1.0, 1.0, 0.0] }] };

@@ -29,7 +29,7 @@ pub use geometry::VolumeBox;
 pub use light::{Falloff, Light, LightKind};
 pub use technique_settings::TechniqueSettings;
 pub use transfer::{ControlPoint, TransferFunction, TransferLut};
-pub use volume::{Volume, VoxelData};
+pub use volume::{Interpolation, Volume, VoxelData};
 pub use volume_filter::VolumeFilter;
 
 use glam::Vec3;

@@ -112,22 +112,26 @@ fn cornell() -> TransferFunction {
 /// Slab under sphere (synthetic "slab-under-sphere"): grey slab and orange
 /// sphere, both nearly opaque so the shadow is crisp. The surfaces are smooth
 /// ramps 1.5 voxels wide (synthetic::TRANSITION_VOXELS), so each part's opacity
-/// rises over the upper part of its own ramp (sphere: values 0.62 to 1, 0.57
-/// voxel deep) rather than in one step, and a view ray's samples see a smooth
-/// surface. The sphere's ramp passes through the slab's value on its way to
-/// air, so the slab's band is narrow (0.16 below its value, 0.06 above) and
-/// thinner (opacity 0.5 per voxel): the grey shell it leaves on the sphere is
-/// about a third of a voxel deep and optically thin.
+/// rises over its own ramp rather than in one step, and a view ray's samples see
+/// a smooth surface. The sphere's ramp passes through every value below its
+/// own on its way to air, the slab's among them, so it wears a grey film of the
+/// slab's band. The band's opacity therefore rises over the whole of the slab's
+/// ramp (values 0.02 to the slab's), which makes that film about 0.7 voxel
+/// deep: two view samples half a voxel apart see it. A band as narrow as the
+/// sphere's own left a film a third of a voxel deep that one sample in a step
+/// hits or misses pixel by pixel (grain in every lit technique: IPSVI 35.6 dB
+/// against 43.9 dB at 128x128). The band falls back to clear just below the
+/// sphere's opaque values (0.62 to 1, 0.57 voxel deep).
 fn slab_sphere() -> TransferFunction {
     const GREY: [f32; 3] = [0.8, 0.8, 0.8];
     const ORANGE: [f32; 3] = [1.0, 0.6, 0.3];
     let slab = SLAB_VALUE as f32 / 255.0;
     tf(&[
         (0.0, rgba(GREY, 0.0)),
-        (slab - 0.16, rgba(GREY, 0.0)),
-        (slab - 0.04, rgba(GREY, 0.5)),
+        (0.02, rgba(GREY, 0.0)),
+        (slab - 0.02, rgba(GREY, 0.5)),
         (slab + 0.02, rgba(GREY, 0.5)),
-        (slab + 0.06, rgba(ORANGE, 0.0)),
+        (0.60, rgba(ORANGE, 0.0)),
         (0.62, rgba(ORANGE, 0.0)),
         (SPHERE_VALUE as f32 / 255.0, rgba(ORANGE, 0.95)),
     ])

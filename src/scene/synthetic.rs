@@ -20,11 +20,15 @@
 //! The Cornell box is a labelled volume (each part its own value, the "cornell"
 //! preset a narrow band per value): a ramp from one part's value to air would
 //! pass through the values of the other parts and give its edges their colours,
-//! so its boxes and walls keep integer bounds and hard edges.
+//! so its boxes and walls keep integer bounds and it is read nearest
+//! ([`Interpolation::Nearest`]), never blended: trilinear filtering would make
+//! the same ramp between voxel centres, a shell of every lower label a tenth of
+//! a voxel deep on each face, which a view ray's samples half a voxel apart hit
+//! or miss pixel by pixel (coloured speckle, or rings without jitter).
 
 use glam::{UVec3, Vec3};
 
-use super::volume::{Volume, VoxelData};
+use super::volume::{Interpolation, Volume, VoxelData};
 
 /// A sphere in continuous voxel coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -170,6 +174,7 @@ fn u8_volume(name: &str, n: u32, data: Vec<u8>) -> Volume {
         data: VoxelData::U8(data),
         value_range: (lo as f64, hi as f64),
         non_finite_voxels: 0,
+        interpolation: Interpolation::Trilinear,
     }
 }
 
@@ -186,6 +191,7 @@ fn rescaled_f32_volume(name: &str, n: u32, raw: Vec<f32>) -> Volume {
         data: VoxelData::F32(data),
         value_range: (lo as f64, hi as f64),
         non_finite_voxels: 0,
+        interpolation: Interpolation::Trilinear,
     }
 }
 
@@ -347,11 +353,14 @@ pub fn cornell_box_parts(n: u32) -> Vec<(VoxelBox, u8)> {
 /// A volumetric Cornell box (as in the ambient-occlusion and colour-bleeding
 /// paper, Fig. 5): floor, ceiling, back, left and right walls and two boxes, each
 /// with its own U8 value, air 0, open towards +z. Geometry: [`cornell_box_parts`].
+/// A labelled volume, read nearest ([`Interpolation::Nearest`]): its parts'
+/// faces lie on voxel faces, so it shows the boxes exactly, and no position
+/// reads a value between two parts' labels.
 pub fn cornell_box(n: u32) -> Volume {
     let n = n.max(1);
     let parts = cornell_box_parts(n);
     let data = fill(n, |i| parts.iter().rev().find(|(b, _)| b.contains(i)).map_or(0, |&(_, v)| v));
-    u8_volume("cornell-box", n, data)
+    Volume { interpolation: Interpolation::Nearest, ..u8_volume("cornell-box", n, data) }
 }
 
 /// Raw U8 values of [`slab_under_sphere`].

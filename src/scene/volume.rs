@@ -48,6 +48,20 @@ impl VoxelData {
     }
 }
 
+/// How a position between voxel centres reads the volume.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Interpolation {
+    /// Trilinear, clamp-to-edge: a scalar field (densities, CT values).
+    #[default]
+    Trilinear,
+    /// The value of the voxel the position lies in: a labelled volume, whose
+    /// values name parts. Blending two labels would give a third part's value
+    /// (the Cornell box: every part's edge would wear the colours of the labels
+    /// between its own and air's), so each voxel is its part's, and a part's
+    /// faces lie on voxel faces.
+    Nearest,
+}
+
 /// A volume: `dims` voxels, `spacing` world units between voxel centres along each
 /// axis (anisotropic allowed), data stored x fastest.
 #[derive(Clone, Debug)]
@@ -62,6 +76,7 @@ pub struct Volume {
     /// (src/scene/loaders/decode.rs); 0 for procedural volumes. Carried so the
     /// user is warned ([`crate::scene::warnings`]).
     pub non_finite_voxels: u64,
+    pub interpolation: Interpolation,
 }
 
 impl Volume {
@@ -79,10 +94,25 @@ impl Volume {
         self.data.normalized(i)
     }
 
-    /// Trilinear sample at normalized texture coordinates `uvw` in [0, 1]^3, exactly as
-    /// a Vulkan sampler with LINEAR filter and CLAMP_TO_EDGE does it (texel centres at
-    /// (i + 0.5) / n), in f64 for the reference.
+    /// Sample at normalized texture coordinates `uvw` in [0, 1]^3, in f64 for the
+    /// reference: [`Volume::trilinear_f64`], or for a labelled volume the voxel
+    /// `uvw` lies in, clamped to the volume (volume_fetch.glsl).
     pub fn sample_f64(&self, uvw: [f64; 3]) -> f64 {
+        match self.interpolation {
+            Interpolation::Trilinear => self.trilinear_f64(uvw),
+            Interpolation::Nearest => {
+                let d = [self.dims.x, self.dims.y, self.dims.z];
+                let i = |a: usize| (uvw[a] * d[a] as f64).floor().clamp(0.0, d[a] as f64 - 1.0) as u32;
+                self.voxel(i(0), i(1), i(2)) as f64
+            }
+        }
+    }
+
+    /// Trilinear sample at normalized texture coordinates `uvw`, exactly as a
+    /// Vulkan sampler with LINEAR filter and CLAMP_TO_EDGE does it (texel centres
+    /// at (i + 0.5) / n): every volume's values, and the field the Phong
+    /// gradient is taken from even in a labelled volume.
+    pub fn trilinear_f64(&self, uvw: [f64; 3]) -> f64 {
         let d = [self.dims.x, self.dims.y, self.dims.z];
         let mut i0 = [0u32; 3];
         let mut i1 = [0u32; 3];

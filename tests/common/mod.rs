@@ -70,6 +70,7 @@ pub fn seeded_volume(
         data: VoxelData::U8(data),
         value_range: (0.0, 255.0),
         non_finite_voxels: 0,
+        interpolation: Default::default(),
     }
 }
 
@@ -92,6 +93,7 @@ pub fn sphere_volume(n: u32, r: f32) -> Volume {
         data: VoxelData::U8(data),
         value_range: (0.0, 255.0),
         non_finite_voxels: 0,
+        interpolation: Default::default(),
     }
 }
 

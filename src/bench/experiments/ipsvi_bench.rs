@@ -165,7 +165,7 @@ impl IpsviPlan {
                     push(IpsviSettings { write_pass: other, ..mode.clone() });
                 }
                 // Per-texel fronts where the mode leaves them to `auto` (which
-                // takes them only on texels finer than half a pixel).
+                // takes them only on texels finer than a pixel).
                 if mode.piecewise && mode.read_fronts == ReadFronts::Auto {
                     push(IpsviSettings { read_fronts: ReadFronts::PerTexel, ..mode.clone() });
                 }

@@ -8,7 +8,7 @@
 use glam::{UVec3, Vec3};
 
 use super::error::FormatProblem;
-use crate::scene::volume::{Volume, VoxelData};
+use crate::scene::volume::{Interpolation, Volume, VoxelData};
 
 /// Longest axis accepted: above any GPU's 3D image limit, and small enough that a
 /// hostile header cannot make us compute absurd sizes.
@@ -114,7 +114,15 @@ impl Layout {
             });
         }
         let (data, value_range, non_finite_voxels) = decode_voxels(bytes, self.voxel_type, self.endian)?;
-        Ok(Volume { name, dims: self.dims, spacing: self.spacing, data, value_range, non_finite_voxels })
+        Ok(Volume {
+            name,
+            dims: self.dims,
+            spacing: self.spacing,
+            data,
+            value_range,
+            non_finite_voxels,
+            interpolation: Interpolation::Trilinear,
+        })
     }
 }
 
