@@ -2,7 +2,7 @@
 //! per workload), the equal-work baseline and its A/A control, hazards of the
 //! racy arms counted while every other message fails the run, metadata in
 //! every output, `sweeplab report` over two devices, and the dispatch probe.
-mod common;
+use crate::common;
 
 use common::cli::*;
 use common::validated_context;

@@ -1,6 +1,6 @@
 //! IPSVI against the ground truth of model (ii), its per-line barrier under
 //! synchronization validation, what it leaves out, and extreme cases.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;
@@ -52,7 +52,7 @@ fn ipsvi_and_reference(ctx: &Context, scene: &Scene, settings: &IpsviSettings) -
         dispatches: frame.dispatches,
         barriers: frame.barriers,
     };
-    let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+    let reference = common::reference_image(&gpu, SIZE, SIZE);
     (ipsvi, reference)
 }
 
