@@ -57,7 +57,13 @@ fn main() {
 }
 
 /// `SWEEPLAB_GIT_COMMIT` for bench reports: the commit this build comes from,
-/// `-dirty` where tracked files differed at build time; `unknown` without git.
+/// `-dirty` where the files the build reads (src, glsl, build.rs, the
+/// manifest) differed from it at build time; `unknown` without git.
+///
+/// The script reruns when HEAD moves (a commit, a checkout) or one of those
+/// files changes (the crate recompiles then anyway), never on the index alone:
+/// `git status` and `git add` rewrite it, and a rerun rebuilds the library and
+/// every test, which a `git status` must not cost.
 fn embed_git_commit() {
     let git = |args: &[&str]| {
         std::process::Command::new("git")
@@ -69,7 +75,8 @@ fn embed_git_commit() {
     };
     let commit = match git(&["rev-parse", "--short=12", "HEAD"]) {
         Some(hash) => {
-            let dirty = git(&["status", "--porcelain", "--untracked-files=no"]).is_some_and(|s| !s.is_empty());
+            let status = [&["status", "--porcelain", "--untracked-files=no", "--"][..], BUILD_INPUTS].concat();
+            let dirty = git(&status).is_some_and(|s| !s.is_empty());
             if dirty {
                 format!("{hash}-dirty")
             } else {
@@ -79,15 +86,23 @@ fn embed_git_commit() {
         None => "unknown".to_string(),
     };
     println!("cargo:rustc-env=SWEEPLAB_GIT_COMMIT={commit}");
-    // A commit or a checkout moves HEAD or the index; in a worktree they live
-    // under the common git directory, which rev-parse names.
+    // A commit moves the branch (a loose ref, or packed-refs), a checkout
+    // HEAD; in a worktree they live under the common git directory, which
+    // rev-parse names. Only files that exist: cargo reruns on a missing one.
     let branch = git(&["rev-parse", "--symbolic-full-name", "HEAD"]).unwrap_or_default();
-    for path in ["HEAD", "index", branch.as_str()].into_iter().filter(|p| !p.is_empty()) {
-        if let Some(p) = git(&["rev-parse", "--git-path", path]) {
+    for path in ["HEAD", branch.as_str(), "packed-refs"].into_iter().filter(|p| !p.is_empty()) {
+        if let Some(p) = git(&["rev-parse", "--git-path", path]).filter(|p| Path::new(p).exists()) {
             println!("cargo:rerun-if-changed={p}");
         }
     }
+    for path in BUILD_INPUTS {
+        println!("cargo:rerun-if-changed={path}");
+    }
 }
+
+/// What the build reads from the tree, for `-dirty`: a change elsewhere
+/// (tests, docs, tools) does not change the binary.
+const BUILD_INPUTS: &[&str] = &["src", "glsl", "build.rs", "Cargo.toml", "Cargo.lock"];
 
 fn link_debian_glslang() {
     println!("cargo:rerun-if-env-changed=SHADERC_LIB_DIR");

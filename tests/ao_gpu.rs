@@ -4,7 +4,7 @@
 //! the GPU assignment of given vectors equals the CPU's for every metric.
 //! Validation and synchronization validation on: any message fails.
 
-mod common;
+use crate::common;
 
 use common::{assert_validation_clean, validated_context};
 use glam::{UVec3, Vec3};
@@ -420,8 +420,8 @@ fn the_backend_is_part_of_the_cache_key_and_gpu_needs_a_device() {
 }
 
 /// Timing of the GPU preprocessing, run by hand (docs/ao.md, "Measured"):
-/// `SWEEPLAB_DATA=../shared/data AO_VOLUME=engine AO_RADIUS=8 AO_CLUSTERS=2048
-/// cargo test --release --test ao_gpu timing -- --ignored --nocapture`
+/// `AO_VOLUME=engine AO_RADIUS=8 AO_CLUSTERS=2048
+/// cargo test --release --test suite ao_gpu::gpu_preprocessing_timing -- --ignored --nocapture`
 /// (`AO_VOLUME=cornell`: the 64^3 Cornell box). `AO_PASSES=1` runs the sweep
 /// a second time, with the trained codebook, for the GPU time of each pass.
 #[test]
@@ -435,7 +435,7 @@ fn gpu_preprocessing_timing() {
     let volume = match var("AO_VOLUME").as_deref() {
         Some("engine") => {
             let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
-            sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)")
+            sweeplab::scene::loaders::load_volume(&path).expect("engine.vti in the data folder")
         }
         _ => sweeplab::scene::synthetic::cornell_box(64),
     };

@@ -2,7 +2,7 @@
 //! computations, the streamed preprocessing against a recomputation, VQ
 //! behaviour on real histograms, the disk cache, and the Cornell box timing.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -397,10 +397,10 @@ fn the_cornell_scene_reads_its_ao_table_and_preprocesses_in_seconds() {
     assert!(seconds < 60.0, "{seconds} s");
 }
 
-/// engine.vti (256 x 256 x 128) from `SWEEPLAB_DATA`, for the hand-run measurements.
+/// engine.vti (256 x 256 x 128) from the data folder (`data/`, or `SWEEPLAB_DATA`), for the hand-run measurements.
 fn engine_volume() -> Volume {
     let path = sweeplab::scene::loaders::data_dir().join("engine.vti");
-    sweeplab::scene::loaders::load_volume(&path).expect("engine.vti (set SWEEPLAB_DATA)")
+    sweeplab::scene::loaders::load_volume(&path).expect("engine.vti in the data folder")
 }
 
 /// A whole number from the environment variable `name`, else `default`.
@@ -409,8 +409,8 @@ fn env_u32(name: &str, default: u32) -> u32 {
 }
 
 /// Timing of engine.vti (256 x 256 x 128), run by hand:
-/// `SWEEPLAB_DATA=../shared/data AO_RADIUS=8 AO_CLUSTERS=2048 cargo test --release
-/// --test ao_preprocess engine -- --ignored --nocapture`
+/// `AO_RADIUS=8 AO_CLUSTERS=2048 cargo test --release
+/// --test suite ao_preprocess::engine -- --ignored --nocapture`
 #[test]
 #[ignore = "a measurement of minutes, not a check"]
 fn engine_preprocessing_timing() {
@@ -531,8 +531,8 @@ fn histograms_by_rows_and_runs_equal_the_brute_force() {
 /// the brute force and centres in lanes against rows and runs, in thread CPU
 /// time (steady on a shared machine), on 64
 /// whole x-rows spread over the volume, run by hand:
-/// `SWEEPLAB_DATA=../shared/data AO_RADIUS=16 AO_BITS=4 cargo test --release
-/// --test ao_preprocess histogram_cost -- --ignored --nocapture`
+/// `AO_RADIUS=16 AO_BITS=4 cargo test --release
+/// --test suite ao_preprocess::histogram_cost -- --ignored --nocapture`
 #[test]
 #[ignore = "a measurement, not a check"]
 fn histogram_cost_per_voxel_rows_against_brute_force() {

@@ -3,7 +3,7 @@
 //! load-bearing; and the clustered image approaching the image of the
 //! unclustered histograms as n_c grows.
 
-mod common;
+use crate::common;
 
 use common::*;
 use sweeplab::ao::render::AoRenderer;

@@ -3,7 +3,7 @@
 //! sums of equations 4-5, and the Cornell box shows colour bleeding that a
 //! transfer-function edit takes away (the paper's figure 5).
 
-mod common;
+use crate::common;
 
 use std::sync::Mutex;
 use sweeplab::ao::AoSettings;
@@ -219,7 +219,7 @@ fn every_mode_renders_validation_clean_and_differs_from_the_others() {
 /// The two goals on tests/scenes/cornell-box.toml (64^3, r = 8,
 /// n_c = 2048, b = 8): the TF-change GPU time and the frame's overhead over
 /// Blinn-Phong at 512x512, medians of alternating runs. A measurement, not a
-/// check: `cargo test --release --test ao_render goals -- --ignored --nocapture`.
+/// check: `cargo test --release --test suite ao_render::goals -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn goals_tf_change_time_and_overhead_over_blinn_phong() {

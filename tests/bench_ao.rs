@@ -2,7 +2,7 @@
 //! a row with its measurements, the reports and charts written; bad list
 //! values refused by name before any GPU work.
 
-mod common;
+use crate::common;
 
 use common::cli::*;
 use sweeplab::bench::BenchTable;

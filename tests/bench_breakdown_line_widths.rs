@@ -1,6 +1,6 @@
 //! `bench ipsvi --breakdown` also times the whole frame at each of
 //! --line-widths, for the LW4/LW1 speed-up.
-mod common;
+use crate::common;
 
 use common::cli::*;
 use std::process::Command;

@@ -3,7 +3,7 @@
 //! case x technique and its convergence) and `bench lights` (each part's
 //! configurations in shared rounds).
 
-mod common;
+use crate::common;
 
 use common::cli::bench_rows;
 use common::{assert_validation_clean, validated_context};

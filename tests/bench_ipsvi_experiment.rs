@@ -1,7 +1,7 @@
 //! The `bench ipsvi` experiments called as library code at 8x8 with six
 //! rounds: every file written, intervals on the times and ratios, no
 //! published step cost at or below 0.
-mod common;
+use crate::common;
 
 use common::cli::{bench_rows, temp_dir};
 use common::{directional, sphere_volume};

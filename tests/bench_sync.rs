@@ -3,7 +3,7 @@
 //! racy arms counted while every other message fails the run, the chain
 //! workload's calibration, one trace per strategy and workload, metadata in
 //! every output, `sweeplab report` over two devices, and the dispatch probe.
-mod common;
+use crate::common;
 
 use common::cli::*;
 use common::validated_context;

@@ -4,7 +4,7 @@
 //! it (`sweeplab render --validate=best-practices`, which sets
 //! `VK_LAYER_ENABLES` for the NVIDIA and AMD vendor checks). What remains is
 //! listed in docs/native-gpu.md, "Best-practices validation".
-mod common;
+use crate::common;
 
 use common::cli::*;
 

@@ -1,7 +1,7 @@
 //! Every chart kind: the PNG and SVG files are written and hold a real chart,
 //! and a small rendering matches its committed golden image within a
 //! tolerance, so a change of font or layout is seen. Re-bless after a
-//! deliberate change with `SWEEPLAB_BLESS=1 cargo test --release --test charts`
+//! deliberate change with `SWEEPLAB_BLESS=1 cargo test --release --test suite charts::`
 //! and look at the images in tests/golden/ before committing them.
 
 use std::path::{Path, PathBuf};

@@ -1,7 +1,7 @@
 //! The `sweeplab` binary as a user runs it: outputs, reports, and clear errors
 //! with a non-zero exit for bad input (never a panic).
 
-mod common;
+use crate::common;
 
 use common::cli::*;
 use std::process::Command;

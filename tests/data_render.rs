@@ -1,6 +1,6 @@
 //! Every real data set in $SWEEPLAB_DATA loads and renders (small images, with
 //! validation and synchronization validation on).
-mod common;
+use crate::common;
 
 use common::*;
 use sweeplab::render::GpuScene;
@@ -19,7 +19,7 @@ fn every_shared_data_set_renders_with_every_technique() {
         let path = dir.join(file);
         assert!(
             path.exists(),
-            "{} not found: set SWEEPLAB_DATA to the folder holding the shared data sets",
+            "{} not found: data/ holds it (or SWEEPLAB_DATA names the data folder)",
             path.display()
         );
         let overrides = ["render.width=20".to_string(), "render.height=16".to_string()];

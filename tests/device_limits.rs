@@ -3,7 +3,7 @@
 //! device's value and the setting to change; each technique's needs against
 //! the Vulkan spec's guaranteed minimum limits and typical desktop limits say
 //! which techniques and sizes each can run.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{UVec3, Vec3};

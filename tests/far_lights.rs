@@ -4,7 +4,7 @@
 //! the reference: finite, lit, close to the reference of its model. Before the
 //! rule, [1e20, 0, 0] gave all-zero IPSVI and half-angle images and NaN in the
 //! light volume.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

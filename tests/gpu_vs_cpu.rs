@@ -4,7 +4,7 @@
 //! tight; with 8-bit sub-texel weights (what NVIDIA, AMD and Intel filter
 //! with) the error model's bound (`FilterErrorModel`) is added to them. All
 //! runs with validation and synchronization validation.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

@@ -1,6 +1,6 @@
 //! Half-angle slicing against the ground truth of model (i), its per-slice
 //! barrier under synchronization validation, and its limits.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;
@@ -51,7 +51,7 @@ fn half_angle_matches_the_reference_with_the_light_behind_and_in_front_of_the_vi
         let out = render(&gpu, Technique::HalfAngle, SIZE, SIZE, &mut profiler).unwrap();
         assert_eq!(out.dispatches, sl.count, "{what}: one dispatch per slice");
         assert!(out.image.all_finite());
-        let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+        let reference = common::reference_image(&gpu, SIZE, SIZE);
         let rmse = relative_rmse(&out.image, &reference);
         let unshaded = render(&gpu, Technique::Dvr, SIZE, SIZE, &mut profiler).unwrap().image;
         println!(
@@ -94,7 +94,7 @@ fn front_to_back_the_last_slice_adds_the_background_on_the_gpu() {
     for c in 0..3 {
         assert!((corner[c] - scene.render.background[c]).abs() < 1e-6, "corner {corner:?}");
     }
-    let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+    let reference = common::reference_image(&gpu, SIZE, SIZE);
     let rmse = relative_rmse(&out.image, &reference);
     println!("bright background, front to back: relative rmse {rmse:.4}");
     assert!(rmse <= RMSE_TOLERANCE, "relative rmse {rmse:.4}");

@@ -1,6 +1,6 @@
 //! IPSVI against the ground truth of model (ii), its per-line barrier under
 //! synchronization validation, what it leaves out, and extreme cases.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;
@@ -38,7 +38,7 @@ fn ipsvi_and_reference(ctx: &Context, scene: &Scene, settings: &IpsviSettings) -
         barriers: frame.barriers,
         shape: frame.shape,
     };
-    let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+    let reference = common::reference_image(&gpu, SIZE, SIZE);
     (ipsvi, reference)
 }
 

@@ -1,7 +1,7 @@
 //! The workgroup size of the line dispatches (a specialization constant chosen
 //! per renderer, src/ipsvi/line_group.rs) changes how pixels are grouped, never
 //! the image: every invocation shades its own pixel or texel.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

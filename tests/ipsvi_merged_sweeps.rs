@@ -3,7 +3,7 @@
 //! barrier. Each sweep keeps its own cache and colour accumulation, summed in
 //! sweep order, so the image is the unmerged one bit for bit; the barrier after
 //! a merged step stays load-bearing.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;
@@ -143,7 +143,7 @@ fn the_merged_line_barrier_is_load_bearing_and_every_strategy_agrees() {
 /// frame's GPU ms and of the process's CPU seconds per frame (lavapipe runs the
 /// shaders on the process's threads, so CPU time counts the work whatever else
 /// loads the machine). Run by hand:
-/// `SWEEPLAB_DATA=../shared/data cargo test --release --test ipsvi_merged_sweeps timing -- --ignored --nocapture`
+/// `cargo test --release --test suite ipsvi_merged_sweeps::merged_against_unmerged_timing -- --ignored --nocapture`
 /// (`MERGED_SIZE`, default 256; `MERGED_UPDATE=light-rays` for that mode).
 #[test]
 #[ignore = "a measurement, not a check"]

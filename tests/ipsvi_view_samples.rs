@@ -2,7 +2,7 @@
 //! 4.3): against the ground truth of model (ii), the figure 5 scene that plain
 //! early ray termination gets wrong, the line barrier under synchronization
 //! validation, and what each write resolution does with the race.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{UVec3, Vec3};
@@ -55,9 +55,8 @@ fn ipsvi_study(
     render_study(gpu, s, study, SIZE, SIZE, &mut profiler, sync).unwrap().image
 }
 
-fn reference(ctx: &Context, gpu: &GpuScene) -> LinearImage {
-    let mut profiler = Profiler::new(ctx, 64).unwrap();
-    render(gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image
+fn reference(_ctx: &Context, gpu: &GpuScene) -> LinearImage {
+    common::reference_image(gpu, SIZE, SIZE)
 }
 
 /// RMSE relative to the brightest reference value.

@@ -2,7 +2,7 @@
 //! transmittance of a homogeneous slab, its propagation groups and their
 //! secondary command buffers, its image against the ground truth of model (i),
 //! validation, and extreme intensities.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::{UVec3, Vec3};
@@ -241,7 +241,7 @@ fn light_volume_and_dvr_error(ctx: &Context, scene: &Scene) -> (f64, f64, f64) {
     let mut profiler = Profiler::new(ctx, 64).unwrap();
     let out = render(&gpu, Technique::LightVolume, SIZE, SIZE, &mut profiler).unwrap();
     assert!(out.image.all_finite());
-    let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+    let reference = common::reference_image(&gpu, SIZE, SIZE);
     let unshaded = render(&gpu, Technique::Dvr, SIZE, SIZE, &mut profiler).unwrap().image;
     (relative_rmse(&out.image, &reference), relative_rmse(&unshaded, &reference), reference.max_value() as f64)
 }
@@ -408,7 +408,7 @@ fn point_and_spot_lights_match_model_i_at_full_resolution() {
         let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
         let mut profiler = Profiler::new(&ctx, 64).unwrap();
         let out = render(&gpu, Technique::LightVolume, SIZE, SIZE, &mut profiler).unwrap().image;
-        let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+        let reference = common::reference_image(&gpu, SIZE, SIZE);
         let unshaded = render(&gpu, Technique::Dvr, SIZE, SIZE, &mut profiler).unwrap().image;
         let rmse = relative_rmse(&out, &reference);
         let dvr = relative_rmse(&unshaded, &reference);
@@ -510,7 +510,7 @@ fn a_homogeneous_cube_lit_straight_down_is_exact_at_every_depth_including_the_fa
             let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
             let mut profiler = Profiler::new(&ctx, 64).unwrap();
             let out = render(&gpu, Technique::LightVolume, size, size, &mut profiler).unwrap().image;
-            let reference = render(&gpu, Technique::Reference, size, size, &mut profiler).unwrap().image;
+            let reference = common::reference_image(&gpu, size, size);
             let floor = 1e-3 * reference.max_value();
             // Largest relative error of each row that sees the cube.
             let rows: Vec<(u32, f64)> = (0..size)
@@ -607,7 +607,7 @@ fn a_point_light_at_the_centre_of_a_homogeneous_cube_lights_all_octants() {
         let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
         let mut profiler = Profiler::new(&ctx, 64).unwrap();
         let image = render(&gpu, Technique::LightVolume, SIZE, SIZE, &mut profiler).unwrap().image;
-        let reference = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
+        let reference = common::reference_image(&gpu, SIZE, SIZE);
         let unshaded = render(&gpu, Technique::Dvr, SIZE, SIZE, &mut profiler).unwrap().image;
         let (rmse, dvr) = (relative_rmse(&image, &reference), relative_rmse(&unshaded, &reference));
         println!("  image: relative rmse {rmse:.4} (unshaded DVR {dvr:.4})");

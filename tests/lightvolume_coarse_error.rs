@@ -5,7 +5,7 @@
 //! the four spread lights of `bench lights`, at DR*1/2 and DR*1/4 (64x64).
 //! Before the shared medium was sampled over the cell's cross-section (only on
 //! the axis line through the voxel centre) the ratios were 1.73x and 1.53x.
-mod common;
+use crate::common;
 
 use common::*;
 use sweeplab::bench::experiments::lights::{lightvolume_scene, table1_lights};
@@ -32,7 +32,7 @@ fn image(ctx: &Context, scene: &Scene, technique: Technique) -> LinearImage {
 #[test]
 fn the_shared_medium_default_is_within_the_goal_of_the_per_light_error_at_coarse_scales() {
     let path = data_dir().join("engine.vti");
-    assert!(path.exists(), "{} not found: set SWEEPLAB_DATA to the shared data folder", path.display());
+    assert!(path.exists(), "{} not found: data/ holds it (or SWEEPLAB_DATA names the data folder)", path.display());
     let mut scene = scene_for_volume_file(&path, &[]).unwrap();
     scene.lights = table1_lights(4);
     scene.reference.model = Technique::LightVolume.reference_model(&scene);

@@ -4,8 +4,8 @@
 //! when other processes share the cores. Engine DR*1/4, directional lights of
 //! one direction (`scaling_lights`), coherent and sequential, no validation.
 //!
-//! SWEEPLAB_DATA=$(pwd)/../shared/data cargo test --release --test lightvolume_cpu_cost -- --ignored --nocapture
-mod common;
+//! cargo test --release --test suite lightvolume_cpu_cost:: -- --ignored --nocapture
+use crate::common;
 
 use sweeplab::bench::experiments::lights::{lightvolume_scene, scaling_lights};
 use sweeplab::lightvolume::{CostEstimate, LightVolumeRenderer};

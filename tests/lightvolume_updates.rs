@@ -3,7 +3,7 @@
 //! is one signed propagation, recorded passes are replayed while their lights
 //! are unchanged, incremental mode converges, and long random add / move /
 //! remove sequences with lights from 1e-3 to 1e3 do not drift.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

@@ -26,8 +26,8 @@ pub fn sample(name: &str) -> PathBuf {
     let path = dir.join(name);
     assert!(
         path.is_file(),
-        "real data set {name} not found in {}: set SWEEPLAB_DATA to the folder holding \
-         the shared data sets (default: ../shared/data next to the crate)",
+        "real data set {name} not found in {}: the repository's data/ holds it \
+         (SWEEPLAB_DATA names another folder)",
         dir.display()
     );
     path

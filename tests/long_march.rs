@@ -2,7 +2,7 @@
 //! invocation. DVR, Phong and the light volume's ray cast split them across
 //! dispatches, so a tiny `render.step` converges instead of going black; a step
 //! whose rays would outgrow f32 sample indices is refused by name.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

@@ -1,6 +1,6 @@
 //! Profiler sanity: scopes nest, children sum to at most their parent, misuse
 //! fails loudly, detail scopes appear only on request.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

@@ -1,7 +1,7 @@
 //! `render.jitter`: off, every ray caster samples the midpoints of its steps
 //! exactly as before jitter existed; on, each pixel samples at its own phase,
 //! and the CPU and GPU references take the same phases.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

@@ -3,7 +3,7 @@
 //! bound of the same reference at a quarter of both steps. A scene whose
 //! default is not converged (thin opaque bands sampled at a quarter voxel band
 //! the image) states finer steps in its file.
-mod common;
+use crate::common;
 
 use common::*;
 use std::path::Path;

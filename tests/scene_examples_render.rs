@@ -2,7 +2,7 @@
 //! unshaded baseline and with every technique whose settings table it carries
 //! (a scene file written for a technique must work with it).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

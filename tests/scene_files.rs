@@ -98,7 +98,7 @@ fn data_example_scenes_load_their_volumes() {
         assert!(file.starts_with(&dir), "{}: data_file must resolve under {}", path.display(), dir.display());
         assert!(
             file.exists(),
-            "{}: {} is missing; the real data sets are found through SWEEPLAB_DATA (now {})",
+            "{}: {} is missing; the real data sets are read from data/ or SWEEPLAB_DATA (now {})",
             path.display(),
             file.display(),
             dir.display()

@@ -2,7 +2,7 @@
 //! of tests/scenes (the checked-in corpus) with its text mutated at random, or
 //! with `--set` overrides of random keys to extreme values, must give a scene
 //! that is consistent or an error naming its origin, never a panic. A longer
-//! run: `PROPTEST_CASES=100000 cargo test --release --test scene_fuzz`.
+//! run: `PROPTEST_CASES=100000 cargo test --release --test suite scene_fuzz::`.
 
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,7 @@
 //! transfer function, constant volume under the automatic one, NaN/Inf voxels
 //! in the file, a light that sends nothing), and a frame with non-finite pixels
 //! is an error naming the technique and the count, never a written image.
-mod common;
+use crate::common;
 
 use common::cli::{sweeplab, temp_dir};
 use common::*;

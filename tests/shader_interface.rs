@@ -4,7 +4,7 @@
 //! error that names the binding, and a ping-pong shader is not made into a
 //! single pipeline.
 
-mod common;
+use crate::common;
 
 use ash::vk;
 use common::*;

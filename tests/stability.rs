@@ -7,7 +7,7 @@
 //! warning. Then convergence: each technique's error shrinks (within noise)
 //! as the step goes 1, 1/2, 1/4, 1/8, 1/16 voxel, and its observed order is
 //! printed. `sweeplab bench stability` runs the same table in full.
-mod common;
+use crate::common;
 
 use common::*;
 use sweeplab::bench::experiments::stability::{

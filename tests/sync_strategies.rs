@@ -1,7 +1,7 @@
 //! Every synchronization strategy of the IPSVI sweep gives the image of
 //! `barrier-global` bit for bit and is clean under synchronization validation;
 //! `racy` is reported by it.
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

@@ -2,7 +2,7 @@
 //! context's reporter is due is reported with its name and what it holds, and
 //! nothing is reported without a reporter or for a submission that ends first.
 
-mod common;
+use crate::common;
 
 use common::*;
 use glam::Vec3;

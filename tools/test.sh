@@ -5,7 +5,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 source tools/setup.sh
 export SWEEPLAB_VALIDATE=1
-export SWEEPLAB_DATA="${SWEEPLAB_DATA:-$(pwd)/../shared/data}"
 cargo fmt --all -- --check
 cargo clippy --all-targets --quiet -- -D warnings
 # The whole output stays on the terminal; the last line sums cargo's

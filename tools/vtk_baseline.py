@@ -2,7 +2,7 @@
 """VTK 9.7's GPU ray caster beside sweeplab, on the same machine, in one run.
 
 What it measures
-  VTK: `vtkGPUVolumeRayCastMapper` on a volume file (default ../shared/data/engine.vti),
+  VTK: `vtkGPUVolumeRayCastMapper` on a volume file (default data/engine.vti),
   composite blend, sample distance 0.5 voxel (AutoAdjustSampleDistances off, no
   LockSampleDistanceToInputSpacing, ImageSampleDistance 1, no jittering: VTK really
   steps 0.5 voxel), in a W x H offscreen window, in three configurations:
@@ -465,7 +465,7 @@ def parse_modes(text):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
-    p.add_argument("--volume", type=Path, default=REPO.parent / "shared" / "data" / "engine.vti")
+    p.add_argument("--volume", type=Path, default=REPO / "data" / "engine.vti")
     p.add_argument("--size", type=parse_size, default=(512, 512), help="WxH (default 512x512)")
     p.add_argument("--frames", type=int, default=5, help="VTK frames timed after the first (default 5)")
     p.add_argument("--rounds", type=int, default=3, help="alternating VTK/sweeplab rounds (default 3)")

@@ -9,7 +9,7 @@ use super::suggest::edit_distance;
 /// At most this many edits between file names make a likely typo.
 const MAX_NAME_EDITS: usize = 3;
 
-/// " (did you mean ../shared/data/engine.vti?)", or a note on the folder; empty
+/// " (did you mean data/engine.vti?)", or a note on the folder; empty
 /// when nothing useful can be said.
 pub fn missing_file_hint(path: &Path) -> String {
     let folder = match path.parent() {
@@ -19,8 +19,9 @@ pub fn missing_file_hint(path: &Path) -> String {
     let Some(name) = path.file_name().map(|n| n.to_string_lossy().to_lowercase()) else { return String::new() };
     let Ok(entries) = std::fs::read_dir(folder) else {
         return format!(
-            "; the folder {} does not exist (data sets are read from $SWEEPLAB_DATA, default ../shared/data)",
-            folder.display()
+            "; the folder {} does not exist (data sets are read from $SWEEPLAB_DATA, default {})",
+            folder.display(),
+            super::loaders::DEFAULT_DATA_DIR
         );
     };
     let mut near: Vec<(usize, String)> = entries

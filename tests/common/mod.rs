@@ -5,9 +5,13 @@
 pub mod cli;
 
 use glam::{UVec3, Vec3};
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, OnceLock};
+use sweeplab::linear_image::LinearImage;
+use sweeplab::render::GpuScene;
 use sweeplab::scene::*;
-use sweeplab::techniques;
-use sweeplab::vk::{Context, ContextOptions};
+use sweeplab::techniques::{self, Technique};
+use sweeplab::vk::{Context, ContextOptions, Profiler};
 
 /// A context with validation and synchronization validation on.
 pub fn validated_context() -> Context {
@@ -231,4 +235,35 @@ pub fn point(position: Vec3) -> Light {
         intensity: 1.5,
         falloff: Falloff::None,
     }
+}
+
+/// The ground truth of `gpu`'s scene at `width` x `height`, rendered once per
+/// run of the suite: a test asking for a scene, volume format and size that
+/// another test (or an earlier step of its own) asked for gets the image that
+/// one rendered, with validation, instead of marching the brute-force shadow
+/// rays again. The key is everything the reference reads (as
+/// `sweeplab::techniques::ground_truth_cache` keys it); a test asking while
+/// another renders the same key waits for that image.
+pub fn reference_image(gpu: &GpuScene, width: u32, height: u32) -> LinearImage {
+    static IMAGES: OnceLock<Mutex<HashMap<String, Arc<OnceLock<LinearImage>>>>> = OnceLock::new();
+    let s = gpu.scene;
+    let key = format!(
+        "{:032x} {:?} {:?} | {:?} | {:?} | {:?} | {:?} | {:?} | {:?} {:?} | {width}x{height}",
+        sweeplab::ao::cache::volume_content_hash(&s.volume),
+        s.volume.dims,
+        s.volume.spacing,
+        s.transfer,
+        s.camera,
+        s.lights,
+        s.render,
+        s.reference,
+        gpu.volume_format,
+        gpu.filter,
+    );
+    let slot = IMAGES.get_or_init(Default::default).lock().unwrap_or_else(|p| p.into_inner()).entry(key).or_default().clone();
+    slot.get_or_init(|| {
+        let mut profiler = Profiler::new(gpu.ctx, 64).unwrap();
+        techniques::render(gpu, Technique::Reference, width, height, &mut profiler).unwrap().image
+    })
+    .clone()
 }

@@ -3,7 +3,7 @@
 //! variant, written by tests/loaders/writers.rs) mutated at random must load
 //! into a consistent volume or fail with an error naming the file, in bounded
 //! time, never panic. A longer run (docs/volume-formats.md):
-//! `PROPTEST_CASES=100000 cargo test --release --test loaders fuzz`.
+//! `PROPTEST_CASES=100000 cargo test --release --test suite loaders::fuzz`.
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -13,9 +13,9 @@ use proptest::test_runner::{Config, FileFailurePersistence};
 use sweeplab::scene::loaders::load_volume;
 use sweeplab::scene::{Volume, VoxelData};
 
-use crate::malformed::variants;
-use crate::synthetic::synthetic;
-use crate::Scratch;
+use super::malformed::variants;
+use super::synthetic::synthetic;
+use super::Scratch;
 
 #[path = "../fuzz/mutation.rs"]
 mod mutation;

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use sweeplab::scene::loaders::{FormatProblem, LoadError};
 
-use crate::synthetic::{synthetic, Endian, Synthetic};
-use crate::writers::*;
-use crate::{load_err, sample, truncated_copy, Scratch};
+use super::synthetic::{synthetic, Endian, Synthetic};
+use super::writers::*;
+use super::{load_err, sample, truncated_copy, Scratch};
 
 /// The variant of a format problem, for tables of expected failures.
 fn kind(error: &LoadError) -> &'static str {
@@ -408,7 +408,7 @@ fn bad_nifti_headers_fail() {
         for gzip in [false, true] {
             let path = if gzip {
                 let path = scratch.path().join("bad.nii.gz");
-                std::fs::write(&path, crate::writers::gzip(&bytes)).unwrap();
+                std::fs::write(&path, super::writers::gzip(&bytes)).unwrap();
                 path
             } else {
                 let path = scratch.path().join("bad.nii");

@@ -1,9 +1,9 @@
 //! Small synthetic files of every format, voxel type, byte order and storage
 //! variant load back as the voxels written, normalized per the convention.
 
-use crate::synthetic::{assert_matches, synthetic, ENDIANS, TYPES};
-use crate::writers::*;
-use crate::{load_ok, Scratch};
+use super::synthetic::{assert_matches, synthetic, ENDIANS, TYPES};
+use super::writers::*;
+use super::{load_ok, Scratch};
 
 #[test]
 fn raw_header_round_trips() {
@@ -46,7 +46,7 @@ fn metaimage_round_trips() {
     }
 }
 
-use crate::synthetic::Endian;
+use super::synthetic::Endian;
 
 #[test]
 fn nrrd_round_trips() {

@@ -1,13 +1,13 @@
-//! The shared real data sets load with the grid and spacing of
-//! shared/data/README.md, and with voxels equal to an independent decoding of
-//! the same file done here with flate2 and byte slicing.
+//! The real data sets load with the grid and spacing of data/README.md, and
+//! with voxels equal to an independent decoding of the same file done here
+//! with flate2 and byte slicing.
 
 use std::io::Read;
 
 use flate2::read::ZlibDecoder;
 use sweeplab::scene::{Volume, VoxelData};
 
-use crate::{load_ok, sample};
+use super::{load_ok, sample};
 
 fn find(haystack: &[u8], needle: &[u8]) -> usize {
     haystack

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use flate2::write::{GzEncoder, ZlibEncoder};
 use flate2::Compression;
 
-use crate::synthetic::{Endian, Synthetic, Values};
+use super::synthetic::{Endian, Synthetic, Values};
 
 pub fn zlib(data: &[u8]) -> Vec<u8> {
     let mut encoder = ZlibEncoder::new(Vec::new(), Compression::default());

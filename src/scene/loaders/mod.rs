@@ -89,12 +89,16 @@ fn volume_name(path: &Path) -> String {
     name[..cut].to_string()
 }
 
-/// Folder of the shared real data sets: `$SWEEPLAB_DATA`, else `../shared/data`
-/// next to the crate.
+/// The repository's `data/` folder, where the real data sets live
+/// (data/README.md): the checkout this build was made from, so that tests and
+/// the binary find it from any working directory.
+pub const DEFAULT_DATA_DIR: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/data");
+
+/// Folder of the real data sets: `$SWEEPLAB_DATA`, else [`DEFAULT_DATA_DIR`].
 pub fn data_dir() -> PathBuf {
     match std::env::var_os("SWEEPLAB_DATA") {
         Some(dir) if !dir.is_empty() => PathBuf::from(dir),
-        _ => PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../shared/data")),
+        _ => PathBuf::from(DEFAULT_DATA_DIR),
     }
 }
 
