@@ -11,7 +11,7 @@ fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
     // Without validation: the breakdown's step b has no barriers by design.
     let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
         .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--line-widths", "1,4"])
-        .args(["--out", dir.to_str().unwrap()])
+        .args(["--out-dir", dir.to_str().unwrap()])
         .env_remove("SWEEPLAB_VALIDATE")
         .output()
         .expect("run sweeplab");

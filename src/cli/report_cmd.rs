@@ -9,9 +9,10 @@ use sweeplab::bench::experiments::sync_report;
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
     let reports = args.inputs.iter().map(|p| sync_report::read(p)).collect::<Result<Vec<_>, _>>()?;
-    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
+    let out_folder = super::session::out_folder(&args.out, "report")?;
+    let out = out_folder.path();
     let table = sync_report::side_by_side(&reports);
-    table.write_csv(args.out.join("report.csv"))?;
+    table.write_csv(out.join("report.csv"))?;
     let mut md = String::from("# bench sync, side by side\n\n");
     for (path, r) in args.inputs.iter().zip(&reports) {
         md.push_str(&format!(
@@ -30,17 +31,14 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<ExitCode> {
     }
     md.push('\n');
     md.push_str(&table.to_markdown());
-    std::fs::write(args.out.join("report.md"), &md).context("writing report.md")?;
+    std::fs::write(out.join("report.md"), &md).context("writing report.md")?;
     for workload in Workload::ALL {
         if reports.iter().any(|r| r.rounds_of(workload) > 0) {
-            sync_report::plot_side_by_side(
-                &reports,
-                workload,
-                &args.out.join(format!("report_{}.png", workload.name())),
-            )?;
+            sync_report::plot_side_by_side(&reports, workload, &out.join(format!("report_{}.png", workload.name())))?;
         }
     }
     println!("{}", table.to_markdown());
-    println!("wrote {}/report.md, report.csv and report_<workload>.png (and .svg)", args.out.display());
+    println!("wrote {}/report.md, report.csv and report_<workload>.png (and .svg)", out.display());
+    out_folder.finish()?;
     Ok(ExitCode::SUCCESS)
 }
