@@ -18,6 +18,7 @@ pub mod lightvolume;
 pub mod linear_image;
 pub mod metrics;
 pub mod output_paths;
+pub mod plural;
 pub mod reference;
 pub mod render;
 pub mod scene;

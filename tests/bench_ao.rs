@@ -32,7 +32,7 @@ fn bench_ao_writes_a_row_per_configuration_with_its_figures() {
         "4",
         "--repeat",
         "1",
-        "--out",
+        "--out-dir",
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -67,9 +67,9 @@ fn bench_ao_writes_a_row_per_configuration_with_its_figures() {
 
 #[test]
 fn bench_ao_refuses_bad_lists_by_name() {
-    let o = sweeplab(&["bench", "ao", "--metrics", "l2,l3", "--out", temp_dir("bench-ao-bad").to_str().unwrap()]);
+    let o = sweeplab(&["bench", "ao", "--metrics", "l2,l3", "--out-dir", temp_dir("bench-ao-bad").to_str().unwrap()]);
     assert_user_error(&o, "--metrics");
     assert!(stderr(&o).contains("did you mean"), "{}", stderr(&o));
-    let o = sweeplab(&["bench", "ao", "--clusters", "4096", "--out", temp_dir("bench-ao-bad2").to_str().unwrap()]);
+    let o = sweeplab(&["bench", "ao", "--clusters", "4096", "--out-dir", temp_dir("bench-ao-bad2").to_str().unwrap()]);
     assert_user_error(&o, "ao.clusters = 4096");
 }

@@ -10,6 +10,7 @@ use common::{assert_validation_clean, validated_context};
 use sweeplab::bench::experiments::lights_bench::{self, LightsPlan};
 use sweeplab::bench::experiments::stability_bench::{self, StabilityPlan};
 use sweeplab::bench::experiments::table1_bench::{self, Table1Plan};
+use sweeplab::bench::out_folder::OutTarget;
 use sweeplab::bench::{Harness, Interleaved, OutFolder, RunInfo};
 use sweeplab::ipsvi::paper_table1::{CT_ENGINE, LINE_WIDTHS};
 use sweeplab::ipsvi::LineKernel;
@@ -29,7 +30,7 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
         data_sets: vec![(data_dir().join("engine.vti"), &CT_ENGINE)],
         kernels: vec![LineKernel::Serial, LineKernel::Segmented],
     };
-    let folder = OutFolder::prepare(&out("table1")).unwrap();
+    let folder = OutFolder::prepare(OutTarget::Named { folder: &out("table1"), force: true }).unwrap();
     let table = table1_bench::run(&ctx, &plan, RunInfo::collect(&ctx), &folder, 4096).unwrap();
     assert_eq!(table.rows.len(), 2 * 2 * LINE_WIDTHS.len());
     for (i, r) in table.rows.iter().enumerate() {
@@ -58,7 +59,7 @@ fn stability_rates_each_cell_and_each_convergence_row() {
     let plan =
         StabilityPlan::choose(8, &names(&["baseline"]), &names(&["dvr"]), Harness::new(1, 1).unwrap(), out("cases"))
             .unwrap();
-    let folder = OutFolder::prepare(&out("stability")).unwrap();
+    let folder = OutFolder::prepare(OutTarget::Named { folder: &out("stability"), force: true }).unwrap();
     let report = stability_bench::run(&ctx, &plan, RunInfo::collect(&ctx), &folder).unwrap();
     assert_eq!((report.table.rows.len(), report.orders.rows.len(), report.failed), (1, 1, 0));
     let cell = &report.table.rows[0];
@@ -79,7 +80,7 @@ fn lights_run_each_parts_configurations_in_shuffled_rounds_with_intervals_from_s
     let ctx = validated_context();
     let scene = sweeplab::techniques::default_scene(&[]).unwrap();
     let plan = LightsPlan::smallest(Interleaved::fixed(6, 11).unwrap(), (8, 8));
-    let folder = OutFolder::prepare(&out("lights")).unwrap();
+    let folder = OutFolder::prepare(OutTarget::Named { folder: &out("lights"), force: true }).unwrap();
     let report = lights_bench::run(&ctx, &scene, &plan, RunInfo::collect(&ctx), &folder, 4096).unwrap();
     // Table 1's four updates, the point light at the centre and outside, two
     // light counts by two propagations, the entire update beside one

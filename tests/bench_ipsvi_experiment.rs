@@ -8,6 +8,7 @@ use common::{directional, sphere_volume};
 use glam::Vec3;
 use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
 use sweeplab::bench::experiments::ipsvi_breakdown::{self, BreakdownPlan};
+use sweeplab::bench::out_folder::OutTarget;
 use sweeplab::bench::{Interleaved, OutFolder, RunInfo};
 use sweeplab::ipsvi::LineKernel;
 use sweeplab::render::VolumeTexels;
@@ -31,7 +32,7 @@ fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
         kernels: vec![LineKernel::Auto],
     };
     let ctx = common::validated_context();
-    let out = OutFolder::prepare(&dir).unwrap();
+    let out = OutFolder::prepare(OutTarget::Named { folder: &dir, force: true }).unwrap();
     let report = ipsvi_bench::run(&ctx, &scene(), &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
     common::assert_validation_clean(&ctx);
     out.finish().unwrap();
@@ -83,7 +84,7 @@ fn bench_ipsvi_without_half_angle_runs_measures_every_mode() {
         kernels: vec![LineKernel::Serial, LineKernel::Segmented],
     };
     let ctx = common::validated_context();
-    let out = OutFolder::prepare(&dir).unwrap();
+    let out = OutFolder::prepare(OutTarget::Named { folder: &dir, force: true }).unwrap();
     ipsvi_bench::run(&ctx, &scene(), &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
     common::assert_validation_clean(&ctx);
     out.finish().unwrap();
@@ -114,7 +115,7 @@ fn the_breakdown_at_8x8_with_six_rounds_publishes_no_cost_within_noise() {
     };
     // Without validation: step b has no barriers between blocks by design.
     let ctx = common::unvalidated_context();
-    let out = OutFolder::prepare(&dir).unwrap();
+    let out = OutFolder::prepare(OutTarget::Named { folder: &dir, force: true }).unwrap();
     let report = ipsvi_breakdown::run(&ctx, &scene(), &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
     out.finish().unwrap();
     let rows = bench_rows(&dir.join("ipsvi_breakdown.json"));

@@ -24,13 +24,13 @@ fn bench(dir: &Path, extra: &[&str]) -> std::process::Output {
         "1,2",
         "--strategies",
         "barrier-global,events,secondary",
-        "--min-rounds",
+        "--repeat",
         "6",
         "--max-rounds",
         "6",
         "--seed",
         "7",
-        "--out",
+        "--out-dir",
         dir.to_str().unwrap(),
     ];
     args.extend_from_slice(extra);
@@ -154,6 +154,21 @@ fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
     for c in configs.iter().filter(|c| c["racy"] == false && c["workload"] == "sweep") {
         assert_eq!(c["rmse_vs_barrier_global"], 0.0, "{c}");
     }
+    // The tables count the barriers between line blocks apart from the
+    // frame's own (set-up, read-back): none for no barriers.
+    let csv = std::fs::read_to_string(dir.join("sync_configurations.csv")).unwrap();
+    let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("{name}: {header:?}"));
+    let (strategy, boundary, frame) = (column("strategy"), column("boundary_barriers"), column("frame_barriers"));
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        let (b, f): (u64, u64) = (cells[boundary].parse().unwrap(), cells[frame].parse().unwrap());
+        match cells[strategy] {
+            "no-barriers" | "no-barriers-again" => assert!(b == 0 && f > 0, "{line}"),
+            _ => assert!(b > 0 && f > b, "{line}"),
+        }
+    }
 }
 
 /// The calibration on lavapipe: every arm's chain of known length, its
@@ -168,7 +183,7 @@ fn the_study_runs_shuffled_paired_rounds_against_an_equal_work_baseline() {
 fn the_chain_workload_fits_a_fraction_near_one_for_every_arm_on_lavapipe() {
     let dir = temp_dir("sync-chain");
     let mut args = vec!["bench", "sync", "--size", "12x12", "--workloads", "chain", "--min-rounds", "6"];
-    args.extend(["--max-rounds", "6", "--seed", "7", "--out", dir.to_str().unwrap()]);
+    args.extend(["--max-rounds", "6", "--seed", "7", "--out-dir", dir.to_str().unwrap()]);
     let o = sweeplab(&args);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("validation: clean"), "{}", stderr(&o));
@@ -218,8 +233,9 @@ fn a_budget_too_short_for_every_configuration_leaves_some_out_and_says_so() {
     let run = |minutes: &str, line_widths: &str| {
         let mut args =
             vec!["bench", "sync", "--size", "12x12", "--set", "ipsvi.cache_size=16", "--strategies", "barrier-global"];
-        args.extend(["--min-rounds", "6", "--max-rounds", "6", "--seed", "7", "--workloads", "sweep"]);
-        args.extend(["--line-widths", line_widths, "--max-minutes", minutes, "--out", dir.to_str().unwrap()]);
+        args.extend(["--repeat", "6", "--max-rounds", "6", "--seed", "7", "--workloads", "sweep"]);
+        args.extend(["--line-widths", line_widths, "--max-minutes", minutes, "--out-dir", dir.to_str().unwrap()]);
+        args.push("--force");
         sweeplab(&args)
     };
     // 0.06 s for set-up, warm-up and six rounds: nothing fits, so the least
@@ -248,6 +264,10 @@ fn a_budget_too_short_for_every_configuration_leaves_some_out_and_says_so() {
     assert!(barrier["boundary_us"].is_null(), "no slope from one line width: {barrier}");
     let md = std::fs::read_to_string(dir.join("sync.md")).unwrap();
     assert!(md.contains("line width(s) 2, 4 left out"), "{md}");
+    // Cut short by its budget, the run is named partial.
+    let marker = std::fs::read_to_string(dir.join("PARTIAL")).unwrap();
+    assert!(marker.contains("measured less than planned: sweep workload: line width(s) 2, 4"), "{marker}");
+    assert!(stderr(&o).contains("partial: sweep workload"), "{}", stderr(&o));
     assert_every_output_names_its_run(&dir);
     // A budget that holds every configuration leaves nothing out.
     let o = run("10", "1,2,4");
@@ -256,6 +276,7 @@ fn a_budget_too_short_for_every_configuration_leaves_some_out_and_says_so() {
     let report = json(&dir.join("sync.json"));
     assert!(report["workloads"][0]["left_out"].is_null(), "{}", report["workloads"][0]);
     assert_eq!(report["configurations"].as_array().unwrap().len(), 3 * 3 + 1);
+    assert!(!dir.join("PARTIAL").exists(), "a whole run is not partial");
 }
 
 #[test]
@@ -295,7 +316,7 @@ fn every_output_names_its_run_and_report_puts_two_devices_side_by_side() {
     std::fs::write(&a, report.to_string()).unwrap();
     std::fs::write(&b, other.to_string()).unwrap();
     let out = dir.join("report");
-    let o = sweeplab(&["report", a.to_str().unwrap(), b.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let o = sweeplab(&["report", a.to_str().unwrap(), b.to_str().unwrap(), "--out-dir", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     let device = run["device"].as_str().unwrap();
@@ -313,7 +334,7 @@ fn every_output_names_its_run_and_report_puts_two_devices_side_by_side() {
     assert!(out.join("report_fixed_cost.png").exists(), "the chart of (a)");
     let bad = dir.join("not-a-report.json");
     std::fs::write(&bad, "[1, 2]").unwrap();
-    assert_user_error(&sweeplab(&["report", bad.to_str().unwrap(), "--out", out.to_str().unwrap()]), "sync.json");
+    assert_user_error(&sweeplab(&["report", bad.to_str().unwrap(), "--out-dir", out.to_str().unwrap()]), "sync.json");
 }
 
 #[test]
@@ -321,13 +342,15 @@ fn bad_plans_are_refused_before_any_gpu_work() {
     let dir = temp_dir("sync-refused");
     let out = dir.to_str().unwrap();
     for (args, mention) in [
+        (vec!["--repeat", "3"], "95 %"),
+        // The name --repeat replaced still works.
         (vec!["--min-rounds", "3"], "95 %"),
         (vec!["--line-widths", "4"], "two line widths"),
         (vec!["--strategies", "racy"], "baseline"),
         (vec!["--workloads", "full"], "unknown workload"),
-        (vec!["--max-rounds", "5", "--min-rounds", "6"], "most rounds"),
+        (vec!["--max-rounds", "5", "--repeat", "6"], "most rounds"),
     ] {
-        let mut all = vec!["bench", "sync", "--out", out];
+        let mut all = vec!["bench", "sync", "--out-dir", out];
         all.extend(args);
         let o = sweeplab(&all);
         assert_user_error(&o, mention);

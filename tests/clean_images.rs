@@ -9,7 +9,7 @@
 //! The bounds hold for the image as it is and fail on the images before issue 45
 //! (`the_bounds_fail_on_the_images_before_issue_45`, ignored to keep the suite
 //! short: it renders the old defaults, named by their settings).
-mod common;
+use crate::common;
 
 use common::*;
 use std::path::Path;

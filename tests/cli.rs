@@ -136,12 +136,12 @@ fn bad_input_gives_clear_errors_not_panics() {
     assert_user_error(&sweeplab(&["render", "--device", "no-such-gpu"]), "no-such-gpu");
     let out = dir.join("bench");
     let out = out.to_str().unwrap();
-    assert_user_error(&sweeplab(&["bench", "ipsvi", "--sizes", "0", "--out", out]), "empty");
+    assert_user_error(&sweeplab(&["bench", "ipsvi", "--sizes", "0", "--out-dir", out]), "empty");
     assert_user_error(
-        &sweeplab(&["bench", "ipsvi", "--sizes", "8", "--line-widths", "99", "--repeat", "1", "--out", out]),
+        &sweeplab(&["bench", "ipsvi", "--sizes", "8", "--line-widths", "99", "--repeat", "1", "--out-dir", out]),
         "line_width",
     );
-    assert_user_error(&sweeplab(&["bench", "sync", "--strategies", "fences", "--out", out]), "fences");
+    assert_user_error(&sweeplab(&["bench", "sync", "--strategies", "fences", "--out-dir", out]), "fences");
     let unwritable = dir.join("no-such-dir").join("out.png");
     assert_user_error(&sweeplab(&["render", "--size", "8x8", "--out", unwritable.to_str().unwrap()]), "out.png");
 }
@@ -153,7 +153,7 @@ fn bench_lights_writes_table1_scaling_memory_and_error_rows_validation_clean() {
     #[rustfmt::skip]
     let o = sweeplab(&[
         "bench", "lights", "--scales", "4", "--light-counts", "2", "--scaling-counts", "1,2",
-        "--error-scales", "4", "--repeat", "1", "--size", "16x16", "--out", out.to_str().unwrap(),
+        "--error-scales", "4", "--repeat", "1", "--size", "16x16", "--out-dir", out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("validation: clean"), "{}", stderr(&o));
@@ -206,18 +206,18 @@ fn bench_lights_writes_table1_scaling_memory_and_error_rows_validation_clean() {
 fn bench_lights_rejects_bad_parameters_clearly() {
     let out = temp_dir("bench-lights-errors");
     let out = out.to_str().unwrap();
-    assert_user_error(&sweeplab(&["bench", "lights", "--scales", "3", "--out", out]), "--scales");
-    assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "0", "--out", out]), "--light-counts");
-    assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "17", "--out", out]), "--light-counts");
+    assert_user_error(&sweeplab(&["bench", "lights", "--scales", "3", "--out-dir", out]), "--scales");
+    assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "0", "--out-dir", out]), "--light-counts");
+    assert_user_error(&sweeplab(&["bench", "lights", "--light-counts", "17", "--out-dir", out]), "--light-counts");
     assert_user_error(
-        &sweeplab(&["bench", "lights", "--incremental-passes", "0", "--out", out]),
+        &sweeplab(&["bench", "lights", "--incremental-passes", "0", "--out-dir", out]),
         "--incremental-passes",
     );
-    assert_user_error(&sweeplab(&["bench", "lights", "--scaling-counts", "0", "--out", out]), "--scaling-counts");
-    assert_user_error(&sweeplab(&["bench", "lights", "--scaling-scale", "8", "--out", out]), "--scaling-scale");
-    assert_user_error(&sweeplab(&["bench", "lights", "--error-scales", "1,5", "--out", out]), "--error-scales");
-    assert_user_error(&sweeplab(&["bench", "lights", "--repeat", "0", "--out", out]), "--repeat");
-    assert_user_error(&sweeplab(&["bench", "lights", "--scales", "x", "--out", out]), "--scales");
+    assert_user_error(&sweeplab(&["bench", "lights", "--scaling-counts", "0", "--out-dir", out]), "--scaling-counts");
+    assert_user_error(&sweeplab(&["bench", "lights", "--scaling-scale", "8", "--out-dir", out]), "--scaling-scale");
+    assert_user_error(&sweeplab(&["bench", "lights", "--error-scales", "1,5", "--out-dir", out]), "--error-scales");
+    assert_user_error(&sweeplab(&["bench", "lights", "--repeat", "0", "--out-dir", out]), "--repeat");
+    assert_user_error(&sweeplab(&["bench", "lights", "--scales", "x", "--out-dir", out]), "--scales");
 }
 
 /// Every bench measures at least one timed run: `--repeat 0` is an error
@@ -227,7 +227,7 @@ fn every_bench_refuses_zero_repeats() {
     let dir = temp_dir("bench-repeat-zero");
     for bench in ["ipsvi", "table1", "lights", "stability"] {
         let out = dir.join(bench);
-        let o = sweeplab(&["bench", bench, "--repeat", "0", "--out", out.to_str().unwrap()]);
+        let o = sweeplab(&["bench", bench, "--repeat", "0", "--out-dir", out.to_str().unwrap()]);
         assert_user_error(&o, "--repeat");
         assert!(stderr(&o).contains("use 1 or more"), "{bench}: {}", stderr(&o));
         assert!(!out.exists(), "{bench} wrote {} before refusing", out.display());
@@ -244,11 +244,11 @@ fn outputs_and_list_values_are_checked_before_any_gpu_work() {
     let cases: Vec<(Vec<&str>, &str)> = vec![
         (vec!["render", "--out", jpg.to_str().unwrap()], "PNG"),
         (vec!["compare", "--technique", "dvr", "--heatmap", missing.to_str().unwrap()], "does not exist"),
-        (vec!["bench", "ipsvi", "--line-widths", "1,0", "--out", dir.to_str().unwrap()], "line_width = 0"),
-        (vec!["bench", "ipsvi", "--sizes", "0", "--out", dir.to_str().unwrap()], "--sizes"),
-        (vec!["bench", "ipsvi", "--half-angle-slices", "100", "--out", dir.to_str().unwrap()], "slice_step = 100"),
-        (vec!["bench", "sync", "--line-widths", "1,64", "--out", dir.to_str().unwrap()], "line_width = 64"),
-        (vec!["bench", "table1", "--sizes", "20000", "--out", dir.to_str().unwrap()], "--sizes"),
+        (vec!["bench", "ipsvi", "--line-widths", "1,0", "--out-dir", dir.to_str().unwrap()], "line_width = 0"),
+        (vec!["bench", "ipsvi", "--sizes", "0", "--out-dir", dir.to_str().unwrap()], "--sizes"),
+        (vec!["bench", "ipsvi", "--half-angle-slices", "100", "--out-dir", dir.to_str().unwrap()], "slice_step = 100"),
+        (vec!["bench", "sync", "--line-widths", "1,64", "--out-dir", dir.to_str().unwrap()], "line_width = 64"),
+        (vec!["bench", "table1", "--sizes", "20000", "--out-dir", dir.to_str().unwrap()], "--sizes"),
     ];
     for (args, mention) in cases {
         let o = sweeplab(&args);
@@ -259,24 +259,29 @@ fn outputs_and_list_values_are_checked_before_any_gpu_work() {
     }
 }
 
-/// A second bench run into the same folder removes the files the first wrote
-/// and this one does not (a strategy left out), and nothing else.
+/// A bench never overwrites another run's results: a second run into the
+/// same folder is refused unless `--force`, which removes the files the first
+/// wrote and this one does not (a strategy left out), and nothing else.
 #[test]
-fn bench_output_folders_hold_no_stale_files() {
+fn bench_output_folders_are_refused_when_full_and_forced_hold_no_stale_files() {
     let dir = temp_dir("stale");
-    std::fs::write(dir.join("mine.txt"), "a user's file").unwrap();
-    let run = |strategies: &str| {
+    let run = |strategies: &str, force: bool| {
         #[rustfmt::skip]
-        let o = sweeplab(&[
+        let mut args = vec![
             "bench", "sync", "--size", "8x8", "--line-widths", "1,2", "--workloads", "sweep",
-            "--strategies", strategies, "--min-rounds", "6", "--max-rounds", "6", "--out", dir.to_str().unwrap(),
-        ]);
-        assert!(o.status.success(), "{}", stderr(&o));
+            "--strategies", strategies, "--repeat", "6", "--max-rounds", "6", "--out-dir", dir.to_str().unwrap(),
+        ];
+        if force {
+            args.push("--force");
+        }
+        sweeplab(&args)
     };
-    run("barrier-global,events,secondary");
-    assert!(dir.join("trace_sweep_events.json").exists());
-    // Every strategy's traced frame has per-line timestamps (secondary's from
-    // a secondary recorded for that frame): line times that are numbers, not 0 or NaN.
+    let o = run("barrier-global,events,secondary", false);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains(&format!("writing into {}", dir.display())), "{}", stderr(&o));
+    assert!(dir.join("trace_sweep_events.json").exists() && !dir.join("PARTIAL").exists());
+    // Every strategy's traced frame has per-line timestamps (secondary's from a secondary
+    // recorded for the timestamped frame): gaps that are numbers, not 0 or NaN.
     let report: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("sync.json")).unwrap()).unwrap();
     let trace = |s: &str| report["traces"].as_array().unwrap().iter().find(|r| r["strategy"] == s).unwrap().clone();
@@ -285,11 +290,81 @@ fn bench_output_folders_hold_no_stale_files() {
         assert!(lines.as_f64().is_some_and(|v| v > 0.0), "{strategy}: {}", trace(strategy));
     }
     assert!(dir.join("trace_sweep_secondary.json").exists());
-    run("barrier-global");
+    // Refused before any GPU work, the first run's files untouched.
+    let first = std::fs::read_to_string(dir.join("sync.json")).unwrap();
+    let o = run("barrier-global", false);
+    assert_user_error(&o, "--force");
+    assert!(!stderr(&o).contains("device:"), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(dir.join("sync.json")).unwrap(), first);
+    std::fs::write(dir.join("mine.txt"), "a user's file").unwrap();
+    let o = run("barrier-global", true);
+    assert!(o.status.success(), "{}", stderr(&o));
     assert!(!dir.join("trace_sweep_events.json").exists(), "a stale file of the first run is left");
     assert!(!dir.join("trace_sweep_secondary.json").exists(), "a stale file of the first run is left");
     assert!(dir.join("trace_sweep_barrier-global.json").exists() && dir.join("sync.csv").exists());
     assert!(dir.join("mine.txt").exists(), "a file the bench did not write was removed");
+}
+
+/// Without `--out-dir`, each run writes a new folder under the bench's own
+/// (named by the run's date and time) and says which.
+#[test]
+fn without_out_dir_every_bench_run_writes_a_new_folder() {
+    let dir = temp_dir("new-folders");
+    let run = || {
+        let args = ["bench", "stability", "--cases", "baseline", "--techniques", "dvr", "--size", "8"];
+        let o = Command::new(env!("CARGO_BIN_EXE_sweeplab")).args(args).current_dir(&dir).output().unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        let err = stderr(&o);
+        let line = err.lines().find_map(|l| l.strip_prefix("writing into ")).unwrap_or_else(|| panic!("{err}"));
+        let folder = dir.join(line.split(" (").next().unwrap());
+        assert!(folder.join("stability.json").is_file(), "{}", folder.display());
+        assert!(!folder.join("PARTIAL").exists());
+        folder
+    };
+    let (first, second) = (run(), run());
+    assert_ne!(first, second, "the second run wrote over the first");
+    assert_eq!(first.parent(), Some(dir.join("bench-stability").as_path()));
+    assert_eq!(second.parent(), first.parent());
+}
+
+/// A run stopped while it measures (Ctrl-C) keeps the rounds it measured,
+/// named as partial: the PARTIAL marker, and the report's own header.
+#[test]
+fn a_stopped_bench_keeps_what_it_measured_named_as_partial() {
+    let dir = temp_dir("stopped").join("sync");
+    #[rustfmt::skip]
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
+        .args([
+            "bench", "sync", "--size", "8x8", "--line-widths", "1,2", "--workloads", "empty",
+            "--strategies", "barrier-global", "--repeat", "6", "--max-rounds", "100000", "--target-ci", "1e-9",
+            "--target-ci-us", "0", "--out-dir", dir.to_str().unwrap(),
+        ])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let stderr = child.stderr.take().unwrap();
+    let mut seen = String::new();
+    for line in std::io::BufRead::lines(std::io::BufReader::new(stderr)) {
+        let line = line.unwrap();
+        seen += &line;
+        seen.push('\n');
+        if line.contains("round 2 done") {
+            break;
+        }
+    }
+    // Ctrl-C: SIGINT to the process, which has no handler for it.
+    let stopped = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(stopped.success());
+    let status = child.wait().unwrap();
+    assert!(!status.success(), "{seen}");
+    let marker = std::fs::read_to_string(dir.join("PARTIAL")).unwrap_or_else(|e| panic!("{e}: {seen}"));
+    assert!(marker.contains("has not finished") && marker.contains("bench sync"), "{marker}");
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("sync.json")).unwrap()).unwrap();
+    assert_eq!(report["complete"], false);
+    assert!(report["workloads"][0]["rounds"].as_u64().is_some_and(|r| r >= 2), "{}", report["workloads"][0]);
+    let md = std::fs::read_to_string(dir.join("sync.md")).unwrap();
+    assert!(md.contains("Partial: rounds so far"), "{md}");
 }
 
 /// `bench ipsvi --breakdown`: six steps per cache-update mode (eleven for view
@@ -301,7 +376,7 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
     let dir = temp_dir("bench-breakdown");
     let out = dir.join("breakdown");
     let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
-        .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--out", out.to_str().unwrap()])
+        .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--out-dir", out.to_str().unwrap()])
         .env_remove("SWEEPLAB_VALIDATE")
         .output()
         .expect("run sweeplab");
@@ -350,7 +425,7 @@ fn bench_stability_checks_its_lists_first_and_writes_the_table() {
         (vec!["--techniques", "dvr,half_angle"], "did you mean half-angle?"),
         (vec!["--size", "0"], "--size"),
     ] {
-        let o = sweeplab(&[&["bench", "stability", "--out", out][..], &args].concat());
+        let o = sweeplab(&[&["bench", "stability", "--out-dir", out][..], &args].concat());
         assert_user_error(&o, mention);
         assert!(!stderr(&o).contains("device:"), "{args:?}: opened the GPU before refusing: {}", stderr(&o));
         assert_eq!(stderr(&o).matches("error:").count(), 1, "{}", stderr(&o));
@@ -358,7 +433,7 @@ fn bench_stability_checks_its_lists_first_and_writes_the_table() {
     #[rustfmt::skip]
     let o = sweeplab(&[
         "bench", "stability", "--cases", "baseline,opaque,transparent", "--techniques", "dvr,lightvolume",
-        "--size", "8", "--out", out,
+        "--size", "8", "--out-dir", out,
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_every_output_names_its_run(std::path::Path::new(out));
@@ -455,7 +530,8 @@ fn messages_say_what_is_accepted_and_suggest_the_right_thing() {
 #[test]
 fn a_bench_that_fails_early_leaves_no_empty_folder() {
     let out = temp_dir("no-empty").join("bench-out");
-    let o = sweeplab(&["bench", "ipsvi", "--sizes", "8", "--device", "no-such-gpu", "--out", out.to_str().unwrap()]);
+    let o =
+        sweeplab(&["bench", "ipsvi", "--sizes", "8", "--device", "no-such-gpu", "--out-dir", out.to_str().unwrap()]);
     assert_user_error(&o, "no-such-gpu");
     assert!(!out.exists(), "an empty output folder was left behind");
 }

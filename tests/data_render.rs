@@ -17,11 +17,7 @@ fn every_shared_data_set_renders_with_every_technique() {
     let ctx = validated_context();
     for file in FILES {
         let path = dir.join(file);
-        assert!(
-            path.exists(),
-            "{} not found: data/ holds it (or SWEEPLAB_DATA names the data folder)",
-            path.display()
-        );
+        assert!(path.exists(), "{} not found: data/ holds it (or SWEEPLAB_DATA names the data folder)", path.display());
         let overrides = ["render.width=20".to_string(), "render.height=16".to_string()];
         let scene = scene_for_volume_file(&path, &overrides).unwrap_or_else(|e| panic!("{file}: {e}"));
         let gpu = GpuScene::upload(&ctx, &scene).unwrap();

@@ -17,7 +17,7 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
         .env("GPU_CHECK_BENCH_SIZE", "32")
         .env("GPU_CHECK_TECHNIQUES", techniques)
         .env("GPU_CHECK_AO_SET", "ao.clusters=16")
-        .env("GPU_CHECK_SYNC_ARGS", "--quick --min-rounds 6 --max-rounds 6 --max-minutes 0.2 --line-widths 1,4")
+        .env("GPU_CHECK_SYNC_ARGS", "--quick --repeat 6 --max-rounds 6 --max-minutes 0.2 --line-widths 1,4")
         .env("GPU_CHECK_IPSVI_ARGS", "--line-widths 1,4 --repeat 1")
         .env("GPU_CHECK_MODES_ARGS", "--one-at-a-time --line-widths 1 --cache-sizes 16 --half-angle-slices --repeat 1")
         .env("GPU_CHECK_TABLE1_ARGS", "--data-sets engine.vti --sizes 8,16 --kernels serial,segmented --repeat 1")

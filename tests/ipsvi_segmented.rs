@@ -3,7 +3,7 @@
 //! the split (exact, by order-free digests), the same image up to the order
 //! of compositing, on every light placement; its combines on fabricated
 //! segments; the shape report's figures; the line barrier still load-bearing.
-mod common;
+use crate::common;
 
 use common::cli::{sweeplab, temp_dir};
 use common::*;

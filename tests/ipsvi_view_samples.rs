@@ -20,7 +20,7 @@ use sweeplab::scene::{
     Camera, ControlPoint, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction, Volume, VolumeFilter,
     VoxelData,
 };
-use sweeplab::techniques::{render, Technique};
+
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 48;

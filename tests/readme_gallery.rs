@@ -38,7 +38,8 @@ fn row(value: &serde_json::Value) -> Row {
 /// The rows and the image at the top, as tools/gallery.sh recorded them.
 fn gallery() -> (Vec<Row>, Row) {
     let path = root().join("docs/images/gallery.json");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e} (run tools/gallery.sh)", path.display()));
+    let text =
+        std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e} (run tools/gallery.sh)", path.display()));
     let json: serde_json::Value = serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let rows = json["rows"].as_array().expect("gallery.json: rows").iter().map(row).collect();
     (rows, row(&json["top"]))
@@ -77,9 +78,11 @@ fn recorded_counts(row: &Row, out: &Path) -> (u64, u64) {
     for line in BufReader::new(child.stdout.take().unwrap()).lines() {
         let line = line.unwrap();
         said.push(line.clone());
-        let frame_line = line.starts_with(&format!("{}: ", row.technique)) || line.split(':').next().unwrap().ends_with("frame");
+        let frame_line =
+            line.starts_with(&format!("{}: ", row.technique)) || line.split(':').next().unwrap().ends_with("frame");
         if let (true, Some(open)) = (frame_line && line.ends_with(" barriers)"), line.rfind('(')) {
-            let numbers: Vec<u64> = line[open + 1..].split(|c: char| !c.is_ascii_digit()).filter_map(|w| w.parse().ok()).collect();
+            let numbers: Vec<u64> =
+                line[open + 1..].split(|c: char| !c.is_ascii_digit()).filter_map(|w| w.parse().ok()).collect();
             if numbers.len() == 2 {
                 counts = Some((numbers[0], numbers[1]));
                 break;

@@ -402,7 +402,7 @@ fn bad_set_arguments_are_errors_naming_them() {
     let e = error_of(MINIMAL, &["camera..azimuth=5"]);
     assert_mentions(&e, &["--set `camera..azimuth=5`"]);
     let e = error_of(MINIMAL, &["lights.1.intensity=5"]);
-    assert_mentions(&e, &["--set `lights.1.intensity=5`", "index 1 is out of range", "`lights` has 1 entries"]);
+    assert_mentions(&e, &["--set `lights.1.intensity=5`", "index 1 is out of range", "`lights` has 1 entry"]);
     let e = error_of(MINIMAL, &["lights.key.intensity=5"]);
     assert_mentions(&e, &["--set `lights.key.intensity=5`", "index"]);
     let e = error_of(MINIMAL, &["volume.size.x=5"]);
@@ -410,6 +410,9 @@ fn bad_set_arguments_are_errors_naming_them() {
     // A well-formed --set with a bad value is caught by the checks, naming the key.
     let e = error_of(MINIMAL, &["render.width=0"]);
     assert_mentions(&e, &["test.toml", "`render.width`"]);
+    // A negative size gets the real range, not "a whole number (0 or more)".
+    let e = error_of(MINIMAL, &["render.width=-5"]);
+    assert_mentions(&e, &["`render.width`", "must be in 1..=16384, got -5"]);
     let e = error_of(MINIMAL, &["lights.0.type=laser"]);
     assert_mentions(&e, &["`lights.0.type`", "laser"]);
 }
@@ -603,6 +606,7 @@ fn technique_values_out_of_range_name_key_value_and_range() {
     let cases: &[(&str, &str)] = &[
         ("[ipsvi]\nline_width = 99", "ipsvi.line_width = 99: must be a whole number in 1..=32"),
         ("[ipsvi]\ncache_size = 8", "ipsvi.cache_size = 8: must be a whole number in 16..=4096"),
+        ("[ipsvi]\ncache_size = -5", "ipsvi.cache_size: must be a whole number in 16..=4096, not the integer `-5`"),
         ("[ipsvi]\nalbedo = 1.5", "ipsvi.albedo = 1.5: must be in 0..=1"),
         ("[ipsvi]\ncone_angle = 90", "ipsvi.cone_angle = 90: must be in 0..=80"),
         ("[ipsvi]\nzone_blend = -1", "ipsvi.zone_blend = -1: must be in 0..=64"),

@@ -116,7 +116,7 @@ fn report_puts_lavapipe_and_the_h200_side_by_side() {
     let _ = std::fs::remove_dir_all(&out);
     let (lavapipe, h200) = (data("lavapipe-engine-256-run2.json"), data("h200-cornell-512.json"));
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_sweeplab"))
-        .args(["report", lavapipe.to_str().unwrap(), h200.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .args(["report", lavapipe.to_str().unwrap(), h200.to_str().unwrap(), "--out-dir", out.to_str().unwrap()])
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -131,7 +131,7 @@ replace_block table "$work/gallery.md"
 if [ "$bench" = 1 ]; then
   echo "gallery: sweeplab bench sync --quick (about 90 s)" >&2
   t0=$(date +%s)
-  "$bin" bench sync --quick --out "$work/bench-sync" >"$work/bench.out" 2>"$work/bench.err" || {
+  "$bin" bench sync --quick --out-dir "$work/bench-sync" >"$work/bench.out" 2>"$work/bench.err" || {
     cat "$work/bench.err" >&2
     exit 1
   }

@@ -118,20 +118,21 @@ for t in "${list[@]}"; do
         --reference-out "$out/compare/$t-reference.png" --reference-cache "$out/cache/ground-truth"
 done
 if [ "${GPU_CHECK_BENCHES:-1}" = 1 ]; then
+    # --force: a second check into the same OUT replaces its bench results (as it does the rest).
     # shellcheck disable=SC2086 # the argument strings are word lists
     part bench-sync "$bin" bench sync --scene "$scene" --size "${bench_size}x${bench_size}" "${device_args[@]}" \
-        --out "$out/bench-sync" $sync_args
+        --out-dir "$out/bench-sync" --force $sync_args
     # shellcheck disable=SC2086
     part bench-ipsvi-breakdown "$bin" bench ipsvi --breakdown --scene "$scene" --sizes "$bench_size" "${device_args[@]}" \
-        --out "$out/bench-ipsvi" $ipsvi_args
+        --out-dir "$out/bench-ipsvi" --force $ipsvi_args
     # shellcheck disable=SC2086
     part bench-ipsvi-modes "$bin" bench ipsvi --scene "$scene" --sizes "$bench_size" "${device_args[@]}" \
-        --out "$out/bench-ipsvi-modes" $modes_args
+        --out-dir "$out/bench-ipsvi-modes" --force $modes_args
     # The paper's Table 1 (frames per second beside its GTX 580 figures), both line kernels.
     # shellcheck disable=SC2086
-    part bench-table1 "$bin" bench table1 "${device_args[@]}" --out "$out/bench-table1" $table1_args
+    part bench-table1 "$bin" bench table1 "${device_args[@]}" --out-dir "$out/bench-table1" --force $table1_args
     # shellcheck disable=SC2086
-    part bench-lights "$bin" bench lights --scene "$scene" "${device_args[@]}" --out "$out/bench-lights" $lights_args
+    part bench-lights "$bin" bench lights --scene "$scene" "${device_args[@]}" --out-dir "$out/bench-lights" --force $lights_args
 fi
 
 total=$(awk -v a="$started_all" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b - a}')

@@ -21,7 +21,7 @@ pub const MIN_SAMPLES: usize = 6;
 /// Why an estimate cannot be made.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum EstimateError {
-    #[error("{got} sample(s) cannot give a 95 % interval of a median: it needs at least {needed}")]
+    #[error("{} cannot give a 95 % interval of a median: it needs at least {needed}", crate::plural::count(*.got as u64, "sample", "samples"))]
     TooFewSamples { got: usize, needed: usize },
     #[error("a sample is not a finite number")]
     NotFinite,

@@ -18,7 +18,7 @@ use serde::Serialize;
 pub enum ProtocolError {
     #[error("0 timed rounds measure nothing; use 1 or more")]
     NoRounds,
-    #[error("{min} round(s) cannot give a 95 % interval of a median: use at least {needed}")]
+    #[error("{} cannot give a 95 % interval of a median: use at least {needed}", crate::plural::count(*.min, "round", "rounds"))]
     TooFewRounds { min: u32, needed: usize },
     #[error("the most rounds ({max}) is below the fewest ({min})")]
     MaxBelowMin { min: u32, max: u32 },

@@ -38,6 +38,10 @@ pub struct RunInfo {
     /// The inputs that shaped the result (scene or volume, sizes, rounds, ...),
     /// in the order the bench set them.
     pub inputs: Vec<(String, String)>,
+    /// Set on the rows a run saves while it measures (`OutFolder::save_rows`):
+    /// what is partial about them. The final report has none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub partial: Option<String>,
 }
 
 impl RunInfo {
@@ -104,6 +108,9 @@ impl RunInfo {
         .into_iter()
         .map(|(k, v)| (k.to_string(), v))
         .collect();
+        if let Some(partial) = &self.partial {
+            out.insert(0, ("partial".to_string(), partial.clone()));
+        }
         out.extend(self.inputs.iter().cloned());
         out
     }

@@ -9,6 +9,25 @@ fn technique_names() -> String {
     Technique::NAMED.map(|t| t.name()).join(" | ")
 }
 
+/// The technique of `render`, `compare` and `view` without `--technique`.
+fn default_technique() -> String {
+    Technique::DEFAULT.name().to_string()
+}
+
+/// Where a bench (or `report`) writes: the same two flags everywhere.
+#[derive(Args, Debug, Clone)]
+pub struct OutDirArgs {
+    /// Output folder. Without it, each run writes a new folder under the
+    /// command's own (e.g. bench-sync/2026-12-05_10-31-02); a folder that
+    /// already holds files is refused, unless --force.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+    /// Write into an --out-dir that holds files: what the previous bench run
+    /// wrote there is replaced; files it did not write are kept.
+    #[arg(long, requires = "out_dir")]
+    pub force: bool,
+}
+
 #[derive(Parser, Debug)]
 #[command(name = "sweeplab", version, about = "Volume illumination with explicit Vulkan synchronization")]
 pub struct Cli {
@@ -82,8 +101,8 @@ pub enum BenchCommand {
 pub struct BenchStabilityArgs {
     #[command(flatten)]
     pub gpu: GpuArgs,
-    #[arg(long, default_value = "bench-stability")]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub out: OutDirArgs,
     /// Square image size of every cell (the CPU reference renders it too).
     #[arg(long, default_value_t = 16)]
     pub size: u32,
@@ -108,8 +127,8 @@ pub struct BenchAoArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    #[arg(long, default_value = "bench-ao")]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub out: OutDirArgs,
     /// Sphere radii r (voxels). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![8])]
     pub radii: Vec<u32>,
@@ -144,8 +163,8 @@ pub struct BenchLightsArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    #[arg(long, default_value = "bench-lights")]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub out: OutDirArgs,
     /// Data voxels per illumination voxel for the Table 1 rows (the paper's DR*1 and DR*1/4). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 4])]
     pub scales: Vec<u32>,
@@ -178,8 +197,8 @@ pub struct BenchLightsArgs {
 pub struct BenchTable1Args {
     #[command(flatten)]
     pub gpu: GpuArgs,
-    #[arg(long, default_value = "bench-table1")]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub out: OutDirArgs,
     /// Square image sizes (the paper's: 64,128,256,512,1024). Comma-separated.
     #[arg(long, value_delimiter = ',', value_parser = sweeplab::bench::experiments::image_sizes::side_length, default_values_t = vec![64, 128, 256, 512, 1024])]
     pub sizes: Vec<u32>,
@@ -208,16 +227,17 @@ pub struct BenchSyncArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    #[arg(long, default_value = "bench-sync")]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub out: OutDirArgs,
     /// Sync strategies compared with no barriers, comma-separated:
     /// barrier-global, barrier-image, events, secondary, submits.
     #[arg(long, value_delimiter = ',', default_values_t = ["barrier-global", "barrier-image", "events", "secondary", "submits"].map(String::from).to_vec())]
     pub strategies: Vec<String>,
     /// Lines per dispatch (1..=32), at least two: the per-boundary cost is the
-    /// slope of frame time over the number of blocks. Comma-separated.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4, 8, 16, 32])]
-    pub line_widths: Vec<u32>,
+    /// slope of frame time over the number of blocks. Comma-separated; default
+    /// 1,2,4,8,16,32 (with --quick: 1,4,16,32).
+    #[arg(long, value_delimiter = ',')]
+    pub line_widths: Option<Vec<u32>>,
     /// What each line dispatch does: `sweep` (the scene's IPSVI frame),
     /// `empty` (shaders that return at once: dispatches and sync alone),
     /// `chain` (the calibration: per line a dependent chain of known length).
@@ -227,9 +247,11 @@ pub struct BenchSyncArgs {
     /// Untimed rounds of every configuration first (shader compiles, caches).
     #[arg(long, default_value_t = 1)]
     pub warm_up: u32,
-    /// Fewest timed rounds (6 or more: a 95 % interval of a median needs 6).
-    #[arg(long, default_value_t = 6)]
-    pub min_rounds: u32,
+    /// Timed rounds, at least (6 or more: a 95 % interval of a median needs 6);
+    /// more follow, up to --max-rounds, until the intervals are as narrow as
+    /// --target-ci asks or the time is up. (Also --min-rounds.)
+    #[arg(long, alias = "min-rounds", default_value_t = 6)]
+    pub repeat: u32,
     /// Most timed rounds (the time budget usually ends them first).
     #[arg(long, default_value_t = 300)]
     pub max_rounds: u32,
@@ -241,9 +263,9 @@ pub struct BenchSyncArgs {
     #[arg(long, default_value_t = 3.0)]
     pub target_ci_us: f64,
     /// Stop after the round that would end past this many minutes (never
-    /// before --min-rounds).
-    #[arg(long, default_value_t = 10.0)]
-    pub max_minutes: f64,
+    /// before --repeat rounds); default 10 (with --quick: 1.5).
+    #[arg(long)]
+    pub max_minutes: Option<f64>,
     /// Seed of the shuffled round orders (default: from the clock; recorded in sync.json).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -252,7 +274,10 @@ pub struct BenchSyncArgs {
     #[arg(long)]
     pub no_line_timestamps: bool,
     /// About a minute on lavapipe: the empty workload (the sync primitives
-    /// alone) at 64x64, line widths 1,4,16,32, as many rounds as fit in 1.5 minutes.
+    /// alone) at 64x64, line widths 1,4,16,32, as many rounds as fit in 1.5
+    /// minutes. Presets only what is not given: --size, --workloads,
+    /// --line-widths and --max-minutes given on the command line are used
+    /// (and the run says so).
     #[arg(long)]
     pub quick: bool,
 }
@@ -263,9 +288,9 @@ pub struct ReportArgs {
     /// sync.json files written by `sweeplab bench sync` (one per device or run).
     #[arg(required = true, num_args = 1..)]
     pub inputs: Vec<PathBuf>,
-    /// Output folder for report.md and the chart.
-    #[arg(long, default_value = "report")]
-    pub out: PathBuf,
+    /// Where report.md, report.csv and the charts go.
+    #[command(flatten)]
+    pub out: OutDirArgs,
 }
 
 #[derive(Args, Debug)]
@@ -274,9 +299,8 @@ pub struct BenchIpsviArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    /// Output folder for ipsvi.csv, ipsvi.json, ipsvi.md and the plots.
-    #[arg(long, default_value = "bench-out")]
-    pub out: PathBuf,
+    #[command(flatten)]
+    pub out: OutDirArgs,
     /// Lines per dispatch (1..=32). Comma-separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![1, 2, 4, 8, 16])]
     pub line_widths: Vec<u32>,
@@ -315,7 +339,9 @@ pub struct BenchIpsviArgs {
     /// sweep's order without and with the barriers; + cache reads; + piecewise
     /// integration; + cache writes), in both cache-update modes, at --sizes;
     /// and the whole frame at each of --line-widths (ipsvi_line_widths.*).
-    #[arg(long)]
+    /// The grid's own flags (--cache-sizes, --one-at-a-time,
+    /// --half-angle-slices) do not apply, and are refused with it.
+    #[arg(long, conflicts_with_all = ["cache_sizes", "one_at_a_time", "half_angle_slices"])]
     pub breakdown: bool,
 }
 
@@ -324,6 +350,14 @@ pub struct DevicesArgs {
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+}
+
+/// `view --preview`.
+#[derive(clap::ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PreviewArg {
+    Auto,
+    On,
+    Off,
 }
 
 /// What `--validate` checks.
@@ -393,11 +427,10 @@ pub struct RenderArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    // IPSVI by default: the technique with shadows this project measures.
-    #[arg(long, default_value = "ipsvi", help = technique_names(), long_help = Technique::help())]
+    #[arg(long, default_value_t = default_technique(), help = technique_names(), long_help = Technique::help())]
     pub technique: String,
-    /// Output PNG (8-bit sRGB of the linear image).
-    #[arg(long, default_value = "sweeplab.png")]
+    /// Output PNG (8-bit sRGB of the linear image); the run prints where it wrote.
+    #[arg(long, value_name = "FILE", default_value = "sweeplab.png")]
     pub out: PathBuf,
     /// Per-pass GPU profile as JSON.
     #[arg(long, value_name = "FILE")]
@@ -421,7 +454,7 @@ pub struct CompareArgs {
     #[command(flatten)]
     pub gpu: GpuArgs,
     // Compared with the ground truth of the model it approximates (RenderTechnique::reference_model).
-    #[arg(long, help = technique_names(), long_help = Technique::help())]
+    #[arg(long, default_value_t = default_technique(), help = technique_names(), long_help = Technique::help())]
     pub technique: String,
     /// Ground truth on the gpu (brute-force shadow rays) or the cpu (f64).
     #[arg(long, default_value = "gpu", value_parser = ["gpu", "cpu"])]
@@ -450,7 +483,7 @@ pub struct ViewArgs {
     pub scene: SceneArgs,
     #[command(flatten)]
     pub gpu: GpuArgs,
-    #[arg(long, default_value = "dvr", help = technique_names(), long_help = Technique::help())]
+    #[arg(long, default_value_t = default_technique(), help = technique_names(), long_help = Technique::help())]
     pub technique: String,
     /// Stop after N presented frames.
     #[arg(long, value_name = "N")]
@@ -470,6 +503,12 @@ pub struct ViewArgs {
     /// Start with the control panel hidden (H or Tab shows and hides it).
     #[arg(long)]
     pub hide_panel: bool,
+    /// While the camera, a light or a setting is dragged, render a reduced
+    /// resolution preview where a full frame is slow (over 0.25 s: IPSVI on
+    /// lavapipe), full quality once the input is still. auto: on, except in
+    /// scripted runs (--frames), which render every frame at full quality.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub preview: PreviewArg,
     /// Leave out the barrier between the technique's frame and the present
     /// pass: a race, only for the test that proves validation reports it.
     #[arg(long, hide = true)]

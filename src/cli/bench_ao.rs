@@ -7,7 +7,6 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use std::process::ExitCode;
 use sweeplab::bench::experiments::ao_bench::{self, AoPlan};
-use sweeplab::bench::OutFolder;
 use sweeplab::scene::Scene;
 
 const DEFAULT_IMAGE: u32 = 256;
@@ -47,14 +46,15 @@ pub fn run(args: &BenchAoArgs) -> anyhow::Result<ExitCode> {
     };
     let scene = load_scene(args)?;
     ao_bench::configurations(&plan, &scene.settings.get())?;
-    let out_folder = OutFolder::prepare(&args.out)?;
+    let out_folder = session::out_folder(&args.out, "bench-ao")?;
     let ctx = session::open(&args.gpu)?;
-    let report = ao_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY)?;
+    let measured = ao_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
+    let report = session::watch(&out_folder, measured)?;
     ao_bench::print_summary(&report.table);
     println!(
         "wrote {}/ao.csv, ao.json, ao_table1.csv, ao.md (the full table), ao_error_vs_clusters.png, \
          ao_error_vs_preprocessing.png (and .svg)",
-        args.out.display()
+        out_folder.path().display()
     );
     out_folder.finish()?;
     Ok(session::finish(&ctx))

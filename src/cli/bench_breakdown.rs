@@ -6,7 +6,6 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use std::process::ExitCode;
 use sweeplab::bench::experiments::ipsvi_breakdown::{self, BreakdownPlan};
-use sweeplab::bench::OutFolder;
 use sweeplab::ipsvi::IpsviSettings;
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
@@ -19,14 +18,15 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     };
     let scene = scene_args::load(&args.scene)?;
     plan.check(&scene.settings.get::<IpsviSettings>())?;
-    let out_folder = OutFolder::prepare(&args.out)?;
+    let out_folder = session::out_folder(&args.out, "bench-ipsvi")?;
     let ctx = session::open(&args.gpu)?;
-    let report = ipsvi_breakdown::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY)?;
+    let measured = ipsvi_breakdown::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
+    let report = session::watch(&out_folder, measured)?;
     report.print_summary();
     println!(
         "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md (the full tables), ipsvi_breakdown.png \
          and .svg, ipsvi_line_widths.csv, ipsvi_line_widths.json, ipsvi_line_widths.md",
-        args.out.display()
+        out_folder.path().display()
     );
     out_folder.finish()?;
     Ok(session::finish(&ctx))

@@ -7,7 +7,7 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use std::process::ExitCode;
 use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
-use sweeplab::bench::{Interleaved, OutFolder};
+use sweeplab::bench::Interleaved;
 use sweeplab::ipsvi::{IpsviSettings, LineKernel};
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
@@ -28,13 +28,14 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     plan.check()?;
     let scene = scene_args::load(&args.scene)?;
     plan.configurations(&scene.settings.get::<IpsviSettings>())?;
-    let out_folder = OutFolder::prepare(&args.out)?;
+    let out_folder = session::out_folder(&args.out, "bench-ipsvi")?;
     let ctx = session::open(&args.gpu)?;
-    let report = ipsvi_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY)?;
+    let measured = ipsvi_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
+    let report = session::watch(&out_folder, measured)?;
     report.print_summary();
     println!(
         "wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md (the full table) and ipsvi_<size>_error_vs_time.png (and .svg)",
-        args.out.display()
+        out_folder.path().display()
     );
     out_folder.finish()?;
     Ok(session::finish(&ctx))

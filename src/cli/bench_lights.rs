@@ -6,7 +6,6 @@ use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use std::process::ExitCode;
 use sweeplab::bench::experiments::lights_bench::{self, LightsPlan};
-use sweeplab::bench::OutFolder;
 
 /// The error rows' image without `--size`.
 const DEFAULT_ERROR_IMAGE: u32 = 256;
@@ -29,14 +28,15 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     };
     plan.check()?;
     let scene = scene_args::load(&args.scene)?;
-    let out_folder = OutFolder::prepare(&args.out)?;
+    let out_folder = session::out_folder(&args.out, "bench-lights")?;
     let ctx = session::open(&args.gpu)?;
-    let report = lights_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY)?;
+    let measured = lights_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
+    let report = session::watch(&out_folder, measured)?;
     report.print_summary();
     println!(
         "wrote {}/lights.csv, lights.json, lights.md (the full tables), lights_scaling.png, lights_table1_<scale>.png, \
          lights_error_vs_time.png (and .svg)",
-        args.out.display()
+        out_folder.path().display()
     );
     out_folder.finish()?;
     Ok(session::finish(&ctx))

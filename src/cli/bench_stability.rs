@@ -6,7 +6,6 @@ use super::args::BenchStabilityArgs;
 use super::session;
 use std::process::ExitCode;
 use sweeplab::bench::experiments::stability_bench::{self, StabilityPlan};
-use sweeplab::bench::OutFolder;
 
 pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     // One untimed frame per cell first: llvmpipe compiles shader variants on first use.
@@ -14,20 +13,24 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     sweeplab::bench::experiments::image_sizes::check_sizes("--size", &[args.size])?;
     let dir = std::env::temp_dir().join(format!("sweeplab-bench-stability-{}", std::process::id()));
     let plan = StabilityPlan::choose(args.size, &args.cases, &args.techniques, harness, dir)?;
-    let out_folder = OutFolder::prepare(&args.out)?;
+    let out_folder = session::out_folder(&args.out, "bench-stability")?;
     let ctx = session::open(&args.gpu)?;
-    let report = stability_bench::run(&ctx, &plan, session::run_info(&ctx), &out_folder)?;
-    report.write(&args.out)?;
+    let measured = stability_bench::run(&ctx, &plan, session::run_info(&ctx), &out_folder);
+    let report = session::watch(&out_folder, measured)?;
+    report.write(out_folder.path())?;
     report.print_summary();
     println!(
         "wrote {}/stability.csv, stability.json, stability.md (the full table), stability_convergence.csv, \
          stability_convergence.json, stability.png and .svg",
-        args.out.display()
+        out_folder.path().display()
     );
     out_folder.finish()?;
     let code = session::finish(&ctx);
     if report.failed > 0 {
-        eprintln!("{} cell(s) or convergence row(s) FAILED", report.failed);
+        eprintln!(
+            "{} FAILED",
+            sweeplab::plural::count(report.failed as u64, "cell or convergence row", "cells or convergence rows")
+        );
         return Ok(ExitCode::from(1));
     }
     Ok(code)

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use std::time::Duration;
 use sweeplab::bench::experiments::sync::progress::RoundFiles;
 use sweeplab::bench::experiments::sync::{self, files, SyncPlan, Workload};
-use sweeplab::bench::{OutFolder, Protocol, RunInfo};
+use sweeplab::bench::{Protocol, RunInfo};
 use sweeplab::ipsvi::IpsviSettings;
 use sweeplab::ipsvi::SyncStrategy;
 use sweeplab::render::GpuScene;
@@ -19,6 +19,31 @@ const QUICK_SIZE: &str = "64x64";
 const QUICK_LINE_WIDTHS: [u32; 4] = [1, 4, 16, 32];
 const QUICK_MINUTES: f64 = 1.5;
 const DEFAULT_SIZE: &str = "256x256";
+const DEFAULT_LINE_WIDTHS: [u32; 6] = [1, 2, 4, 8, 16, 32];
+const DEFAULT_MINUTES: f64 = 10.0;
+
+/// What `--quick` sets, and which of its presets the command line gave
+/// itself (those win): "--quick: 64x64, the empty workload, line widths
+/// 1,4,16,32, at most 1.5 min; --line-widths 1,2 given: used instead".
+fn quick_note(args: &BenchSyncArgs) -> String {
+    let given: Vec<&str> = [
+        ("--size", args.scene.size.is_some()),
+        ("--workloads", args.workloads.is_some()),
+        ("--line-widths", args.line_widths.is_some()),
+        ("--max-minutes", args.max_minutes.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(flag, given)| given.then_some(flag))
+    .collect();
+    let mut note = format!(
+        "--quick: {QUICK_SIZE}, the empty workload, line widths {}, at most {QUICK_MINUTES} min",
+        QUICK_LINE_WIDTHS.map(|w| w.to_string()).join(",")
+    );
+    if !given.is_empty() {
+        note += &format!("; {} given: used instead", given.join(", "));
+    }
+    note
+}
 
 fn parse_list<T: std::str::FromStr<Err = String>>(flag: &str, values: &[String]) -> anyhow::Result<Vec<T>> {
     values.iter().map(|s| s.trim().parse().map_err(|e: String| anyhow::anyhow!("{flag}: {e}"))).collect()
@@ -41,17 +66,23 @@ fn plan(args: &BenchSyncArgs, width: u32, height: u32) -> anyhow::Result<SyncPla
     if !positive(args.target_ci) || !(positive(args.target_ci_us) || args.target_ci_us == 0.0) {
         anyhow::bail!("--target-ci and --target-ci-us: give a fraction above 0 (e.g. 0.25) and microseconds (e.g. 3)");
     }
-    if !(args.max_minutes > 0.0 && args.max_minutes.is_finite()) {
+    // A preset of --quick never replaces a value given on the command line.
+    let minutes = args.max_minutes.unwrap_or(if args.quick { QUICK_MINUTES } else { DEFAULT_MINUTES });
+    if !(minutes > 0.0 && minutes.is_finite()) {
         anyhow::bail!("--max-minutes: give minutes above 0, e.g. 10");
     }
-    let minutes = if args.quick { args.max_minutes.min(QUICK_MINUTES) } else { args.max_minutes };
+    let line_widths = match &args.line_widths {
+        Some(given) => given.clone(),
+        None if args.quick => QUICK_LINE_WIDTHS.to_vec(),
+        None => DEFAULT_LINE_WIDTHS.to_vec(),
+    };
     let seed = args.seed.unwrap_or_else(Protocol::seed_from_clock);
-    let protocol = Protocol::new(args.warm_up, args.min_rounds, args.max_rounds, seed).context("--min-rounds")?;
+    let protocol = Protocol::new(args.warm_up, args.repeat, args.max_rounds, seed).context("--repeat")?;
     Ok(SyncPlan {
         width,
         height,
         strategies,
-        line_widths: if args.quick { QUICK_LINE_WIDTHS.to_vec() } else { args.line_widths.clone() },
+        line_widths,
         workloads,
         line_timestamps: !args.no_line_timestamps,
         protocol,
@@ -62,6 +93,9 @@ fn plan(args: &BenchSyncArgs, width: u32, height: u32) -> anyhow::Result<SyncPla
 }
 
 pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
+    if args.quick {
+        eprintln!("{}", quick_note(args));
+    }
     let mut scene_args = args.scene.clone();
     if scene_args.size.is_none() {
         scene_args.size = Some(if args.quick { QUICK_SIZE } else { DEFAULT_SIZE }.to_string());
@@ -70,7 +104,7 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
     let (width, height) = (scene.render.width, scene.render.height);
     let plan = plan(args, width, height)?;
     sync::check(&plan, &scene.settings.get::<IpsviSettings>())?;
-    let out_folder = OutFolder::prepare(&args.out)?;
+    let out_folder = session::out_folder(&args.out, "bench-sync")?;
     let ctx = session::open(&args.gpu)?;
     let gpu = GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
     let volume = scene_args.volume.as_ref().or(scene_args.scene.as_ref()).map(|p| p.display().to_string());
@@ -80,10 +114,12 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
         .input("line_widths", format!("{:?}", plan.line_widths))
         .input("workloads", plan.workloads.iter().map(|w| w.name()).collect::<Vec<_>>().join(","))
         .input("validation", ctx.validation_enabled());
-    let mut files = RoundFiles::new(&args.out);
-    let report = sync::run(&ctx, &gpu, &scene.settings.get::<IpsviSettings>(), &plan, run_info, &mut files)?;
-    files::write(&report, &args.out)?;
-    files::write_charts(&report, &args.out)?;
+    let out = out_folder.path();
+    let mut files = RoundFiles::new(out);
+    let measured = sync::run(&ctx, &gpu, &scene.settings.get::<IpsviSettings>(), &plan, run_info, &mut files);
+    let report = session::watch(&out_folder, measured)?;
+    files::write(&report, out)?;
+    files::write_charts(&report, out)?;
     drop(gpu);
     println!("{}", report.verdict().join("\n"));
     if ctx.validation_enabled() {
@@ -93,8 +129,19 @@ pub fn run(args: &BenchSyncArgs) -> anyhow::Result<ExitCode> {
         "wrote {}/sync.md (verdict and tables), sync.json, sync.csv, sync_calibration.csv, \
          sync_configurations.csv, trace_<workload>_<strategy>.json (Perfetto), sync_frames_<workload>.png, \
          sync_cost_<workload>.png, sync_calibration.png, sync_gaps_<workload>.png (and .svg)",
-        args.out.display()
+        out.display()
     );
-    out_folder.finish()?;
+    // A time budget that left configurations out ends a partial run.
+    let left_out: Vec<String> = report
+        .workloads
+        .iter()
+        .filter_map(|w| w.left_out.as_ref().map(|l| format!("{} workload: {}", w.workload.name(), l.describe())))
+        .collect();
+    if left_out.is_empty() {
+        out_folder.finish()?;
+    } else {
+        eprintln!("partial: {} (see {}/PARTIAL)", left_out.join("; "), out.display());
+        out_folder.finish_partial(&left_out.join("; "))?;
+    }
     Ok(session::finish(&ctx))
 }

@@ -7,7 +7,6 @@ use super::session;
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::bench::experiments::table1_bench::{self, Table1Plan};
-use sweeplab::bench::OutFolder;
 use sweeplab::ipsvi::LineKernel;
 
 pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
@@ -19,14 +18,16 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
         .iter()
         .map(|k| k.parse::<LineKernel>().map_err(|e| anyhow::anyhow!("--kernels: {e}")))
         .collect::<anyhow::Result<_>>()?;
-    let out_folder = OutFolder::prepare(&args.out)?;
+    let out_folder = session::out_folder(&args.out, "bench-table1")?;
     let ctx = session::open(&args.gpu)?;
-    let table = table1_bench::run(&ctx, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY)?;
-    table.write_csv(args.out.join("table1.csv"))?;
-    table.write_json(args.out.join("table1.json"))?;
-    std::fs::write(args.out.join("table1.md"), table.to_markdown_report()).context("writing table1.md")?;
+    let measured = table1_bench::run(&ctx, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
+    let table = session::watch(&out_folder, measured)?;
+    let out = out_folder.path();
+    table.write_csv(out.join("table1.csv"))?;
+    table.write_json(out.join("table1.json"))?;
+    std::fs::write(out.join("table1.md"), table.to_markdown_report()).context("writing table1.md")?;
     table1_bench::print_summary(&table);
-    println!("wrote {}/table1.csv, table1.json, table1.md (the full table)", args.out.display());
+    println!("wrote {}/table1.csv, table1.json, table1.md (the full table)", out.display());
     out_folder.finish()?;
     Ok(session::finish(&ctx))
 }

@@ -41,17 +41,21 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     }
     if let Some(path) = &args.json {
         write_json(path, &serde_json::to_value(&c)?)?;
+        println!("wrote {} (the figures)", path.display());
     }
     if let Some(path) = &args.heatmap {
         let title = format!("{}: largest channel error against the reference", technique.name());
         let errors = pixel_errors(&c.image, &c.reference_image)?;
         plot_error_map(path, &ErrorMap { title, width: c.width, height: c.height, errors })?;
+        println!("wrote {} and {} (error heat map)", path.display(), path.with_extension("svg").display());
     }
     if let Some(path) = &args.out {
         c.image.save_png(path)?;
+        println!("wrote {} ({technique})", path.display());
     }
     if let Some(path) = &args.reference_out {
         c.reference_image.save_png(path)?;
+        println!("wrote {} (the reference)", path.display());
     }
     Ok(session::finish(&ctx))
 }

@@ -4,6 +4,7 @@ use anyhow::Context as _;
 use std::path::Path;
 use std::process::ExitCode;
 use sweeplab::output_paths;
+use sweeplab::plural::count;
 use sweeplab::render::GpuScene;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
@@ -45,12 +46,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
         println!("{}", shape.summary());
     }
     println!(
-        "{technique}: {}x{} -> {} ({} dispatches, {} barriers)",
+        "{technique}: {}x{} -> {} ({}, {})",
         scene.render.width,
         scene.render.height,
         args.out.display(),
-        output.dispatches,
-        output.barriers
+        count(output.dispatches, "dispatch", "dispatches"),
+        count(output.barriers, "barrier", "barriers")
     );
     if let Some(path) = &args.profile_json {
         let mut profile = output.profile.to_json();
@@ -58,9 +59,11 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
             fields.insert("line_shape".into(), serde_json::to_value(shape)?);
         }
         write_json(path, &profile)?;
+        println!("wrote {} (per-pass GPU profile)", path.display());
     }
     if let Some(path) = &args.trace {
         write_json(path, &output.profile.chrome_trace())?;
+        println!("wrote {} (Chrome trace)", path.display());
     }
     Ok(session::finish(&ctx))
 }

@@ -6,13 +6,27 @@ use sweeplab::scene::warnings::scene_warnings;
 use sweeplab::scene::Scene;
 use sweeplab::techniques;
 
-pub fn load(args: &SceneArgs) -> anyhow::Result<Scene> {
+/// The `--set` edits, and `--size` as `render.width`/`render.height`; both
+/// ways of giving the size at once is an error, not a silent choice.
+pub fn overrides(args: &SceneArgs) -> anyhow::Result<Vec<String>> {
     let mut overrides = args.set.clone();
     if let Some(size) = &args.size {
+        let sets_size = args
+            .set
+            .iter()
+            .find(|s| ["render.width", "render.height"].contains(&s.split('=').next().unwrap_or("").trim()));
+        if let Some(set) = sets_size {
+            bail!("--size {size} and --set {set} both give the image size: give one");
+        }
         let (w, h) = parse_size(size)?;
         overrides.push(format!("render.width={w}"));
         overrides.push(format!("render.height={h}"));
     }
+    Ok(overrides)
+}
+
+pub fn load(args: &SceneArgs) -> anyhow::Result<Scene> {
+    let overrides = overrides(args)?;
     let scene = if let Some(path) = &args.scene {
         techniques::load_scene(path, &overrides)?
     } else if let Some(path) = &args.volume {

@@ -1,11 +1,12 @@
 //! A Vulkan context for one command, and the validation verdict at its end.
 
 use super::args::ValidateMode;
-use super::args::{GpuArgs, RoundsArgs};
+use super::args::{GpuArgs, OutDirArgs, RoundsArgs};
 use anyhow::Context as _;
 use std::process::ExitCode;
 use std::time::Duration;
-use sweeplab::bench::{Harness, Interleaved, Protocol, RunInfo};
+use sweeplab::bench::out_folder::OutTarget;
+use sweeplab::bench::{Harness, Interleaved, OutFolder, Protocol, RunInfo};
 use sweeplab::render::VolumeTexels;
 use sweeplab::vk::context::BEST_PRACTICES_LAYER_ENABLES;
 use sweeplab::vk::validation_verdict::ValidationVerdict;
@@ -93,4 +94,26 @@ pub fn interleaved(repeat: u32, rounds: &RoundsArgs) -> anyhow::Result<Interleav
 /// `--repeat` timed runs after `warm_up` untimed ones; 0 repeats is refused.
 pub fn harness(warm_up: u32, repeat: u32) -> anyhow::Result<Harness> {
     Harness::new(warm_up, repeat).map_err(|e| anyhow::anyhow!("--repeat: {e}"))
+}
+
+/// The output folder of `--out-dir`/`--force`, or a new one under `default`
+/// (the command's own, e.g. `bench-sync`); says where the run writes.
+pub fn out_folder(args: &OutDirArgs, default: &str) -> anyhow::Result<OutFolder> {
+    let target = match &args.out_dir {
+        Some(folder) => OutTarget::Named { folder, force: args.force },
+        None => OutTarget::NewUnder(std::path::Path::new(default)),
+    };
+    let out = OutFolder::prepare(target)?;
+    eprintln!("writing into {} (marked PARTIAL until the run ends)", out.path().display());
+    Ok(out)
+}
+
+/// Passes `result` on; an error is written into the folder's PARTIAL marker
+/// and the terminal says what the folder keeps.
+pub fn watch<T, E: Into<anyhow::Error>>(out: &OutFolder, result: Result<T, E>) -> anyhow::Result<T> {
+    let result = out.watch(result.map_err(|e| anyhow::anyhow!(super::error_report::error_text(&e.into()))));
+    if result.is_err() && out.holds_results() {
+        eprintln!("what was measured before the error is in {} (marked PARTIAL)", out.path().display());
+    }
+    result
 }

@@ -1,13 +1,15 @@
 //! `sweeplab view`: thin wiring from the arguments to `sweeplab::viewer`.
 
-use super::args::ViewArgs;
+use super::args::{PreviewArg, ViewArgs};
 use super::render_cmd::write_json;
 use super::session;
 use anyhow::Context as _;
 use std::process::ExitCode;
 use sweeplab::techniques::Technique;
+use sweeplab::viewer::preview::PreviewMode;
 use sweeplab::viewer::{self, SceneSource, Script, ViewerOptions};
 use sweeplab::vk::swapchain::PRESENT_MODES;
+use sweeplab::vk::validation_verdict::ValidationVerdict;
 
 pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
     let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
@@ -25,12 +27,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
     if args.frames == Some(0) {
         anyhow::bail!("--frames 0: at least one frame");
     }
-    let mut overrides = args.scene.set.clone();
-    if let Some(size) = &args.scene.size {
-        let (w, h) = super::scene_args::parse_size(size)?;
-        overrides.push(format!("render.width={w}"));
-        overrides.push(format!("render.height={h}"));
-    }
+    let overrides = super::scene_args::overrides(&args.scene)?;
     let source = match (&args.scene.scene, &args.scene.volume) {
         (Some(path), _) => SceneSource::File(path.clone()),
         (None, Some(path)) => SceneSource::Volume(path.clone()),
@@ -52,6 +49,13 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
         ui: !args.no_ui,
         hide_panel: args.hide_panel,
         handoff_barrier: !args.racy_no_handoff_barrier,
+        preview: match args.preview {
+            PreviewArg::On => PreviewMode::On,
+            PreviewArg::Off => PreviewMode::Off,
+            // Scripted runs (`--frames`) render every frame at full quality.
+            PreviewArg::Auto if args.frames.is_some() => PreviewMode::Off,
+            PreviewArg::Auto => PreviewMode::On,
+        },
     };
     let (report, validation) = viewer::run(source, &overrides, &options).context("sweeplab view")?;
     let warm = report.frames.len().min(2);
@@ -64,21 +68,13 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
             report.present_mode
         );
     }
-    for path in &report.screenshots {
-        println!("screenshot: {path}");
-    }
     if let Some(path) = &args.log_json {
         write_json(path, &serde_json::to_value(&report)?)?;
     }
-    if validation.is_empty() {
-        if args.gpu.validate.is_some() || std::env::var("SWEEPLAB_VALIDATE").is_ok_and(|v| v == "1") {
-            eprintln!("validation: clean");
-        }
-        return Ok(ExitCode::SUCCESS);
+    let enabled = super::session::context_options(&args.gpu).validate;
+    let verdict = ValidationVerdict::of(validation);
+    for line in verdict.report_lines(enabled) {
+        eprintln!("{line}");
     }
-    eprintln!("validation: {} message(s)", validation.len());
-    for m in &validation {
-        eprintln!("{m}");
-    }
-    Ok(ExitCode::from(2))
+    Ok(if verdict.failed() { ExitCode::from(2) } else { ExitCode::SUCCESS })
 }

@@ -18,12 +18,16 @@ pub enum OverrideError {
     MissingEquals { arg: String },
     #[error("--set `{arg}`: empty key or empty part in the dotted key")]
     EmptyKey { arg: String },
-    #[error("--set `{arg}`: index {index} is out of range, `{path}` has {len} entries")]
+    #[error("--set `{arg}`: index {index} is out of range, `{path}` has {}", entries(.len))]
     IndexOutOfRange { arg: String, path: String, index: usize, len: usize },
     #[error("--set `{arg}`: `{path}` is an array, so `{segment}` must be an index")]
     NotAnIndex { arg: String, path: String, segment: String },
     #[error("--set `{arg}`: `{path}` is {found}, not a table or array")]
     NotAContainer { arg: String, path: String, found: &'static str },
+}
+
+fn entries(len: &usize) -> String {
+    crate::plural::count(*len as u64, "entry", "entries")
 }
 
 /// One parsed `--set` argument.
@@ -191,7 +195,7 @@ mod tests {
                 len: 1
             }
         );
-        assert!(e.to_string().contains("index 3 is out of range, `lights` has 1 entries"), "{e}");
+        assert!(e.to_string().contains("index 3 is out of range, `lights` has 1 entry"), "{e}");
         assert!(matches!(set(&mut d, "lights.first.intensity=5"), Err(OverrideError::NotAnIndex { .. })));
         let e = set(&mut d, "render.width.x=5").unwrap_err();
         assert!(matches!(&e, OverrideError::NotAContainer { path, found: "an integer", .. } if path == "render.width"));

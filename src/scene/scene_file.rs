@@ -98,11 +98,25 @@ pub enum SceneError {
     /// (Not a `source`: the message already says all of it.)
     #[error("{origin}: {error}")]
     Settings { origin: String, error: SettingsError },
-    #[error("{origin}: cannot load volume {path}: {source}")]
-    Volume { origin: String, path: PathBuf, source: Box<LoadError> },
+    /// The volume file is there but cannot be loaded: its path once.
+    /// (Not a `source`: the message already says all of it.)
+    #[error("{origin}: {}", volume_failure(.origin, .path, .error))]
+    Volume { origin: String, path: PathBuf, error: Box<LoadError> },
     /// The volume file is not there: its path once, and a likely meant one.
     #[error("{origin}: {}{hint}", missing_volume(.origin, .path))]
     MissingVolume { origin: String, path: PathBuf, hint: String },
+}
+
+/// Why the volume at `path` did not load, naming the file once: "cannot load:
+/// PROBLEM" where the origin names it already (`--volume FILE`), else "cannot
+/// load volume FILE: PROBLEM" (a detached data file is named by the problem).
+fn volume_failure(origin: &str, path: &Path, error: &LoadError) -> String {
+    let problem = if error.file() == path { error.detail() } else { error.to_string() };
+    if origin.ends_with(&path.display().to_string()) {
+        format!("cannot load: {problem}")
+    } else {
+        format!("cannot load volume {}: {problem}", path.display())
+    }
 }
 
 /// "no such file" where the origin already names the path (`--volume FILE`),

@@ -154,8 +154,10 @@ struct LightSection {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields, default)]
 struct RenderSection {
-    width: u32,
-    height: u32,
+    // Signed, so that a negative size gets the range check's message (1..=16384)
+    // rather than serde's "a whole number (0 or more)".
+    width: i64,
+    height: i64,
     step: f32,
     background: [f32; 3],
     emission: f32,
@@ -552,14 +554,13 @@ impl Checker<'_> {
     }
 
     fn render(&self, s: RenderSection) -> Result<RenderSettings, SceneError> {
-        for (key, v) in [("render.width", s.width), ("render.height", s.height)] {
-            if !(1..=MAX_IMAGE_SIZE).contains(&v) {
-                return Err(self.err(key, format!("must be in 1..={MAX_IMAGE_SIZE}, got {v}")));
-            }
-        }
+        let size = |key: &str, v: i64| match u32::try_from(v) {
+            Ok(v) if (1..=MAX_IMAGE_SIZE).contains(&v) => Ok(v),
+            _ => Err(self.err(key, format!("must be in 1..={MAX_IMAGE_SIZE}, got {v}"))),
+        };
         Ok(RenderSettings {
-            width: s.width,
-            height: s.height,
+            width: size("render.width", s.width)?,
+            height: size("render.height", s.height)?,
             step_voxels: self.positive("render.step", s.step)?,
             background: self.colour("render.background", s.background)?,
             emission: self.non_negative("render.emission", s.emission)?,

@@ -131,10 +131,10 @@ impl SceneSpec {
                 path: path.clone(),
                 hint: super::missing_file::missing_file_hint(path),
             }),
-            VolumeSource::File(path) => loaders::load_volume(path).map_err(|source| SceneError::Volume {
+            VolumeSource::File(path) => loaders::load_volume(path).map_err(|error| SceneError::Volume {
                 origin: self.origin.clone(),
                 path: path.clone(),
-                source: Box::new(source),
+                error: Box::new(error),
             }),
             VolumeSource::Synthetic { kind, size, seed } => Ok(kind.generate(*size, *seed)),
         }

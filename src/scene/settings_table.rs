@@ -70,8 +70,12 @@ pub fn read_table<T: SettingsTable>(value: Value) -> Result<T, SettingsError> {
         let inner = display.lines().rev().find_map(|l| l.trim().strip_prefix("in `")?.strip_suffix('`'));
         let message = super::user_terms::in_user_terms(e.message().trim_end());
         // A number of the wrong kind: say which numbers the key takes, and what was given.
-        let given =
-            message.strip_prefix("invalid type: ").and_then(|m| m.split_once(", expected")).map(|(g, _)| g.to_string());
+        // ("invalid value": a negative number for an unsigned key.)
+        let given = ["invalid type: ", "invalid value: "]
+            .iter()
+            .find_map(|p| message.strip_prefix(p))
+            .and_then(|m| m.split_once(", expected"))
+            .map(|(g, _)| g.to_string());
         let message = match (given, inner.and_then(|k| allowed_numbers::<T>(&entries, k))) {
             (Some(given), Some(allowed)) => format!("must be {allowed}, not the {given}"),
             _ => message,
@@ -217,6 +221,9 @@ mod tests {
         // A value of the wrong kind: what the key takes, in words, and what was given.
         let e = read("width = \"big\"").unwrap_err().to_string();
         assert_eq!(e, "example.width: must be a whole number in 0..=8, not the string \"big\"");
+        // A negative number for an unsigned key: the key's range, not "0 or more".
+        let e = read("width = -5").unwrap_err().to_string();
+        assert_eq!(e, "example.width: must be a whole number in 0..=8, not the integer `-5`");
         let e = read_table::<Example>(Value::Integer(3)).unwrap_err().to_string();
         assert_eq!(e, "[example] must be a table of settings");
     }

@@ -29,6 +29,10 @@ impl Technique {
     pub const LightVolume: Technique = Technique(&crate::lightvolume::LightVolume);
     pub const Ao: Technique = Technique(&crate::ao::technique::Ao);
 
+    /// The technique `render`, `compare` and `view` run when none is named:
+    /// image plane sweep volume illumination, the technique this project studies.
+    pub const DEFAULT: Technique = Technique::Ipsvi;
+
     /// The techniques that approximate the scene's optical model (compared
     /// with its ground truth), in the order help text lists them.
     pub const ALL: [Technique; 6] = [

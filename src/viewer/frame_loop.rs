@@ -7,26 +7,30 @@
 
 use super::controls;
 use super::error::ViewerError;
-use super::frames::{FrameSlot, FramesInFlight, InFlight, Upload, FRAMES_IN_FLIGHT, PROFILER_CAPACITY};
-use super::live_scene::{Change, LiveScene, SceneSource};
-use super::present_pass::{
-    self, PresentTarget, ACQUIRE_WAIT_STAGE, BLIT_SCOPE, BLIT_SOURCE_LAYOUT, UI_SCOPE, UPLOAD_SCOPE,
+use super::frame_submit::{
+    present, queue_idle, resolve_all, resolve_finished, write_png, FrameLog, FrameSource, PresentStyle,
+    QueueIdleOnDrop, Shown, Wants,
 };
+use super::frames::{FramesInFlight, FRAMES_IN_FLIGHT, PROFILER_CAPACITY};
+use super::live_scene::{Change, LiveScene, SceneSource};
+use super::present_pass;
+use super::preview::{self, Preview, PreviewMode};
 use super::report::{FrameRecord, ViewerReport};
 use super::script::{Action, Script};
 use super::tf_editor;
-use super::ui::{PanelView, PassHistory, Ui, UiEdit, PANEL_WIDTH};
+use super::ui::{self, PanelView, PassHistory, Ui, UiEdit, PANEL_WIDTH};
 use super::window::{self, WindowEvents};
-use crate::render::{FrameImages, FrameSession, GpuScene, UploadedVolume, VolumeTexels};
-use crate::scene::Light;
+use super::window_fit::ImageArea;
+use crate::lightvolume::LightVolumeSettings;
+use crate::render::{FrameImages, GpuScene, UploadedVolume, VolumeTexels};
+use crate::scene::{Light, Scene};
 use crate::techniques::{self, Technique};
 use crate::vk::error::VkResultExt;
 use crate::vk::swapchain::present_mode_name;
-use crate::vk::{Buffer, Context, ContextOptions, ProfileReport, Profiler, Recorder, Surface, Swapchain, VkError};
+use crate::vk::{Context, ContextOptions, Profiler, Surface, Swapchain};
 use ash::vk;
-use gpu_allocator::MemoryLocation;
 use std::ffi::CStr;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use winit::dpi::PhysicalSize;
 use winit::event_loop::EventLoop;
@@ -53,7 +57,12 @@ pub struct ViewerOptions {
     /// The barrier between the technique's frame and the present pass; off
     /// only to prove that validation reports its absence (a test).
     pub handoff_barrier: bool,
+    /// Reduced-resolution previews while dragging (`preview`).
+    pub preview: PreviewMode,
 }
+
+/// How long an idle viewer waits for events before it looks again.
+const IDLE_WAIT: Duration = Duration::from_millis(30);
 
 /// Opens the window and runs frames until it is closed or `frames` are done.
 /// Returns the per-frame report and the validation messages.
@@ -65,11 +74,16 @@ pub fn run(
     let mut live = LiveScene::load(source, overrides)?;
     let mut event_loop = window::event_loop()?;
     let (width, height) = (live.scene.render.width, live.scene.render.height);
-    // The image beside the panel at the scene's size: the window holds both.
+    // The image beside the panel at the scene's size, and the panel's whole
+    // content: the window holds both (`window_fit`).
     let panel = if options.ui && !options.hide_panel { PANEL_WIDTH as u32 } else { 0 };
+    let content = if panel > 0 { first_panel_height(&live.scene, options.technique) } else { 0 };
+    let (mut area, (ww, wh)) = ImageArea::new((width, height), panel, content);
     // Declared before the context: the window outlives the surface made from it.
-    let mut events = WindowEvents::new(&format!("sweeplab view: {}", options.technique), width + panel, height);
+    let mut events = WindowEvents::new(&format!("sweeplab view: {}", options.technique), ww, wh);
     events.open(&mut event_loop)?;
+    // The screen may have held it smaller: still the viewer's own size.
+    area.ask(events.size()?);
     let (display, _) = events.handles()?;
     let names =
         ash_window::enumerate_required_extensions(display).call("vkEnumerateInstanceExtensionProperties (surface)")?;
@@ -77,8 +91,39 @@ pub fn run(
     let names: Vec<&CStr> = names.iter().map(|&p| unsafe { CStr::from_ptr(p) }).collect();
     let ctx = Context::for_window(&options.context.clone().with_env(), &names)?;
     eprintln!("{}", ctx.summary());
-    let report = frames_on(&ctx, &mut live, &mut event_loop, &mut events, options)?;
+    let report = frames_on(&ctx, &mut live, &mut event_loop, &mut events, &mut area, options)?;
     Ok((report, ctx.take_validation_messages()))
+}
+
+/// The panel's content height for `scene` and `technique` before any frame
+/// (laid out off-screen), in pixels at a scale factor of 1.
+fn first_panel_height(scene: &Scene, technique: Technique) -> u32 {
+    let histogram = scene.volume.histogram(tf_editor::HISTOGRAM_BINS);
+    let enabled = vec![true; scene.lights.len()];
+    let history = PassHistory::default();
+    // The figures on top of the panel once frames come, at their widest.
+    let last = FrameRecord {
+        frame_ms: 99_999.99,
+        gpu_ms: 99_999.99,
+        dispatches: 99_999,
+        barriers: 99_999,
+        decision: (technique == Technique::LightVolume).then(|| "an update decision and its reason".repeat(3)),
+        preview_scale: 16,
+        ..Default::default()
+    };
+    let view = PanelView {
+        technique,
+        scene,
+        enabled: &enabled,
+        last: Some(&last),
+        history: &history,
+        ui_cpu_ms: 0.0,
+        ui_gpu_ms: None,
+        message: None,
+        histogram: &histogram,
+        selected_light: 0,
+    };
+    ui::panel_height(&view).ceil() as u32
 }
 
 fn frames_on(
@@ -86,6 +131,7 @@ fn frames_on(
     live: &mut LiveScene,
     event_loop: &mut EventLoop<()>,
     events: &mut WindowEvents,
+    area: &mut ImageArea,
     options: &ViewerOptions,
 ) -> Result<ViewerReport, ViewerError> {
     let (display, window) = events.handles()?;
@@ -99,9 +145,14 @@ fn frames_on(
         present_mode: present_mode_name(options.present_mode),
         ..Default::default()
     };
-    let mut log = FrameLog { report: &mut report, history: PassHistory::default(), out_dir: options.out_dir.clone() };
-    let result =
-        frame_loop(ctx, &surface, &mut frames, &mut swapchain, &mut ui, live, event_loop, events, options, &mut log);
+    let mut log = FrameLog {
+        report: &mut report,
+        history: PassHistory::default(),
+        out_dir: options.out_dir.clone(),
+        preview: Preview::new(options.preview),
+    };
+    let windowing = (&mut *event_loop, &mut *events, &mut *area);
+    let result = frame_loop(ctx, &surface, &mut frames, &mut swapchain, &mut ui, live, windowing, options, &mut log);
     // Fences cover the submissions; presents are covered by nothing but the
     // queue, so it is waited for once here before the swapchain goes.
     let waited = frames.wait_all().and_then(|_| queue_idle(ctx));
@@ -122,12 +173,20 @@ fn frame_loop<'c>(
     swapchain: &mut Option<Swapchain<'c>>,
     ui: &mut Option<Ui>,
     live: &mut LiveScene,
-    event_loop: &mut EventLoop<()>,
-    events: &mut WindowEvents,
+    (event_loop, events, area): (&mut EventLoop<()>, &mut WindowEvents, &mut ImageArea),
     options: &ViewerOptions,
     log: &mut FrameLog,
 ) -> Result<(), ViewerError> {
     let mut host_profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
+    let style = PresentStyle { handoff_barrier: options.handoff_barrier, filter: present_pass::stretch_filter(ctx) };
+    // Interactive runs wait for input once the full frame is shown; scripted
+    // runs (`--frames`) render every frame they count.
+    let interactive = options.frames.is_none();
+    // The scene's generation and image size whose full frame is on screen,
+    // and that frame (to show again under a redrawn panel).
+    let mut generation = 0u64;
+    let mut full_shown: Option<(u64, u32, u32)> = None;
+    let mut last_shown: Option<Shown> = None;
     let mut frame_index = 0u64;
     let mut script_done_for: Option<u64> = None;
     let mut recreate = true;
@@ -149,10 +208,19 @@ fn frame_loop<'c>(
     let volume = UploadedVolume::upload(ctx, &live.scene, options.texels)?;
     let frame_images = FrameImages::kept();
     'scene: loop {
+        generation += 1;
         enabled.resize(live.scene.lights.len(), true);
         // Switched-off lights are left out of the uploaded scene.
         let mut scene = live.scene.clone();
         scene.lights = scene.lights.iter().zip(&enabled).filter(|(_, &on)| on).map(|(l, _)| *l).collect();
+        // While a drag goes on, a preview's scene (`preview`).
+        let scale = log.preview.scale_at(Instant::now());
+        if scale > 1 {
+            scene = preview::preview_scene(&scene, scale);
+        }
+        // A light volume that spreads its passes over frames is still changing.
+        let converging =
+            technique == Technique::LightVolume && scene.settings.get::<LightVolumeSettings>().max_passes_per_frame > 0;
         let gpu = GpuScene::on_volume(ctx, &scene, &volume, frame_images.clone())?;
         let mut session = techniques::session(&gpu, technique)?;
         // Dropped first when the scene is left (edited, closed, or an error):
@@ -162,6 +230,8 @@ fn frame_loop<'c>(
             if !events.pump(event_loop, Duration::ZERO)? || events.close_requested {
                 break 'scene;
             }
+            // What finished frames cost reaches the preview before it decides.
+            resolve_finished(ctx, frames, log)?;
             if options.frames.is_some_and(|n| frame_index >= n) {
                 break 'scene;
             }
@@ -172,9 +242,13 @@ fn frame_loop<'c>(
                     KeyCode::KeyS => Some('S'),
                     KeyCode::KeyP => Some('P'),
                     KeyCode::KeyH | KeyCode::Tab => Some('H'),
+                    KeyCode::KeyQ => Some('Q'),
                     _ => None,
                 })
                 .collect();
+            if keys.contains(&'Q') {
+                break 'scene;
+            }
             let mut rebuild = false;
             if script_done_for != Some(frame_index) {
                 script_done_for = Some(frame_index);
@@ -187,6 +261,7 @@ fn frame_loop<'c>(
                         Action::Resize(w, h) => resize_window(event_loop, events, *w, *h)?,
                         Action::Key(c) => keys.push(*c),
                         Action::TfPoint { index, value, alpha } => {
+                            log.preview.input(Instant::now());
                             let points = &live.scene.transfer.points;
                             let moved = tf_editor::move_point(points, *index, *value, *alpha).ok_or_else(|| {
                                 ViewerError::Script(format!(
@@ -203,13 +278,17 @@ fn frame_loop<'c>(
                                 let m = format!("frame {frame_index}: drag-light {index}: the scene has {n} lights");
                                 return Err(ViewerError::Script(m));
                             }
-                            rebuild |= !session.follows_lights();
+                            if !session.follows_lights() {
+                                log.preview.input(Instant::now());
+                                rebuild = true;
+                            }
                         }
                         // As the mouse would: through `mouse_camera` below.
                         Action::Orbit(dx, dy) => {
                             events.orbit = (events.orbit.0 + *dx as f64, events.orbit.1 + *dy as f64);
                         }
                         Action::Zoom(lines) => events.zoom += lines,
+                        Action::Wait(ms) => std::thread::sleep(Duration::from_millis(*ms)),
                     }
                 }
             }
@@ -222,13 +301,23 @@ fn frame_loop<'c>(
                         rebuild = true;
                     }
                     UiEdit::Set(set) => match live.set(&set) {
-                        Ok(change) => rebuild |= change == Change::Scene || !session.follows_lights(),
+                        Ok(change) => {
+                            let renders_anew = change == Change::Scene || !session.follows_lights();
+                            if renders_anew {
+                                // A slider or a transfer-function point being dragged.
+                                log.preview.input(Instant::now());
+                            }
+                            rebuild |= renders_anew;
+                        }
                         // The panel offers valid values only; say so rather than stop.
                         Err(e) => message = Some(e.to_string()),
                     },
                     UiEdit::Lights(lights) => {
                         live.set_lights(lights);
-                        rebuild |= !session.follows_lights();
+                        if !session.follows_lights() {
+                            log.preview.input(Instant::now());
+                            rebuild = true;
+                        }
                     }
                     UiEdit::Toggle(i, on) => {
                         if let Some(e) = enabled.get_mut(i) {
@@ -241,15 +330,21 @@ fn frame_loop<'c>(
                 }
             }
             let (dx, dy) = std::mem::take(&mut events.light_drag);
-            if (dx, dy) != (0.0, 0.0) && drag_light(live, selected_light, (dx as f32, dy as f32), events.size()?.1) {
-                rebuild |= !session.follows_lights();
+            if (dx, dy) != (0.0, 0.0)
+                && drag_light(live, selected_light, (dx as f32, dy as f32), events.size()?.1)
+                && !session.follows_lights()
+            {
+                log.preview.input(Instant::now());
+                rebuild = true;
             }
             enabled.resize(live.scene.lights.len(), true);
             if let Some(camera) = mouse_camera(live, events) {
                 live.set_camera(camera);
+                log.preview.input(Instant::now());
                 rebuild = true;
             }
-            if rebuild {
+            // A preview starts, or the input settled and the full frame is due.
+            if rebuild || log.preview.scale_at(Instant::now()) != scale {
                 continue 'scene;
             }
             let (ww, wh) = events.size()?;
@@ -262,6 +357,7 @@ fn frame_loop<'c>(
                 || events.resized
                 || swapchain.as_ref().is_none_or(|s| (s.extent.width, s.extent.height) != (ww, wh));
             if recreated {
+                area.window_is((ww, wh));
                 frames.wait_all()?;
                 // Presents of the old swapchain hold its semaphores; the queue
                 // is waited for here only, never in a frame.
@@ -308,6 +404,21 @@ fn frame_loop<'c>(
                 true => ((PANEL_WIDTH as f64 * events.window()?.scale_factor()).round() as u32).min(w - 1),
                 false => 0,
             };
+            let (iw, ih) = area.image((w, h), panel_px);
+            let state_shown = (generation, iw, ih);
+            // The full frame of this state is on screen: an interactive viewer
+            // renders nothing more until something changes, so the next input
+            // finds no long frame in flight; the panel alone is redrawn over
+            // the frame shown.
+            let on_screen = interactive && !converging && scale == 1 && full_shown == Some(state_shown);
+            let panel_wants = events.panel_input || ui.as_ref().is_some_and(|u| u.wants_repaint);
+            if on_screen && !recreated && keys.is_empty() && ui_edits.is_empty() && !panel_wants {
+                resolve_finished(ctx, frames, log)?;
+                events.pump(event_loop, IDLE_WAIT)?;
+                continue;
+            }
+            events.panel_input = false;
+            let reshow = if on_screen && !keys.contains(&'P') { last_shown.clone() } else { None };
             if let (Some(panel), Some(state), true) = (ui.as_mut(), events.egui.as_mut(), panel_shown) {
                 if panel.has_pending_frees() {
                     // Textures egui let go of may be in a frame in flight.
@@ -322,7 +433,7 @@ fn frame_loop<'c>(
                     scene: &live.scene,
                     enabled: &enabled,
                     // The last frame whose profile is in (its fence was waited).
-                    last: frames_so_far.iter().rev().find(|f| f.present_gpu_ms.is_some()),
+                    last: frames_so_far.iter().rev().find(|f| f.present_gpu_ms.is_some() && !f.reshown),
                     history: &log.history,
                     ui_cpu_ms: panel.cpu_ms,
                     ui_gpu_ms: frames_so_far.iter().rev().find_map(|f| f.ui_gpu_ms),
@@ -340,6 +451,11 @@ fn frame_loop<'c>(
                 }
                 state.handle_platform_output(window, platform);
                 ui_edits = edits;
+                // The profiler's rows came in: a window the viewer sized grows to fit.
+                if let Some(taller) = area.grow_for_panel((w, h), panel.content_px, events.screen_height()) {
+                    area.ask(taller);
+                    let _ = window.request_inner_size(PhysicalSize::new(taller.0, taller.1));
+                }
             }
 
             let last = options.frames.is_some_and(|n| frame_index + 1 == n);
@@ -348,18 +464,35 @@ fn frame_loop<'c>(
                 shots.extend(options.screenshot.clone());
             }
             if keys.contains(&'S') {
-                shots.push(options.out_dir.join(format!("sweeplab-view-{frame_index}.png")));
+                let path = options.out_dir.join(format!("sweeplab-view-{frame_index}.png"));
+                let path = std::path::absolute(&path).unwrap_or(path);
+                message = Some(format!("screenshot: {}", path.display()));
+                shots.push(path);
             }
-            let source = FrameSource { gpu: &gpu, technique, lights: &lights, host_profiler: &mut host_profiler };
+            let reshown = reshow.is_some();
+            let render = preview::reduced((iw, ih), scale);
+            let source = FrameSource {
+                gpu: &gpu,
+                technique,
+                lights: &lights,
+                host_profiler: &mut host_profiler,
+                render,
+                shown: (iw, ih),
+                reshow,
+            };
             let wants = Wants { screenshot: !shots.is_empty(), profile: keys.contains(&'P') };
             let shown_ui = ui.as_mut().filter(|_| panel_shown);
             let presented =
-                present(ctx, frames, sc, session.as_mut(), source, wants, options, (shown_ui, panel_px), log)?;
+                present(ctx, frames, sc, session.as_mut(), source, wants, style, (shown_ui, panel_px), log)?;
             let Some(submitted) = presented else {
                 recreate = true;
                 continue;
             };
             recreate |= submitted.recreate;
+            if !reshown {
+                full_shown = (scale == 1).then_some(state_shown);
+                last_shown = submitted.shown.clone();
+            }
             let now = Instant::now();
             let counts = ctx.creation_counts();
             let created = counts.since(&counted);
@@ -369,7 +502,15 @@ fn frame_loop<'c>(
                 index: frame_index,
                 width: w,
                 height: h,
+                image_width: if reshown { iw } else { render.0 },
+                image_height: if reshown { ih } else { render.1 },
+                preview_scale: if reshown { 1 } else { scale },
+                reshown,
+                panel_height: ui.as_ref().filter(|_| panel_shown).map(|u| u.content_px as f64),
                 frame_ms: (now - last_present).as_secs_f64() * 1e3,
+                presented_unix_ms: std::time::SystemTime::now()
+                    .duration_since(std::time::UNIX_EPOCH)
+                    .map_or(0.0, |d| d.as_secs_f64() * 1e3),
                 render_ms: submitted.render_ms,
                 gpu_ms: technique_profile.map_or(0.0, |p| p.gpu_ms_total),
                 present_gpu_ms: None,
@@ -378,7 +519,7 @@ fn frame_loop<'c>(
                 dispatches: submitted.dispatches,
                 barriers: submitted.barriers,
                 passes: technique_profile.map_or(Vec::new(), |p| p.passes.iter().map(|p| p.path.clone()).collect()),
-                secondaries_recorded: session.secondaries_recorded(),
+                secondaries_recorded: if reshown { 0 } else { session.secondaries_recorded() },
                 decision: session.last_decision(),
                 swapchain_recreated: recreated,
                 created,
@@ -388,6 +529,8 @@ fn frame_loop<'c>(
                 for path in &shots {
                     write_png(path, &pixels, w, h, sc.format)?;
                     log.report.screenshots.push(path.display().to_string());
+                    // Said at once: the user pressing S wants to know where it went.
+                    eprintln!("screenshot: {}", path.display());
                 }
             }
             frame_index += 1;
@@ -435,241 +578,4 @@ fn resize_window(event_loop: &mut EventLoop<()>, events: &mut WindowEvents, w: u
         events.pump(event_loop, Duration::from_millis(10))?;
     }
     Err(ViewerError::Window(format!("the window did not take the size {w}x{h}")))
-}
-
-/// What the technique's frame is made of.
-struct FrameSource<'a, 's> {
-    gpu: &'a GpuScene<'s>,
-    technique: Technique,
-    lights: &'a [Option<Light>],
-    /// Profiles a technique's frame rendered by its own submission (uploaded).
-    host_profiler: &'a mut Profiler,
-}
-
-/// What this frame is asked for besides presentation.
-#[derive(Clone, Copy)]
-struct Wants {
-    screenshot: bool,
-    profile: bool,
-}
-
-/// A submitted and presented frame.
-struct Submitted {
-    /// Whether to recreate the swapchain.
-    recreate: bool,
-    /// The screenshot's bytes, if asked for.
-    pixels: Option<Vec<u8>>,
-    /// Host time of the technique's frame (recording; for an uploaded frame
-    /// also its submission, wait and read-back).
-    render_ms: f64,
-    dispatches: u32,
-    barriers: u32,
-    /// The profile of a frame rendered by its own submission and uploaded.
-    uploaded_profile: Option<ProfileReport>,
-}
-
-/// The viewer's measurements: the report, the panel's history, and where `P`
-/// writes.
-pub struct FrameLog<'r> {
-    pub report: &'r mut ViewerReport,
-    pub history: PassHistory,
-    pub out_dir: PathBuf,
-}
-
-/// One frame slot: wait for its fence (and resolve its last frame), acquire;
-/// record the technique's frame, the hand-off barrier and the present pass
-/// into the slot's command buffer; one submission; present. A technique that
-/// cannot record there renders by its own submission and is uploaded.
-/// `None`: the swapchain was out of date before anything was recorded.
-#[allow(clippy::too_many_arguments)]
-fn present(
-    ctx: &Context,
-    frames: &mut FramesInFlight,
-    sc: &Swapchain,
-    session: &mut dyn FrameSession,
-    source: FrameSource,
-    wants: Wants,
-    options: &ViewerOptions,
-    (ui, panel_px): (Option<&mut Ui>, u32),
-    log: &mut FrameLog,
-) -> Result<Option<Submitted>, ViewerError> {
-    let device = &ctx.device;
-    if session.reuses_gpu_resources() {
-        // Its resources (and host-written buffers) are the previous frame's.
-        frames.wait_all()?;
-    }
-    let slot = frames.next_slot()?;
-    resolve_slot(slot, log)?;
-    let record_index = log.report.frames.len();
-    let Some((image_index, suboptimal)) = sc.acquire(slot.image_acquired)? else {
-        return Ok(None);
-    };
-    let (w, h) = (sc.extent.width, sc.extent.height);
-    let shot = if wants.screenshot {
-        Some(Buffer::staging(
-            ctx,
-            "screenshot readback",
-            w as u64 * h as u64 * 4,
-            vk::BufferUsageFlags::TRANSFER_DST,
-            MemoryLocation::GpuToCpu,
-        )?)
-    } else {
-        None
-    };
-    // SAFETY: the slot's fence was waited, so its command buffer is not pending.
-    unsafe { device.reset_command_buffer(slot.cb, vk::CommandBufferResetFlags::empty()) }
-        .call("vkResetCommandBuffer")?;
-    let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
-    // SAFETY: the command buffer was just reset.
-    unsafe { device.begin_command_buffer(slot.cb, &begin) }.call("vkBeginCommandBuffer")?;
-    slot.profiler.reset();
-    let mut rec = Recorder::for_command_buffer(ctx, slot.cb);
-    // The technique's images are kept: the frame before may still use them.
-    rec.discard_after = source.gpu.frame_images.discard_after();
-    let started = Instant::now();
-    // The technique renders the area beside the panel; the screenshot is the window.
-    let (iw, ih) = (w - panel_px, h);
-    let recorded = session.record(source.lights, &mut rec, iw, ih, &mut slot.profiler)?;
-    let (frame, uploaded_profile, dispatches, barriers, linear_layout) = match recorded {
-        Some(frame) => {
-            let layout = present_pass::record_handoff(&mut rec, &frame.output.image, options.handoff_barrier);
-            let (d, b) = (frame.dispatches, frame.barriers);
-            (Some(frame), None, d, b, layout)
-        }
-        None => {
-            let output = techniques::profiled_frame(source.gpu, source.technique, iw, ih, source.host_profiler, |p| {
-                session.frame(source.lights, iw, ih, p)
-            })?;
-            if slot.upload.as_ref().is_none_or(|u| (u.width, u.height) != (iw, ih)) {
-                // The slot's last use of the old one finished (its fence).
-                slot.upload = Some(Upload::new(ctx, iw, ih)?);
-            }
-            let upload = slot.upload.as_mut().ok_or_else(|| ViewerError::Window("no upload".into()))?;
-            let rgba: Vec<[f32; 4]> = output.image.pixels.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect();
-            upload.staging.write(&rgba)?;
-            present_pass::record_upload(&mut rec, &mut slot.profiler, &upload.staging, &upload.image)?;
-            (None, Some(output.profile), output.dispatches, output.barriers, BLIT_SOURCE_LAYOUT)
-        }
-    };
-    let render_ms = started.elapsed().as_secs_f64() * 1e3;
-    let linear = match (&frame, &slot.upload) {
-        (Some(f), _) => &f.output.image,
-        (None, Some(u)) => &u.image,
-        (None, None) => return Err(ViewerError::Window("no frame to present".into())),
-    };
-    let i = image_index as usize;
-    let target = PresentTarget { image: sc.images[i], view: sc.views[i], extent: sc.extent };
-    present_pass::record(&mut rec, &mut slot.profiler, (linear, linear_layout, panel_px), &target, shot.as_ref(), ui)?;
-    // SAFETY: recording began above.
-    unsafe { device.end_command_buffer(slot.cb) }.call("vkEndCommandBuffer")?;
-    let waits = [vk::SemaphoreSubmitInfo::default().semaphore(slot.image_acquired).stage_mask(ACQUIRE_WAIT_STAGE)];
-    let signals = [vk::SemaphoreSubmitInfo::default()
-        .semaphore(sc.ready_to_present[image_index as usize])
-        .stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)];
-    let cbs = [vk::CommandBufferSubmitInfo::default().command_buffer(slot.cb)];
-    let submit = vk::SubmitInfo2::default()
-        .wait_semaphore_infos(&waits)
-        .command_buffer_infos(&cbs)
-        .signal_semaphore_infos(&signals);
-    // SAFETY: the fence is signalled with no pending work (waited above); the
-    // command buffer is executable; the queue is used from this thread only.
-    unsafe {
-        device.reset_fences(&[slot.done]).call("vkResetFences")?;
-        device.queue_submit2(ctx.queue, &[submit], slot.done).call("vkQueueSubmit2")?;
-    }
-    slot.in_flight = Some(InFlight { record: record_index, frame, write_profile: wants.profile });
-    let stale = sc.present(image_index)?;
-    let pixels = match &shot {
-        Some(buffer) => {
-            // SAFETY: the fence belongs to this device; only this frame waits on it.
-            unsafe { device.wait_for_fences(&[slot.done], true, u64::MAX) }.call("vkWaitForFences")?;
-            Some(buffer.read::<u8>(w as usize * h as usize * 4)?)
-        }
-        None => None,
-    };
-    Ok(Some(Submitted { recreate: suboptimal || stale, pixels, render_ms, dispatches, barriers, uploaded_profile }))
-}
-
-/// Completes the record of the slot's last frame from its profile (its fence
-/// was waited): the technique's passes and GPU time where it was recorded into
-/// the slot, the present pass and the panel; writes its profile for `P`.
-fn resolve_slot(slot: &mut FrameSlot, log: &mut FrameLog) -> Result<(), ViewerError> {
-    let Some(done) = slot.in_flight.take() else {
-        return Ok(());
-    };
-    let profile = slot.profiler.resolve(0)?;
-    let Some(record) = log.report.frames.get_mut(done.record) else {
-        return Ok(());
-    };
-    let viewer_scope = |name: &str| [UPLOAD_SCOPE, BLIT_SCOPE, UI_SCOPE].contains(&name);
-    if done.frame.is_some() {
-        record.gpu_ms = profile
-            .scopes
-            .iter()
-            .filter(|s| s.parent.is_none() && !viewer_scope(&s.name))
-            .map(|s| s.duration_ns * 1e-6)
-            .sum();
-    }
-    let pass_ms: Vec<(String, f64)> = match done.frame {
-        Some(_) => {
-            profile.passes.iter().filter(|p| !viewer_scope(&p.name)).map(|p| (p.path.clone(), p.gpu_ms)).collect()
-        }
-        None => Vec::new(),
-    };
-    record.passes.extend(profile.passes.iter().map(|p| p.path.clone()));
-    record.present_gpu_ms = Some(profile.pass_ms(BLIT_SCOPE));
-    record.ui_gpu_ms = profile.passes.iter().any(|s| s.name == UI_SCOPE).then(|| profile.pass_ms(UI_SCOPE));
-    if !pass_ms.is_empty() {
-        log.history.push(record, &pass_ms);
-    }
-    if done.write_profile {
-        write_profile(&log.out_dir, record.index, &profile)?;
-    }
-    Ok(())
-}
-
-/// Resolves every slot (once all fences are waited: at the end).
-fn resolve_all(frames: &mut FramesInFlight, log: &mut FrameLog) -> Result<(), ViewerError> {
-    frames.wait_all()?;
-    for slot in &mut frames.slots {
-        resolve_slot(slot, log)?;
-    }
-    Ok(())
-}
-
-/// Waits for the queue when dropped (errors are left to the next call).
-struct QueueIdleOnDrop<'c>(&'c Context);
-
-impl Drop for QueueIdleOnDrop<'_> {
-    fn drop(&mut self) {
-        let _ = queue_idle(self.0);
-    }
-}
-
-fn queue_idle(ctx: &Context) -> Result<(), VkError> {
-    // SAFETY: the queue is used from this thread only.
-    unsafe { ctx.device.queue_wait_idle(ctx.queue) }.call("vkQueueWaitIdle")
-}
-
-fn write_png(path: &Path, bytes: &[u8], w: u32, h: u32, format: vk::Format) -> Result<(), ViewerError> {
-    let bgra = matches!(format, vk::Format::B8G8R8A8_SRGB | vk::Format::B8G8R8A8_UNORM);
-    let rgb: Vec<u8> =
-        bytes.chunks_exact(4).flat_map(|p| if bgra { [p[2], p[1], p[0]] } else { [p[0], p[1], p[2]] }).collect();
-    let image = image::RgbImage::from_raw(w, h, rgb)
-        .ok_or_else(|| ViewerError::Write { path: path.display().to_string(), message: "short readback".into() })?;
-    image.save(path).map_err(|e| ViewerError::Write { path: path.display().to_string(), message: e.to_string() })
-}
-
-fn write_profile(dir: &Path, frame: u64, profile: &ProfileReport) -> Result<(), ViewerError> {
-    for (name, value) in [
-        (format!("sweeplab-view-{frame}-profile.json"), profile.to_json()),
-        (format!("sweeplab-view-{frame}-trace.json"), profile.chrome_trace()),
-    ] {
-        let path = dir.join(name);
-        let text = serde_json::to_string_pretty(&value).unwrap_or_default();
-        std::fs::write(&path, text)
-            .map_err(|e| ViewerError::Write { path: path.display().to_string(), message: e.to_string() })?;
-        eprintln!("wrote {}", path.display());
-    }
-    Ok(())
 }

@@ -6,12 +6,13 @@
 //! record into the slot's command buffer. The loop waits for a slot's own
 //! fence before reusing it, never for the whole device.
 
-use crate::render::RecordedFrame;
+use crate::render::{OutputImage, RecordedFrame};
 use crate::vk::error::VkResultExt;
 use crate::vk::resources::ImageDesc;
 use crate::vk::{Buffer, Context, Image, Profiler, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
 
 pub const FRAMES_IN_FLIGHT: usize = 2;
 
@@ -24,8 +25,10 @@ pub struct InFlight {
     /// Its record in the report, completed from the profile once resolved.
     pub record: usize,
     /// The technique's frame recorded into the slot's command buffer; `None`:
-    /// it was rendered by its own submission and uploaded.
+    /// it was rendered by its own submission and uploaded, or shown again.
     pub frame: Option<RecordedFrame>,
+    /// The earlier frame shown again (a panel-only redraw), kept until the blit read it.
+    pub reshown: Option<Arc<OutputImage>>,
     /// Write its profile and trace once resolved (`P`).
     pub write_profile: bool,
 }

@@ -10,7 +10,7 @@
 use super::ui::Ui;
 use crate::render::recorded_frame::{FRAME_OUTPUT_LAYOUT, FRAME_OUTPUT_WRITE};
 use crate::vk::barriers::{Access, Barrier};
-use crate::vk::resources::color_layers;
+use crate::vk::resources::{color_layers, color_range};
 use crate::vk::{Buffer, Image, Profiler, Recorder, VkError};
 use ash::vk;
 
@@ -28,6 +28,16 @@ const UI_DRAW: Access = Access {
     access: vk::AccessFlags2::from_raw(
         vk::AccessFlags2::COLOR_ATTACHMENT_READ.as_raw() | vk::AccessFlags2::COLOR_ATTACHMENT_WRITE.as_raw(),
     ),
+};
+/// A clear of the swapchain image (a transfer write).
+const CLEAR_WRITE: Access = Access { stage: vk::PipelineStageFlags2::CLEAR, access: vk::AccessFlags2::TRANSFER_WRITE };
+/// The first writes of the swapchain image: the clear where the image does
+/// not fill the window, and the blit.
+const CLEAR_OR_BLIT_WRITE: Access = Access {
+    stage: vk::PipelineStageFlags2::from_raw(
+        vk::PipelineStageFlags2::CLEAR.as_raw() | vk::PipelineStageFlags2::BLIT.as_raw(),
+    ),
+    access: vk::AccessFlags2::TRANSFER_WRITE,
 };
 /// Presentation waits on a semaphore; the signal covers all earlier work.
 const TO_PRESENT: Access = Access::NONE;
@@ -95,14 +105,45 @@ pub struct PresentTarget {
     pub extent: vk::Extent2D,
 }
 
-/// Records the pass from `linear`, readable by the blit in `linear_layout`
-/// ([`record_handoff`] or [`record_upload`] made it so) into the target right
-/// of `image_x` (the panel's width); `ui` draws the panel, whose opaque fill
-/// covers the target left of `image_x`.
+/// The blit of the technique's frame into the window.
+pub struct Blit<'a> {
+    /// The linear frame, readable by the blit in `layout` ([`record_handoff`]
+    /// or [`record_upload`] made it so).
+    pub source: &'a Image,
+    pub layout: vk::ImageLayout,
+    /// Where the image starts: right of the panel.
+    pub x: u32,
+    /// The size it takes there (a preview is stretched to it; where it does
+    /// not fill the window, the rest is cleared).
+    pub shown: vk::Extent2D,
+    /// The filter of a stretching blit ([`stretch_filter`]).
+    pub filter: vk::Filter,
+}
+
+/// Linear where the device filters RGBA32F images linearly (a stretched
+/// preview then looks smooth), else nearest.
+pub fn stretch_filter(ctx: &crate::vk::Context) -> vk::Filter {
+    // SAFETY: a valid physical device of this instance.
+    let properties = unsafe {
+        ctx.instance.get_physical_device_format_properties(ctx.physical_device, vk::Format::R32G32B32A32_SFLOAT)
+    };
+    let linear = vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR;
+    if properties.optimal_tiling_features.contains(linear) {
+        vk::Filter::LINEAR
+    } else {
+        vk::Filter::NEAREST
+    }
+}
+
+/// The window's background where the image does not reach (egui's dark panel).
+const BACKGROUND: [f32; 4] = [0.01, 0.01, 0.01, 1.0];
+
+/// Records the pass: `blit` into the target right of the panel; `ui` draws
+/// the panel, whose opaque fill covers the target left of `blit.x`.
 pub fn record(
     rec: &mut Recorder,
     profiler: &mut Profiler,
-    (linear, linear_layout, image_x): (&Image, vk::ImageLayout, u32),
+    blit: &Blit,
     target: &PresentTarget,
     screenshot: Option<&Buffer>,
     ui: Option<&mut Ui>,
@@ -111,35 +152,50 @@ pub fn record(
     let (dst_layout, src_layout) = (vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
     // Starts from the acquire semaphore's wait stage, so the layout change
     // happens after the presentation engine let go of the image.
+    // Its second scope holds the clear as well as the blit.
     rec.barrier(&Barrier::raw_image(
         "swapchain_acquired_to_blit_write",
         target.image,
         Access { stage: ACQUIRE_WAIT_STAGE, access: vk::AccessFlags2::NONE },
-        BLIT_WRITE,
+        CLEAR_OR_BLIT_WRITE,
         vk::ImageLayout::UNDEFINED,
         dst_layout,
     ));
-    let e = linear.extent();
+    let (right, bottom) = (blit.x + blit.shown.width, blit.shown.height);
+    if right < target.extent.width || bottom < target.extent.height {
+        // The window is larger than the image (it fits the panel): the rest
+        // is background, not what the image held before.
+        let clear = vk::ClearColorValue { float32: BACKGROUND };
+        // SAFETY: the image is in TRANSFER_DST_OPTIMAL (barrier above) and was
+        // created with TRANSFER_DST usage (the blit writes it).
+        unsafe { rec.device().cmd_clear_color_image(rec.cb, target.image, dst_layout, &clear, &[color_range()]) };
+        rec.barrier(&Barrier::raw_image(
+            "swapchain_clear_to_blit_write",
+            target.image,
+            CLEAR_WRITE,
+            BLIT_WRITE,
+            dst_layout,
+            dst_layout,
+        ));
+    }
+    let e = blit.source.extent();
     let src_end = vk::Offset3D { x: e.width as i32, y: e.height as i32, z: 1 };
-    let dst_end = vk::Offset3D { x: target.extent.width as i32, y: target.extent.height as i32, z: 1 };
+    let dst_end =
+        vk::Offset3D { x: right.min(target.extent.width) as i32, y: bottom.min(target.extent.height) as i32, z: 1 };
     let region = vk::ImageBlit::default()
         .src_subresource(color_layers())
         .src_offsets([vk::Offset3D::default(), src_end])
         .dst_subresource(color_layers())
-        .dst_offsets([vk::Offset3D { x: image_x as i32, y: 0, z: 0 }, dst_end]);
+        .dst_offsets([vk::Offset3D { x: blit.x as i32, y: 0, z: 0 }, dst_end]);
+    // Same size: nearest copies the pixels as they are.
+    let stretched = (e.width, e.height) != ((dst_end.x - blit.x as i32) as u32, dst_end.y as u32);
+    let filter = if stretched { blit.filter } else { vk::Filter::NEAREST };
     // SAFETY: both images are in the layouts named (the caller's barrier and the
     // one above), were created with TRANSFER usage, and their formats support BLIT_SRC/BLIT_DST
-    // (RGBA32F on every Vulkan device; the swapchain format was checked).
+    // (RGBA32F on every Vulkan device; the swapchain format was checked); a
+    // linear filter only where the format supports it (`stretch_filter`).
     unsafe {
-        rec.device().cmd_blit_image(
-            rec.cb,
-            linear.raw,
-            linear_layout,
-            target.image,
-            dst_layout,
-            &[region],
-            vk::Filter::NEAREST,
-        )
+        rec.device().cmd_blit_image(rec.cb, blit.source.raw, blit.layout, target.image, dst_layout, &[region], filter)
     };
     profiler.end(rec, scope)?;
     let (mut last_write, mut layout) = (BLIT_WRITE, dst_layout);

@@ -9,10 +9,23 @@ use serde::Serialize;
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct FrameRecord {
     pub index: u64,
+    /// The window's size.
     pub width: u32,
     pub height: u32,
+    /// The size the technique rendered at: the image's, or a preview's.
+    pub image_width: u32,
+    pub image_height: u32,
+    /// The image's sides over the preview's: 1 for a full-quality frame.
+    pub preview_scale: u32,
+    /// Nothing rendered: the last frame shown again under a redrawn panel.
+    pub reshown: bool,
+    /// The control panel's content height in window pixels (none without it).
+    pub panel_height: Option<f64>,
     /// Wall clock from the previous frame's present to this one's.
     pub frame_ms: f64,
+    /// When it was handed to presentation, ms since 1970 (to line frames up
+    /// with input sent from outside, e.g. `tools/viewer_drag_measure.sh`).
+    pub presented_unix_ms: f64,
     /// Wall clock of the technique's frame on the host: its recording (for a
     /// technique that renders by its own submission: record, submit, wait, read).
     pub render_ms: f64,

@@ -9,6 +9,7 @@
 //! 9 drag-light 0 12 -4                      # Ctrl-drag light 0 by 12 pixels right, 4 up
 //! 10 orbit 20 -5                            # left-drag the camera 20 pixels right, 5 up
 //! 11 zoom 1.5                               # turn the wheel 1.5 lines
+//! 12 wait 400                               # do nothing for 400 ms (a preview settles)
 //! ```
 
 use super::error::ViewerError;
@@ -34,6 +35,8 @@ pub enum Action {
     Orbit(f32, f32),
     /// The wheel turned by this many lines.
     Zoom(f32),
+    /// The user stays still this many milliseconds before the frame.
+    Wait(u64),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -47,7 +50,7 @@ pub struct Script {
     pub steps: Vec<Step>,
 }
 
-const ACTIONS: [&str; 7] = ["set", "resize", "key", "tf-point", "drag-light", "orbit", "zoom"];
+const ACTIONS: [&str; 8] = ["set", "resize", "key", "tf-point", "drag-light", "orbit", "zoom", "wait"];
 
 impl Script {
     pub fn parse(text: &str, origin: &str) -> Result<Script, ViewerError> {
@@ -99,6 +102,10 @@ impl Script {
                 "zoom" => match rest.parse::<f32>().ok().filter(|z| z.is_finite()) {
                     Some(lines) => Action::Zoom(lines),
                     None => return Err(at("zoom needs LINES (wheel lines)".into())),
+                },
+                "wait" => match rest.parse::<u64>().ok().filter(|&ms| ms <= 60_000) {
+                    Some(ms) => Action::Wait(ms),
+                    None => return Err(at("wait needs MILLISECONDS (0 to 60000)".into())),
                 },
                 other => {
                     let near = crate::scene::suggest::nearest(other, ACTIONS)
@@ -165,5 +172,7 @@ mod tests {
         assert_eq!(s.at(6).next(), Some(&Action::Zoom(1.5)));
         assert!(Script::parse("5 orbit 20", "t").is_err());
         assert!(Script::parse("6 zoom far", "t").is_err());
+        assert_eq!(Script::parse("7 wait 400", "t").unwrap().at(7).next(), Some(&Action::Wait(400)));
+        assert!(Script::parse("7 wait soon", "t").is_err());
     }
 }

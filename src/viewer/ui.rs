@@ -8,6 +8,7 @@
 use super::report::FrameRecord;
 use super::settings_panel::{SettingsPanel, TABLES};
 use super::tf_editor::TfEditor;
+use crate::plural::count;
 use crate::scene::presets::PRESET_NAMES;
 use crate::scene::{Light, LightKind, Scene};
 use crate::techniques::Technique;
@@ -89,6 +90,10 @@ pub struct Ui {
     pending_set: Vec<(egui::TextureId, egui::epaint::ImageDelta)>,
     /// Host time of the last panel (layout and tessellation).
     pub cpu_ms: f64,
+    /// The last panel's content height in window pixels.
+    pub content_px: u32,
+    /// The last panel asked to be drawn again at once (an animation).
+    pub wants_repaint: bool,
     state: PanelState,
 }
 
@@ -97,6 +102,30 @@ pub struct Ui {
 struct PanelState {
     tf_editor: TfEditor,
     settings: SettingsPanel,
+    tab: Tab,
+}
+
+/// The panel's pages: one shows at a time under the frame's figures, so the
+/// panel fits a window as tall as the tallest page (about 640 px with IPSVI's
+/// settings open) rather than all of them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum Tab {
+    #[default]
+    Technique,
+    Scene,
+    Profiler,
+}
+
+impl Tab {
+    const ALL: [Tab; 3] = [Tab::Technique, Tab::Scene, Tab::Profiler];
+
+    fn label(self) -> &'static str {
+        match self {
+            Tab::Technique => "Technique",
+            Tab::Scene => "Transfer & lights",
+            Tab::Profiler => "Profiler",
+        }
+    }
 }
 
 impl Ui {
@@ -125,6 +154,8 @@ impl Ui {
             pending_free: Vec::new(),
             pending_set: Vec::new(),
             cpu_ms: 0.0,
+            content_px: 0,
+            wants_repaint: false,
             state: PanelState::default(),
         })
     }
@@ -139,7 +170,12 @@ impl Ui {
         let started = Instant::now();
         let mut edits = Vec::new();
         let state = &mut self.state;
-        let output = self.egui.run(input, |ctx| panel(ctx, view, state, &mut edits));
+        let mut height = 0.0;
+        let output = self.egui.run(input, |ctx| height = panel(ctx, view, state, &mut edits));
+        self.content_px = (height * output.pixels_per_point).ceil() as u32;
+        // egui asks for the next frame at once while something animates.
+        self.wants_repaint =
+            output.viewport_output.get(&egui::ViewportId::ROOT).is_some_and(|v| v.repaint_delay.is_zero());
         self.pixels_per_point = output.pixels_per_point;
         self.primitives = self.egui.tessellate(output.shapes, output.pixels_per_point);
         self.pending_set.extend(output.textures_delta.set);
@@ -193,26 +229,55 @@ impl Drop for Ui {
 /// out before the panel runs.
 pub const PANEL_WIDTH: f32 = 260.0;
 
-fn panel(ctx: &egui::Context, view: &PanelView, state: &mut PanelState, edits: &mut Vec<UiEdit>) {
-    egui::SidePanel::left("controls").exact_width(PANEL_WIDTH).resizable(false).show(ctx, |ui| {
-        egui::ScrollArea::vertical().show(ui, |ui| {
-            technique_section(ui, view, &mut state.settings, edits);
-            ui.separator();
-            transfer_section(ui, view, &mut state.tf_editor, edits);
-            ui.separator();
-            lights_section(ui, view, edits);
-            ui.separator();
-            profiler_section(ui, view, edits);
+/// The panel's content height, in points, for `view`: its tallest page, laid
+/// out off-screen (no GPU), so that the first window can be made tall enough.
+pub fn panel_height(view: &PanelView) -> f32 {
+    let ctx = egui::Context::default();
+    let screen = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(PANEL_WIDTH + 64.0, 16_384.0));
+    let input = egui::RawInput { screen_rect: Some(screen), ..Default::default() };
+    let mut tallest: f32 = 0.0;
+    for tab in Tab::ALL {
+        let mut state = PanelState { tab, ..Default::default() };
+        let mut height = 0.0;
+        // The first pass loads the fonts; the second lays out with them.
+        for _ in 0..2 {
+            let _ = ctx.run(input.clone(), |ctx| height = panel(ctx, view, &mut state, &mut Vec::new()));
+        }
+        tallest = tallest.max(height);
+    }
+    tallest
+}
+
+/// Lays the panel out; returns its content's height in points.
+fn panel(ctx: &egui::Context, view: &PanelView, state: &mut PanelState, edits: &mut Vec<UiEdit>) -> f32 {
+    let shown = egui::SidePanel::left("controls").exact_width(PANEL_WIDTH).resizable(false).show(ctx, |ui| {
+        let scroll = egui::ScrollArea::vertical().show(ui, |ui| {
+            frame_summary(ui, view, edits);
             if let Some(m) = view.message {
-                ui.separator();
                 ui.colored_label(egui::Color32::LIGHT_RED, m);
             }
+            ui.horizontal(|ui| {
+                for tab in Tab::ALL {
+                    ui.selectable_value(&mut state.tab, tab, tab.label());
+                }
+            });
+            ui.separator();
+            match state.tab {
+                Tab::Technique => technique_section(ui, view, &mut state.settings, edits),
+                Tab::Scene => {
+                    transfer_section(ui, view, &mut state.tf_editor, edits);
+                    ui.separator();
+                    lights_section(ui, view, edits);
+                }
+                Tab::Profiler => profiler_section(ui, view),
+            }
         });
+        scroll.content_size.y
     });
+    shown.inner
 }
 
 fn technique_section(ui: &mut egui::Ui, view: &PanelView, settings: &mut SettingsPanel, edits: &mut Vec<UiEdit>) {
-    ui.heading("Technique");
     let mut chosen = view.technique;
     egui::ComboBox::from_label("technique").selected_text(chosen.name()).show_ui(ui, |ui| {
         for t in Technique::ALL {
@@ -298,20 +363,26 @@ fn lights_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) 
     }
 }
 
-fn profiler_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) {
-    ui.heading("Profiler");
+/// Always on top of the panel: the last frame's figures, a preview's size,
+/// and the screenshot and profile buttons.
+fn frame_summary(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>) {
     if let Some(f) = view.last {
         ui.label(format!("frame {:.2} ms   technique GPU {:.2} ms", f.frame_ms, f.gpu_ms));
-        ui.label(format!("{} dispatches, {} barriers per frame", f.dispatches, f.barriers));
+        ui.label(format!(
+            "{}, {} per frame",
+            count(f.dispatches, "dispatch", "dispatches"),
+            count(f.barriers, "barrier", "barriers")
+        ));
         if let Some(d) = &f.decision {
             ui.label(d);
         }
+        if f.preview_scale > 1 {
+            ui.label(format!(
+                "preview while dragging: {}x{} (1/{} of the sides); full quality when still",
+                f.image_width, f.image_height, f.preview_scale
+            ));
+        }
     }
-    ui.label(format!(
-        "UI: {:.2} ms host, {} GPU",
-        view.ui_cpu_ms,
-        view.ui_gpu_ms.map_or("-".to_string(), |ms| format!("{ms:.3} ms"))
-    ));
     ui.horizontal(|ui| {
         if ui.button("screenshot (S)").clicked() {
             edits.push(UiEdit::Key('S'));
@@ -320,6 +391,14 @@ fn profiler_section(ui: &mut egui::Ui, view: &PanelView, edits: &mut Vec<UiEdit>
             edits.push(UiEdit::Key('P'));
         }
     });
+}
+
+fn profiler_section(ui: &mut egui::Ui, view: &PanelView) {
+    ui.label(format!(
+        "UI: {:.2} ms host, {} GPU",
+        view.ui_cpu_ms,
+        view.ui_gpu_ms.map_or("-".to_string(), |ms| format!("{ms:.3} ms"))
+    ));
     plot(ui, "frame ms", &view.history.frame_ms);
     egui::Grid::new("passes").striped(true).show(ui, |ui| {
         ui.label("pass");

@@ -38,6 +38,8 @@ pub struct WindowEvents {
     create_error: Option<String>,
     pub close_requested: bool,
     pub resized: bool,
+    /// The panel saw input that changes how it looks (hover, a click).
+    pub panel_input: bool,
     /// Keys pressed (physical keys, so `S` and `P` work on any layout).
     pub keys: Vec<KeyCode>,
     /// Pointer movement with the left button down (orbit), the right button
@@ -65,6 +67,7 @@ impl WindowEvents {
             create_error: None,
             close_requested: false,
             resized: false,
+            panel_input: false,
             keys: Vec::new(),
             orbit: (0.0, 0.0),
             light_drag: (0.0, 0.0),
@@ -110,6 +113,11 @@ impl WindowEvents {
         Ok((s.width, s.height))
     }
 
+    /// The screen's height in pixels, where known.
+    pub fn screen_height(&self) -> Option<u32> {
+        self.window.as_ref()?.current_monitor().map(|m| m.size().height)
+    }
+
     pub fn handles(&self) -> Result<(RawDisplayHandle, RawWindowHandle), ViewerError> {
         let w = self.window()?;
         let display = w.display_handle().map_err(|e| ViewerError::Window(e.to_string()))?.as_raw();
@@ -121,7 +129,14 @@ impl WindowEvents {
 impl ApplicationHandler for WindowEvents {
     fn resumed(&mut self, event_loop: &ActiveEventLoop) {
         if self.window.is_none() && self.create_error.is_none() {
-            match event_loop.create_window(self.attributes.clone()) {
+            let mut attributes = self.attributes.clone();
+            // A window taller than the screen would hide the panel's end.
+            if let (Some(size), Some(screen)) = (attributes.inner_size, event_loop.primary_monitor()) {
+                let size = size.to_physical::<u32>(1.0);
+                let (w, h) = super::window_fit::within_screen((size.width, size.height), Some(screen.size().height));
+                attributes = attributes.with_inner_size(PhysicalSize::new(w, h));
+            }
+            match event_loop.create_window(attributes) {
                 Ok(w) => self.window = Some(w),
                 Err(e) => self.create_error = Some(format!("cannot create the window: {e}")),
             }
@@ -130,7 +145,11 @@ impl ApplicationHandler for WindowEvents {
 
     fn window_event(&mut self, _event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         let consumed = match (&mut self.egui, &self.window) {
-            (Some(state), Some(window)) => state.on_window_event(window, &event).consumed,
+            (Some(state), Some(window)) => {
+                let response = state.on_window_event(window, &event);
+                self.panel_input |= response.repaint;
+                response.consumed
+            }
             _ => false,
         };
         match event {

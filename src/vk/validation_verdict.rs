@@ -4,6 +4,7 @@
 //! by name: the layer is older than the driver, which no test on one machine
 //! would catch (`super::layer_extensions` keeps such extensions out).
 
+use crate::plural::count;
 use std::collections::BTreeMap;
 
 /// The messages of a run, sorted into advice and failures.
@@ -29,9 +30,8 @@ impl ValidationVerdict {
                     unknown_extensions.push(name.to_string());
                 }
             }
-            if m.contains("BestPractices") {
-                // The layer writes the id as `[ BestPractices-... ]`.
-                let id = m.split("[ ").nth(1).and_then(|r| r.split(' ').next()).unwrap_or("?");
+            if is_advice(m) {
+                let id = message_id(m).unwrap_or("?");
                 *advice.entry(id.to_string()).or_default() += 1;
             } else {
                 failures += 1;
@@ -44,16 +44,38 @@ impl ValidationVerdict {
         self.failures > 0
     }
 
-    /// What stderr shows: every message, then the advice counted per id;
+    /// What stderr shows: the failures grouped by message id, each with its
+    /// count and its first message as the example (a racy frame repeats one
+    /// hazard hundreds of times), then the advice counted per id;
     /// `validation: clean` where there is nothing and validation was on.
     pub fn report_lines(&self, validation_enabled: bool) -> Vec<String> {
         if self.messages.is_empty() {
             return if validation_enabled { vec!["validation: clean".into()] } else { Vec::new() };
         }
-        let mut lines = vec![format!("validation: {} message(s)", self.messages.len())];
-        lines.extend(self.messages.iter().cloned());
+        let mut lines = vec![format!("validation: {}", count(self.messages.len() as u64, "message", "messages"))];
+        // In the order each id first came.
+        let mut groups: Vec<(&str, usize, &str)> = Vec::new();
+        for m in self.messages.iter().filter(|m| !is_advice(m)) {
+            let id = message_id(m).unwrap_or(m);
+            match groups.iter_mut().find(|(g, _, _)| *g == id) {
+                Some(group) => group.1 += 1,
+                None => groups.push((id, 1, m)),
+            }
+        }
+        if !groups.is_empty() {
+            lines.push(format!(
+                "{} in {}, by message id (count, id, first message):",
+                count(self.failures as u64, "failure", "failures"),
+                count(groups.len() as u64, "kind", "kinds")
+            ));
+            for (id, n, example) in groups {
+                lines.push(format!("  {n:>5}  {id}"));
+                lines.push(format!("         e.g. {example}"));
+            }
+        }
         if !self.advice.is_empty() {
-            lines.push(format!("best practices: {} message(s)", self.advice.values().sum::<usize>()));
+            let advice = self.advice.values().sum::<usize>() as u64;
+            lines.push(format!("best practices: {}", count(advice, "message", "messages")));
             lines.extend(self.advice.iter().map(|(id, n)| format!("  {n:>5}  {id}")));
         }
         if !self.unknown_extensions.is_empty() {
@@ -66,6 +88,19 @@ impl ValidationVerdict {
         }
         lines
     }
+}
+
+/// Best-practices advice, not a failure.
+fn is_advice(message: &str) -> bool {
+    message.contains("BestPractices")
+}
+
+/// The layer's message id, which it writes as `[ ID ]`
+/// (`SYNC-HAZARD-READ-AFTER-WRITE`, `VUID-vkCmdDispatch-None-02699`).
+fn message_id(message: &str) -> Option<&str> {
+    let (_, rest) = message.split_once("[ ")?;
+    let (id, _) = rest.split_once(" ]")?;
+    Some(id.trim()).filter(|id| !id.is_empty())
 }
 
 #[cfg(test)]
@@ -87,8 +122,8 @@ mod tests {
         assert!(!v.failed(), "advice alone does not fail a run");
         assert_eq!(v.advice["BestPractices-vkCreateDevice-deprecated"], 2);
         let lines = v.report_lines(true);
-        assert_eq!(lines[0], "validation: 3 message(s)");
-        assert!(lines.contains(&"best practices: 3 message(s)".to_string()), "{lines:?}");
+        assert_eq!(lines[0], "validation: 3 messages");
+        assert!(lines.contains(&"best practices: 3 messages".to_string()), "{lines:?}");
         let hazard = ValidationVerdict::of(vec![
             advice("BestPractices-x"),
             "Validation Error: [ SYNC-HAZARD-READ-AFTER-WRITE ] ...".into(),
@@ -112,5 +147,30 @@ mod tests {
         let lines = v.report_lines(true);
         let named = lines.iter().find(|l| l.contains("the layer does not know VK_KHR_calibrated_timestamps"));
         assert!(named.is_some_and(|l| l.contains("older than the driver")), "{lines:?}");
+    }
+
+    #[test]
+    fn failures_are_grouped_by_message_id_with_a_count_and_one_example() {
+        let hazard =
+            |n: usize| format!("[ERROR VALIDATION] Validation Error: [ SYNC-HAZARD-READ-AFTER-WRITE ] line {n}");
+        let mut messages: Vec<String> = (0..768).map(hazard).collect();
+        messages.insert(3, "[ERROR VALIDATION] Validation Error: [ VUID-vkCmdDispatch-None-02699 ] unbound".into());
+        let lines = ValidationVerdict::of(messages).report_lines(true);
+        assert_eq!(
+            lines,
+            [
+                "validation: 769 messages",
+                "769 failures in 2 kinds, by message id (count, id, first message):",
+                "    768  SYNC-HAZARD-READ-AFTER-WRITE",
+                &format!("         e.g. {}", hazard(0)),
+                "      1  VUID-vkCmdDispatch-None-02699",
+                "         e.g. [ERROR VALIDATION] Validation Error: [ VUID-vkCmdDispatch-None-02699 ] unbound",
+            ]
+        );
+        let one = ValidationVerdict::of(vec![hazard(7)]).report_lines(true);
+        assert_eq!(
+            one[..2],
+            ["validation: 1 message", "1 failure in 1 kind, by message id (count, id, first message):"]
+        );
     }
 }

@@ -6,6 +6,7 @@
 
 use super::context::Context;
 use super::error::{VkError, VkResultExt};
+use crate::plural::count;
 use ash::vk;
 use std::time::{Duration, Instant};
 
@@ -27,11 +28,11 @@ impl WaitReport<'_> {
     /// need timestamps inside the frame), so it says how long and how big.
     pub fn progress_line(&self) -> String {
         format!(
-            "{}: {:.0} s on the device so far ({} dispatches, {} barriers)",
+            "{}: {:.0} s on the device so far ({}, {})",
             self.name,
             self.elapsed.as_secs_f64(),
-            self.dispatches,
-            self.barriers
+            count(self.dispatches, "dispatch", "dispatches"),
+            count(self.barriers, "barrier", "barriers")
         )
     }
 }
@@ -77,5 +78,7 @@ mod tests {
     fn a_long_wait_reads_as_progress() {
         let r = WaitReport { name: "frame", elapsed: Duration::from_millis(2040), dispatches: 402, barriers: 417 };
         assert_eq!(r.progress_line(), "frame: 2 s on the device so far (402 dispatches, 417 barriers)");
+        let one = WaitReport { dispatches: 1, barriers: 1, ..r };
+        assert_eq!(one.progress_line(), "frame: 2 s on the device so far (1 dispatch, 1 barrier)");
     }
 }

@@ -110,6 +110,12 @@ pub fn assert_every_output_names_its_run(dir: &std::path::Path) {
     assert!(!all.is_empty(), "{} holds no output", dir.display());
     // The marker that makes the folder a bench's own (`OutFolder`).
     all.retain(|p| p.file_name().is_some_and(|n| n != ".sweeplab-bench"));
+    // A partial run's marker names the command that made it.
+    for marker in all.iter().filter(|p| p.file_name().is_some_and(|n| n == "PARTIAL")) {
+        let text = std::fs::read_to_string(marker).unwrap();
+        assert!(text.contains("command: "), "{}: {text}", marker.display());
+    }
+    all.retain(|p| p.file_name().is_some_and(|n| n != "PARTIAL"));
     for path in &all {
         let name = path.display();
         let text = || std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{name}: {e}"));

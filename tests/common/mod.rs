@@ -260,7 +260,8 @@ pub fn reference_image(gpu: &GpuScene, width: u32, height: u32) -> LinearImage {
         gpu.volume_format,
         gpu.filter,
     );
-    let slot = IMAGES.get_or_init(Default::default).lock().unwrap_or_else(|p| p.into_inner()).entry(key).or_default().clone();
+    let slot =
+        IMAGES.get_or_init(Default::default).lock().unwrap_or_else(|p| p.into_inner()).entry(key).or_default().clone();
     slot.get_or_init(|| {
         let mut profiler = Profiler::new(gpu.ctx, 64).unwrap();
         techniques::render(gpu, Technique::Reference, width, height, &mut profiler).unwrap().image

@@ -10,7 +10,7 @@
 # after `cargo build --release`.
 set -eu
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
-vol=${VOLUME:-../shared/data/engine.vti}
+vol=${VOLUME:-data/engine.vti}
 before=${BEFORE:-../../main/target/release/sweeplab}
 rounds=${ROUNDS:-6}
 # CONFIGS: a subset of the configurations below, in this order within a round.

@@ -33,6 +33,18 @@ impl LoadError {
         }
     }
 
+    /// What is wrong, without the file name (for a message that names the
+    /// file already).
+    pub fn detail(&self) -> String {
+        match self {
+            LoadError::Io { source, .. } => format!("cannot read: {source}"),
+            LoadError::UnknownExtension { .. } => {
+                format!("unknown volume file type; supported: {}", super::SUPPORTED_EXTENSIONS.join(", "))
+            }
+            LoadError::Format { problem, .. } => problem.to_string(),
+        }
+    }
+
     /// The format problem, when the file could be read but not understood.
     pub fn problem(&self) -> Option<&FormatProblem> {
         match self {

@@ -135,14 +135,33 @@ fn trace_row(t: &TraceSummary) -> BenchRow {
 
 /// One row per configuration.
 pub fn configuration_table(report: &SyncReport) -> BenchTable {
-    table(report, true, &report.configurations, configuration_row)
+    let mut table = BenchTable::with_run(report.run.clone());
+    for c in &report.configurations {
+        // The frame's barriers besides the line boundaries' (set-up, cache
+        // initialization, read-back): those of the baseline, which has none
+        // between lines, at the same line width and chain.
+        let setup = report
+            .configurations
+            .iter()
+            .find(|b| {
+                b.arm == BASELINE
+                    && (b.workload, b.line_width, b.line_timestamps, b.chain_trips)
+                        == (c.workload, c.line_width, c.line_timestamps, c.chain_trips)
+            })
+            .map_or(0, |b| b.barriers);
+        table.push(configuration_row(c, setup));
+    }
+    table
 }
 
-fn configuration_row(c: &ConfigRow) -> BenchRow {
+/// `boundary_barriers`: the barriers the strategy puts between line blocks
+/// (0 for no barriers); `frame_barriers`: every barrier of the frame.
+fn configuration_row(c: &ConfigRow, setup_barriers: u32) -> BenchRow {
     let mut row = BenchRow::new();
     row.set("workload", c.workload.name()).set("strategy", c.arm.as_str()).set("racy", c.racy);
     row.set("line_width", c.line_width).set("line_timestamps", c.line_timestamps).set("chain_trips", c.chain_trips);
-    row.set("lines", c.lines).set("blocks", c.blocks).set("dispatches", c.dispatches).set("barriers", c.barriers);
+    row.set("lines", c.lines).set("blocks", c.blocks).set("dispatches", c.dispatches);
+    row.set("boundary_barriers", c.barriers.saturating_sub(setup_barriers)).set("frame_barriers", c.barriers);
     row.set("frames", c.frames).set("frames_per_run", c.frames_per_run);
     row.set_estimate("gpu_ms", c.gpu_ms);
     row.set_estimate("cpu_ms", c.cpu_ms);
