@@ -377,6 +377,8 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
     let out = dir.join("breakdown");
     let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
         .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--out-dir", out.to_str().unwrap()])
+        // The serial kernel's modes (the segmented kernel's: tests/bench_breakdown_line_widths.rs).
+        .args(["--kernels", "serial"])
         .env_remove("SWEEPLAB_VALIDATE")
         .output()
         .expect("run sweeplab");

@@ -7,8 +7,8 @@ use crate::common;
 use common::*;
 use glam::{UVec3, Vec3};
 use sweeplab::ipsvi::{
-    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, SyncStrategy, WritePass,
-    WriteRule, WriteValue,
+    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, ReadFronts, SyncStrategy,
+    WritePass, WriteRule, WriteValue,
 };
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
@@ -229,9 +229,12 @@ fn view_samples_match_the_reference_on_the_ipsvi_scenes() {
         every_sum += vs_every;
         light_rays_sum += lr;
     }
-    // Measured 0.092 against 0.104: every-sample is the closer rule overall.
-    println!("sum of relative rmse: every-sample {every_sum:.4}");
-    assert!(every_sum < 0.95 * texel_ray_sum, "every-sample {every_sum:.4} vs non-empty {texel_ray_sum:.4}");
+    // Every-sample, the default, is no farther overall: measured 0.0668 against
+    // 0.0683. (0.092 against 0.104 before the slab-sphere preset's slab band
+    // was widened: the grey film the sphere wore, which every-sample caught
+    // more of, was most of the difference; CHANGELOG.md.)
+    println!("sum of relative rmse: every-sample {every_sum:.4}, non-empty {texel_ray_sum:.4}");
+    assert!(every_sum <= texel_ray_sum, "every-sample {every_sum:.4} vs non-empty {texel_ray_sum:.4}");
     let over = texel_ray_sum / light_rays_sum;
     println!("non-empty over light rays, summed: {over:.3}");
     assert!(over <= NON_EMPTY_OVER_LIGHT_RAYS, "non-empty {texel_ray_sum:.4} vs light rays {light_rays_sum:.4}");
@@ -755,8 +758,14 @@ fn the_visible_box_errs_for_view_samples_only_by_refining_the_cache_past_their_s
         scene.render.filter = filter;
         let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
         let truth = reference(&ctx, &gpu);
-        let every =
-            IpsviSettings { write_rule: WriteRule::EverySample, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
+        // Blended fronts: the mechanism below is theirs. Per-texel fronts, which
+        // `read_fronts = "auto"` takes on texels under a pixel, keep a fine
+        // texel from lagging (checked after the loop).
+        let every = IpsviSettings {
+            write_rule: WriteRule::EverySample,
+            read_fronts: ReadFronts::Blended,
+            ..view_samples(FED_CACHE, CacheWrite::Farthest)
+        };
         let error = |s: &IpsviSettings| relative_rmse(&ipsvi(&ctx, &gpu, s, SyncStrategy::BarrierGlobal), &truth);
         let with = |cache_size: u32, fit_to_visible: bool, s: &IpsviSettings| {
             error(&IpsviSettings { cache_size, fit_to_visible, ..s.clone() })
@@ -781,6 +790,16 @@ fn the_visible_box_errs_for_view_samples_only_by_refining_the_cache_past_their_s
         let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..every.clone() };
         let (coarse, fine) = (with(FED_CACHE, false, &rays), with(2 * FED_CACHE, false, &rays));
         assert!(fine < coarse, "light rays, finer cache: {fine:.5} not nearer than {coarse:.5}");
+        // The default fronts on these sub-pixel texels are per texel: there the
+        // visible box takes view samples nearer too (measured, exact filter:
+        // 0.00206 against 0.00370).
+        let auto = IpsviSettings { read_fronts: ReadFronts::Auto, ..every.clone() };
+        let (auto_volume, auto_fitted) = (with(FED_CACHE, false, &auto), with(FED_CACHE, true, &auto));
+        println!("{filter:?}, every-sample, auto fronts: volume box {auto_volume:.5}, visible box {auto_fitted:.5}");
+        assert!(
+            auto_fitted < auto_volume,
+            "auto fronts: the visible box {auto_fitted:.5} not nearer than {auto_volume:.5}"
+        );
     }
     assert_validation_clean(&ctx);
 }

@@ -6,6 +6,9 @@
 //! ipsvi_view_samples::`; one test: `... -- --exact MODULE::NAME`.
 
 mod common;
+/// Mutations of valid inputs, shared by the scene and volume-file fuzzers.
+#[path = "fuzz/mutation.rs"]
+mod mutation;
 
 mod ao_gpu;
 mod ao_preprocess;

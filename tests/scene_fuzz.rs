@@ -12,9 +12,7 @@ use sweeplab::scene::scene_spec::VolumeSource;
 use sweeplab::scene::{LightKind, Scene};
 use sweeplab::techniques::parse_scene_str;
 
-#[path = "fuzz/mutation.rs"]
-mod mutation;
-use mutation::{mutated, mutations, EXTREME_NUMBERS};
+use crate::mutation::{mutated, mutations, EXTREME_NUMBERS};
 
 fn scenes_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes")

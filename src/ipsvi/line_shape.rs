@@ -28,8 +28,14 @@ pub struct ShapeCounters {
 }
 
 impl ShapeCounters {
+    /// The device-local counters of a frame of `records` block records (the
+    /// technique lists them with its resources).
+    pub fn bytes(records: usize) -> u64 {
+        (HEADER_BYTES + 4 * (records * CHAIN_SLOTS) as u64).next_multiple_of(8)
+    }
+
     pub fn new(ctx: &Context, records: usize) -> Result<ShapeCounters, VkError> {
-        let bytes = (HEADER_BYTES + 4 * (records * CHAIN_SLOTS) as u64).next_multiple_of(8);
+        let bytes = ShapeCounters::bytes(records);
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER
             | vk::BufferUsageFlags::TRANSFER_DST
             | vk::BufferUsageFlags::TRANSFER_SRC;

@@ -82,6 +82,7 @@ impl RenderTechnique for Ipsvi {
             ResourceNeed::of::<SweepParams>("ipsvi sweeps", scene.lights.len()),
             ResourceNeed::of::<BlockParams>("ipsvi blocks", records),
             ResourceNeed::of::<u32>("ipsvi steps", step_words),
+            ResourceNeed::buffer("ipsvi line shape", super::line_shape::ShapeCounters::bytes(records)),
         ];
         if slots > 1 {
             needs.push(ResourceNeed::image("ipsvi sweep accumulation", [width, height * slots, 1], 16));

@@ -17,9 +17,7 @@ use super::malformed::variants;
 use super::synthetic::synthetic;
 use super::Scratch;
 
-#[path = "../fuzz/mutation.rs"]
-mod mutation;
-use mutation::{mutated, mutations, Mutation};
+use crate::mutation::{mutated, mutations, Mutation};
 
 const CORPUS_TYPES: [&str; 2] = ["uint16", "float32"];
 /// Generous: a seed file loads in well under a millisecond; only a loader that
