@@ -6,11 +6,11 @@ use crate::common;
 use common::cli::{bench_rows, temp_dir};
 use common::{directional, sphere_volume};
 use glam::Vec3;
-use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
-use sweeplab::bench::experiments::ipsvi_breakdown::{self, BreakdownPlan};
+use sweeplab::bench::experiments::ipsvi::{self as ipsvi_bench, IpsviPlan, DEFAULT_GROUP_BYTES};
+use sweeplab::bench::experiments::ipsvi::breakdown::{self as ipsvi_breakdown, BreakdownPlan};
 use sweeplab::bench::out_folder::OutTarget;
 use sweeplab::bench::{Interleaved, OutFolder, RunInfo};
-use sweeplab::ipsvi::LineKernel;
+use sweeplab::techniques::ipsvi::LineKernel;
 use sweeplab::render::VolumeTexels;
 
 fn scene() -> sweeplab::scene::Scene {

@@ -4,7 +4,7 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::half_angle::{slicing, HalfAngleSettings};
+use sweeplab::techniques::half_angle::{slicing, HalfAngleSettings};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{GpuScene, VolumeTexels};

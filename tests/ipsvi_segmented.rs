@@ -8,8 +8,8 @@ use crate::common;
 use common::cli::{sweeplab, temp_dir};
 use common::*;
 use glam::Vec3;
-use sweeplab::ipsvi::renderer::IpsviRenderer;
-use sweeplab::ipsvi::{
+use sweeplab::techniques::ipsvi::renderer::IpsviRenderer;
+use sweeplab::techniques::ipsvi::{
     render_study, render_with, BreakdownStep, CacheUpdate, EarlyTermination, IpsviSettings, IpsviStudy, LineKernel,
     SyncStrategy, WritePass, WriteRule,
 };

@@ -7,7 +7,7 @@ use crate::common;
 use common::*;
 use glam::{UVec3, Vec3};
 use std::path::Path;
-use sweeplab::lightvolume::{render_frame, LightVolumeFrame, LightVolumeSettings};
+use sweeplab::techniques::lightvolume::{render_frame, LightVolumeFrame, LightVolumeSettings};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::CpuRenderKind;

@@ -8,8 +8,8 @@
 use crate::common;
 
 use common::*;
-use sweeplab::bench::experiments::lights::{lightvolume_scene, table1_lights};
-use sweeplab::lightvolume::CostEstimate;
+use sweeplab::bench::experiments::lights::measure::{lightvolume_scene, table1_lights};
+use sweeplab::techniques::lightvolume::CostEstimate;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::GpuScene;

@@ -7,8 +7,8 @@
 //! cargo test --release --test suite lightvolume_cpu_cost:: -- --ignored --nocapture
 use crate::common;
 
-use sweeplab::bench::experiments::lights::{lightvolume_scene, scaling_lights};
-use sweeplab::lightvolume::{CostEstimate, LightVolumeRenderer};
+use sweeplab::bench::experiments::lights::measure::{lightvolume_scene, scaling_lights};
+use sweeplab::techniques::lightvolume::{CostEstimate, LightVolumeRenderer};
 use sweeplab::render::GpuScene;
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::Light;

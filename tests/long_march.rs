@@ -6,7 +6,7 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::half_angle::HalfAngleSettings;
+use sweeplab::techniques::half_angle::HalfAngleSettings;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};

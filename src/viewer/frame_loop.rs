@@ -21,7 +21,7 @@ use super::tf_editor;
 use super::ui::{self, PanelView, PassHistory, Ui, UiEdit, PANEL_WIDTH};
 use super::window::{self, WindowEvents};
 use super::window_fit::ImageArea;
-use crate::lightvolume::LightVolumeSettings;
+use crate::techniques::lightvolume::LightVolumeSettings;
 use crate::render::{FrameImages, GpuScene, UploadedVolume, VolumeTexels};
 use crate::scene::{Light, Scene};
 use crate::techniques::{self, Technique};

@@ -3,8 +3,8 @@
 
 use super::chain::ChainLines;
 use crate::bench::experiments::ExperimentError;
-use crate::ipsvi::renderer::IpsviRenderer;
-use crate::ipsvi::SyncStrategy;
+use crate::techniques::ipsvi::renderer::IpsviRenderer;
+use crate::techniques::ipsvi::SyncStrategy;
 use crate::linear_image::LinearImage;
 use crate::vk::Profiler;
 use ash::vk;
