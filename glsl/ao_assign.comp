@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // AO nearest-codeword assignment (section 3.2) of one part of a slice's packed
 // hemisphere histograms, one invocation per histogram (2 voxel + side). The
-// same exact search as the CPU (src/ao/search.rs): start at a hint codeword h
+// same exact search as the CPU (src/techniques/ao/search.rs): start at a hint codeword h
 // (the codeword of the same voxel and hemisphere in the previous slice, the
 // sweep's coherence), walk h's list of codewords sorted by distance to h and
 // stop where the triangle inequality says no later one can win; ties to the

@@ -13,7 +13,7 @@
 // layout size.
 layout(constant_id = 1) const float GRADIENT_SCALE_X = 0.0;  // 0.5 d_min / spacing per axis,
 layout(constant_id = 2) const float GRADIENT_SCALE_Y = 0.0;  // rounded once on the host
-layout(constant_id = 3) const float GRADIENT_SCALE_Z = 0.0;  // (src/ao/gradient.rs)
+layout(constant_id = 3) const float GRADIENT_SCALE_Z = 0.0;  // (src/techniques/ao/gradient.rs)
 layout(constant_id = 4) const int DIMS_X = 1;                // volume size
 layout(constant_id = 5) const int DIMS_Y = 1;
 layout(constant_id = 6) const int DIMS_Z = 1;

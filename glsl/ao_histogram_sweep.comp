@@ -29,7 +29,7 @@ float value_at(ivec3 p) {
 }
 
 // Central differences with clamped neighbours, in the CPU's operation order
-// (src/ao/gradient.rs): the hemisphere test must agree exactly on the plane.
+// (src/techniques/ao/gradient.rs): the hemisphere test must agree exactly on the plane.
 // Only a subtraction and a product by the host's per-axis scale: both are
 // correctly rounded on every Vulkan device (a division is not: 2.5 ulp).
 vec3 central_gradient(ivec3 p) {

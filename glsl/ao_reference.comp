@@ -67,7 +67,7 @@ void main() {
     ivec3 v = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(uvec3(v), params.dims.xyz))) return;
     uint index = uint(v.x) + params.dims.x * (uint(v.y) + params.dims.y * uint(v.z));
-    // Central differences, clamped at the border (src/ao/gradient.rs).
+    // Central differences, clamped at the border (src/techniques/ao/gradient.rs).
     vec3 g = vec3(voxel_at(v + ivec3(1, 0, 0)) - voxel_at(v - ivec3(1, 0, 0)),
                   voxel_at(v + ivec3(0, 1, 0)) - voxel_at(v - ivec3(0, 1, 0)),
                   voxel_at(v + ivec3(0, 0, 1)) - voxel_at(v - ivec3(0, 0, 1))) * 0.5 * params.step_scale.xyz;

@@ -1,6 +1,6 @@
 // IPSVI: the illumination cache's geometry (a plane fitted to the volume as seen
 // from the light), the sweep-line planes the cache fronts advance to, and light
-// segments integrated toward the light. Mirrors src/ipsvi/gpu_params.rs.
+// segments integrated toward the light. Mirrors src/techniques/ipsvi/gpu_params.rs.
 #ifndef IPSVI_COMMON_GLSL
 #define IPSVI_COMMON_GLSL
 #include "volume.glsl"

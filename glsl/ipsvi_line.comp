@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
-// One IPSVI line block (one dispatch; src/ipsvi/), the serial kernel: one
+// One IPSVI line block (one dispatch; src/techniques/ipsvi/), the serial kernel: one
 // invocation per pixel marches its whole view ray, reading the illumination
 // cache as it stands at the previous line. The next invocations keep the
 // history pair (cache/front) whole: with cache_update = "light-rays" they
@@ -19,7 +19,7 @@
 // The pieces both kernels share (glsl/ipsvi_line_segmented.comp marches each
 // ray in segments, several invocations per pixel) are the includes below.
 
-// Invocations per workgroup, chosen per renderer (src/ipsvi/line_group.rs): on
+// Invocations per workgroup, chosen per renderer (src/techniques/ipsvi/line_group.rs): on
 // lavapipe a workgroup runs on one thread, so a short line in one wide group
 // leaves the other cores idle.
 layout(local_size_x_id = 8) in;

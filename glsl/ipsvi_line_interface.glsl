@@ -1,7 +1,7 @@
 // The interface both IPSVI line kernels share (glsl/ipsvi_line.comp, serial:
 // one invocation per pixel; glsl/ipsvi_line_segmented.comp: several per
 // pixel): the specialization constants fixed per renderer, the bindings, the
-// block records and the per-block globals. src/ipsvi/ binds the same sets to
+// block records and the per-block globals. src/techniques/ipsvi/ binds the same sets to
 // either pipeline.
 #ifndef IPSVI_LINE_INTERFACE_GLSL
 #define IPSVI_LINE_INTERFACE_GLSL
@@ -11,7 +11,7 @@ layout(constant_id = 1) const bool SCATTER = false;  // albedo-blended forward-c
 layout(constant_id = 2) const bool VIEW_SAMPLES = false;  // cache_update = "view-samples"
 layout(constant_id = 3) const bool CLAIMS = false;        // cache_write = "farthest" or "nearest": one writer per texel
 layout(constant_id = 4) const bool NEAREST = false;       // "nearest": the sample closest to the light wins
-// Cost breakdown (src/ipsvi/breakdown.rs), cumulative: 0 ray casting only,
+// Cost breakdown (src/techniques/ipsvi/breakdown.rs), cumulative: 0 ray casting only,
 // 1 + cache reads, 2 + piecewise integration, 3 + the history carry (light
 // rays: the texel advance), 4 + racy sample stores of the read light, 5 + the
 // claim pass, 6 + the claim check, 7 + the writer's own light segment, 8 + the
@@ -32,7 +32,7 @@ layout(constant_id = 6) const bool PIECEWISE = true;  // piecewise integration (
 // When view rays stop: 0 never, 1 once opaque ("plain"), 2 once opaque and past
 // l_max of the exit-point sweep ("exit-points", section 5.1).
 layout(constant_id = 7) const uint TERMINATION = 1u;
-// ipsvi.merge_sweeps (src/ipsvi/merged_steps.rs): a dispatch is step k of every
+// ipsvi.merge_sweeps (src/techniques/ipsvi/merged_steps.rs): a dispatch is step k of every
 // independent sweep, its push constant the step index; each workgroup finds its
 // sweep's block in the step table. Each sweep has its own cache (rows of the
 // cache images) and its own output accumulation (rows of out_image).
@@ -138,7 +138,7 @@ layout(set = 0, binding = 16, r32f) readonly uniform image2D lmax;
 // (inverted for "nearest") | 17 bits pixel; the largest key wins.
 layout(std430, set = 0, binding = 25) buffer Keys { uint64_t keys[]; };
 
-// The frame's shape (src/ipsvi/line_shape.rs), cleared every frame: flags
+// The frame's shape (src/techniques/ipsvi/line_shape.rs), cleared every frame: flags
 // (SHAPE_*), then per block record CHAIN_SLOTS maxima of the serial chains its
 // invocations ran (view samples marched, in every pass, plus the steps of
 // every march toward the light); the host takes the largest. Spread over

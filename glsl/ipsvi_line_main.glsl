@@ -14,7 +14,7 @@
 #ifndef IPSVI_LINE_MAIN_GLSL
 #define IPSVI_LINE_MAIN_GLSL
 
-// Invocations a block needs before its claim invocations (src/ipsvi/merged_steps.rs mirrors it).
+// Invocations a block needs before its claim invocations (src/techniques/ipsvi/merged_steps.rs mirrors it).
 uint claims_first(uint pixel_and_texel_invocations) {
     return (pixel_and_texel_invocations + SEGMENTS - 1u) / SEGMENTS * SEGMENTS;
 }

@@ -5,7 +5,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_shuffle : require
 #extension GL_KHR_shader_subgroup_shuffle_relative : require
-// One IPSVI line block (one dispatch; src/ipsvi/), the segmented kernel: the
+// One IPSVI line block (one dispatch; src/techniques/ipsvi/), the segmented kernel: the
 // same block as glsl/ipsvi_line.comp, but SEGMENTS invocations per pixel (a
 // cluster of consecutive lanes of one subgroup), each marching one depth
 // segment of the pixel's view ray. A sample's light read depends only on the
@@ -24,7 +24,7 @@
 // claimed once, at its end, with its writer's depth: the same keys as the
 // serial march, whatever the split. Used only where the pixel's march only
 // reads (light rays, or view samples with write_pass = "texel"):
-// src/ipsvi/line_kernel.rs refuses the sample write pass.
+// src/techniques/ipsvi/line_kernel.rs refuses the sample write pass.
 
 layout(local_size_x_id = 8) in;
 // Invocations per pixel: a power of two no larger than the subgroup.
@@ -46,7 +46,7 @@ uint segment = 0u;
 // Invocations are numbered by subgroup and lane, so that a pixel's cluster is
 // always SEGMENTS aligned lanes of one subgroup; that needs full subgroups,
 // checked once per workgroup (a workgroup that finds none flags the frame,
-// and the host refuses it: src/ipsvi/line_shape.rs).
+// and the host refuses it: src/techniques/ipsvi/line_shape.rs).
 uint line_local_index() { return gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; }
 
 bool line_kernel_ready() {

@@ -1,5 +1,5 @@
 // A 2D buffer of light rays fitted to the volume as seen from the light
-// (src/ipsvi/cache_geometry.rs): IPSVI's illumination cache and half-angle
+// (src/techniques/ipsvi/cache_geometry.rs): IPSVI's illumination cache and half-angle
 // slicing's light buffer. Orthographic for directional lights, a perspective
 // frustum for lights outside the volume's bounding sphere, an octahedral map
 // of all directions for lights inside it.

@@ -34,7 +34,7 @@ layout(constant_id = 3) const bool CHROMATIC = true;
 // weighted per voxel by the squared cosine between the light's travel and the
 // axis (a light inside the volume: six groups whose weights sum to one).
 // A directional light's step is the same at every voxel of a slice, so the
-// host computes it once (src/lightvolume/directional_step.rs) and the shader
+// host computes it once (src/techniques/lightvolume/directional_step.rs) and the shader
 // does no per-voxel direction, path length, box exit or lookup position
 // arithmetic for it (llvmpipe runs that arithmetic on every voxel).
 struct GroupEntry {

@@ -8,14 +8,16 @@ use crate::common;
 
 use common::{assert_validation_clean, validated_context};
 use glam::{UVec3, Vec3};
-use sweeplab::ao::gpu::{assign_packed, batch_bytes, supported_plan, GpuSweep, SliceSync, SweepInputs, BATCH_BYTES};
-use sweeplab::ao::gradient::central_gradient;
-use sweeplab::ao::histogram::LocalHistograms;
-use sweeplab::ao::packing::PackingScheme;
-use sweeplab::ao::quantize::{train_lbg, Codebook, LbgParams};
-use sweeplab::ao::search::CodebookSearch;
-use sweeplab::ao::Metric;
 use sweeplab::scene::Volume;
+use sweeplab::techniques::ao::gpu::{
+    assign_packed, batch_bytes, supported_plan, GpuSweep, SliceSync, SweepInputs, BATCH_BYTES,
+};
+use sweeplab::techniques::ao::gradient::central_gradient;
+use sweeplab::techniques::ao::histogram::LocalHistograms;
+use sweeplab::techniques::ao::packing::PackingScheme;
+use sweeplab::techniques::ao::quantize::{train_lbg, Codebook, LbgParams};
+use sweeplab::techniques::ao::search::CodebookSearch;
+use sweeplab::techniques::ao::Metric;
 use sweeplab::vk::Context;
 
 /// `dims` U8 volume: seeded noise, with a constant block (zero gradient
@@ -228,7 +230,7 @@ fn a_small_storage_buffer_range_binds_the_batch_in_windows_that_fit() {
 /// result equals the CPU backend's.
 #[test]
 fn the_gpu_backend_past_one_storage_buffer_range_is_validation_clean_and_equals_the_cpu() {
-    use sweeplab::ao::{preprocess_on, AoSettings, Backend, TrainingSet};
+    use sweeplab::techniques::ao::{preprocess_on, AoSettings, Backend, TrainingSet};
     let ctx = validated_context();
     let volume = test_volume(UVec3::new(42, 42, 40), Vec3::ONE, 13);
     let unbatched = volume.voxel_count() as u64 * 2 * 257 * 4;
@@ -319,8 +321,8 @@ fn the_gpu_assignment_equals_the_cpu_search_for_every_metric_and_hint() {
 /// cluster) to the histograms' f32 tolerance.
 #[test]
 fn gpu_preprocessing_equals_the_cpu_reference() {
-    use sweeplab::ao::quantize::{distance, unpack_cluster_ids};
-    use sweeplab::ao::{preprocess_on, AoSettings, Backend, TrainingSet};
+    use sweeplab::techniques::ao::quantize::{distance, unpack_cluster_ids};
+    use sweeplab::techniques::ao::{preprocess_on, AoSettings, Backend, TrainingSet};
     let ctx = validated_context();
     let volume = sweeplab::scene::synthetic::cornell_box(14);
     for metric in [Metric::L2, Metric::Lmax] {
@@ -388,7 +390,7 @@ fn gpu_preprocessing_equals_the_cpu_reference() {
 /// bits); `backend = "gpu"` without a device is an error.
 #[test]
 fn the_backend_is_part_of_the_cache_key_and_gpu_needs_a_device() {
-    use sweeplab::ao::{preprocess_cached_on, AoSettings, Backend, CacheOutcome, TrainingSet};
+    use sweeplab::techniques::ao::{preprocess_cached_on, AoSettings, Backend, CacheOutcome, TrainingSet};
     let ctx = validated_context();
     let volume = test_volume(UVec3::new(8, 7, 6), Vec3::ONE, 9);
     let dir = std::env::temp_dir().join(format!("sweeplab-ao-gpu-cache-{}", std::process::id()));
@@ -428,8 +430,8 @@ fn the_backend_is_part_of_the_cache_key_and_gpu_needs_a_device() {
 #[ignore = "a measurement of minutes, not a check"]
 fn gpu_preprocessing_timing() {
     use std::time::Instant;
-    use sweeplab::ao::gpu::assign_volume;
-    use sweeplab::ao::{preprocess_on, AoSettings};
+    use sweeplab::techniques::ao::gpu::assign_volume;
+    use sweeplab::techniques::ao::{preprocess_on, AoSettings};
     let var = |name: &str| std::env::var(name).ok();
     let number = |name: &str, default: u32| var(name).and_then(|v| v.parse().ok()).unwrap_or(default);
     let volume = match var("AO_VOLUME").as_deref() {
@@ -456,7 +458,8 @@ fn gpu_preprocessing_timing() {
     })
     .unwrap();
     let t = &r.stats.timings;
-    let stencil = sweeplab::ao::histogram::SphereStencil::new(settings.radius, volume.spacing).voxel_count();
+    let stencil =
+        sweeplab::techniques::ao::histogram::SphereStencil::new(settings.radius, volume.spacing).voxel_count();
     eprintln!(
         "{} {} r = {} (N_r {stencil}) n_c = {} packed {}: total {:.1} s = packing {:.2} + TS histograms (CPU) {:.2} \
          + training {:.2} ({} Lloyd iterations) + GPU sweep and assignment {:.2}",

@@ -8,13 +8,15 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use glam::{UVec3, Vec3};
-use sweeplab::ao::cache::{AoCache, CacheKey, CacheMiss};
-use sweeplab::ao::histogram::{LocalHistograms, SphereStencil};
-use sweeplab::ao::packing::PackingScheme;
-use sweeplab::ao::quantize::{distance, unpack_cluster_ids};
-use sweeplab::ao::{preprocess, preprocess_cached, AoPreprocessed, AoSettings, CacheOutcome, Metric, TrainingSet};
 use sweeplab::scene::synthetic::cornell_box;
 use sweeplab::scene::{Volume, VoxelData};
+use sweeplab::techniques::ao::cache::{AoCache, CacheKey, CacheMiss};
+use sweeplab::techniques::ao::histogram::{LocalHistograms, SphereStencil};
+use sweeplab::techniques::ao::packing::PackingScheme;
+use sweeplab::techniques::ao::quantize::{distance, unpack_cluster_ids};
+use sweeplab::techniques::ao::{
+    preprocess, preprocess_cached, AoPreprocessed, AoSettings, CacheOutcome, Metric, TrainingSet,
+};
 use sweeplab::techniques::load_scene;
 
 /// 9^3 U8 volume: material A (100) for z <= 4, material B (200) for z >= 5.

@@ -6,15 +6,15 @@
 use crate::common;
 
 use common::*;
-use sweeplab::ao::render::AoRenderer;
-use sweeplab::ao::AoSettings;
 use sweeplab::metrics::compare;
-use sweeplab::reference::ao::{reference_cpu, AoReferenceParams};
-use sweeplab::reference::ao_gpu::reference_gpu;
-use sweeplab::reference::ao_unclustered::unclustered_lookup;
-use sweeplab::reference::gpu::ChunkSync;
+use sweeplab::render::view_chunks::ChunkSync;
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::{Scene, TransferLut};
+use sweeplab::techniques::ao::ground_truth::gpu::reference_gpu;
+use sweeplab::techniques::ao::ground_truth::unclustered::unclustered_lookup;
+use sweeplab::techniques::ao::ground_truth::{reference_cpu, AoReferenceParams};
+use sweeplab::techniques::ao::render::AoRenderer;
+use sweeplab::techniques::ao::AoSettings;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 

@@ -6,18 +6,18 @@
 use crate::common;
 
 use std::sync::Mutex;
-use sweeplab::ao::AoSettings;
+use sweeplab::techniques::ao::AoSettings;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::ao::environment::{cpu_environment, hemisphere_mass, GlowMapping};
-use sweeplab::ao::render::AoRenderer;
-use sweeplab::ao::technique::{preprocess_runs, preprocessed};
-use sweeplab::ao::AoMode;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::render::GpuScene;
 use sweeplab::scene::synthetic::{CORNELL_LEFT_WALL, CORNELL_SHORT_BOX};
 use sweeplab::scene::{Scene, TransferLut};
+use sweeplab::techniques::ao::environment::{cpu_environment, hemisphere_mass, GlowMapping};
+use sweeplab::techniques::ao::render::AoRenderer;
+use sweeplab::techniques::ao::technique::{preprocess_runs, preprocessed};
+use sweeplab::techniques::ao::AoMode;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 

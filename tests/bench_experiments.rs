@@ -7,14 +7,14 @@ use crate::common;
 
 use common::cli::bench_rows;
 use common::{assert_validation_clean, validated_context};
-use sweeplab::bench::experiments::lights_bench::{self, LightsPlan};
-use sweeplab::bench::experiments::stability_bench::{self, StabilityPlan};
-use sweeplab::bench::experiments::table1_bench::{self, Table1Plan};
+use sweeplab::bench::experiments::lights::{self as lights_bench, LightsPlan};
+use sweeplab::bench::experiments::stability::bench::{self as stability_bench, StabilityPlan};
+use sweeplab::bench::experiments::table1::paper::{CT_ENGINE, LINE_WIDTHS};
+use sweeplab::bench::experiments::table1::{self as table1_bench, Table1Plan};
 use sweeplab::bench::out_folder::OutTarget;
 use sweeplab::bench::{Harness, Interleaved, OutFolder, RunInfo};
-use sweeplab::ipsvi::paper_table1::{CT_ENGINE, LINE_WIDTHS};
-use sweeplab::ipsvi::LineKernel;
 use sweeplab::scene::loaders::data_dir;
+use sweeplab::techniques::ipsvi::LineKernel;
 
 fn out(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("sweeplab-bench-experiments-{name}-{}", std::process::id()))

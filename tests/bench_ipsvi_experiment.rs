@@ -6,12 +6,12 @@ use crate::common;
 use common::cli::{bench_rows, temp_dir};
 use common::{directional, sphere_volume};
 use glam::Vec3;
-use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
-use sweeplab::bench::experiments::ipsvi_breakdown::{self, BreakdownPlan};
+use sweeplab::bench::experiments::ipsvi::breakdown::{self as ipsvi_breakdown, BreakdownPlan};
+use sweeplab::bench::experiments::ipsvi::{self as ipsvi_bench, IpsviPlan, DEFAULT_GROUP_BYTES};
 use sweeplab::bench::out_folder::OutTarget;
 use sweeplab::bench::{Interleaved, OutFolder, RunInfo};
-use sweeplab::ipsvi::LineKernel;
 use sweeplab::render::VolumeTexels;
+use sweeplab::techniques::ipsvi::LineKernel;
 
 fn scene() -> sweeplab::scene::Scene {
     common::scene_with(sphere_volume(12, 0.4), vec![directional(Vec3::new(0.3, -1.0, 0.2), 1.0)], 8, 8)

@@ -404,8 +404,8 @@ fn a_warm_up_of_long_frames_runs_each_set_of_shaders_once() {
     use sweeplab::bench::experiments::sync::{self, Eta, SyncObserver, SyncPlan, SyncReport, Workload};
     use sweeplab::bench::experiments::ExperimentError;
     use sweeplab::bench::{Protocol, RunInfo};
-    use sweeplab::ipsvi::{IpsviSettings, SyncStrategy};
     use sweeplab::render::GpuScene;
+    use sweeplab::techniques::ipsvi::{IpsviSettings, SyncStrategy};
     struct Quiet;
     impl SyncObserver for Quiet {
         fn round(&mut self, _: &SyncReport, _: Eta) -> Result<(), ExperimentError> {

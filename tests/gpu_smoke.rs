@@ -2,13 +2,13 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::ao::AoSettings;
-use sweeplab::half_angle::HalfAngleSettings;
-use sweeplab::ipsvi::EarlyTermination;
-use sweeplab::ipsvi::IpsviSettings;
-use sweeplab::lightvolume::LightVolumeSettings;
 use sweeplab::render::technique::total_bytes;
 use sweeplab::render::{GpuScene, ResourceNeed};
+use sweeplab::techniques::ao::AoSettings;
+use sweeplab::techniques::half_angle::HalfAngleSettings;
+use sweeplab::techniques::ipsvi::EarlyTermination;
+use sweeplab::techniques::ipsvi::IpsviSettings;
+use sweeplab::techniques::lightvolume::LightVolumeSettings;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
@@ -39,7 +39,8 @@ fn every_baseline_renders_validation_clean() {
 /// synchronization validation must report the hazard.
 #[test]
 fn reference_without_chunk_barrier_is_reported_by_sync_validation() {
-    use sweeplab::reference::gpu::{plan_for, render_with, ChunkSync};
+    use sweeplab::reference::gpu::{plan_for, render_with};
+    use sweeplab::render::view_chunks::ChunkSync;
     let ctx = validated_context();
     let mut scene = scene_with(sphere_volume(24, 9.0), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)], 16, 16);
     // A fine shadow step forces several chunks.
@@ -128,7 +129,7 @@ fn every_technique_lists_the_memory_its_frame_allocates() {
 /// frame held (exactly on lavapipe), validation-clean.
 #[test]
 fn ao_lists_the_memory_its_frame_allocates_in_every_mode() {
-    use sweeplab::ao::AoMode;
+    use sweeplab::techniques::ao::AoMode;
     let ctx = validated_context();
     let (width, height) = (24, 20);
     let lit = scene_with(sphere_volume(24, 9.0), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 1.0)], width, height);

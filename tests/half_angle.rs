@@ -4,12 +4,12 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::half_angle::{slicing, HalfAngleSettings};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, OpticalModel, Scene};
+use sweeplab::techniques::half_angle::{slicing, HalfAngleSettings};
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 

@@ -4,13 +4,13 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::ipsvi::renderer::plans;
-use sweeplab::ipsvi::{render_with, CacheUpdate, IpsviSettings, ReadFronts, SyncStrategy, WriteRule};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::{compare, ErrorStats};
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{Light, Projection, Scene};
+use sweeplab::techniques::ipsvi::renderer::plans;
+use sweeplab::techniques::ipsvi::{render_with, CacheUpdate, IpsviSettings, ReadFronts, SyncStrategy, WriteRule};
 use sweeplab::techniques::{render, RenderOutput, Technique};
 use sweeplab::vk::{Context, Profiler};
 
@@ -373,7 +373,7 @@ fn extreme_cases_stay_finite_and_lit() {
 
 #[test]
 fn exit_point_termination_gives_the_same_image_and_allocates_only_when_on() {
-    use sweeplab::ipsvi::EarlyTermination;
+    use sweeplab::techniques::ipsvi::EarlyTermination;
     let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
     let ctx = validated_context();
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();

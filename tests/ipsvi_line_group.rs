@@ -1,15 +1,15 @@
 //! The workgroup size of the line dispatches (a specialization constant chosen
-//! per renderer, src/ipsvi/line_group.rs) changes how pixels are grouped, never
+//! per renderer, src/techniques/ipsvi/line_group.rs) changes how pixels are grouped, never
 //! the image: every invocation shades its own pixel or texel.
 use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::ipsvi::renderer::IpsviRenderer;
-use sweeplab::ipsvi::{CacheUpdate, CacheWrite, IpsviSettings, SyncStrategy};
 use sweeplab::render::GpuScene;
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, Falloff, Light, LightKind};
+use sweeplab::techniques::ipsvi::renderer::IpsviRenderer;
+use sweeplab::techniques::ipsvi::{CacheUpdate, CacheWrite, IpsviSettings, SyncStrategy};
 use sweeplab::vk::Profiler;
 
 #[test]

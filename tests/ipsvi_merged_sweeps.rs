@@ -7,11 +7,11 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
-use sweeplab::ipsvi::{CacheUpdate, CacheWrite, IpsviSettings, SyncStrategy};
 use sweeplab::render::{FrameResult, GpuScene};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, Falloff, Light, LightKind, Scene};
+use sweeplab::techniques::ipsvi::renderer::{plans, IpsviRenderer};
+use sweeplab::techniques::ipsvi::{CacheUpdate, CacheWrite, IpsviSettings, SyncStrategy};
 use sweeplab::vk::{Context, Profiler};
 
 const W: u32 = 40;

@@ -8,15 +8,15 @@ use crate::common;
 use common::cli::{sweeplab, temp_dir};
 use common::*;
 use glam::Vec3;
-use sweeplab::ipsvi::renderer::IpsviRenderer;
-use sweeplab::ipsvi::{
-    render_study, render_with, BreakdownStep, CacheUpdate, EarlyTermination, IpsviSettings, IpsviStudy, LineKernel,
-    SyncStrategy, WritePass, WriteRule,
-};
 use sweeplab::metrics::compare;
 use sweeplab::render::{FrameResult, GpuScene, LineShape, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{Camera, Light, Projection, Scene};
+use sweeplab::techniques::ipsvi::renderer::IpsviRenderer;
+use sweeplab::techniques::ipsvi::{
+    render_study, render_with, BreakdownStep, CacheUpdate, EarlyTermination, IpsviSettings, IpsviStudy, LineKernel,
+    SyncStrategy, WritePass, WriteRule,
+};
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Context, Profiler};
 

@@ -6,10 +6,6 @@ use crate::common;
 
 use common::*;
 use glam::{UVec3, Vec3};
-use sweeplab::ipsvi::{
-    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, ReadFronts, SyncStrategy,
-    WritePass, WriteRule, WriteValue,
-};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::CpuRenderKind;
@@ -19,6 +15,10 @@ use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{
     Camera, ControlPoint, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction, Volume, VolumeFilter,
     VoxelData,
+};
+use sweeplab::techniques::ipsvi::{
+    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, ReadFronts, SyncStrategy,
+    WritePass, WriteRule, WriteValue,
 };
 
 use sweeplab::vk::{Context, Profiler};
@@ -552,7 +552,7 @@ fn claimed_writes_are_deterministic_and_racy_writes_are_reported() {
 /// texel advance) on is the frame. Both write rules.
 #[test]
 fn breakdown_steps_end_in_the_ipsvi_frame() {
-    use sweeplab::ipsvi::BreakdownStep;
+    use sweeplab::techniques::ipsvi::BreakdownStep;
     let ctx = validated_context();
     let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
@@ -731,9 +731,9 @@ fn the_cache_fitted_to_the_visible_cells_keeps_its_tolerance_and_is_exact_where_
 /// texel size than at the same texel count.
 #[test]
 fn the_visible_box_errs_for_view_samples_only_by_refining_the_cache_past_their_spacing() {
-    use sweeplab::ipsvi::lit_box::lit_box;
     use sweeplab::render::light_space::LightSpacePlane;
     use sweeplab::scene::transfer::TransferLut;
+    use sweeplab::techniques::ipsvi::lit_box::lit_box;
 
     let ctx = validated_context();
     let light = point(Vec3::new(1.6, 0.4, 0.3));
@@ -809,7 +809,7 @@ fn the_visible_box_errs_for_view_samples_only_by_refining_the_cache_past_their_s
 /// pixels, narrower with the visible box, none without a light.
 #[test]
 fn the_printed_texel_width_follows_the_cache_the_image_and_the_box() {
-    use sweeplab::ipsvi::cache_plane::texel_pixels;
+    use sweeplab::techniques::ipsvi::cache_plane::texel_pixels;
     for light in [directional(Vec3::new(0.3, -1.0, 0.2), 2.0), point(Vec3::new(1.6, 0.4, 0.3))] {
         let mut scene = visible_sphere(light, 64);
         // square()'s texel is side / (size - 2).

@@ -7,7 +7,6 @@ use crate::common;
 use common::*;
 use glam::{UVec3, Vec3};
 use std::path::Path;
-use sweeplab::lightvolume::{render_frame, LightVolumeFrame, LightVolumeSettings};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::CpuRenderKind;
@@ -17,6 +16,7 @@ use sweeplab::scene::{
     presets, Camera, ControlPoint, Falloff, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction,
     TransferLut, Volume, VolumeFilter, VoxelData,
 };
+use sweeplab::techniques::lightvolume::{render_frame, LightVolumeFrame, LightVolumeSettings};
 use sweeplab::techniques::parse_scene_str;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Context, Profiler};

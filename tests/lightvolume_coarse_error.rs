@@ -8,13 +8,13 @@
 use crate::common;
 
 use common::*;
-use sweeplab::bench::experiments::lights::{lightvolume_scene, table1_lights};
-use sweeplab::lightvolume::CostEstimate;
+use sweeplab::bench::experiments::lights::measure::{lightvolume_scene, table1_lights};
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::render::GpuScene;
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::Scene;
+use sweeplab::techniques::lightvolume::CostEstimate;
 use sweeplab::techniques::scene_for_volume_file;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::{Context, Profiler};

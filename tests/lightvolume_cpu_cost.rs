@@ -7,11 +7,11 @@
 //! cargo test --release --test suite lightvolume_cpu_cost:: -- --ignored --nocapture
 use crate::common;
 
-use sweeplab::bench::experiments::lights::{lightvolume_scene, scaling_lights};
-use sweeplab::lightvolume::{CostEstimate, LightVolumeRenderer};
+use sweeplab::bench::experiments::lights::measure::{lightvolume_scene, scaling_lights};
 use sweeplab::render::GpuScene;
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::Light;
+use sweeplab::techniques::lightvolume::{CostEstimate, LightVolumeRenderer};
 use sweeplab::techniques::scene_for_volume_file;
 use sweeplab::vk::{Context, Profiler};
 

@@ -7,13 +7,13 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::lightvolume::plan::PeakGeometry;
-use sweeplab::lightvolume::{
-    CostEstimate, IlluminationReadback, LightVolumeFrame, LightVolumeRenderer, LightVolumeSettings, UpdateKind,
-};
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, Falloff, Light, LightKind, Scene};
+use sweeplab::techniques::lightvolume::plan::PeakGeometry;
+use sweeplab::techniques::lightvolume::{
+    CostEstimate, IlluminationReadback, LightVolumeFrame, LightVolumeRenderer, LightVolumeSettings, UpdateKind,
+};
 use sweeplab::vk::{Context, Profiler};
 
 /// The slab under the sphere at light volume scale 2, then `settings`.
@@ -314,7 +314,7 @@ fn drift(settings: impl FnOnce(&mut LightVolumeSettings), updates: usize) -> Dri
         }
         let selective_volume = r.read_illumination().unwrap();
         let fresh = entire(ctx, gpu, &lights);
-        let weakest = sweeplab::lightvolume::contributions(&lights, geometry.box_half)
+        let weakest = sweeplab::techniques::lightvolume::contributions(&lights, geometry.box_half)
             .iter()
             .map(|c| geometry.peak(&c.state, c.factor))
             .fold(f64::INFINITY, f64::min);
@@ -556,7 +556,7 @@ fn moving_a_point_light_inside_the_volume_and_back_is_a_selective_update() {
 
 #[test]
 fn an_update_with_more_contributions_than_the_entry_block_holds_is_an_error() {
-    use sweeplab::lightvolume::propagation::MAX_ENTRIES;
+    use sweeplab::techniques::lightvolume::propagation::MAX_ENTRIES;
     on_renderer(scene(defaults), |_, _, r, run| {
         // Point lights inside the box take all six groups: one more light than fits.
         let inside = |i: usize| {

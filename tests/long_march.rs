@@ -6,7 +6,6 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::half_angle::HalfAngleSettings;
 use sweeplab::linear_image::LinearImage;
 use sweeplab::metrics::compare;
 use sweeplab::reference::cpu::{render_cpu, CpuRenderKind};
@@ -14,6 +13,7 @@ use sweeplab::render::view_chunks::{diagonal_voxels, smallest_view_step, ViewChu
 use sweeplab::render::{GpuScene, RenderError, VolumeTexels};
 use sweeplab::scene::synthetic::noise;
 use sweeplab::scene::Scene;
+use sweeplab::techniques::half_angle::HalfAngleSettings;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
@@ -111,8 +111,8 @@ fn ipsvi_and_half_angle_refuse_a_step_they_cannot_march_before_any_gpu_work() {
 /// synchronization validation reports the hazard (with it, clean).
 #[test]
 fn view_chunks_without_their_barrier_are_reported_by_sync_validation() {
-    use sweeplab::reference::gpu::ChunkSync;
     use sweeplab::render::raycast::{render_with, Shading};
+    use sweeplab::render::view_chunks::ChunkSync;
     let mut scene = noise_scene(8);
     scene.render.step_voxels = PAST_THE_CAP;
     let ctx = validated_context();

@@ -4,13 +4,6 @@
 use std::path::{Path, PathBuf};
 
 use glam::Vec3;
-use sweeplab::ao::AoSettings;
-use sweeplab::half_angle::HalfAngleSettings;
-use sweeplab::ipsvi::{
-    CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, ReadFronts, SyncStrategy, WritePass, WriteRule,
-    WriteValue,
-};
-use sweeplab::lightvolume::{CostEstimate, LightVolumeSettings};
 use sweeplab::scene::framing::{visible_box, FRAME_FILL};
 use sweeplab::scene::loaders::data_dir;
 use sweeplab::scene::scene_file::SceneError;
@@ -18,6 +11,13 @@ use sweeplab::scene::scene_spec::{CameraPlacement, ProjectionSpec, SceneSpec, Tr
 use sweeplab::scene::settings_table::known_keys;
 use sweeplab::scene::synthetic::{three_spheres, SyntheticKind};
 use sweeplab::scene::{Falloff, LightKind, OpticalModel, TechniqueSettings};
+use sweeplab::techniques::ao::AoSettings;
+use sweeplab::techniques::half_angle::HalfAngleSettings;
+use sweeplab::techniques::ipsvi::{
+    CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, ReadFronts, SyncStrategy, WritePass, WriteRule,
+    WriteValue,
+};
+use sweeplab::techniques::lightvolume::{CostEstimate, LightVolumeSettings};
 use sweeplab::techniques::volume_file_scene_spec;
 use sweeplab::techniques::{parse_scene_file, parse_scene_str, scene_from_toml_str};
 
@@ -473,7 +473,10 @@ fn technique_defaults_are_the_documented_ones() {
     assert_eq!((ipsvi.early_termination, ipsvi.albedo, ipsvi.cone_angle_deg), (EarlyTermination::Plain, 0.0, 15.0));
     assert_eq!((ipsvi.zone_blend_px, ipsvi.light_step_voxels, ipsvi.ert_scale), (2.0, 0.5, 4));
     assert_eq!(ipsvi.sync, SyncStrategy::BarrierGlobal);
-    assert_eq!((ipsvi.line_kernel, ipsvi.segments, ipsvi.segment_rounds), (sweeplab::ipsvi::LineKernel::Auto, 0, 4));
+    assert_eq!(
+        (ipsvi.line_kernel, ipsvi.segments, ipsvi.segment_rounds),
+        (sweeplab::techniques::ipsvi::LineKernel::Auto, 0, 4)
+    );
     assert_eq!((ipsvi.cache_update, ipsvi.cache_write), (CacheUpdate::ViewSamples, CacheWrite::Farthest));
     let lv = LightVolumeSettings::default();
     assert_eq!((lv.scale, lv.coherent, lv.compensated, lv.cost_estimate), (2, true, true, CostEstimate::Passes));
@@ -534,7 +537,7 @@ fn technique_tables_are_read_into_typed_settings() {
         fit_to_visible: true,
         sync: SyncStrategy::Events,
         merge_sweeps: true,
-        line_kernel: sweeplab::ipsvi::LineKernel::Segmented,
+        line_kernel: sweeplab::techniques::ipsvi::LineKernel::Segmented,
         segments: 4,
         segment_rounds: 2,
     };

@@ -1,5 +1,5 @@
 //! The stability suite, CI part: every technique (IPSVI in both cache
-//! updates) on the cases of `sweeplab::bench::experiments::stability_cases`
+//! updates) on the cases of `sweeplab::bench::experiments::stability::cases`
 //! marked `ci`, at 16x16 on 16^3 volumes. Each cell is either within the
 //! technique's stated bound against the reference of its model, or an explicit
 //! refusal (an error naming the setting); every frame that comes back is
@@ -10,10 +10,10 @@
 use crate::common;
 
 use common::*;
+use sweeplab::bench::experiments::stability::cases::stability_cases;
 use sweeplab::bench::experiments::stability::{
     convergence, convergence_scene, load_case, run_cell, Variant, Verdict, CONVERGENCE_STEPS,
 };
-use sweeplab::bench::experiments::stability_cases::stability_cases;
 use sweeplab::bench::Harness;
 
 const SIZE: u32 = 16;

@@ -5,10 +5,10 @@ use crate::common;
 
 use common::*;
 use glam::Vec3;
-use sweeplab::ipsvi::{render_with, IpsviSettings, SyncStrategy};
 use sweeplab::render::GpuScene;
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, Falloff, Light, LightKind};
+use sweeplab::techniques::ipsvi::{render_with, IpsviSettings, SyncStrategy};
 use sweeplab::vk::Profiler;
 
 #[test]
@@ -67,7 +67,7 @@ fn strategy_names_round_trip_and_racy_is_labelled() {
 /// renderer stay equal to each other and to barrier-global, validation-clean.
 #[test]
 fn secondary_sweeps_are_replayed_across_frames() {
-    use sweeplab::ipsvi::renderer::IpsviRenderer;
+    use sweeplab::techniques::ipsvi::renderer::IpsviRenderer;
     let mut scene = scene_with(slab_under_sphere(24), vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)], 24, 24);
     scene.transfer = presets::preset("slab-sphere").unwrap();
     let ctx = validated_context();
@@ -92,13 +92,13 @@ fn secondary_sweeps_are_replayed_across_frames() {
 /// and none for submits (a semaphore orders them) and racy.
 #[test]
 fn each_strategy_records_its_own_synchronization_per_block() {
-    use sweeplab::ipsvi::renderer::{plans, IpsviRenderer};
+    use sweeplab::techniques::ipsvi::renderer::{plans, IpsviRenderer};
     let mut scene = scene_with(slab_under_sphere(24), vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)], 24, 24);
     scene.transfer = presets::preset("slab-sphere").unwrap();
     let ctx = validated_context();
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 256).unwrap();
-    use sweeplab::ipsvi::CacheUpdate;
+    use sweeplab::techniques::ipsvi::CacheUpdate;
     for cache_update in [CacheUpdate::LightRays, CacheUpdate::ViewSamples] {
         let s = IpsviSettings { cache_size: 32, line_width: 2, cache_update, ..IpsviSettings::default() };
         let sweeps = plans(&gpu, &s, 24, 24).iter().map(|p| p.sweeps.len() as u32).sum::<u32>();

@@ -135,7 +135,19 @@ pub fn readable(v: f64) -> String {
     }
 }
 
-/// The median (the mean of the two middle values for an even count).
+/// The median of `values` in any order: the one median every bench reports
+/// (see [`median_of`]); NaN for none.
+pub fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    median_of(&sorted)
+}
+
+/// The median of sorted values: the middle value, or for an even count the
+/// mean of the two middle values. The sample median, symmetric in the two
+/// middle order statistics, so it lies at the centre of the sign-test
+/// interval's ranks and agrees with [`median_estimate`]'s value (an upper
+/// median would sit half a gap above it on even counts). NaN for none.
 pub fn median_of(sorted: &[f64]) -> f64 {
     let n = sorted.len();
     if n == 0 {

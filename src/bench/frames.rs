@@ -2,10 +2,10 @@
 //! [`Harness`](super::Harness) repeats.
 
 use super::harness::Sample;
-use crate::ipsvi::renderer::IpsviRenderer;
-use crate::ipsvi::SyncStrategy;
 use crate::render::FrameResult;
 use crate::render::{GpuScene, RenderError};
+use crate::techniques::ipsvi::renderer::IpsviRenderer;
+use crate::techniques::ipsvi::SyncStrategy;
 use crate::techniques::{render, RenderOutput, Technique};
 use crate::vk::{Context, ProfileReport, Profiler};
 

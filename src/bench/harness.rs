@@ -6,8 +6,8 @@
 //! rounds of [`Interleaved`](super::Interleaved). [`Sample`] is what one run
 //! gives either way.
 
+use super::estimate::median;
 use super::estimate::{median_estimate, Estimate};
-use super::stats::median;
 
 /// Why a harness cannot be made.
 #[derive(Debug, PartialEq, Eq, thiserror::Error)]
@@ -48,7 +48,8 @@ pub struct Measurement<T> {
 }
 
 impl<T> Measurement<T> {
-    /// Median of the samples (upper median for an even count); NaN for none.
+    /// Median of the samples ([`median`]: for an even count the mean of the
+    /// two middle values, the value of [`Self::estimate`]); NaN for none.
     pub fn median(&self) -> f64 {
         median(&self.samples)
     }
@@ -131,7 +132,7 @@ mod tests {
         let odd = Harness::new(0, 3).unwrap().measure(from(&[5.0, 1.0, 3.0])).unwrap();
         assert_eq!(odd.median(), 3.0);
         let even = Harness::new(0, 4).unwrap().measure(from(&[4.0, 1.0, 3.0, 2.0])).unwrap();
-        assert_eq!(even.median(), 3.0, "upper median, as every bench reported it");
+        assert_eq!(even.median(), 2.5, "the mean of the two middle values");
     }
 
     #[test]
@@ -149,6 +150,9 @@ mod tests {
         let six = Harness::new(0, 6).unwrap().measure(from(&[7.0, 2.5, 9.0, 4.0, 3.0, 5.0])).unwrap();
         let e = six.estimate().unwrap();
         assert!(e.lo <= six.median() && six.median() <= e.hi, "{e:?}");
+        // The published estimate is the same median, on even counts too.
+        assert_eq!(e.value, six.median());
+        assert_eq!(six.median(), 4.5);
     }
 
     #[test]

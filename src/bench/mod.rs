@@ -42,4 +42,4 @@ pub use progress::Progress;
 pub use protocol::{Protocol, ProtocolError};
 pub use rows::{BenchRow, BenchTable, BenchValue};
 pub use run_info::RunInfo;
-pub use stats::{fit_line, median, LineFit};
+pub use stats::{fit_line, LineFit};

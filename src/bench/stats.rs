@@ -1,12 +1,6 @@
-//! Small statistics the sweeps report: the median of repeated timings and the
-//! least-squares line through (x, y) points (e.g. milliseconds per added light).
-
-/// The median (upper median for an even count); NaN for no values.
-pub fn median(values: &[f64]) -> f64 {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN)
-}
+//! The least-squares line through (x, y) points (e.g. milliseconds per added
+//! light). Medians and intervals live in [`super::estimate`], the one place
+//! every bench takes them from.
 
 /// Least-squares line y = intercept + slope * x.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,13 +31,6 @@ pub fn fit_line(points: &[(f64, f64)]) -> Option<LineFit> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn median_of_odd_and_even_counts() {
-        assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
-        assert_eq!(median(&[4.0, 1.0, 3.0, 2.0]), 3.0);
-        assert!(median(&[]).is_nan());
-    }
 
     #[test]
     fn a_line_is_fitted_exactly_and_needs_two_distinct_x() {

@@ -1,12 +1,30 @@
 //! Command-line arguments (clap derive).
 
+use ash::vk::PresentModeKHR;
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
+use sweeplab::scene::suggest::nearest;
+use sweeplab::techniques::ipsvi::LineKernel;
 use sweeplab::techniques::Technique;
+use sweeplab::vk::swapchain::PRESENT_MODES;
 
 /// `--technique` short help: the registry's names.
 fn technique_names() -> String {
     Technique::NAMED.map(|t| t.name()).join(" | ")
+}
+
+/// `--kernels`: an IPSVI line kernel by name.
+fn line_kernel(name: &str) -> Result<LineKernel, String> {
+    name.trim().parse()
+}
+
+/// `--present-mode` by name, with the nearest name for a typo.
+fn present_mode(name: &str) -> Result<PresentModeKHR, String> {
+    PRESENT_MODES.iter().find(|(n, _)| *n == name).map(|(_, m)| *m).ok_or_else(|| {
+        let names = PRESENT_MODES.map(|(n, _)| n);
+        let near = nearest(name, names).map(|n| format!(" (did you mean {n}?)")).unwrap_or_default();
+        format!("{name:?}{near}; known: {}", names.join(", "))
+    })
 }
 
 /// The technique of `render`, `compare` and `view` without `--technique`.
@@ -216,8 +234,8 @@ pub struct BenchTable1Args {
     pub data_sets: Vec<String>,
     /// IPSVI line kernels measured side by side (auto, serial, segmented);
     /// each row names the kernel as it ran.
-    #[arg(long, value_delimiter = ',', default_value = "auto")]
-    pub kernels: Vec<String>,
+    #[arg(long, value_delimiter = ',', default_value = "auto", value_parser = line_kernel)]
+    pub kernels: Vec<LineKernel>,
 }
 
 #[derive(Args, Debug)]
@@ -332,8 +350,8 @@ pub struct BenchIpsviArgs {
     /// Comma-separated. With several, the grid runs with the device's and
     /// every mode at every cache size with the others; the breakdown runs
     /// every mode with each.
-    #[arg(long, value_delimiter = ',', default_value = "serial,segmented")]
-    pub kernels: Vec<String>,
+    #[arg(long, value_delimiter = ',', default_value = "serial,segmented", value_parser = line_kernel)]
+    pub kernels: Vec<LineKernel>,
     /// Instead of the grid: the cost of one frame of the scene's settings, step
     /// by step (DVR as one dispatch; the same pixels ray-cast line by line in the
     /// sweep's order without and with the barriers; + cache reads; + piecewise
@@ -492,8 +510,8 @@ pub struct ViewArgs {
     #[arg(long, value_name = "FILE")]
     pub screenshot: Option<PathBuf>,
     /// fifo (default, always available), mailbox, immediate, fifo-relaxed.
-    #[arg(long, default_value = "fifo")]
-    pub present_mode: String,
+    #[arg(long, default_value = "fifo", value_parser = present_mode)]
+    pub present_mode: PresentModeKHR,
     /// Steps by frame: `3 set lights.0.intensity=2`, `5 resize 96x64`, `7 key S`.
     #[arg(long, value_name = "FILE")]
     pub script: Option<PathBuf>,

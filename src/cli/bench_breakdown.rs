@@ -1,12 +1,12 @@
 //! `sweeplab bench ipsvi --breakdown`: the arguments and the scene, then the
-//! experiment (`sweeplab::bench::experiments::ipsvi_breakdown`).
+//! experiment (`sweeplab::bench::experiments::ipsvi::breakdown`).
 
 use super::args::BenchIpsviArgs;
 use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use std::process::ExitCode;
-use sweeplab::bench::experiments::ipsvi_breakdown::{self, BreakdownPlan};
-use sweeplab::ipsvi::IpsviSettings;
+use sweeplab::bench::experiments::ipsvi::breakdown::{self as ipsvi_breakdown, BreakdownPlan};
+use sweeplab::techniques::ipsvi::IpsviSettings;
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let plan = BreakdownPlan {
@@ -14,7 +14,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         line_widths: args.line_widths.clone(),
         interleaved: super::bench_ipsvi::rounds(args)?,
         volume_texels: session::volume_texels(&args.gpu),
-        kernels: super::bench_ipsvi::kernels(args)?,
+        kernels: args.kernels.clone(),
     };
     let scene = scene_args::load(&args.scene)?;
     plan.check(&scene.settings.get::<IpsviSettings>())?;
@@ -23,11 +23,6 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let measured = ipsvi_breakdown::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
     let report = session::watch(&out_folder, measured)?;
     report.print_summary();
-    println!(
-        "wrote {}/ipsvi_breakdown.csv, ipsvi_breakdown.json, ipsvi_breakdown.md (the full tables), ipsvi_breakdown.png \
-         and .svg, ipsvi_line_widths.csv, ipsvi_line_widths.json, ipsvi_line_widths.md",
-        out_folder.path().display()
-    );
-    out_folder.finish()?;
+    session::finish_out(out_folder, None)?;
     Ok(session::finish(&ctx))
 }

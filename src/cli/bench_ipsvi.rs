@@ -1,14 +1,14 @@
 //! `sweeplab bench ipsvi`: the arguments and the scene, then the experiment
-//! (`sweeplab::bench::experiments::ipsvi_bench`, or `ipsvi_breakdown` with
+//! (`sweeplab::bench::experiments::ipsvi`, or `ipsvi::breakdown` with
 //! `--breakdown`).
 
 use super::args::BenchIpsviArgs;
 use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use std::process::ExitCode;
-use sweeplab::bench::experiments::ipsvi_bench::{self, IpsviPlan, DEFAULT_GROUP_BYTES};
+use sweeplab::bench::experiments::ipsvi::{self as ipsvi_bench, IpsviPlan, DEFAULT_GROUP_BYTES};
 use sweeplab::bench::Interleaved;
-use sweeplab::ipsvi::{IpsviSettings, LineKernel};
+use sweeplab::techniques::ipsvi::IpsviSettings;
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     if args.breakdown {
@@ -23,7 +23,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         interleaved: rounds(args)?,
         volume_texels: session::volume_texels(&args.gpu),
         group_bytes: DEFAULT_GROUP_BYTES,
-        kernels: kernels(args)?,
+        kernels: args.kernels.clone(),
     };
     plan.check()?;
     let scene = scene_args::load(&args.scene)?;
@@ -33,11 +33,7 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
     let measured = ipsvi_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
     let report = session::watch(&out_folder, measured)?;
     report.print_summary();
-    println!(
-        "wrote {}/ipsvi.csv, ipsvi.json, ipsvi.md (the full table) and ipsvi_<size>_error_vs_time.png (and .svg)",
-        out_folder.path().display()
-    );
-    out_folder.finish()?;
+    session::finish_out(out_folder, None)?;
     Ok(session::finish(&ctx))
 }
 
@@ -46,9 +42,4 @@ pub fn rounds(args: &BenchIpsviArgs) -> anyhow::Result<Interleaved> {
     let rounds = session::interleaved(args.repeat, &args.rounds)?;
     let Some(minutes) = args.max_minutes else { return Ok(rounds) };
     rounds.within_minutes(minutes).map_err(|e| anyhow::anyhow!("--max-minutes: {e}"))
-}
-
-/// `--kernels` by name.
-pub fn kernels(args: &BenchIpsviArgs) -> anyhow::Result<Vec<LineKernel>> {
-    args.kernels.iter().map(|k| k.parse::<LineKernel>().map_err(|e| anyhow::anyhow!("--kernels: {e}"))).collect()
 }

@@ -1,11 +1,11 @@
 //! `sweeplab bench lights`: the arguments, then the experiment
-//! (`sweeplab::bench::experiments::lights_bench`).
+//! (`sweeplab::bench::experiments::lights`).
 
 use super::args::BenchLightsArgs;
 use super::render_cmd::PROFILER_CAPACITY;
 use super::{scene_args, session};
 use std::process::ExitCode;
-use sweeplab::bench::experiments::lights_bench::{self, LightsPlan};
+use sweeplab::bench::experiments::lights::{self as lights_bench, LightsPlan};
 
 /// The error rows' image without `--size`.
 const DEFAULT_ERROR_IMAGE: u32 = 256;
@@ -33,11 +33,6 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
     let measured = lights_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
     let report = session::watch(&out_folder, measured)?;
     report.print_summary();
-    println!(
-        "wrote {}/lights.csv, lights.json, lights.md (the full tables), lights_scaling.png, lights_table1_<scale>.png, \
-         lights_error_vs_time.png (and .svg)",
-        out_folder.path().display()
-    );
-    out_folder.finish()?;
+    session::finish_out(out_folder, None)?;
     Ok(session::finish(&ctx))
 }

@@ -1,11 +1,11 @@
 //! `sweeplab bench stability`: the arguments, then the experiment
-//! (`sweeplab::bench::experiments::stability_bench`): every case x technique,
+//! (`sweeplab::bench::experiments::stability::bench`): every case x technique,
 //! the convergence of each technique over the step, and a heat map.
 
 use super::args::BenchStabilityArgs;
 use super::session;
 use std::process::ExitCode;
-use sweeplab::bench::experiments::stability_bench::{self, StabilityPlan};
+use sweeplab::bench::experiments::stability::bench::{self as stability_bench, StabilityPlan};
 
 pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     // One untimed frame per cell first: llvmpipe compiles shader variants on first use.
@@ -19,12 +19,7 @@ pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     let report = session::watch(&out_folder, measured)?;
     report.write(out_folder.path())?;
     report.print_summary();
-    println!(
-        "wrote {}/stability.csv, stability.json, stability.md (the full table), stability_convergence.csv, \
-         stability_convergence.json, stability.png and .svg",
-        out_folder.path().display()
-    );
-    out_folder.finish()?;
+    session::finish_out(out_folder, None)?;
     let code = session::finish(&ctx);
     if report.failed > 0 {
         eprintln!(

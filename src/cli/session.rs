@@ -117,3 +117,19 @@ pub fn watch<T, E: Into<anyhow::Error>>(out: &OutFolder, result: Result<T, E>) -
     }
     result
 }
+
+/// Ends a bench's folder (its PARTIAL marker goes, or with `partial` stays and
+/// says why) and lists the files the run wrote there: read from the folder,
+/// so the list is what the run wrote, not what it meant to.
+pub fn finish_out(out: OutFolder, partial: Option<&str>) -> anyhow::Result<()> {
+    let folder = out.path().to_path_buf();
+    let written = match partial {
+        None => out.finish()?,
+        Some(why) => {
+            eprintln!("partial: {why} (see {}/PARTIAL)", folder.display());
+            out.finish_partial(why)?
+        }
+    };
+    println!("wrote into {}: {}", folder.display(), written.join(", "));
+    Ok(())
+}

@@ -8,19 +8,10 @@ use std::process::ExitCode;
 use sweeplab::techniques::Technique;
 use sweeplab::viewer::preview::PreviewMode;
 use sweeplab::viewer::{self, SceneSource, Script, ViewerOptions};
-use sweeplab::vk::swapchain::PRESENT_MODES;
 use sweeplab::vk::validation_verdict::ValidationVerdict;
 
 pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
     let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
-    let present_mode =
-        PRESENT_MODES.iter().find(|(n, _)| *n == args.present_mode).map(|(_, m)| *m).ok_or_else(|| {
-            let names = PRESENT_MODES.map(|(n, _)| n);
-            let near = sweeplab::scene::suggest::nearest(&args.present_mode, names)
-                .map(|n| format!(" (did you mean {n}?)"))
-                .unwrap_or_default();
-            anyhow::anyhow!("--present-mode {:?}{near}; known: {}", args.present_mode, names.join(", "))
-        })?;
     if args.screenshot.is_some() && args.frames.is_none() {
         anyhow::bail!("--screenshot needs --frames N (the screenshot is of the last frame)");
     }
@@ -41,7 +32,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<ExitCode> {
         technique,
         context: super::session::context_options(&args.gpu),
         texels: session::volume_texels(&args.gpu),
-        present_mode,
+        present_mode: args.present_mode,
         frames: args.frames,
         screenshot: args.screenshot.clone(),
         script,

@@ -5,7 +5,7 @@
 //! travel between dispatches through a ping-pong pair of images.
 
 use crate::render::frame_params::{frame_params, FrameParams, MarchSteps};
-pub use crate::render::view_chunks::{ChunkSync, LOOP_BUDGET};
+use crate::render::view_chunks::{ChunkSync, LOOP_BUDGET};
 use crate::render::{
     render_recorded, FrameResult, GpuScene, RecordedFrame, RenderError, RenderTechnique, ResourceNeed,
 };

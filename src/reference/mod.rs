@@ -6,9 +6,6 @@
 //! ray (tests check single rays against closed forms), a [`CpuRenderer`] to
 //! render many pixels of one prepared scene, and [`gpu::render`].
 
-pub mod ao;
-pub mod ao_gpu;
-pub mod ao_unclustered;
 pub mod cpu;
 pub mod filter_bound;
 pub mod gpu;

@@ -1,7 +1,7 @@
 //! What a technique is: a name, the optical model it approximates, the GPU
 //! memory a frame allocates, and the recording of a frame. Each technique's
 //! module has one small type implementing [`RenderTechnique`]; the list of
-//! them, which the command line names, is [`super::registry`].
+//! them, which the command line names, is [`crate::techniques::registry`].
 
 use super::error::RenderError;
 use super::frame_result::FrameResult;
@@ -60,7 +60,7 @@ pub trait RenderTechnique: Sync {
 
     /// A session that keeps state across frames of `gpu` (the viewer), for a
     /// technique that has such state; `None`: each frame is rendered anew by
-    /// `render` ([`super::registry::session`] does that).
+    /// `render` ([`crate::techniques::registry::session`] does that).
     fn session<'s>(&self, _gpu: &'s GpuScene<'s>) -> Result<Option<Box<dyn FrameSession + 's>>, RenderError> {
         Ok(None)
     }

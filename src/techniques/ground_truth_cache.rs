@@ -16,10 +16,10 @@
 //! width and height (u32), the reference's GPU ms and CPU s (f64, NaN for
 //! none), the pixels (f32 RGB, row-major), XXH3-128 of everything before it.
 
-use crate::ao::cache::volume_content_hash;
 use crate::linear_image::LinearImage;
 use crate::render::VolumeTexels;
 use crate::scene::Scene;
+use crate::techniques::ao::cache::volume_content_hash;
 use crate::vk::device_info::DeviceInfo;
 use std::io::ErrorKind;
 use std::path::{Path, PathBuf};

@@ -1,8 +1,15 @@
-//! The catalogue above the techniques: the one place that lists them
-//! ([`Technique`]), owns the scene-file tables they read ([`CATALOGUE`]) and
-//! reads scenes with those tables ([`load_scene`] and its siblings). Below it,
-//! `scene` and `render` know no technique; each technique folder builds on
-//! them; front ends (CLI, viewer, benches) come here.
+//! The techniques, one folder each, and the catalogue over them: the one
+//! place that lists them ([`Technique`]), owns the scene-file tables they read
+//! ([`CATALOGUE`]) and reads scenes with those tables ([`load_scene`] and its
+//! siblings). `scene` and `render` know no technique; each technique folder
+//! builds on them and knows neither another technique nor the catalogue;
+//! front ends (CLI, viewer, benches) come here.
+
+pub mod ao;
+pub mod dvr;
+pub mod half_angle;
+pub mod ipsvi;
+pub mod lightvolume;
 
 pub mod comparison;
 pub mod ground_truth_cache;

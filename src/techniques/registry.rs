@@ -21,13 +21,13 @@ pub struct Technique(&'static dyn RenderTechnique);
 // keep reading `Technique::Ipsvi`.
 #[allow(non_upper_case_globals)]
 impl Technique {
-    pub const Dvr: Technique = Technique(&crate::dvr::DVR);
-    pub const Phong: Technique = Technique(&crate::dvr::PHONG);
+    pub const Dvr: Technique = Technique(&crate::techniques::dvr::DVR);
+    pub const Phong: Technique = Technique(&crate::techniques::dvr::PHONG);
     pub const Reference: Technique = Technique(&crate::reference::gpu::Reference);
-    pub const Ipsvi: Technique = Technique(&crate::ipsvi::Ipsvi);
-    pub const HalfAngle: Technique = Technique(&crate::half_angle::HalfAngle);
-    pub const LightVolume: Technique = Technique(&crate::lightvolume::LightVolume);
-    pub const Ao: Technique = Technique(&crate::ao::technique::Ao);
+    pub const Ipsvi: Technique = Technique(&crate::techniques::ipsvi::Ipsvi);
+    pub const HalfAngle: Technique = Technique(&crate::techniques::half_angle::HalfAngle);
+    pub const LightVolume: Technique = Technique(&crate::techniques::lightvolume::LightVolume);
+    pub const Ao: Technique = Technique(&crate::techniques::ao::technique::Ao);
 
     /// The technique `render`, `compare` and `view` run when none is named:
     /// image plane sweep volume illumination, the technique this project studies.
@@ -45,7 +45,7 @@ impl Technique {
     ];
 
     /// The registry: every technique a user can name, [`Technique::ALL`] and
-    /// ambient occlusion (its ground truth is the AO reference, src/reference/ao*).
+    /// ambient occlusion (its ground truth is the AO reference, src/techniques/ao/ground_truth/).
     pub const NAMED: [Technique; 7] = {
         let mut named = [Technique::Ao; 7];
         let mut i = 0;

@@ -3,12 +3,12 @@
 
 use toml::Value;
 
-use crate::ao::AoSettings;
-use crate::half_angle::HalfAngleSettings;
-use crate::ipsvi::IpsviSettings;
-use crate::lightvolume::LightVolumeSettings;
 use crate::scene::settings_table::{read_table, SettingsError, SettingsTable};
 use crate::scene::technique_settings::{TableCatalogue, TechniqueTable};
+use crate::techniques::ao::AoSettings;
+use crate::techniques::half_angle::HalfAngleSettings;
+use crate::techniques::ipsvi::IpsviSettings;
+use crate::techniques::lightvolume::LightVolumeSettings;
 
 /// The techniques' tables.
 pub struct Catalogue;

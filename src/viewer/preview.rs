@@ -12,9 +12,9 @@
 //! root of the ratio to [`BUDGET_MS`]), then from each preview's own (IPSVI
 //! costs more than its pixels: its lines run one after another).
 
-use crate::half_angle::HalfAngleSettings;
-use crate::ipsvi::IpsviSettings;
 use crate::scene::Scene;
+use crate::techniques::half_angle::HalfAngleSettings;
+use crate::techniques::ipsvi::IpsviSettings;
 use std::time::{Duration, Instant};
 
 /// A full frame slower than this (GPU time) is previewed while dragging.

@@ -9,19 +9,19 @@
 //! command line's.
 
 use super::ui::UiEdit;
-use crate::ao::render_settings::{AoMode, MAX_GLOW, MAX_PHASE_G};
-use crate::ao::settings::{Metric, TrainingSet};
-use crate::ao::AoSettings;
-use crate::half_angle::HalfAngleSettings;
-use crate::ipsvi::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
-use crate::ipsvi::line_kernel::LineKernel;
-use crate::ipsvi::read_fronts::ReadFronts;
-use crate::ipsvi::settings::EarlyTermination;
-use crate::ipsvi::sync_strategy::SyncStrategy;
-use crate::ipsvi::IpsviSettings;
-use crate::lightvolume::CostEstimate;
-use crate::lightvolume::LightVolumeSettings;
 use crate::scene::Scene;
+use crate::techniques::ao::render_settings::{AoMode, MAX_GLOW, MAX_PHASE_G};
+use crate::techniques::ao::settings::{Metric, TrainingSet};
+use crate::techniques::ao::AoSettings;
+use crate::techniques::half_angle::HalfAngleSettings;
+use crate::techniques::ipsvi::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
+use crate::techniques::ipsvi::line_kernel::LineKernel;
+use crate::techniques::ipsvi::read_fronts::ReadFronts;
+use crate::techniques::ipsvi::settings::EarlyTermination;
+use crate::techniques::ipsvi::sync_strategy::SyncStrategy;
+use crate::techniques::ipsvi::IpsviSettings;
+use crate::techniques::lightvolume::CostEstimate;
+use crate::techniques::lightvolume::LightVolumeSettings;
 use std::collections::BTreeMap;
 
 /// What a control edits.
@@ -83,7 +83,7 @@ pub fn controls() -> Vec<Control> {
     use Kind::{Choice, Numbers, Real, Toggle, Whole};
     let names = |all: &[&'static str]| all.to_vec();
     vec![
-        control("ipsvi", "line_width", Whole { lo: 1, hi: 32 }, |s| {
+        control("ipsvi", "line_width", Whole { lo: 1, hi: crate::techniques::ipsvi::settings::MAX_LINE_WIDTH }, |s| {
             Number(s.settings.get::<IpsviSettings>().line_width as f64)
         }),
         control("ipsvi", "cache_size", Whole { lo: 16, hi: 4096 }, |s| {

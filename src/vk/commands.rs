@@ -114,10 +114,6 @@ impl<'a> Recorder<'a> {
         self.barrier_count += 1;
     }
 
-    /// Binds a compute pipeline and its descriptor set. On lavapipe each bind
-    /// costs far more than a dispatch (about 0.7 ms for the pipeline against
-    /// 0.08 ms for a dispatch, measured by tools/dispatch_probe.rs): bind once
-    /// and switch only the set where a sweep needs it.
     /// Ends the command buffer recorded so far, submits it, and goes on in a new
     /// one. Consecutive submissions are ordered by a timeline semaphore (signal
     /// value n after all commands, wait for it before any command of the next):
@@ -184,6 +180,10 @@ impl<'a> Recorder<'a> {
         self.barrier_count += 1;
     }
 
+    /// Binds a compute pipeline and its descriptor set. On lavapipe each bind
+    /// costs far more than a dispatch (about 0.7 ms for the pipeline against
+    /// 0.08 ms for a dispatch, measured by tools/dispatch_probe.rs): bind once
+    /// and switch only the set where a sweep needs it.
     pub fn bind(&self, pipeline: &ComputePipeline, set: vk::DescriptorSet) {
         self.bind_pipeline(pipeline);
         self.bind_set(pipeline, set);
@@ -249,7 +249,7 @@ impl<'a> Recorder<'a> {
                         Limit::WorkGroupCount(axis),
                         counts[axis] as u64,
                         format!("pass {pass}"),
-                        "the image size (--size) or the technique's cache or slice sizes",
+                        "the image size or the technique's cache or slice sizes",
                     ),
                     available: max[axis] as u64,
                 });

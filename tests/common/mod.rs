@@ -178,12 +178,12 @@ pub fn cornell_box_scene(n: u32, size: u32, ao: &str) -> Scene {
 pub fn assert_ipsvi_line_barrier_load_bearing(
     ctx: &Context,
     gpu: &sweeplab::render::GpuScene,
-    s: &sweeplab::ipsvi::IpsviSettings,
-    study: &sweeplab::ipsvi::IpsviStudy,
+    s: &sweeplab::techniques::ipsvi::IpsviSettings,
+    study: &sweeplab::techniques::ipsvi::IpsviStudy,
     profiler: &mut sweeplab::vk::Profiler,
     what: &str,
 ) {
-    use sweeplab::ipsvi::{render_study, SyncStrategy};
+    use sweeplab::techniques::ipsvi::{render_study, SyncStrategy};
     profiler.reset();
     render_study(gpu, s, study, 16, 16, profiler, SyncStrategy::BarrierGlobal).unwrap();
     assert_validation_clean(ctx);
@@ -249,7 +249,7 @@ pub fn reference_image(gpu: &GpuScene, width: u32, height: u32) -> LinearImage {
     let s = gpu.scene;
     let key = format!(
         "{:032x} {:?} {:?} | {:?} | {:?} | {:?} | {:?} | {:?} | {:?} {:?} | {width}x{height}",
-        sweeplab::ao::cache::volume_content_hash(&s.volume),
+        sweeplab::techniques::ao::cache::volume_content_hash(&s.volume),
         s.volume.dims,
         s.volume.spacing,
         s.transfer,

@@ -160,7 +160,7 @@ fn drop_order(keys: &[ConfigKey], drop_widest: bool) -> Vec<u32> {
 mod tests {
     use super::*;
     use crate::bench::experiments::sync::Arm;
-    use crate::ipsvi::SyncStrategy;
+    use crate::techniques::ipsvi::SyncStrategy;
 
     fn keys(widths: &[u32]) -> Vec<ConfigKey> {
         let arms = [Arm::NoBarriers, Arm::NoBarriersAgain, Arm::Strategy(SyncStrategy::BarrierGlobal)];

@@ -2,7 +2,7 @@
 //! `invocations` each, every invocation a dependent chain of `trips` x
 //! [`STEPS_PER_TRIP`] fused multiply-adds seeded by the previous line's
 //! output, synchronized between lines by one of the study's strategies
-//! (`crate::ipsvi::sync`, the same objects the sweep records with). The lines
+//! (`crate::techniques::ipsvi::sync`, the same objects the sweep records with). The lines
 //! ping-pong through the two halves of one device-local buffer, each side a
 //! set 1 of {in, out} on separate bindings, so synchronization validation
 //! sees which half a line reads and which it writes: the baseline's hazards
@@ -15,12 +15,12 @@
 //! strategy but the racy baseline.
 
 use crate::bench::experiments::ExperimentError;
-use crate::ipsvi::sync::{
+use crate::shaders::sync_chain as shader;
+use crate::techniques::ipsvi::sync::{
     GlobalBarrier, ImageBarriers, LineSync, ReplayedSweeps, RerecordedSweeps, SplitBarriers, SubmissionPerBlock,
     Unsynchronized,
 };
-use crate::ipsvi::SyncStrategy;
-use crate::shaders::sync_chain as shader;
+use crate::techniques::ipsvi::SyncStrategy;
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::commands::{submit_and_wait_or, Recorder, SecondaryCommands};
 use crate::vk::descriptors::Resource;

@@ -113,7 +113,7 @@ pub fn configurations(arms: &[Arm], trips: &[u32]) -> Vec<ConfigKey> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ipsvi::SyncStrategy;
+    use crate::techniques::ipsvi::SyncStrategy;
 
     #[test]
     fn chains_reach_four_line_latencies_within_lavapipes_loop_cap() {

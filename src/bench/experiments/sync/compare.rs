@@ -185,3 +185,16 @@ pub fn plot_side_by_side(reports: &[SyncReport], folder: &Path) -> Result<Vec<St
     }
     Ok(written)
 }
+
+/// Everything `sweeplab report` writes into `folder`: `report.csv`,
+/// `report.md` (each input named by its path) and the charts; returns the
+/// table for the terminal.
+pub fn write_report(inputs: &[(String, SyncReport)], folder: &Path) -> Result<BenchTable, BenchError> {
+    let reports: Vec<SyncReport> = inputs.iter().map(|(_, r)| r.clone()).collect();
+    let table = side_by_side(&reports);
+    table.write_csv(folder.join("report.csv"))?;
+    std::fs::write(folder.join("report.md"), markdown(inputs))
+        .map_err(|e| BenchError::Write { path: folder.join("report.md"), source: e })?;
+    plot_side_by_side(&reports, folder)?;
+    Ok(table)
+}

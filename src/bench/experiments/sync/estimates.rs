@@ -22,7 +22,7 @@ use super::report::{ConfigRow, SyncReport};
 use super::{Arm, Workload, BASELINE, CONTROL};
 use crate::bench::estimate::{median_estimate, paired_slope_difference, slope_per_round, Estimate};
 use crate::bench::shift::shift_estimate;
-use crate::ipsvi::SyncStrategy;
+use crate::techniques::ipsvi::SyncStrategy;
 use serde::{Deserialize, Serialize};
 
 /// One arm in one workload (sweep or empty).

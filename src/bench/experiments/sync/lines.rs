@@ -3,9 +3,9 @@
 
 use super::chain::ChainLines;
 use crate::bench::experiments::ExperimentError;
-use crate::ipsvi::renderer::IpsviRenderer;
-use crate::ipsvi::SyncStrategy;
 use crate::linear_image::LinearImage;
+use crate::techniques::ipsvi::renderer::IpsviRenderer;
+use crate::techniques::ipsvi::SyncStrategy;
 use crate::vk::Profiler;
 use ash::vk;
 

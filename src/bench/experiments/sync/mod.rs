@@ -39,6 +39,7 @@ pub mod compare;
 pub mod estimates;
 pub mod files;
 mod lines;
+pub mod options;
 pub mod plan;
 pub mod progress;
 pub mod report;
@@ -47,11 +48,12 @@ pub mod traces;
 pub mod verdict;
 
 pub use budget::LeftOut;
+pub use options::SyncOptions;
 pub use plan::{check, configurations, Precision, SyncPlan, MIN_RUN};
 pub use report::{ConfigRow, StrategyRow, SyncReport, WorkloadRounds};
 pub use run::{run, Eta, SyncObserver};
 
-use crate::ipsvi::{BreakdownStep, SyncStrategy};
+use crate::techniques::ipsvi::{BreakdownStep, SyncStrategy};
 use serde::{Deserialize, Serialize};
 
 /// What each line dispatch does.

@@ -7,8 +7,8 @@
 use super::{Arm, ConfigKey, Workload};
 use crate::bench::experiments::ExperimentError;
 use crate::bench::protocol::Protocol;
-use crate::ipsvi::{IpsviSettings, IpsviStudy, SyncStrategy};
 use crate::scene::settings_table::SettingsTable as _;
+use crate::techniques::ipsvi::{IpsviSettings, IpsviStudy, SyncStrategy};
 use serde::{Deserialize, Serialize};
 use std::time::Duration;
 
@@ -159,7 +159,8 @@ mod tests {
     #[test]
     fn every_line_width_records_the_same_passes() {
         // The sample write pass, which leaves the claim pass out at line width 1.
-        let base = IpsviSettings { write_pass: crate::ipsvi::WritePass::Sample, ..IpsviSettings::default() };
+        let base =
+            IpsviSettings { write_pass: crate::techniques::ipsvi::WritePass::Sample, ..IpsviSettings::default() };
         assert!(!base.records_claims(), "line width 1 leaves the claim pass out of a frame");
         for line_width in [1, 2, 32] {
             let (s, study) = settings_for(&base, line_width, SyncStrategy::BarrierGlobal, Workload::Sweep);

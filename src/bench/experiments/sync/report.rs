@@ -117,6 +117,17 @@ pub struct SyncReport {
 }
 
 impl SyncReport {
+    /// What a time budget left out, workload by workload ("sweep workload:
+    /// line width(s) 2, 4"); `None` where the run measured all it planned.
+    pub fn left_out_summary(&self) -> Option<String> {
+        let left_out: Vec<String> = self
+            .workloads
+            .iter()
+            .filter_map(|w| w.left_out.as_ref().map(|l| format!("{} workload: {}", w.workload.name(), l.describe())))
+            .collect();
+        (!left_out.is_empty()).then(|| left_out.join("; "))
+    }
+
     /// Computes every estimate from the raw per-round times, replacing what
     /// was stored: a record written by an older build is read with today's
     /// estimators.

@@ -1,0 +1,250 @@
+//! `sweeplab bench table1` as an experiment: the IPSVI paper's Table 1 on our
+//! data and device. Per data set and image size, the frames of every line
+//! width and line kernel are measured side by side ([`Interleaved`]), so the
+//! frame rate of each, its ratio to line width 1 and the segmented kernel's
+//! ratio to the serial one (paired round by round) see the same rounds of a
+//! shared machine.
+
+pub mod paper;
+
+use crate::bench::experiments::table1::paper::{PaperColumn, CT_ENGINE, CT_GIRAFFE, LINE_WIDTHS, US_BABY};
+use crate::bench::{
+    ipsvi_frame, BenchRow, BenchTable, Estimate, ExperimentError, Interleaved, OutFolder, Progress, RunInfo, Sample,
+};
+use crate::render::GpuScene;
+use crate::scene::loaders::data_dir;
+use crate::techniques::ipsvi::line_kernel::LineKernel;
+use crate::techniques::ipsvi::renderer::IpsviRenderer;
+use crate::techniques::ipsvi::{IpsviSettings, SyncStrategy};
+use crate::techniques::scene_for_volume_file;
+use crate::vk::{Context, Profiler};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// Our data sets and the paper column each stands beside.
+pub const PAPER_PAIRS: [(&str, &PaperColumn); 3] =
+    [("engine.vti", &CT_ENGINE), ("aneurism.vti", &US_BABY), ("LIDC2.mha", &CT_GIRAFFE)];
+
+/// What `bench table1` measures.
+#[derive(Clone)]
+pub struct Table1Plan {
+    /// Square image sizes.
+    pub sizes: Vec<u32>,
+    /// The rounds of each (data set, size) measurement.
+    pub interleaved: Interleaved,
+    /// Scene overrides (`KEY=VALUE`) applied to every data set.
+    pub set: Vec<String>,
+    /// The volume files and the paper columns they stand beside.
+    pub data_sets: Vec<(PathBuf, &'static PaperColumn)>,
+    /// The line kernels measured (`auto`: the device's).
+    pub kernels: Vec<LineKernel>,
+}
+
+impl Table1Plan {
+    /// The paper's three data sets, from the data folder.
+    pub fn paper(sizes: Vec<u32>, interleaved: Interleaved, set: Vec<String>) -> Table1Plan {
+        let data_sets = PAPER_PAIRS.iter().map(|(file, paper)| (data_dir().join(file), *paper)).collect();
+        Table1Plan { sizes, interleaved, set, data_sets, kernels: vec![LineKernel::Auto] }
+    }
+
+    /// Only the data sets whose file names are in `files` (of [`PAPER_PAIRS`]);
+    /// the error names the unknown one.
+    pub fn only(mut self, files: &[String]) -> Result<Table1Plan, ExperimentError> {
+        if files.is_empty() {
+            return Ok(self);
+        }
+        for f in files {
+            if !PAPER_PAIRS.iter().any(|(file, _)| file == f) {
+                let known: Vec<&str> = PAPER_PAIRS.iter().map(|p| p.0).collect();
+                return Err(ExperimentError::Invalid(format!("--data-sets: {f:?} is not one of {}", known.join(", "))));
+            }
+        }
+        self.data_sets.retain(|(path, _)| files.iter().any(|f| path.file_name().is_some_and(|n| n == f.as_str())));
+        Ok(self)
+    }
+}
+
+/// A kernel as the rows name it before it is resolved.
+fn kernel_settings(base: &IpsviSettings, line_kernel: LineKernel, line_width: u32) -> IpsviSettings {
+    IpsviSettings { line_width, line_kernel, segments: 0, ..base.clone() }
+}
+
+/// Frames per second from a frame's GPU ms, its interval turned over with it.
+fn fps_of(ms: &Estimate) -> Estimate {
+    Estimate { value: 1000.0 / ms.value, lo: 1000.0 / ms.hi, hi: 1000.0 / ms.lo, n: ms.n }
+}
+
+/// One data set at one size: per (kernel, line width) the frame rate, its
+/// paired ratio to line width 1 of the same kernel and to the first kernel at
+/// the same line width, and the kernel as it ran.
+struct SizeMeasurement {
+    /// Median frame ms and its interval.
+    gpu_ms: Vec<(f64, Option<Estimate>)>,
+    /// lw1 time over this time, paired (how many times lw1's fps).
+    over_lw1: Vec<Option<Estimate>>,
+    /// The first kernel's time over this time, paired.
+    over_first_kernel: Vec<Option<Estimate>>,
+    /// The kernel's label (`serial`, `segmented x32`) and its frame's shape.
+    kernels: Vec<(String, Option<crate::render::LineShape>)>,
+}
+
+/// Every data set of `plan` at every size, the rows saved in `out_folder`
+/// (as `table1.csv`/`.json`) after each data set; `run` with the sizes and
+/// rounds added is the table's run.
+pub fn run(
+    ctx: &Context,
+    plan: &Table1Plan,
+    run: RunInfo,
+    out_folder: &OutFolder,
+    profiler_capacity: u32,
+) -> Result<BenchTable, ExperimentError> {
+    let sizes = plan.sizes.iter().map(|s| s.to_string()).collect::<Vec<_>>().join(",");
+    let mut table = BenchTable::with_run(plan.interleaved.recorded_in(run.input("sizes", sizes)));
+    let mut profiler = Profiler::new(ctx, profiler_capacity)?;
+    let mut progress = Progress::weighted(step_weights(plan));
+    for (path, paper) in &plan.data_sets {
+        let file = path.file_name().map_or_else(|| path.display().to_string(), |f| f.to_string_lossy().into_owned());
+        let scene = scene_for_volume_file(path, &plan.set)
+            .map_err(|e| ExperimentError::Invalid(format!("loading {}: {e}", path.display())))?;
+        let base = IpsviSettings { piecewise: true, ..scene.settings.get::<IpsviSettings>().into_owned() };
+        let gpu = GpuScene::upload(ctx, &scene)?;
+        let mut measured = BTreeMap::new();
+        let n = LINE_WIDTHS.len();
+        for &size in &plan.sizes {
+            let mut renderers = plan
+                .kernels
+                .iter()
+                .flat_map(|&k| LINE_WIDTHS.iter().map(move |&lw| (k, lw)))
+                .map(|(k, lw)| IpsviRenderer::new(&gpu, &kernel_settings(&base, k, lw), size, size))
+                .collect::<Result<Vec<_>, _>>()?;
+            let kernels: Vec<&str> = plan.kernels.iter().map(|k| k.name()).collect();
+            let label = format!(
+                "{file} {size}x{size} lw={} kernels={}",
+                LINE_WIDTHS.map(|w| w.to_string()).join(","),
+                kernels.join(",")
+            );
+            let timings = plan.interleaved.measure(&mut progress, &label, renderers.len(), |c, _| {
+                ipsvi_frame(ctx, &mut renderers[c], &mut profiler, SyncStrategy::BarrierGlobal)
+                    .map(|s| Sample { ms: s.ms, output: s.output.frame.shape })
+                    .map_err(ExperimentError::from)
+            })?;
+            let gpu_ms = timings.iter().map(|t| (t.median(), t.estimate())).collect();
+            let over_lw1 = timings.iter().enumerate().map(|(c, t)| timings[c / n * n].paired_ratio(t)).collect();
+            let over_first_kernel = timings.iter().enumerate().map(|(c, t)| timings[c % n].paired_ratio(t)).collect();
+            let kernels = renderers.iter().zip(&timings).map(|(r, t)| (r.kernel().label(), t.last.clone())).collect();
+            measured.insert(size, SizeMeasurement { gpu_ms, over_lw1, over_first_kernel, kernels });
+        }
+        for &size in &plan.sizes {
+            for k in 0..plan.kernels.len() {
+                for (i, &lw) in LINE_WIDTHS.iter().enumerate() {
+                    table.push(row(&file, paper, plan, &measured, size, k * n + i, lw));
+                }
+            }
+        }
+        out_folder.save_rows("table1", &table)?;
+    }
+    progress.finish();
+    Ok(table)
+}
+
+/// The row of configuration `i` (kernel `i / 3`, line width `LINE_WIDTHS[i %
+/// 3]`) at `size`: ours beside the paper's.
+fn row(
+    file: &str,
+    paper: &PaperColumn,
+    plan: &Table1Plan,
+    measured: &BTreeMap<u32, SizeMeasurement>,
+    size: u32,
+    i: usize,
+    lw: u32,
+) -> BenchRow {
+    let fps = |size: u32, i: usize| 1000.0 / measured[&size].gpu_ms[i].0;
+    let paper_fps = |size: u32, lw: u32| paper.fps_at(size, lw).unwrap_or(f64::NAN);
+    let m = &measured[&size];
+    let (ms, ms_estimate) = m.gpu_ms[i];
+    let ours = fps(size, i);
+    let lw1 = i / LINE_WIDTHS.len() * LINE_WIDTHS.len();
+    let mut row = BenchRow::new();
+    row.set("data_set", file).set("paper_data_set", paper.data_set).set("width", size).set("line_width", lw);
+    row.set("line_kernel", m.kernels[i].0.as_str());
+    row.set("fps", ours);
+    if let Some(e) = ms_estimate {
+        row.set("fps_lo", fps_of(&e).lo).set("fps_hi", fps_of(&e).hi);
+    }
+    row.set("paper_fps", paper_fps(size, lw));
+    row.set("gpu_ms", ms).set_estimate("gpu_ms", ms_estimate);
+    if lw != 1 {
+        row.set("fps_over_lw1", ours / fps(size, lw1)).set_estimate("fps_over_lw1", m.over_lw1[i]);
+        row.set("paper_fps_over_lw1", paper_fps(size, lw) / paper_fps(size, 1));
+    }
+    if i >= LINE_WIDTHS.len() {
+        let first = i % LINE_WIDTHS.len();
+        row.set("fps_over_first_kernel", ours / fps(size, first));
+        row.set_estimate("fps_over_first_kernel", m.over_first_kernel[i]);
+    }
+    if let Some(&half) = plan.sizes.iter().find(|&&h| h * 2 == size) {
+        row.set("fps_over_half_size", ours / fps(half, i));
+        row.set("paper_fps_over_half_size", paper_fps(size, lw) / paper_fps(half, lw));
+    }
+    if let Some(shape) = &m.kernels[i].1 {
+        super::ipsvi::set_shape(&mut row, shape);
+    }
+    row
+}
+
+/// The relative size of each progress step (one per data set and size, all
+/// line widths in it): pixels times the cube root of the data set's file size
+/// (a ray's length in voxels), so the time left counts large images and large
+/// volumes as such.
+fn step_weights(plan: &Table1Plan) -> Vec<f64> {
+    let mut weights = Vec::new();
+    for (path, _) in &plan.data_sets {
+        let bytes = std::fs::metadata(path).map(|m| m.len() as f64).unwrap_or(1.0);
+        for &size in &plan.sizes {
+            let pixels = f64::from(size) * f64::from(size);
+            weights.push(pixels * bytes.max(1.0).cbrt() * (LINE_WIDTHS.len() * plan.kernels.len()) as f64);
+        }
+    }
+    weights
+}
+
+/// What the terminal shows: one line per row, ours beside the paper's; every
+/// column is in the files.
+pub fn print_summary(table: &BenchTable) {
+    for r in &table.rows {
+        let interval = match (r.get_f64("fps_lo"), r.get_f64("fps_hi")) {
+            (Some(lo), Some(hi)) => format!(" (95 % CI {lo:.2}-{hi:.2})"),
+            _ => String::new(),
+        };
+        println!(
+            "{} {}x{} lw={} {}: {:.2} fps{interval} (paper, {}: {:.1} fps)",
+            r.text("data_set"),
+            r.text("width"),
+            r.text("width"),
+            r.text("line_width"),
+            r.text("line_kernel"),
+            r.get_f64("fps").unwrap_or(f64::NAN),
+            r.text("paper_data_set"),
+            r.get_f64("paper_fps").unwrap_or(f64::NAN)
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_frame_rate_interval_is_the_frame_time_interval_turned_over() {
+        let fps = fps_of(&Estimate { value: 20.0, lo: 16.0, hi: 25.0, n: 8 });
+        assert_eq!((fps.value, fps.lo, fps.hi, fps.n), (50.0, 40.0, 62.5, 8));
+    }
+
+    #[test]
+    fn one_progress_step_per_data_set_and_size() {
+        let plan = Table1Plan::paper(vec![8, 16], Interleaved::fixed(1, 1).unwrap(), Vec::new());
+        let weights = step_weights(&plan);
+        assert_eq!(weights.len(), 3 * 2);
+        assert!(weights[1] > weights[0], "a larger image weighs more: {weights:?}");
+    }
+}
