@@ -56,9 +56,12 @@ render() {
   echo "$counts $(awk -v a="$t0" -v b="$t1" 'BEGIN{printf "%.1f", b - a}')"
 }
 
-device=$("$bin" devices 2>/dev/null | sed -nE 's/^[ *]*[0-9]+[:.)]? *//p' | head -n 1)
+# The first device's name: the second line of the devices table, up to the column gap.
+device=$("$bin" devices 2>/dev/null | sed -n 2p | sed -E 's/^[ *]*[0-9]+ +//; s/ {2,}.*//')
 device=${device:-unknown device}
-commit=$(git rev-parse --short=12 HEAD)$( [ -z "$(git status --porcelain --untracked-files=no)" ] || echo "-dirty")
+# The build's commit, `-dirty` where what it is built from differs (build.rs's
+# rule): the README and the images this script rewrites do not make it dirty.
+commit=$(git rev-parse --short=12 HEAD)$( [ -z "$(git status --porcelain --untracked-files=no -- src glsl build.rs Cargo.toml Cargo.lock)" ] || echo "-dirty")
 date=$(date -u +%Y-%m-%d)
 cpu=$(sed -nE 's/^model name\s*:\s*//p' /proc/cpuinfo | head -n 1)
 cores=$(nproc)
@@ -141,7 +144,7 @@ if [ "$bench" = 1 ]; then
     echo "$commit, $date, $seconds s):"
     echo
     echo '```'
-    grep -v '^\s*$' "$work/bench.out"
+    grep -v -e '^\s*$' -e '^wrote into ' "$work/bench.out"
     echo '```'
   } >"$work/bench.md"
   replace_block bench-sync "$work/bench.md"
