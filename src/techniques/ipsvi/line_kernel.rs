@@ -54,6 +54,8 @@ pub const DEFAULT_ROUNDS: u32 = 4;
 /// The kernel a renderer runs: `segments` invocations per pixel (1: the serial kernel).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct KernelChoice {
+    /// The segmented kernel, one segment per pixel included (`segments = 1`
+    /// is the segmented kernel reproducing the serial one: tested).
     pub segmented: bool,
     pub segments: u32,
     /// Rounds of the segmented kernel (unused by the serial one).
@@ -63,24 +65,9 @@ pub struct KernelChoice {
 impl KernelChoice {
     pub const SERIAL: KernelChoice = KernelChoice { segmented: false, segments: 1, rounds: 1 };
 
-    /// The segmented kernel, one segment per pixel included (`segments = 1`
-    /// is the segmented kernel reproducing the serial one: tested).
-    pub fn is_segmented(&self) -> bool {
-        self.segmented
-    }
-
-    /// "serial" or "segmented".
-    pub fn name(&self) -> &'static str {
-        if self.is_segmented() {
-            LineKernel::Segmented.name()
-        } else {
-            LineKernel::Serial.name()
-        }
-    }
-
     /// How `render` and bench rows name it: `serial`, `segmented x32`.
     pub fn label(&self) -> String {
-        if self.is_segmented() {
+        if self.segmented {
             format!("segmented x{}", self.segments)
         } else {
             "serial".to_string()

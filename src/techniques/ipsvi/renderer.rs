@@ -311,7 +311,7 @@ impl<'a> IpsviRenderer<'a> {
                 median_pixels(block_records.iter().map(|r| r.pixel_count)) * segments,
             )
         });
-        if kernel.is_segmented() && !line_group.is_multiple_of(SubgroupSupport::of(ctx).size.max(segments)) {
+        if kernel.segmented && !line_group.is_multiple_of(SubgroupSupport::of(ctx).size.max(segments)) {
             return Err(RenderError::Invalid(format!(
                 "the segmented line kernel needs whole subgroups per workgroup; {line_group} invocations is not a \
                  multiple of this device's subgroup of {}",
@@ -342,7 +342,7 @@ impl<'a> IpsviRenderer<'a> {
         ];
         // Both kernels declare the same bindings (glsl/ipsvi_line_interface.glsl):
         // the sets below serve either.
-        let (name, shader) = if kernel.is_segmented() {
+        let (name, shader) = if kernel.segmented {
             ("ipsvi_line_segmented", &ipsvi_line_segmented::INTERFACE)
         } else {
             ("ipsvi_line", &ipsvi_line::INTERFACE)
