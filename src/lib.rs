@@ -11,6 +11,7 @@
 //! Each technique's settings type sits in its module; the scene stores them
 //! without knowing their types ([`scene::TechniqueSettings`]).
 
+pub mod atomic_file;
 pub mod bench;
 pub mod linear_image;
 pub mod metrics;

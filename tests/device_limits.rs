@@ -43,7 +43,7 @@ fn each_technique_against_the_spec_minimum_and_desktop_limits() {
         std::iter::once(("Vulkan spec minimum", SPEC_MINIMUM)).chain(DESKTOP).collect();
     for (device, limits) in &rows {
         let mut line = format!("{device}:");
-        for technique in Technique::NAMED {
+        for technique in Technique::named() {
             let largest = [256u32, 512, 1024, 2048, 4096, 8192]
                 .into_iter()
                 .filter(|&s| device_fit::check(limits, device, &*technique, &spheres, s, s).is_ok())
@@ -65,7 +65,7 @@ fn each_technique_against_the_spec_minimum_and_desktop_limits() {
         .to_string();
     assert!(e.contains("maxImageDimension3D = 257") && e.contains("has 256") && e.contains("resample"), "{e}");
     for (device, limits) in DESKTOP {
-        for technique in Technique::NAMED {
+        for technique in Technique::named() {
             device_fit::check(&limits, device, &*technique, &spheres, 1024, 1024)
                 .unwrap_or_else(|e| panic!("{device}: {} at 1024^2: {e}", technique.name()));
         }

@@ -107,7 +107,7 @@ fn a_scene_built_in_code_with_a_point_light_at_1e20_gets_the_directional_image_i
     directional.lights = vec![common::directional(Vec3::NEG_X, 2.0)];
     assert_eq!(far.rendered_lights(), directional.lights);
     let ctx = validated_context();
-    for technique in Technique::ALL {
+    for technique in Technique::all() {
         let (a, b) = (frame(&ctx, &far, technique), frame(&ctx, &directional, technique));
         let stats = compare(&a, &b).unwrap();
         assert!(b.max_value() > 0.05, "{technique}: the directional image is lit");

@@ -18,7 +18,7 @@ fn every_baseline_renders_validation_clean() {
     let scene = scene_with(sphere_volume(24, 9.0), vec![directional(Vec3::new(-1.0, -1.0, -0.5), 2.0)], 32, 32);
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 256).unwrap();
-    for t in Technique::ALL {
+    for t in Technique::all() {
         let out = render(&gpu, t, 32, 32, &mut profiler).unwrap();
         assert!(out.image.all_finite());
         let centre = out.image.get(16, 16);
@@ -91,11 +91,8 @@ fn every_technique_lists_the_memory_its_frame_allocates() {
     tuned.settings.get_mut::<HalfAngleSettings>().light_buffer_size = 64;
     // Three lights: light volume passes of several members (half-angle takes one light).
     let three = scene_with(sphere_volume(24, 9.0), vec![light(-1.0), light(-0.8), light(1.0)], width, height);
-    let cases = [
-        ("lit", &lit, &Technique::ALL[..]),
-        ("unlit", &unlit, &Technique::ALL[..]),
-        ("tuned", &tuned, &Technique::ALL[..]),
-    ];
+    let all: Vec<Technique> = Technique::all().collect();
+    let cases = [("lit", &lit, &all[..]), ("unlit", &unlit, &all[..]), ("tuned", &tuned, &all[..])];
     // The three lights' sweeps merged: per-sweep caches and colour accumulation.
     let mut merged = three.clone();
     merged.settings.get_mut::<IpsviSettings>().merge_sweeps = true;

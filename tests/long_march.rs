@@ -101,7 +101,7 @@ fn ipsvi_and_half_angle_refuse_a_step_they_cannot_march_before_any_gpu_work() {
     let e = Technique::Ipsvi.check(&scene).expect_err("ipsvi refuses").to_string();
     assert!(e.contains("render.step") && e.contains("ipsvi") && e.contains("smallest step"), "{e}");
     scene.render.step_voxels = 0.5;
-    for t in Technique::ALL {
+    for t in Technique::all() {
         assert!(t.check(&scene).is_ok(), "{t} takes an ordinary step");
     }
 }

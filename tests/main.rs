@@ -59,6 +59,7 @@ mod stability;
 mod sync_records;
 mod sync_strategies;
 mod test_summary_line;
+mod toy_technique;
 mod viewer;
 mod wait_report;
 

@@ -595,7 +595,7 @@ fn unknown_technique_keys_are_errors_suggesting_the_nearest() {
 #[test]
 fn unknown_tables_are_errors_naming_them() {
     let e = error_of(&format!("{MINIMAL}[occlusion]\nradius = 8\n"), &[]);
-    assert_mentions(&e, &["test.toml", "`occlusion`", "not a known table", "[ipsvi] [lightvolume] [half_angle] [ao]"]);
+    assert_mentions(&e, &["test.toml", "`occlusion`", "not a known table", "[ipsvi] [half_angle] [lightvolume] [ao]"]);
     let e = error_of(&format!("{MINIMAL}[ipsvvi]\nline_width = 2\n"), &[]);
     assert_mentions(&e, &["`ipsvvi`", "did you mean [ipsvi]?"]);
     let e = error_of(MINIMAL, &["lightvolumes.scale=2"]);

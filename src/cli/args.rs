@@ -10,7 +10,7 @@ use sweeplab::vk::swapchain::PRESENT_MODES;
 
 /// `--technique` short help: the registry's names.
 fn technique_names() -> String {
-    Technique::NAMED.map(|t| t.name()).join(" | ")
+    Technique::named().map(|t| t.name()).collect::<Vec<_>>().join(" | ")
 }
 
 /// `--kernels`: an IPSVI line kernel by name.

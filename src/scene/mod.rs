@@ -14,6 +14,7 @@ pub mod presets;
 pub mod scene_file;
 pub mod scene_schema;
 pub mod scene_spec;
+pub mod settings_controls;
 pub mod settings_table;
 pub mod suggest;
 pub mod synthetic;

@@ -22,7 +22,7 @@ use crate::scene::Scene;
 use crate::techniques::ao::cache::volume_content_hash;
 use crate::vk::device_info::DeviceInfo;
 use std::io::ErrorKind;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use xxhash_rust::xxh3::{xxh3_128, xxh3_64};
 
 const MAGIC: &[u8; 8] = b"SWLGTC\r\n";
@@ -105,15 +105,9 @@ impl GroundTruthCache {
     /// Stores `truth` under `key` (through a temporary file renamed into
     /// place, so a crash leaves no half entry).
     pub fn store(&self, key: &GroundTruthKey, truth: &GroundTruth) -> Result<(), GroundTruthCacheError> {
-        let failed = |path: &Path| {
-            let path = path.to_path_buf();
-            move |source| GroundTruthCacheError { path, source }
-        };
-        std::fs::create_dir_all(&self.dir).map_err(failed(&self.dir))?;
         let path = self.dir.join(key.file_name());
-        let temporary = self.dir.join(format!("{}.{}.tmp", key.file_name(), std::process::id()));
-        std::fs::write(&temporary, encode(key, truth)).map_err(failed(&temporary))?;
-        std::fs::rename(&temporary, &path).map_err(failed(&path))
+        crate::atomic_file::write_atomically(&path, &encode(key, truth))
+            .map_err(|source| GroundTruthCacheError { path, source })
     }
 }
 

@@ -17,7 +17,7 @@ pub mod registry;
 pub mod scenes;
 pub mod tables;
 
-pub use registry::{profiled_frame, render, session, RenderOutput, Technique};
+pub use registry::{profiled_frame, render, session, Registration, RenderOutput, TableEntry, Technique, REGISTERED};
 pub use scenes::{
     default_scene, default_scene_spec, load_scene, parse_scene_file, parse_scene_str, scene_for_volume_file,
     scene_from_toml_str, volume_file_scene_spec,

@@ -1,64 +1,121 @@
-//! The techniques a user can name, and one entry point that renders any of them
-//! into a [`LinearImage`] with its GPU profile.
+//! The registry: every technique a user can name, registered once in
+//! [`REGISTERED`] (its [`RenderTechnique`], whether it is compared with the
+//! scene's ground truth, its settings table), and one entry point that renders
+//! any of them into a [`LinearImage`] with its GPU profile. Adding a technique
+//! is its folder, its `pub mod` line in `techniques/mod.rs` and its line here.
 
 use super::tables::CATALOGUE;
 use crate::linear_image::LinearImage;
 use crate::render::frame_result::FrameResult;
 use crate::render::session::{EachFrameAnew, FrameSession};
 use crate::render::{GpuScene, RenderError, RenderTechnique};
-use crate::scene::technique_settings::TableCatalogue;
+use crate::scene::settings_controls::{Control, DeclaredSettings};
+use crate::scene::settings_table::{read_table, SettingsError};
+use crate::scene::technique_settings::TechniqueTable;
 use crate::scene::Scene;
+use crate::techniques::{ao, dvr, half_angle, ipsvi, lightvolume};
 use crate::vk::{ProfileReport, Profiler};
 use std::fmt;
 use std::ops::Deref;
 use std::str::FromStr;
+
+/// Every technique, in the order help text and the viewer list them.
+pub const REGISTERED: &[Registration] = &[
+    Registration::compared(&dvr::DVR),
+    Registration::compared(&dvr::PHONG),
+    Registration::compared(&crate::reference::gpu::Reference),
+    Registration::compared(&ipsvi::Ipsvi).with_table(TableEntry::of::<ipsvi::IpsviSettings>()),
+    Registration::compared(&half_angle::HalfAngle).with_table(TableEntry::of::<half_angle::HalfAngleSettings>()),
+    Registration::compared(&lightvolume::LightVolume).with_table(TableEntry::of::<lightvolume::LightVolumeSettings>()),
+    // Its ground truth is its own (src/techniques/ao/ground_truth/), not the scene's.
+    Registration::own_truth(&ao::technique::Ao).with_table(TableEntry::of::<ao::AoSettings>()),
+];
+
+/// One technique as the front ends know it.
+#[derive(Clone, Copy)]
+pub struct Registration {
+    pub technique: Technique,
+    /// Compared with the scene's ground truth (`compare`, the stability
+    /// table, the viewer's list); false for a technique with a truth of its own.
+    pub approximates_scene_model: bool,
+    /// The scene-file table it reads, if any.
+    pub table: Option<TableEntry>,
+}
+
+impl Registration {
+    pub const fn compared(technique: &'static dyn RenderTechnique) -> Registration {
+        Registration { technique: Technique(technique), approximates_scene_model: true, table: None }
+    }
+
+    pub const fn own_truth(technique: &'static dyn RenderTechnique) -> Registration {
+        Registration { technique: Technique(technique), approximates_scene_model: false, table: None }
+    }
+
+    pub const fn with_table(self, table: TableEntry) -> Registration {
+        Registration { table: Some(table), ..self }
+    }
+}
+
+/// A settings table: its name, its reader and its declared keys.
+#[derive(Clone, Copy)]
+pub struct TableEntry {
+    pub name: &'static str,
+    pub read: fn(toml::Value) -> Result<Box<dyn TechniqueTable>, SettingsError>,
+    pub controls: fn() -> Vec<Control>,
+}
+
+impl TableEntry {
+    pub const fn of<T: DeclaredSettings + TechniqueTable>() -> TableEntry {
+        TableEntry { name: T::TABLE, read: read_boxed::<T>, controls: T::controls }
+    }
+}
+
+fn read_boxed<T: DeclaredSettings + TechniqueTable>(
+    value: toml::Value,
+) -> Result<Box<dyn TechniqueTable>, SettingsError> {
+    Ok(Box::new(read_table::<T>(value)?))
+}
 
 /// A technique by name: a copyable handle on its [`RenderTechnique`].
 #[derive(Clone, Copy)]
 pub struct Technique(&'static dyn RenderTechnique);
 
 // Named like the variants of the enum this handle replaced, so that call sites
-// keep reading `Technique::Ipsvi`.
+// keep reading `Technique::Ipsvi`. Conveniences only: the registry is
+// [`REGISTERED`].
 #[allow(non_upper_case_globals)]
 impl Technique {
-    pub const Dvr: Technique = Technique(&crate::techniques::dvr::DVR);
-    pub const Phong: Technique = Technique(&crate::techniques::dvr::PHONG);
+    pub const Dvr: Technique = Technique(&dvr::DVR);
+    pub const Phong: Technique = Technique(&dvr::PHONG);
     pub const Reference: Technique = Technique(&crate::reference::gpu::Reference);
-    pub const Ipsvi: Technique = Technique(&crate::techniques::ipsvi::Ipsvi);
-    pub const HalfAngle: Technique = Technique(&crate::techniques::half_angle::HalfAngle);
-    pub const LightVolume: Technique = Technique(&crate::techniques::lightvolume::LightVolume);
-    pub const Ao: Technique = Technique(&crate::techniques::ao::technique::Ao);
+    pub const Ipsvi: Technique = Technique(&ipsvi::Ipsvi);
+    pub const HalfAngle: Technique = Technique(&half_angle::HalfAngle);
+    pub const LightVolume: Technique = Technique(&lightvolume::LightVolume);
+    pub const Ao: Technique = Technique(&ao::technique::Ao);
 
     /// The technique `render`, `compare` and `view` run when none is named:
     /// image plane sweep volume illumination, the technique this project studies.
     pub const DEFAULT: Technique = Technique::Ipsvi;
 
+    /// A technique of the caller's own (a test's toy), not in the registry.
+    pub const fn new(technique: &'static dyn RenderTechnique) -> Technique {
+        Technique(technique)
+    }
+
     /// The techniques that approximate the scene's optical model (compared
     /// with its ground truth), in the order help text lists them.
-    pub const ALL: [Technique; 6] = [
-        Technique::Dvr,
-        Technique::Phong,
-        Technique::Reference,
-        Technique::Ipsvi,
-        Technique::HalfAngle,
-        Technique::LightVolume,
-    ];
+    pub fn all() -> impl Iterator<Item = Technique> {
+        CATALOGUE.registrations().iter().filter(|r| r.approximates_scene_model).map(|r| r.technique)
+    }
 
-    /// The registry: every technique a user can name, [`Technique::ALL`] and
-    /// ambient occlusion (its ground truth is the AO reference, src/techniques/ao/ground_truth/).
-    pub const NAMED: [Technique; 7] = {
-        let mut named = [Technique::Ao; 7];
-        let mut i = 0;
-        while i < Technique::ALL.len() {
-            named[i] = Technique::ALL[i];
-            i += 1;
-        }
-        named
-    };
+    /// Every technique a user can name.
+    pub fn named() -> impl Iterator<Item = Technique> {
+        CATALOGUE.registrations().iter().map(|r| r.technique)
+    }
 
     /// `name: summary` of every technique, one per line (for `--technique` help).
     pub fn help() -> String {
-        Technique::NAMED.map(|t| format!("{}: {}", t.name(), t.summary())).join("\n")
+        Technique::named().map(|t| format!("{}: {}", t.name(), t.summary())).collect::<Vec<_>>().join("\n")
     }
 }
 
@@ -92,37 +149,21 @@ impl fmt::Display for Technique {
 impl FromStr for Technique {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Technique::NAMED.into_iter().find(|t| t.name() == s).ok_or_else(|| {
-            let names = Technique::NAMED.map(|t| t.name());
-            let near = crate::scene::suggest::nearest(s, names).map(|n| format!(" (did you mean {n}?)"));
-            format!("unknown technique {s:?}{}; known: {}", near.unwrap_or_default(), names.join(", "))
-        })
+        CATALOGUE.technique(s)
     }
 }
 
 impl Technique {
-    /// The technique table this technique reads (its name, `-` as `_`), if any.
+    /// The technique table this technique reads, if any.
     pub fn settings_table(self) -> Option<&'static str> {
-        let table = self.name().replace('-', "_");
-        CATALOGUE.tables().iter().copied().find(|&t| t == table)
+        CATALOGUE.table_of(self)
     }
 
     /// A warning for each technique table the scene gave that this technique
     /// does not read: such settings have no effect, and saying nothing would
     /// let a user believe they did.
     pub fn unused_settings(self, scene: &Scene) -> Vec<String> {
-        scene
-            .technique_tables
-            .iter()
-            .filter(|&&table| self.settings_table() != Some(table))
-            .map(|&table| {
-                let reader = Technique::NAMED.into_iter().find(|t| t.settings_table() == Some(table));
-                let reader = reader.map_or_else(|| "another technique".to_string(), |t| format!("technique {t}"));
-                format!(
-                    "the [{table}] settings are read only by {reader}, not by {self}, which runs: they have no effect"
-                )
-            })
-            .collect()
+        CATALOGUE.unused_settings(self, scene)
     }
 }
 
@@ -196,14 +237,15 @@ pub fn session<'s>(gpu: &'s GpuScene<'s>, technique: Technique) -> Result<Box<dy
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::technique_settings::TableCatalogue;
     use crate::scene::OpticalModel;
     use crate::techniques::scene_from_toml_str;
 
     #[test]
     fn every_technique_is_found_by_its_own_name_only() {
-        for t in Technique::NAMED {
+        for t in Technique::named() {
             assert_eq!(t.name().parse::<Technique>(), Ok(t));
-            assert_eq!(Technique::NAMED.iter().filter(|u| u.name() == t.name()).count(), 1, "{t} twice");
+            assert_eq!(Technique::named().filter(|u| u.name() == t.name()).count(), 1, "{t} twice");
             assert!(Technique::help().contains(&format!("{t}: {}", t.summary())));
         }
         let e = "half_angle".parse::<Technique>().unwrap_err();
@@ -213,8 +255,7 @@ mod tests {
     #[test]
     fn every_technique_table_is_read_by_exactly_one_technique() {
         for &table in CATALOGUE.tables() {
-            let readers: Vec<Technique> =
-                Technique::NAMED.into_iter().filter(|t| t.settings_table() == Some(table)).collect();
+            let readers: Vec<Technique> = Technique::named().filter(|t| t.settings_table() == Some(table)).collect();
             assert_eq!(readers.len(), 1, "[{table}]: {readers:?}");
         }
     }

@@ -6,7 +6,7 @@
 //! applies them through the same checks as `--set`.
 
 use super::report::FrameRecord;
-use super::settings_panel::{SettingsPanel, TABLES};
+use super::settings_panel::SettingsPanel;
 use super::tf_editor::TfEditor;
 use crate::plural::count;
 use crate::scene::presets::PRESET_NAMES;
@@ -280,17 +280,14 @@ fn panel(ctx: &egui::Context, view: &PanelView, state: &mut PanelState, edits: &
 fn technique_section(ui: &mut egui::Ui, view: &PanelView, settings: &mut SettingsPanel, edits: &mut Vec<UiEdit>) {
     let mut chosen = view.technique;
     egui::ComboBox::from_label("technique").selected_text(chosen.name()).show_ui(ui, |ui| {
-        for t in Technique::ALL {
+        for t in Technique::all() {
             ui.selectable_value(&mut chosen, t, t.name());
         }
     });
     if chosen != view.technique {
         edits.push(UiEdit::Technique(chosen));
     }
-    let open = match view.technique.name() {
-        "half-angle" => Some("half_angle"),
-        name => TABLES.into_iter().find(|t| *t == name),
-    };
+    let open = view.technique.settings_table();
     settings.show(ui, view.scene, open, edits);
 }
 

@@ -13,7 +13,7 @@ use super::validation::{self, ValidationLog};
 use super::wait_report::WaitReporter;
 use ash::vk;
 use std::ffi::{CStr, CString};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
 pub const VALIDATION_LAYER: &CStr = c"VK_LAYER_KHRONOS_validation";
 /// Environment variable that names the device (like `--device`).
@@ -112,9 +112,26 @@ struct Candidate {
     device_type: vk::PhysicalDeviceType,
 }
 
+/// The Vulkan loader, loaded once per process and never unloaded: each
+/// context holding its own copy would dlopen and dlclose libvulkan (and with
+/// it the layer and the driver) as contexts come and go on several threads.
 fn load_entry() -> Result<ash::Entry, VkError> {
-    // SAFETY: loading libvulkan runs its initialisers; nothing else touches it yet.
-    unsafe { ash::Entry::load() }.map_err(|e| VkError::Loader(e.to_string()))
+    static ENTRY: OnceLock<Result<ash::Entry, String>> = OnceLock::new();
+    // SAFETY: loading libvulkan runs its initialisers; the OnceLock runs this once.
+    let entry = ENTRY.get_or_init(|| unsafe { ash::Entry::load() }.map_err(|e| e.to_string()));
+    entry.clone().map_err(VkError::Loader)
+}
+
+/// Held while an instance and its device are created or destroyed. Vulkan lets
+/// threads do this at once, but loaders, layers and drivers keep process-wide
+/// state in these calls, and concurrent creation is a known source of crashes
+/// (Vulkan-Loader issue 200, wgpu issues 5930 and 10010); the suite creates
+/// hundreds of contexts on two threads. Creation takes milliseconds, so
+/// serializing it costs nothing measurable.
+fn lifecycle_lock() -> MutexGuard<'static, ()> {
+    static LIFECYCLE: Mutex<()> = Mutex::new(());
+    // A panic while holding it leaves nothing half-done that the next caller reads.
+    LIFECYCLE.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
 }
 
 /// The header version (`specVersion`) of layer `name`, where it is installed.
@@ -241,6 +258,7 @@ fn candidates(instance: &ash::Instance, window: bool) -> Result<Vec<Candidate>, 
 
 /// Lists the Vulkan devices without creating one.
 pub fn list_devices() -> Result<Vec<DeviceInfo>, VkError> {
+    let _lifecycle = lifecycle_lock();
     let entry = load_entry()?;
     let instance = create_instance(&entry, false, false, false, &[])?;
     let result = candidates(&instance, false).map(|c| c.into_iter().map(|c| c.info).collect());
@@ -265,6 +283,7 @@ impl Context {
     }
 
     fn create(options: &ContextOptions, surface_extensions: &[&CStr]) -> Result<Context, VkError> {
+        let _lifecycle = lifecycle_lock();
         let entry = load_entry()?;
         let layer = if options.validate { layer_version(&entry, VALIDATION_LAYER)? } else { None };
         let debug_utils_ext = has_instance_extension(&entry, None, ash::ext::debug_utils::NAME)? || options.validate;
@@ -615,6 +634,8 @@ impl Drop for Context {
         // device, messenger and instance in reverse order of creation.
         unsafe {
             let _ = self.device.device_wait_idle();
+            // After the wait: another thread's context need not wait for this GPU.
+            let _lifecycle = lifecycle_lock();
             if Arc::strong_count(&self.memory) > 1 {
                 eprintln!("sweeplab: GPU resources outlive the Vulkan context; leaking the device instead of destroying it under them");
                 return;

@@ -16,7 +16,7 @@
 
 use super::error::{VkError, VkResultExt};
 use ash::vk;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use xxhash_rust::xxh3::xxh3_64;
 
 /// Environment variable naming the directory of the cache files; an empty
@@ -161,20 +161,6 @@ pub fn check_header(data: &[u8], device: &CacheDevice) -> Result<(), Rejected> {
     Ok(())
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same directory
-/// and a rename: readers see the old file or the new one, never a part.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir)?;
-    }
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(format!(".tmp-{}", std::process::id()));
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path)).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
-}
-
 /// The context's `VkPipelineCache`, from its file where one was valid.
 pub struct PipelineCache {
     pub raw: vk::PipelineCache,
@@ -216,7 +202,7 @@ impl PipelineCache {
         // SAFETY: the cache belongs to this device; reading its data is
         // internally synchronized with pipeline creation.
         let data = unsafe { device.get_pipeline_cache_data(self.raw) }.call("vkGetPipelineCacheData")?;
-        write_atomically(path, &encode(&data))
+        crate::atomic_file::write_atomically(path, &encode(&data))
             .map_err(|e| VkError::PipelineCache { path: path.display().to_string(), message: e.to_string() })?;
         Ok(Some(data.len()))
     }
@@ -272,16 +258,5 @@ mod tests {
         assert_eq!(PipelineCacheDir::Off.resolve(), None);
         assert_eq!(PipelineCacheDir::At("/x".into()).resolve(), Some(PathBuf::from("/x")));
         assert_eq!(DEVICE.file_name(), "pipelines-10005-0000.bin");
-    }
-
-    #[test]
-    fn an_atomic_write_leaves_no_temporary_file() {
-        let dir = std::env::temp_dir().join(format!("sweeplab-pc-unit-{}", std::process::id()));
-        let path = dir.join("nested").join("f.bin");
-        write_atomically(&path, b"one").unwrap();
-        write_atomically(&path, b"two").unwrap();
-        assert_eq!(std::fs::read(&path).unwrap(), b"two");
-        assert_eq!(std::fs::read_dir(path.parent().unwrap()).unwrap().count(), 1);
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -19,7 +19,7 @@
 //! leaves no half file under the real name.
 
 use std::io::ErrorKind;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use xxhash_rust::xxh3::{xxh3_128, xxh3_64, Xxh3};
 
@@ -169,16 +169,11 @@ impl AoCache {
 
     /// Writes `result` under `key` (replacing any file there).
     pub fn store(&self, key: &CacheKey, result: &AoPreprocessed) -> Result<PathBuf, AoError> {
-        let io = |path: &Path| {
-            let path = path.to_path_buf();
-            move |source| AoError::CacheIo { path, source }
-        };
-        std::fs::create_dir_all(&self.dir).map_err(io(&self.dir))?;
         let path = self.path(key);
-        let temporary = self.dir.join(format!("{}.{}.tmp", key.file_name(), std::process::id()));
-        std::fs::write(&temporary, encode(key, result)).map_err(io(&temporary))?;
-        std::fs::rename(&temporary, &path).map_err(io(&path))?;
-        Ok(path)
+        match crate::atomic_file::write_atomically(&path, &encode(key, result)) {
+            Ok(()) => Ok(path),
+            Err(source) => Err(AoError::CacheIo { path, source }),
+        }
     }
 }
 

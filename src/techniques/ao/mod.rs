@@ -12,6 +12,7 @@
 
 pub mod bin_runs;
 pub mod cache;
+mod controls;
 pub mod environment;
 pub mod error;
 pub mod gpu;

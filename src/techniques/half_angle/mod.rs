@@ -8,6 +8,7 @@
 //! (docs/optical-model.md). One light (directional, or a point/spot light outside
 //! the volume's bounding sphere); none renders the emission term alone.
 
+mod controls;
 pub mod settings;
 pub mod technique;
 

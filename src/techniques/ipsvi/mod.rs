@@ -14,6 +14,7 @@ pub mod cache_images;
 pub mod cache_plane;
 pub mod cache_region;
 pub mod cache_update;
+mod controls;
 pub mod exit_points;
 pub mod gpu_params;
 pub mod light_anchor;

@@ -31,6 +31,7 @@
 //! A light outside splits between two groups by the factors of equations
 //! 5a/5b, each following the light's own direction.
 
+mod controls;
 pub mod directional_step;
 pub mod groups;
 pub mod illumination;

@@ -42,8 +42,7 @@ pub struct Variant {
 impl Variant {
     /// Every technique; IPSVI in both cache updates.
     pub fn all() -> Vec<Variant> {
-        Technique::ALL
-            .into_iter()
+        Technique::all()
             .flat_map(|technique| {
                 let modes: Vec<Option<CacheUpdate>> =
                     if technique == Technique::Ipsvi { CacheUpdate::ALL.map(Some).to_vec() } else { vec![None] };
