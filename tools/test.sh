@@ -11,7 +11,11 @@ cargo clippy --all-targets --quiet -- -D warnings
 # `test result:` lines (CI reads it). The exit status is cargo test's.
 log="$(mktemp)"
 status=0
+# A test binary that dies of a signal leaves a core file here, and
+# tools/crash_backtrace.sh prints its threads' backtraces.
+ulimit -c unlimited 2>/dev/null || true
 cargo test --release --no-fail-fast 2>&1 | tee "$log" || status=$?
+bash tools/crash_backtrace.sh <"$log"
 bash tools/test_summary.sh <"$log"
 rm -f "$log"
 exit "$status"
