@@ -35,8 +35,9 @@ pub const REGISTERED: &[Registration] = &[
 #[derive(Clone, Copy)]
 pub struct Registration {
     pub technique: Technique,
-    /// Compared with the scene's ground truth (`compare`, the stability
-    /// table, the viewer's list); false for a technique with a truth of its own.
+    /// It approximates the scene's optical model, so it is among
+    /// [`Technique::all`] (the stability table, the viewer's list); false for a
+    /// technique with a ground truth of its own (AO).
     pub approximates_scene_model: bool,
     /// The scene-file table it reads, if any.
     pub table: Option<TableEntry>,
@@ -96,11 +97,6 @@ impl Technique {
     /// The technique `render`, `compare` and `view` run when none is named:
     /// image plane sweep volume illumination, the technique this project studies.
     pub const DEFAULT: Technique = Technique::Ipsvi;
-
-    /// A technique of the caller's own (a test's toy), not in the registry.
-    pub const fn new(technique: &'static dyn RenderTechnique) -> Technique {
-        Technique(technique)
-    }
 
     /// The techniques that approximate the scene's optical model (compared
     /// with its ground truth), in the order help text lists them.
