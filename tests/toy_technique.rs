@@ -3,7 +3,8 @@
 //! beside the library's techniques, in a catalogue of this test's own, with
 //! nothing else written for it. The catalogue then names it (with a
 //! did-you-mean), reads its table from a scene file and checks `--set` edits
-//! of it, builds its viewer controls from its declaration, warns when another
+//! of it against the range it declares, builds its viewer controls from that
+//! declaration, warns when another
 //! technique runs with its table set, and the library's render entry point
 //! runs it on the GPU like any other technique.
 
@@ -12,8 +13,8 @@ use std::path::Path;
 use std::sync::LazyLock;
 use sweeplab::render::{FrameResult, GpuScene, RenderError, RenderTechnique, ResourceNeed};
 use sweeplab::scene::scene_file::scene_from_toml_str;
-use sweeplab::scene::settings_controls::{Control, Current, DeclaredSettings, Kind};
-use sweeplab::scene::settings_table::{check_range, SettingsError, SettingsTable};
+use sweeplab::scene::settings_controls::{check_declared_ranges, Current, DeclaredSettings, Key, Kind};
+use sweeplab::scene::settings_table::{SettingsError, SettingsTable};
 use sweeplab::scene::technique_settings::TableCatalogue;
 use sweeplab::scene::{OpticalModel, Scene};
 use sweeplab::techniques::{dvr, Catalogue, Registration, TableEntry, Technique, CATALOGUE, REGISTERED};
@@ -33,18 +34,17 @@ impl Default for ToySettings {
     }
 }
 
+/// Its range is written once, in the declaration: the check comes from there.
 impl SettingsTable for ToySettings {
     const TABLE: &'static str = "toy";
     fn validate(&self) -> Result<(), SettingsError> {
-        check_range(Self::TABLE, "gain", self.gain, 0.0, 2.0)
+        check_declared_ranges(self)
     }
 }
 
 impl DeclaredSettings for ToySettings {
-    fn controls() -> Vec<Control> {
-        vec![Control::new("toy", "gain", Kind::Real { lo: 0.0, hi: 2.0 }, |s| {
-            Current::Number(s.settings.get::<ToySettings>().gain as f64)
-        })]
+    fn keys() -> Vec<Key<Self>> {
+        vec![Key::new("gain", Kind::Real { lo: 0.0, hi: 2.0 }, |s| Current::Number(s.gain as f64))]
     }
 }
 

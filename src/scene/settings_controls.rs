@@ -1,11 +1,15 @@
 //! A settings table's keys declared once, beside its settings type: each key's
-//! kind of value, the range the table's check accepts, and how to read its
-//! value from a scene. The viewer's panel is built from these declarations;
-//! tests tie them to the typed settings (every key serde reads has one, and
-//! each range's ends are accepted and just past them refused by the table's
-//! own check).
+//! kind of value, its range, and how to read its value from the settings. The
+//! viewer's panel is built from these declarations ([`controls_of`]), and so
+//! are the range checks of whole and real keys that a table's `validate` runs
+//! ([`check_declared_ranges`]): a `--set` edit, a scene file and settings built
+//! in code are checked against the range the panel offers. Tests tie the
+//! declarations to the typed settings (every key serde reads has one).
 
-use super::settings_table::SettingsTable;
+use std::sync::Arc;
+
+use super::settings_table::{check_range, check_whole, SettingsError, SettingsTable};
+use super::technique_settings::TechniqueTable;
 use super::Scene;
 
 /// What a control edits.
@@ -30,7 +34,7 @@ pub enum Kind {
     Text,
 }
 
-/// A control's value in the scene now.
+/// A key's value.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Current {
     Bool(bool),
@@ -38,34 +42,78 @@ pub enum Current {
     Name(&'static str),
     /// TOML as written.
     Text(String),
+    /// Not set: the technique falls back on something else (the panel shows
+    /// [`DeclaredSettings::shown_unset`]).
+    Unset,
 }
 
-/// One key of a table.
+/// One key of `S`'s table.
+pub struct Key<S> {
+    pub key: &'static str,
+    pub kind: Kind,
+    pub value: fn(&S) -> Current,
+}
+
+impl<S> Key<S> {
+    pub fn new(key: &'static str, kind: Kind, value: fn(&S) -> Current) -> Key<S> {
+        Key { key, kind, value }
+    }
+}
+
+/// A settings type with its keys declared.
+pub trait DeclaredSettings: SettingsTable + TechniqueTable + Clone {
+    /// Every key serde reads, in the panel's order.
+    fn keys() -> Vec<Key<Self>>;
+
+    /// What the panel shows for `key` while it is unset in `scene`.
+    fn shown_unset(_key: &str, _scene: &Scene) -> Current {
+        Current::Unset
+    }
+}
+
+/// One key as the viewer's panel takes it, whatever its table's type.
 pub struct Control {
     pub table: &'static str,
     pub key: &'static str,
     pub kind: Kind,
-    pub get: fn(&Scene) -> Current,
+    /// The key's value in a scene (its fallback where unset).
+    pub get: Arc<dyn Fn(&Scene) -> Current + Send + Sync>,
 }
 
 impl Control {
-    pub fn new(table: &'static str, key: &'static str, kind: Kind, get: fn(&Scene) -> Current) -> Control {
-        Control { table, key, kind, get }
-    }
-
-    /// A key of `S`'s table.
-    pub fn of<S: SettingsTable>(key: &'static str, kind: Kind, get: fn(&Scene) -> Current) -> Control {
-        Control::new(S::TABLE, key, kind, get)
-    }
-
     /// `table.key`, as `--set` takes it.
     pub fn path(&self) -> String {
         format!("{}.{}", self.table, self.key)
     }
 }
 
-/// A settings type with its keys declared.
-pub trait DeclaredSettings: SettingsTable {
-    /// Every key serde reads, in the panel's order.
-    fn controls() -> Vec<Control>;
+/// The controls of `S`'s declared keys.
+pub fn controls_of<S: DeclaredSettings>() -> Vec<Control> {
+    S::keys()
+        .into_iter()
+        .map(|Key { key, kind, value }| {
+            let get = move |scene: &Scene| match value(&scene.settings.get::<S>()) {
+                Current::Unset => S::shown_unset(key, scene),
+                set => set,
+            };
+            Control { table: S::TABLE, key, kind, get: Arc::new(get) }
+        })
+        .collect()
+}
+
+/// Every whole and real key of `settings` within its declared range (a real
+/// range open above is left to the table's own check, which says what bounds
+/// it); the error names `table.key = value` and the range.
+pub fn check_declared_ranges<S: DeclaredSettings>(settings: &S) -> Result<(), SettingsError> {
+    for Key { key, kind, value } in S::keys() {
+        match (kind, value(settings)) {
+            (Kind::Whole { lo, hi }, Current::Number(v)) => check_whole(S::TABLE, key, v as u32, lo, hi)?,
+            // The keys are f32: the value and the ends as the table holds them.
+            (Kind::Real { lo, hi }, Current::Number(v)) if hi.is_finite() => {
+                check_range(S::TABLE, key, v as f32, lo as f32, hi as f32)?
+            }
+            _ => {}
+        }
+    }
+    Ok(())
 }

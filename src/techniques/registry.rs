@@ -9,7 +9,7 @@ use crate::linear_image::LinearImage;
 use crate::render::frame_result::FrameResult;
 use crate::render::session::{EachFrameAnew, FrameSession};
 use crate::render::{GpuScene, RenderError, RenderTechnique};
-use crate::scene::settings_controls::{Control, DeclaredSettings};
+use crate::scene::settings_controls::{controls_of, Control, DeclaredSettings};
 use crate::scene::settings_table::{read_table, SettingsError};
 use crate::scene::technique_settings::TechniqueTable;
 use crate::scene::Scene;
@@ -66,14 +66,12 @@ pub struct TableEntry {
 }
 
 impl TableEntry {
-    pub const fn of<T: DeclaredSettings + TechniqueTable>() -> TableEntry {
-        TableEntry { name: T::TABLE, read: read_boxed::<T>, controls: T::controls }
+    pub const fn of<T: DeclaredSettings>() -> TableEntry {
+        TableEntry { name: T::TABLE, read: read_boxed::<T>, controls: controls_of::<T> }
     }
 }
 
-fn read_boxed<T: DeclaredSettings + TechniqueTable>(
-    value: toml::Value,
-) -> Result<Box<dyn TechniqueTable>, SettingsError> {
+fn read_boxed<T: DeclaredSettings>(value: toml::Value) -> Result<Box<dyn TechniqueTable>, SettingsError> {
     Ok(Box::new(read_table::<T>(value)?))
 }
 

@@ -27,6 +27,9 @@ pub fn set_edit(control: &Control, value: &Current) -> String {
         Current::Number(n) => n.to_string(),
         Current::Name(n) => format!("{n:?}"),
         Current::Text(t) => t.clone(),
+        // No control edits a key back to unset (the panel shows an unset key's
+        // fallback); should one, the table's check refuses the empty value by name.
+        Current::Unset => "\"\"".to_string(),
     };
     format!("{}={value}", control.path())
 }

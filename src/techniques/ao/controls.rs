@@ -1,57 +1,41 @@
 //! The [ao] keys declared once: kind, range and value of each, from which
-//! the viewer's panel is built (`crate::scene::settings_controls`).
+//! the viewer's panel and the range checks are built (`crate::scene::settings_controls`).
 
 use super::render_settings::{AoMode, MAX_GLOW, MAX_PHASE_G};
 use super::settings::{Metric, TrainingSet};
 use super::AoSettings;
-use crate::scene::settings_controls::{Control, Current, DeclaredSettings, Kind};
+use crate::scene::settings_controls::{Current, DeclaredSettings, Key, Kind};
 
 impl DeclaredSettings for AoSettings {
-    fn controls() -> Vec<Control> {
+    fn keys() -> Vec<Key<Self>> {
         use Current::{Bool, Name, Number, Text};
         use Kind::{Choice, Real, Toggle, Whole};
-        let control = Control::of::<Self>;
+        let control = Key::<Self>::new;
         let names = |all: &[&'static str]| all.to_vec();
         vec![
-            control("radius", Whole { lo: 1, hi: 64 }, |s| Number(s.settings.get::<AoSettings>().radius as f64)),
-            control("bits", Whole { lo: 1, hi: 12 }, |s| Number(s.settings.get::<AoSettings>().bits as f64)),
+            control("radius", Whole { lo: 1, hi: 64 }, |s| Number(s.radius as f64)),
+            control("bits", Whole { lo: 1, hi: 12 }, |s| Number(s.bits as f64)),
             // At most 2^bits: the check refuses more.
-            control("packed_dim", Whole { lo: 2, hi: 4096 }, |s| {
-                Number(s.settings.get::<AoSettings>().packed_dim as f64)
-            }),
-            control("clusters", Whole { lo: 2, hi: 2048 }, |s| Number(s.settings.get::<AoSettings>().clusters as f64)),
-            control("metric", Choice(names(&Metric::ALL.map(|m| m.name()))), |s| {
-                Name(s.settings.get::<AoSettings>().metric.name())
-            }),
-            control("training", Kind::Text, |s| Text(training_toml(&s.settings.get::<AoSettings>().training))),
-            control("lbg_iterations", Whole { lo: 1, hi: 1000 }, |s| {
-                Number(s.settings.get::<AoSettings>().lbg_iterations as f64)
-            }),
-            control("lbg_threshold", Real { lo: 0.0, hi: 0.999_999 }, |s| {
-                Number(s.settings.get::<AoSettings>().lbg_threshold)
-            }),
-            control("cache", Toggle, |s| Bool(s.settings.get::<AoSettings>().cache)),
+            control("packed_dim", Whole { lo: 2, hi: 4096 }, |s| Number(s.packed_dim as f64)),
+            control("clusters", Whole { lo: 2, hi: 2048 }, |s| Number(s.clusters as f64)),
+            control("metric", Choice(names(&Metric::ALL.map(|m| m.name()))), |s| Name(s.metric.name())),
+            control("training", Kind::Text, |s| Text(training_toml(&s.training))),
+            control("lbg_iterations", Whole { lo: 1, hi: 1000 }, |s| Number(s.lbg_iterations as f64)),
+            control("lbg_threshold", Real { lo: 0.0, hi: 0.999_999 }, |s| Number(s.lbg_threshold)),
+            control("cache", Toggle, |s| Bool(s.cache)),
             control("cache_dir", Kind::Text, |s| {
-                Text(s.settings.get::<AoSettings>().cache_dir.as_ref().map_or(String::new(), |d| format!("{d:?}")))
+                Text(s.cache_dir.as_ref().map_or(String::new(), |d| format!("{d:?}")))
             }),
-            control("mode", Choice(names(&AoMode::ALL.map(|m| m.name()))), |s| {
-                Name(s.settings.get::<AoSettings>().mode.name())
-            }),
-            control("isovalue", Real { lo: 0.0, hi: 1.0 }, |s| Number(s.settings.get::<AoSettings>().isovalue as f64)),
-            control("phase_g", Real { lo: -MAX_PHASE_G as f64, hi: MAX_PHASE_G as f64 }, |s| {
-                Number(s.settings.get::<AoSettings>().phase_g as f64)
-            }),
-            control("glow_max", Real { lo: 1.0, hi: MAX_GLOW as f64 }, |s| {
-                Number(s.settings.get::<AoSettings>().glow_max as f64)
-            }),
+            control("mode", Choice(names(&AoMode::ALL.map(|m| m.name()))), |s| Name(s.mode.name())),
+            control("isovalue", Real { lo: 0.0, hi: 1.0 }, |s| Number(s.isovalue as f64)),
+            control("phase_g", Real { lo: -MAX_PHASE_G as f64, hi: MAX_PHASE_G as f64 }, |s| Number(s.phase_g as f64)),
+            control("glow_max", Real { lo: 1.0, hi: MAX_GLOW as f64 }, |s| Number(s.glow_max as f64)),
             control("glow_range", Kind::Text, |s| {
-                let [lo, hi] = s.settings.get::<AoSettings>().glow_range;
+                let [lo, hi] = s.glow_range;
                 Text(format!("[{lo}, {hi}]"))
             }),
             // Unset: the GPU when there is a device, shown as empty.
-            control("backend", Kind::Text, |s| {
-                Text(s.settings.get::<AoSettings>().backend.map_or(String::new(), |b| format!("{:?}", b.name())))
-            }),
+            control("backend", Kind::Text, |s| Text(s.backend.map_or(String::new(), |b| format!("{:?}", b.name())))),
         ]
     }
 }

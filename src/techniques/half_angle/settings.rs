@@ -1,7 +1,8 @@
 //! Half-angle slicing parameters from the scene file's `[half_angle]` table (or
 //! `--set half_angle.key=value`).
 
-use crate::scene::settings_table::{check_range, check_whole, SettingsError, SettingsTable};
+use crate::scene::settings_controls::check_declared_ranges;
+use crate::scene::settings_table::{SettingsError, SettingsTable};
 use crate::scene::Scene;
 use serde::Deserialize;
 
@@ -34,9 +35,6 @@ impl SettingsTable for HalfAngleSettings {
     const TABLE: &'static str = "half_angle";
 
     fn validate(&self) -> Result<(), SettingsError> {
-        if let Some(step) = self.slice_step {
-            check_range(Self::TABLE, "slice_step", step, SLICE_STEP_RANGE.0, SLICE_STEP_RANGE.1)?;
-        }
-        check_whole(Self::TABLE, "light_buffer_size", self.light_buffer_size, 16, 4096)
+        check_declared_ranges(self)
     }
 }

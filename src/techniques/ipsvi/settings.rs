@@ -6,7 +6,8 @@ use super::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteVa
 use super::line_kernel::{segmented_refusal, LineKernel, DEFAULT_ROUNDS};
 use super::read_fronts::ReadFronts;
 use super::sync_strategy::SyncStrategy;
-use crate::scene::settings_table::{check_range, check_whole, from_name, SettingsError, SettingsTable};
+use crate::scene::settings_controls::check_declared_ranges;
+use crate::scene::settings_table::{from_name, SettingsError, SettingsTable};
 use crate::scene::Scene;
 use serde::Deserialize;
 
@@ -242,14 +243,7 @@ impl SettingsTable for IpsviSettings {
 
     fn validate(&self) -> Result<(), SettingsError> {
         let t = Self::TABLE;
-        check_whole(t, "line_width", self.line_width, 1, MAX_LINE_WIDTH)?;
-        check_whole(t, "cache_size", self.cache_size, 16, 4096)?;
-        check_range(t, "albedo", self.albedo, 0.0, 1.0)?;
-        check_range(t, "cone_angle", self.cone_angle_deg, 0.0, 80.0)?;
-        check_range(t, "zone_blend", self.zone_blend_px, 0.0, 64.0)?;
-        check_range(t, "light_step", self.light_step_voxels, 0.01, 16.0)?;
-        check_whole(t, "ert_scale", self.ert_scale, 1, 16)?;
-        check_whole(t, "segment_rounds", self.segment_rounds, 1, 64)?;
+        check_declared_ranges(self)?;
         if self.segments != 0 && (!self.segments.is_power_of_two() || self.segments > 128) {
             return Err(SettingsError::Technique(format!(
                 "{t}.segments = {} is not 0 (the device's choice) or a power of two up to 128",

@@ -1,7 +1,8 @@
 //! Light volume parameters from the scene file's `[lightvolume]` table (or
 //! `--set lightvolume.key=value`).
 
-use crate::scene::settings_table::{check_range, check_whole, out_of_range, SettingsError, SettingsTable};
+use crate::scene::settings_controls::check_declared_ranges;
+use crate::scene::settings_table::{out_of_range, SettingsError, SettingsTable};
 use serde::Deserialize;
 
 /// Section 5's cost estimates deciding between a selective and an entire update.
@@ -108,12 +109,10 @@ impl SettingsTable for LightVolumeSettings {
         if !matches!(self.scale, 1 | 2 | 4) {
             return Err(out_of_range(t, "scale", self.scale, "1, 2 or 4".into()));
         }
-        // 0: every pass in one frame.
-        check_whole(t, "max_passes_per_frame", self.max_passes_per_frame, 0, 1_000_000)?;
-        check_whole(t, "pass_lights", self.pass_lights, 1, 64)?;
+        check_declared_ranges(self)?;
         if !(self.rebase_tolerance.is_finite() && self.rebase_tolerance > 0.0) {
             return Err(out_of_range(t, "rebase_tolerance", self.rebase_tolerance, "finite and > 0".into()));
         }
-        check_range(t, "substep", self.substep, 0.05, 4.0)
+        Ok(())
     }
 }
