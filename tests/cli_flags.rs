@@ -99,3 +99,20 @@ fn counts_read_in_the_right_number_and_every_output_is_named() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).contains(&format!("wrote {}", heat.display())));
 }
+
+#[test]
+fn keys_prints_the_declared_reference_of_one_table_or_all() {
+    let o = sweeplab(&["keys"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let all = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert_eq!(all, sweeplab::techniques::CATALOGUE.documented_tables());
+    for table in ["[ipsvi]", "[half_angle]", "[lightvolume]", "[ao]"] {
+        assert!(all.contains(table), "{table} missing: {all}");
+    }
+    let o = sweeplab(&["keys", "ipsvi"]);
+    let one = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(one.starts_with("[ipsvi]\nline_width = 1 ") && !one.contains("[ao]"), "{one}");
+    assert!(one.contains("# lines per dispatch (and per barrier); 1..=32\n"), "{one}");
+    let o = sweeplab(&["keys", "ipsv"]);
+    assert_user_error(&o, "no technique table [ipsv] (did you mean ipsvi?)");
+}

@@ -501,6 +501,14 @@ fn all_keys_example_names_every_technique_key_at_its_default() {
         assert!(text.contains(&format!("{key} = ")), "all-keys.toml does not show `{key}`");
     }
     assert_eq!(example("all-keys.toml", &[]).settings, TechniqueSettings::default());
+    // The technique tables are the declarations' reference, as `sweeplab keys` prints it.
+    let marker = "by `sweeplab keys`; tests/scene_files.rs keeps them equal.\n";
+    let written = &text[text.find(marker).expect("all-keys.toml names where its tables come from") + marker.len()..];
+    assert!(
+        written == sweeplab::techniques::CATALOGUE.documented_tables(),
+        "all-keys.toml's technique tables differ from the declared keys: run \
+         `sweeplab keys` and put its output after the marker line"
+    );
 }
 
 #[test]

@@ -44,7 +44,9 @@ impl SettingsTable for ToySettings {
 
 impl DeclaredSettings for ToySettings {
     fn keys() -> Vec<Key<Self>> {
-        vec![Key::new("gain", Kind::Real { lo: 0.0, hi: 2.0 }, |s| Current::Number(s.gain as f64))]
+        vec![Key::new("gain", "the toy's brightness over DVR's", Kind::Real { lo: 0.0, hi: 2.0 }, |s| {
+            Current::Number(s.gain as f64)
+        })]
     }
 }
 
@@ -120,6 +122,12 @@ fn a_registered_toy_is_named_read_checked_and_declared_like_the_others() {
     assert_eq!((last.path(), &last.kind), ("toy.gain".to_string(), &Kind::Real { lo: 0.0, hi: 2.0 }));
     assert_eq!((last.get)(&read), Current::Number(0.5));
     assert_eq!(controls.len(), CATALOGUE.controls().len() + 1);
+    assert_eq!(last.doc, "the toy's brightness over DVR's");
+
+    // Its key reference (`sweeplab keys`) comes from the same declaration.
+    let doc = catalogue.documented_table("toy").unwrap();
+    assert_eq!(doc, "[toy]\ngain = 1.0                   # the toy's brightness over DVR's; 0..=2\n");
+    assert!(catalogue.documented_tables().ends_with(&doc));
 
     // Another technique run with the toy's table set is told it has no effect.
     let warnings = catalogue.unused_settings(Technique::Dvr, &read);

@@ -11,6 +11,7 @@ pub mod charts;
 pub mod cpu_time;
 pub mod error;
 pub mod estimate;
+pub mod experiment;
 pub mod experiments;
 pub mod frames;
 pub mod harness;
@@ -32,6 +33,7 @@ pub use charts::{
 };
 pub use error::BenchError;
 pub use estimate::{Estimate, Verdict};
+pub use experiment::Experiment;
 pub use experiments::ExperimentError;
 pub use frames::{ipsvi_frame, technique_frame, ProfiledFrame};
 pub use harness::{Harness, HarnessError, Measurement, Sample};

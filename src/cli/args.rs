@@ -70,6 +70,9 @@ pub enum Command {
     /// Put `bench sync` results from several devices side by side: one table
     /// and one chart of per-boundary cost per strategy per device.
     Report(ReportArgs),
+    /// Every technique table's keys: default, what each does, its range
+    /// (`--set TABLE.KEY=VALUE` and scene files take them).
+    Keys(KeysArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -361,6 +364,12 @@ pub struct BenchIpsviArgs {
     /// --half-angle-slices) do not apply, and are refused with it.
     #[arg(long, conflicts_with_all = ["cache_sizes", "one_at_a_time", "half_angle_slices"])]
     pub breakdown: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct KeysArgs {
+    /// Only this table (e.g. ipsvi).
+    pub table: Option<String>,
 }
 
 #[derive(Args, Debug)]

@@ -1,12 +1,11 @@
-//! `sweeplab bench ao`: the arguments and the scene (the Cornell box without
-//! `--scene`/`--volume`), then the experiment
+//! `sweeplab bench ao`: its flags as the study's plan and scene (the study's
+//! own scene without `--scene`/`--volume`), run by the one runner
 //! (`sweeplab::bench::experiments::ao`).
 
 use super::args::BenchAoArgs;
-use super::render_cmd::PROFILER_CAPACITY;
-use super::{scene_args, session};
+use super::{experiment_runner, scene_args, session};
 use std::process::ExitCode;
-use sweeplab::bench::experiments::ao::{self as ao_bench, AoPlan};
+use sweeplab::bench::experiments::ao::{self as ao_bench, AoExperiment, AoPlan};
 use sweeplab::scene::Scene;
 
 fn load_scene(args: &BenchAoArgs) -> anyhow::Result<Scene> {
@@ -32,12 +31,5 @@ pub fn run(args: &BenchAoArgs) -> anyhow::Result<ExitCode> {
         data_set: ao_bench::data_set_name(args.scene.scene.as_deref().or(args.scene.volume.as_deref())),
     };
     let scene = load_scene(args)?;
-    ao_bench::configurations(&plan, &scene.settings.get())?;
-    let out_folder = session::out_folder(&args.out, "bench-ao")?;
-    let ctx = session::open(&args.gpu)?;
-    let measured = ao_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
-    let report = session::watch(&out_folder, measured)?;
-    ao_bench::print_summary(&report.table);
-    session::finish_out(out_folder, None)?;
-    Ok(session::finish(&ctx))
+    experiment_runner::run(&AoExperiment { plan, scene }, &args.out, &args.gpu)
 }

@@ -1,18 +1,25 @@
-//! `sweeplab bench ipsvi`: the arguments and the scene, then the experiment
+//! `sweeplab bench ipsvi`: its flags as the study's plan
 //! (`sweeplab::bench::experiments::ipsvi`, or `ipsvi::breakdown` with
-//! `--breakdown`).
+//! `--breakdown`), run by the one runner.
 
 use super::args::BenchIpsviArgs;
-use super::render_cmd::PROFILER_CAPACITY;
-use super::{scene_args, session};
+use super::{experiment_runner, scene_args, session};
 use std::process::ExitCode;
-use sweeplab::bench::experiments::ipsvi::{self as ipsvi_bench, IpsviPlan, DEFAULT_GROUP_BYTES};
+use sweeplab::bench::experiments::ipsvi::breakdown::BreakdownPlan;
+use sweeplab::bench::experiments::ipsvi::{BreakdownExperiment, IpsviExperiment, IpsviPlan, DEFAULT_GROUP_BYTES};
 use sweeplab::bench::Interleaved;
-use sweeplab::techniques::ipsvi::IpsviSettings;
 
 pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
+    let scene = scene_args::load(&args.scene)?;
     if args.breakdown {
-        return super::bench_breakdown::run(args);
+        let plan = BreakdownPlan {
+            sizes: args.sizes.clone(),
+            line_widths: args.line_widths.clone(),
+            interleaved: rounds(args)?,
+            volume_texels: session::volume_texels(&args.gpu),
+            kernels: args.kernels.clone(),
+        };
+        return experiment_runner::run(&BreakdownExperiment { plan, scene }, &args.out, &args.gpu);
     }
     let plan = IpsviPlan {
         sizes: args.sizes.clone(),
@@ -25,20 +32,11 @@ pub fn run(args: &BenchIpsviArgs) -> anyhow::Result<ExitCode> {
         group_bytes: DEFAULT_GROUP_BYTES,
         kernels: args.kernels.clone(),
     };
-    plan.check()?;
-    let scene = scene_args::load(&args.scene)?;
-    plan.configurations(&scene.settings.get::<IpsviSettings>())?;
-    let out_folder = session::out_folder(&args.out, "bench-ipsvi")?;
-    let ctx = session::open(&args.gpu)?;
-    let measured = ipsvi_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
-    let report = session::watch(&out_folder, measured)?;
-    report.print_summary();
-    session::finish_out(out_folder, None)?;
-    Ok(session::finish(&ctx))
+    experiment_runner::run(&IpsviExperiment { plan, scene }, &args.out, &args.gpu)
 }
 
 /// The shared rounds of `args`, within --max-minutes when given.
-pub fn rounds(args: &BenchIpsviArgs) -> anyhow::Result<Interleaved> {
+fn rounds(args: &BenchIpsviArgs) -> anyhow::Result<Interleaved> {
     let rounds = session::interleaved(args.repeat, &args.rounds)?;
     let Some(minutes) = args.max_minutes else { return Ok(rounds) };
     rounds.within_minutes(minutes).map_err(|e| anyhow::anyhow!("--max-minutes: {e}"))

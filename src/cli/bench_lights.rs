@@ -1,11 +1,10 @@
-//! `sweeplab bench lights`: the arguments, then the experiment
-//! (`sweeplab::bench::experiments::lights`).
+//! `sweeplab bench lights`: its flags as the study's plan, run by the one
+//! runner (`sweeplab::bench::experiments::lights`).
 
 use super::args::BenchLightsArgs;
-use super::render_cmd::PROFILER_CAPACITY;
-use super::{scene_args, session};
+use super::{experiment_runner, scene_args, session};
 use std::process::ExitCode;
-use sweeplab::bench::experiments::lights::{self as lights_bench, LightsPlan};
+use sweeplab::bench::experiments::lights::{LightsExperiment, LightsPlan};
 
 /// The error rows' image without `--size`.
 const DEFAULT_ERROR_IMAGE: u32 = 256;
@@ -26,13 +25,6 @@ pub fn run(args: &BenchLightsArgs) -> anyhow::Result<ExitCode> {
         image,
         volume_texels: session::volume_texels(&args.gpu),
     };
-    plan.check()?;
     let scene = scene_args::load(&args.scene)?;
-    let out_folder = session::out_folder(&args.out, "bench-lights")?;
-    let ctx = session::open(&args.gpu)?;
-    let measured = lights_bench::run(&ctx, &scene, &plan, session::run_info(&ctx), &out_folder, PROFILER_CAPACITY);
-    let report = session::watch(&out_folder, measured)?;
-    report.print_summary();
-    session::finish_out(out_folder, None)?;
-    Ok(session::finish(&ctx))
+    experiment_runner::run(&LightsExperiment { plan, scene }, &args.out, &args.gpu)
 }

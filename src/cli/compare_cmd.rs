@@ -1,7 +1,7 @@
 //! `sweeplab compare`: the flags, then `sweeplab::techniques::comparison`.
 
 use super::args::CompareArgs;
-use super::render_cmd::{write_json, PROFILER_CAPACITY};
+use super::render_cmd::write_json;
 use super::{scene_args, session};
 use anyhow::Context as _;
 use std::process::ExitCode;
@@ -35,7 +35,15 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     session::report_long_waits(&ctx);
     let texels = session::volume_texels(&args.gpu);
     let cache = args.reference_cache.as_ref().map(GroundTruthCache::new);
-    let c = compare_with_reference(&ctx, &scene, technique, source, texels, PROFILER_CAPACITY, cache.as_ref())?;
+    let c = compare_with_reference(
+        &ctx,
+        &scene,
+        technique,
+        source,
+        texels,
+        sweeplab::vk::Profiler::FRAME_CAPACITY,
+        cache.as_ref(),
+    )?;
     for line in c.lines() {
         println!("{line}");
     }

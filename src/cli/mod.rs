@@ -1,7 +1,6 @@
 mod ao_progress;
 pub mod args;
 mod bench_ao;
-mod bench_breakdown;
 mod bench_ipsvi;
 mod bench_lights;
 mod bench_stability;
@@ -10,6 +9,8 @@ mod bench_table1;
 mod compare_cmd;
 mod devices_cmd;
 pub mod error_report;
+mod experiment_runner;
+mod keys_cmd;
 mod render_cmd;
 mod report_cmd;
 mod scene_args;
@@ -25,6 +26,7 @@ pub fn run(cli: args::Cli) -> anyhow::Result<ExitCode> {
         args::Command::Compare(a) => compare_cmd::run(&a),
         args::Command::View(a) => view_cmd::run(&a),
         args::Command::Report(a) => report_cmd::run(&a),
+        args::Command::Keys(a) => keys_cmd::run(&a),
         args::Command::Bench(args::BenchCommand::Ipsvi(a)) => bench_ipsvi::run(&a),
         args::Command::Bench(args::BenchCommand::Sync(a)) => bench_sync::run(&a),
         args::Command::Bench(args::BenchCommand::Table1(a)) => bench_table1::run(&a),

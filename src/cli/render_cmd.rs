@@ -9,9 +9,6 @@ use sweeplab::render::GpuScene;
 use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::Profiler;
 
-/// Scopes per frame the profiler can hold (per-dispatch detail included).
-pub const PROFILER_CAPACITY: u32 = 65_536;
-
 pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
     output_paths::check_png("--out", &args.out)?;
@@ -31,7 +28,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<ExitCode> {
     let output = {
         let gpu =
             GpuScene::upload_with(&ctx, &scene, session::volume_texels(&args.gpu)).context("uploading the scene")?;
-        let mut profiler = Profiler::new(&ctx, PROFILER_CAPACITY)?;
+        let mut profiler = Profiler::new(&ctx, Profiler::FRAME_CAPACITY)?;
         // On unless --no-detail came last (each flag overrides the other).
         profiler.set_detail(args.detail || !args.no_detail);
         render(&gpu, technique, scene.render.width, scene.render.height, &mut profiler)

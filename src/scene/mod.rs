@@ -15,6 +15,7 @@ pub mod scene_file;
 pub mod scene_schema;
 pub mod scene_spec;
 pub mod settings_controls;
+pub mod settings_docs;
 pub mod settings_table;
 pub mod suggest;
 pub mod synthetic;

@@ -1,10 +1,13 @@
 //! A settings table's keys declared once, beside its settings type: each key's
-//! kind of value, its range, and how to read its value from the settings. The
-//! viewer's panel is built from these declarations ([`controls_of`]), and so
-//! are the range checks of whole and real keys that a table's `validate` runs
-//! ([`check_declared_ranges`]): a `--set` edit, a scene file and settings built
-//! in code are checked against the range the panel offers. Tests tie the
-//! declarations to the typed settings (every key serde reads has one).
+//! name, what it does, its kind of value and range, and how to read its value
+//! from the settings (its default is the value in `S::default()`). Built from
+//! these declarations: the viewer's panel ([`controls_of`], the doc on hover),
+//! the range checks of whole and real keys that a table's `validate` runs
+//! ([`check_declared_ranges`]: a `--set` edit, a scene file and settings built
+//! in code are checked against the range the panel offers), and the key
+//! reference that `sweeplab keys` prints and `tests/scenes/all-keys.toml`
+//! holds ([`super::settings_docs`]). Tests tie the declarations to the typed
+//! settings (every key serde reads has one).
 
 use std::sync::Arc;
 
@@ -50,13 +53,15 @@ pub enum Current {
 /// One key of `S`'s table.
 pub struct Key<S> {
     pub key: &'static str,
+    /// What the key does, with its unit: one short line.
+    pub doc: &'static str,
     pub kind: Kind,
     pub value: fn(&S) -> Current,
 }
 
 impl<S> Key<S> {
-    pub fn new(key: &'static str, kind: Kind, value: fn(&S) -> Current) -> Key<S> {
-        Key { key, kind, value }
+    pub fn new(key: &'static str, doc: &'static str, kind: Kind, value: fn(&S) -> Current) -> Key<S> {
+        Key { key, doc, kind, value }
     }
 }
 
@@ -75,6 +80,7 @@ pub trait DeclaredSettings: SettingsTable + TechniqueTable + Clone {
 pub struct Control {
     pub table: &'static str,
     pub key: &'static str,
+    pub doc: &'static str,
     pub kind: Kind,
     /// The key's value in a scene (its fallback where unset).
     pub get: Arc<dyn Fn(&Scene) -> Current + Send + Sync>,
@@ -91,12 +97,12 @@ impl Control {
 pub fn controls_of<S: DeclaredSettings>() -> Vec<Control> {
     S::keys()
         .into_iter()
-        .map(|Key { key, kind, value }| {
+        .map(|Key { key, doc, kind, value }| {
             let get = move |scene: &Scene| match value(&scene.settings.get::<S>()) {
                 Current::Unset => S::shown_unset(key, scene),
                 set => set,
             };
-            Control { table: S::TABLE, key, kind, get: Arc::new(get) }
+            Control { table: S::TABLE, key, doc, kind, get: Arc::new(get) }
         })
         .collect()
 }
@@ -105,7 +111,7 @@ pub fn controls_of<S: DeclaredSettings>() -> Vec<Control> {
 /// range open above is left to the table's own check, which says what bounds
 /// it); the error names `table.key = value` and the range.
 pub fn check_declared_ranges<S: DeclaredSettings>(settings: &S) -> Result<(), SettingsError> {
-    for Key { key, kind, value } in S::keys() {
+    for Key { key, kind, value, .. } in S::keys() {
         match (kind, value(settings)) {
             (Kind::Whole { lo, hi }, Current::Number(v)) => check_whole(S::TABLE, key, v as u32, lo, hi)?,
             // The keys are f32: the value and the ends as the table holds them.

@@ -10,6 +10,7 @@ use crate::render::frame_result::FrameResult;
 use crate::render::session::{EachFrameAnew, FrameSession};
 use crate::render::{GpuScene, RenderError, RenderTechnique};
 use crate::scene::settings_controls::{controls_of, Control, DeclaredSettings};
+use crate::scene::settings_docs::documented_table;
 use crate::scene::settings_table::{read_table, SettingsError};
 use crate::scene::technique_settings::TechniqueTable;
 use crate::scene::Scene;
@@ -63,11 +64,18 @@ pub struct TableEntry {
     pub name: &'static str,
     pub read: fn(toml::Value) -> Result<Box<dyn TechniqueTable>, SettingsError>,
     pub controls: fn() -> Vec<Control>,
+    /// The key reference (`sweeplab keys`, all-keys.toml).
+    pub documented: fn() -> String,
 }
 
 impl TableEntry {
     pub const fn of<T: DeclaredSettings>() -> TableEntry {
-        TableEntry { name: T::TABLE, read: read_boxed::<T>, controls: controls_of::<T> }
+        TableEntry {
+            name: T::TABLE,
+            read: read_boxed::<T>,
+            controls: controls_of::<T>,
+            documented: documented_table::<T>,
+        }
     }
 }
 

@@ -55,6 +55,18 @@ impl<'a> Catalogue<'a> {
         self.registrations.iter().filter_map(|r| r.table).flat_map(|t| (t.controls)()).collect()
     }
 
+    /// Every technique table's key reference, in the registry's order, a blank
+    /// line between tables.
+    pub fn documented_tables(&self) -> String {
+        let tables: Vec<String> = self.registrations.iter().filter_map(|r| r.table).map(|t| (t.documented)()).collect();
+        tables.join("\n")
+    }
+
+    /// One table's key reference; `None` for a name no technique registers.
+    pub fn documented_table(&self, table: &str) -> Option<String> {
+        self.registrations.iter().filter_map(|r| r.table).find(|t| t.name == table).map(|t| (t.documented)())
+    }
+
     /// A warning for each technique table of `scene` that `technique` does not read.
     pub fn unused_settings(&self, technique: Technique, scene: &Scene) -> Vec<String> {
         let own = self.table_of(technique);

@@ -56,6 +56,7 @@ impl SettingsPanel {
     fn show_control(&mut self, ui: &mut egui::Ui, c: &Control, scene: &Scene, edits: &mut Vec<UiEdit>) {
         let current = (c.get)(scene);
         let mut push = |v: Current| edits.push(UiEdit::Set(set_edit(c, &v)));
+        // What the key does, declared beside it, on hover.
         ui.horizontal(|ui| match (&c.kind, &current) {
             (Kind::Toggle, Current::Bool(on)) => {
                 let mut v = *on;
@@ -115,7 +116,9 @@ impl SettingsPanel {
             (kind, value) => {
                 ui.label(format!("{}: {value:?} ({kind:?})", c.key));
             }
-        });
+        })
+        .response
+        .on_hover_text(c.doc);
     }
 }
 
@@ -131,6 +134,18 @@ mod tests {
 
     fn keys_of(table: &str) -> Vec<&'static str> {
         controls().into_iter().filter(|c| c.table == table).map(|c| c.key).collect()
+    }
+
+    #[test]
+    fn every_control_says_what_its_key_does_in_one_line() {
+        for c in controls() {
+            assert!(
+                !c.doc.trim().is_empty() && c.doc.len() <= 100 && !c.doc.contains('\n'),
+                "{}: {:?}",
+                c.path(),
+                c.doc
+            );
+        }
     }
 
     #[test]

@@ -96,6 +96,10 @@ pub struct ProfileReport {
 }
 
 impl Profiler {
+    /// The scopes per frame the commands' profilers hold: a scope around every
+    /// line dispatch of the largest frame and every view chunk at tiny steps.
+    pub const FRAME_CAPACITY: u32 = 65_536;
+
     /// A profiler for up to `capacity` scopes per frame.
     pub fn new(ctx: &Context, capacity: u32) -> Result<Profiler, VkError> {
         let timestamps = ctx.timestamps_supported();

@@ -8,7 +8,10 @@
 //! against n_c per metric (the paper's figure 6) and error against
 //! preprocessing time.
 
+mod experiment;
 pub mod paper_table1;
+
+pub use experiment::AoExperiment;
 
 use crate::bench::{
     plot_error_vs_time, plot_lines, technique_frame, AxisScale, BenchError, BenchRow, BenchTable, Chart,

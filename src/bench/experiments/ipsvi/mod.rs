@@ -8,6 +8,9 @@
 //! RMSE) is marked per size and charted.
 
 pub mod breakdown;
+mod experiment;
+
+pub use experiment::{BreakdownExperiment, IpsviExperiment};
 
 use crate::bench::experiments::image_sizes::check_sizes;
 use crate::bench::protocol::{Phase, Protocol};

@@ -8,8 +8,11 @@
 //! the shared shuffled rounds of [`Interleaved`]; ratios between them come
 //! from paired rounds. The measuring pieces are in [`measure`].
 
+mod experiment;
 pub mod measure;
 mod report;
+
+pub use experiment::LightsExperiment;
 
 use crate::bench::estimate::readable;
 use crate::bench::{

@@ -7,6 +7,9 @@
 
 pub mod bench;
 pub mod cases;
+mod experiment;
+
+pub use experiment::StabilityExperiment;
 
 use crate::techniques::ipsvi::IpsviSettings;
 use std::path::Path;
@@ -27,9 +30,6 @@ use cases::StabilityCase;
 
 /// The view steps (voxels) of the convergence check.
 pub const CONVERGENCE_STEPS: [f32; 5] = [1.0, 0.5, 0.25, 0.125, 0.0625];
-
-/// Profiler scopes a frame may use (view chunks at tiny steps included).
-const PROFILER_CAPACITY: u32 = 65_536;
 
 /// A column of the table: a technique, and for IPSVI its cache update (both
 /// modes are columns: their artefacts differ).
@@ -182,7 +182,7 @@ fn gpu_frame(
 ) -> Result<(LinearImage, f64, Option<Estimate>), String> {
     t.check(scene).map_err(|e| e.to_string())?;
     let gpu = GpuScene::upload_with(ctx, scene, VolumeTexels::Float32).map_err(|e| e.to_string())?;
-    let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY).map_err(|e| e.to_string())?;
+    let mut profiler = Profiler::new(ctx, Profiler::FRAME_CAPACITY).map_err(|e| e.to_string())?;
     let measured = harness
         .measure(|| {
             let out = render(&gpu, t, size, size, &mut profiler)?;

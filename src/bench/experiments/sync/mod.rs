@@ -37,6 +37,7 @@ pub mod chain;
 pub mod chain_plan;
 pub mod compare;
 pub mod estimates;
+mod experiment;
 pub mod files;
 mod lines;
 pub mod options;
@@ -48,6 +49,7 @@ pub mod traces;
 pub mod verdict;
 
 pub use budget::LeftOut;
+pub use experiment::SyncExperiment;
 pub use options::SyncOptions;
 pub use plan::{check, configurations, Precision, SyncPlan, MIN_RUN};
 pub use report::{ConfigRow, StrategyRow, SyncReport, WorkloadRounds};

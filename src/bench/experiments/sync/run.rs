@@ -29,8 +29,6 @@ use std::cell::{Cell, RefCell};
 use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
-/// Scopes a frame needs with a timestamp around every line dispatch.
-const PROFILER_CAPACITY: u32 = 1 << 16;
 const MAX_FRAMES_PER_RUN: u32 = 32;
 
 /// Called as the study goes: before and after each workload's warm-up,
@@ -157,7 +155,7 @@ pub fn run(
         None
     };
     let study = Study { ctx, gpu, base, plan, run_info: &run_info, started, line_group };
-    let mut profiler = Profiler::new(ctx, PROFILER_CAPACITY)?;
+    let mut profiler = Profiler::new(ctx, Profiler::FRAME_CAPACITY)?;
     let mut configs: Vec<Configuration> = Vec::new();
     let mut measured = Measured::default();
     let order = plan::execution_order(&plan.workloads);

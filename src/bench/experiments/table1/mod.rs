@@ -5,7 +5,10 @@
 //! ratio to the serial one (paired round by round) see the same rounds of a
 //! shared machine.
 
+mod experiment;
 pub mod paper;
+
+pub use experiment::Table1Experiment;
 
 use crate::bench::experiments::table1::paper::{PaperColumn, CT_ENGINE, CT_GIRAFFE, LINE_WIDTHS, US_BABY};
 use crate::bench::{
