@@ -623,6 +623,10 @@ fn technique_values_out_of_range_name_key_value_and_range() {
         ("[ipsvi]\nzone_blend = -1", "ipsvi.zone_blend = -1: must be in 0..=64"),
         ("[ipsvi]\nlight_step = nan", "ipsvi.light_step = NaN: must be in 0.01..=16"),
         ("[ipsvi]\nert_scale = 0", "ipsvi.ert_scale = 0: must be a whole number in 1..=16"),
+        (
+            "[ipsvi]\nline_kernel = \"segmented\"\nsegments = 3",
+            "ipsvi.segments = 3: must be 0, 1, 2, 4, 8, 16, 32, 64 or 128",
+        ),
         ("[lightvolume]\nscale = 3", "lightvolume.scale = 3: must be 1, 2 or 4"),
         ("[lightvolume]\npass_lights = 65", "lightvolume.pass_lights = 65: must be a whole number in 1..=64"),
         ("[lightvolume]\nrebase_tolerance = 0.0", "lightvolume.rebase_tolerance = 0: must be finite and > 0"),

@@ -11,7 +11,7 @@
 
 use std::sync::Arc;
 
-use super::settings_table::{check_range, check_whole, SettingsError, SettingsTable};
+use super::settings_table::{check_range, check_whole, out_of_range, SettingsError, SettingsTable};
 use super::technique_settings::TechniqueTable;
 use super::Scene;
 
@@ -107,19 +107,35 @@ pub fn controls_of<S: DeclaredSettings>() -> Vec<Control> {
         .collect()
 }
 
-/// Every whole and real key of `settings` within its declared range (a real
-/// range open above is left to the table's own check, which says what bounds
-/// it); the error names `table.key = value` and the range.
+/// Every numeric key of `settings` within its declared range: whole and real
+/// ranges, real ranges open above (`> 0` where the range starts at the
+/// smallest positive number, else `>= lo`), and lists of allowed numbers. The
+/// error names `table.key = value` and the range.
 pub fn check_declared_ranges<S: DeclaredSettings>(settings: &S) -> Result<(), SettingsError> {
     for Key { key, kind, value, .. } in S::keys() {
-        match (kind, value(settings)) {
-            (Kind::Whole { lo, hi }, Current::Number(v)) => check_whole(S::TABLE, key, v as u32, lo, hi)?,
+        let Current::Number(v) = value(settings) else { continue };
+        match kind {
+            Kind::Whole { lo, hi } => check_whole(S::TABLE, key, v as u32, lo, hi)?,
             // The keys are f32: the value and the ends as the table holds them.
-            (Kind::Real { lo, hi }, Current::Number(v)) if hi.is_finite() => {
-                check_range(S::TABLE, key, v as f32, lo as f32, hi as f32)?
+            Kind::Real { lo, hi } if hi.is_finite() => check_range(S::TABLE, key, v as f32, lo as f32, hi as f32)?,
+            Kind::Real { lo, .. } if !(v.is_finite() && v >= lo) => {
+                let bound = if lo == f64::MIN_POSITIVE { "> 0".to_string() } else { format!(">= {lo}") };
+                return Err(out_of_range(S::TABLE, key, v, format!("finite and {bound}")));
+            }
+            Kind::Numbers(allowed) if !allowed.iter().any(|&a| f64::from(a) == v) => {
+                return Err(out_of_range(S::TABLE, key, v, or_list(allowed)));
             }
             _ => {}
         }
     }
     Ok(())
+}
+
+/// `1, 2 or 4`.
+pub fn or_list(items: &[impl std::fmt::Display]) -> String {
+    let texts: Vec<String> = items.iter().map(|i| i.to_string()).collect();
+    match texts.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => texts.join(""),
+    }
 }

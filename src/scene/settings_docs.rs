@@ -5,7 +5,7 @@
 //! the file equal to it), so a key's doc and range are written only beside
 //! its settings type.
 
-use super::settings_controls::{Current, DeclaredSettings, Key, Kind};
+use super::settings_controls::{or_list, Current, DeclaredSettings, Key, Kind};
 
 /// The comment column of a key's line, as in the hand-written tables.
 const COMMENT_COLUMN: usize = 29;
@@ -61,18 +61,14 @@ fn number_text(n: f64) -> String {
 
 /// What a key accepts, in words; `None` where the doc says it (toggles, text).
 fn range_text(kind: &Kind) -> Option<String> {
-    let or_list = |items: Vec<String>| match items.split_last() {
-        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
-        _ => items.join(""),
-    };
     match kind {
         Kind::Toggle | Kind::Text => None,
         Kind::Whole { lo, hi } => Some(format!("{lo}..={hi}")),
         Kind::Real { lo, hi } if hi.is_finite() => Some(format!("{}..={}", number_text(*lo), number_text(*hi))),
         Kind::Real { lo, .. } if *lo == f64::MIN_POSITIVE => Some("> 0".into()),
         Kind::Real { lo, .. } => Some(format!(">= {}", number_text(*lo))),
-        Kind::Choice(names) => Some(or_list(names.iter().map(|n| format!("{n:?}")).collect())),
-        Kind::Numbers(numbers) => Some(or_list(numbers.iter().map(|n| n.to_string()).collect())),
+        Kind::Choice(names) => Some(or_list(&names.iter().map(|n| format!("{n:?}")).collect::<Vec<_>>())),
+        Kind::Numbers(numbers) => Some(or_list(numbers)),
     }
 }
 

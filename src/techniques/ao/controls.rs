@@ -2,7 +2,7 @@
 //! the viewer's panel and the range checks are built (`crate::scene::settings_controls`).
 
 use super::render_settings::{AoMode, MAX_GLOW, MAX_PHASE_G};
-use super::settings::{Metric, TrainingSet};
+use super::settings::{Metric, TrainingSet, MAX_BITS, MAX_CLUSTERS, MAX_RADIUS};
 use super::AoSettings;
 use crate::scene::settings_controls::{Current, DeclaredSettings, Key, Kind};
 
@@ -13,15 +13,15 @@ impl DeclaredSettings for AoSettings {
         let control = Key::<Self>::new;
         let names = |all: &[&'static str]| all.to_vec();
         vec![
-            control("radius", "sphere radius, voxels", Whole { lo: 1, hi: 64 }, |s| Number(s.radius as f64)),
-            control("bits", "2^bits intensity bins per local histogram", Whole { lo: 1, hi: 12 }, |s| {
+            control("radius", "sphere radius, voxels", Whole { lo: 1, hi: MAX_RADIUS }, |s| Number(s.radius as f64)),
+            control("bits", "2^bits intensity bins per local histogram", Whole { lo: 1, hi: MAX_BITS }, |s| {
                 Number(s.bits as f64)
             }),
             // At most 2^bits: the check refuses more.
             control("packed_dim", "packed histogram size, at most 2^bits", Whole { lo: 2, hi: 4096 }, |s| {
                 Number(s.packed_dim as f64)
             }),
-            control("clusters", "codebook size n_c (the paper: 256 to 2048)", Whole { lo: 2, hi: 2048 }, |s| {
+            control("clusters", "codebook size n_c (the paper: 256 to 2048)", Whole { lo: 2, hi: MAX_CLUSTERS }, |s| {
                 Number(s.clusters as f64)
             }),
             control(

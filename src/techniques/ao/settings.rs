@@ -20,8 +20,9 @@ use serde::Deserialize;
 
 use super::error::AoError;
 use super::render_settings::{
-    validate_render_keys, AoMode, DEFAULT_GLOW_MAX, DEFAULT_GLOW_RANGE, DEFAULT_ISOVALUE, DEFAULT_PHASE_G,
+    validate_glow_range, AoMode, DEFAULT_GLOW_MAX, DEFAULT_GLOW_RANGE, DEFAULT_ISOVALUE, DEFAULT_PHASE_G,
 };
+use crate::scene::settings_controls::check_declared_ranges;
 use crate::scene::settings_table::{check_keys, read_table, SettingsError, SettingsTable};
 use crate::scene::Scene;
 
@@ -185,17 +186,15 @@ impl AoSettings {
         read_table(value.clone()).map_err(|e| AoError::Invalid(e.to_string()))
     }
 
-    /// Every value in its range; the error names `ao.key = value` and the range.
+    /// Every value in its range; the error names `ao.key = value` and the
+    /// range. The numeric keys' ranges are their declarations' (controls.rs);
+    /// checked here: what one key's range depends on another's value, the
+    /// training set's inline table, the cache folder and the glow range.
     pub fn validate(&self) -> Result<(), AoError> {
         fn out(key: &str, value: impl std::fmt::Display, allowed: &str) -> AoError {
             AoError::Invalid(format!("ao.{key} = {value}: allowed {allowed}"))
         }
-        if !(1..=MAX_RADIUS).contains(&self.radius) {
-            return Err(out("radius", self.radius, &format!("1..={MAX_RADIUS} (voxels)")));
-        }
-        if !(1..=MAX_BITS).contains(&self.bits) {
-            return Err(out("bits", self.bits, &format!("1..={MAX_BITS} (2^bits intensity bins)")));
-        }
+        check_declared_ranges(self).map_err(|e| AoError::Invalid(e.to_string()))?;
         let bins = 1u32 << self.bits;
         if !(2..=bins).contains(&self.packed_dim) {
             return Err(out(
@@ -203,9 +202,6 @@ impl AoSettings {
                 self.packed_dim,
                 &format!("2..={bins} (at most 2^bits with bits = {})", self.bits),
             ));
-        }
-        if !(2..=MAX_CLUSTERS).contains(&self.clusters) {
-            return Err(out("clusters", self.clusters, &format!("2..={MAX_CLUSTERS} (the paper uses 256..=2048)")));
         }
         let count = self.training.count();
         if count < 1 {
@@ -216,16 +212,10 @@ impl AoSettings {
                 return Err(out("training.eps", eps, ">= 0 (normalized intensity per voxel)"));
             }
         }
-        if !(1..=1000).contains(&self.lbg_iterations) {
-            return Err(out("lbg_iterations", self.lbg_iterations, "1..=1000"));
-        }
-        if !(self.lbg_threshold.is_finite() && self.lbg_threshold >= 0.0 && self.lbg_threshold < 1.0) {
-            return Err(out("lbg_threshold", self.lbg_threshold, "0 <= threshold < 1 (relative distortion change)"));
-        }
         if self.cache_dir.as_deref() == Some("") {
             return Err(out("cache_dir", "\"\"", "a directory path (leave it out for the default)"));
         }
-        validate_render_keys(self.isovalue, self.phase_g, self.glow_max, self.glow_range)
+        validate_glow_range(self.glow_range)
     }
 
     /// The backend that runs with (`has_gpu`) or without a Vulkan context: the
@@ -309,11 +299,17 @@ mod tests {
     #[test]
     fn out_of_range_values_name_key_value_and_range() {
         for (text, needle) in [
-            ("radius = 0", "ao.radius = 0: allowed 1..=64"),
-            ("bits = 13", "ao.bits = 13: allowed 1..=12"),
+            ("radius = 0", "ao.radius = 0: must be a whole number in 1..=64"),
+            ("bits = 13", "ao.bits = 13: must be a whole number in 1..=12"),
             ("bits = 4\npacked_dim = 32", "ao.packed_dim = 32: allowed 2..=16"),
-            ("clusters = 4096", "ao.clusters = 4096: allowed 2..=2048"),
-            ("lbg_threshold = 1.5", "ao.lbg_threshold = 1.5"),
+            ("clusters = 4096", "ao.clusters = 4096: must be a whole number in 2..=2048"),
+            ("lbg_iterations = 0", "ao.lbg_iterations = 0: must be a whole number in 1..=1000"),
+            ("lbg_threshold = 1.5", "ao.lbg_threshold = 1.5: must be in 0..=0.999999"),
+            ("isovalue = 1.5", "ao.isovalue = 1.5: must be in 0..=1"),
+            ("isovalue = nan", "ao.isovalue = NaN: must be in 0..=1"),
+            ("phase_g = 1.0", "ao.phase_g = 1: must be in -0.99..=0.99"),
+            ("glow_max = 0.5", "ao.glow_max = 0.5: must be in 1..=64"),
+            ("glow_range = [0.9, 0.1]", "ao.glow_range = [0.9, 0.1]: allowed"),
             ("training = { rule = \"gradient\", eps = -1.0 }", "ao.training.eps = -1"),
             ("training = { rule = \"random\", count = 0 }", "ao.training.count = 0"),
         ] {

@@ -244,12 +244,6 @@ impl SettingsTable for IpsviSettings {
     fn validate(&self) -> Result<(), SettingsError> {
         let t = Self::TABLE;
         check_declared_ranges(self)?;
-        if self.segments != 0 && (!self.segments.is_power_of_two() || self.segments > 128) {
-            return Err(SettingsError::Technique(format!(
-                "{t}.segments = {} is not 0 (the device's choice) or a power of two up to 128",
-                self.segments
-            )));
-        }
         if self.segments != 0 && self.line_kernel != LineKernel::Segmented {
             return Err(SettingsError::Technique(format!(
                 "{t}.segments = {} needs {t}.line_kernel = \"segmented\" (it is \"{}\")",

@@ -2,7 +2,7 @@
 //! `--set lightvolume.key=value`).
 
 use crate::scene::settings_controls::check_declared_ranges;
-use crate::scene::settings_table::{out_of_range, SettingsError, SettingsTable};
+use crate::scene::settings_table::{SettingsError, SettingsTable};
 use serde::Deserialize;
 
 /// Section 5's cost estimates deciding between a selective and an entire update.
@@ -104,15 +104,8 @@ impl LightVolumeSettings {
 impl SettingsTable for LightVolumeSettings {
     const TABLE: &'static str = "lightvolume";
 
+    /// Every key's range is its declaration's (controls.rs).
     fn validate(&self) -> Result<(), SettingsError> {
-        let t = Self::TABLE;
-        if !matches!(self.scale, 1 | 2 | 4) {
-            return Err(out_of_range(t, "scale", self.scale, "1, 2 or 4".into()));
-        }
-        check_declared_ranges(self)?;
-        if !(self.rebase_tolerance.is_finite() && self.rebase_tolerance > 0.0) {
-            return Err(out_of_range(t, "rebase_tolerance", self.rebase_tolerance, "finite and > 0".into()));
-        }
-        Ok(())
+        check_declared_ranges(self)
     }
 }
