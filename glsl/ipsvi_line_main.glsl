@@ -44,14 +44,20 @@ void line_invocation(uint id) {
     }
 }
 
+// The block's loads are unconditional and unmerged ids are the dispatch's own
+// (gl_GlobalInvocationID): with the loads, the work and the report behind one
+// `has_block` branch, lavapipe ran the serial kernel at 1.12x the line time of
+// the build before the kernels shared this file (engine 256, median of 8
+// rotated rounds), 1.01x in this shape (docs/ipsvi.md, "Line kernels").
 void main() {
     if (STEP == STEP_EMPTY) return;
-    uint group = gl_WorkGroupID.x;
-    uint first_group = 0u;
+    uint id = gl_GlobalInvocationID.x;
     block_index = push.block_index;
     if (MERGED) {
         // The step's sweeps own consecutive workgroup ranges: the last entry
         // starting at or before this workgroup is this invocation's block.
+        uint group = gl_WorkGroupID.x;
+        uint first_group = 0u;
         block_index = NO_BLOCK;
         for (uint s = 0u; s < step_sweeps; ++s) {
             uvec2 e = step_entries[push.block_index * step_sweeps + s];
@@ -60,14 +66,18 @@ void main() {
                 first_group = e.y;
             }
         }
+        if (block_index == NO_BLOCK) return;
+        id = (group - first_group) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
     }
-    bool has_block = block_index != NO_BLOCK && line_kernel_ready();
-    if (has_block) {
-        block = blocks[block_index];
-        sweep = sweeps[block.light];
-        line_invocation((group - first_group) * gl_WorkGroupSize.x + line_local_index());
-    }
-    if (has_block) report_chain();
+    // Both returns are uniform over the workgroup: no subgroup operation
+    // below runs short of lanes.
+    if (!line_kernel_ready()) return;
+    block = blocks[block_index];
+    sweep = sweeps[block.light];
+    // The kernel's own order of a workgroup's invocations (the segmented one's
+    // by subgroup lane; the serial one's is the local index: id itself).
+    line_invocation(id - gl_LocalInvocationID.x + line_local_index());
+    report_chain();
 }
 
 #endif
