@@ -11,6 +11,7 @@ use sweeplab::output_paths;
 use sweeplab::techniques::comparison::{compare_with_reference, comparison_scene, ReferenceSource};
 use sweeplab::techniques::ground_truth_cache::GroundTruthCache;
 use sweeplab::techniques::Technique;
+use sweeplab::vk::Profiler;
 
 pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     let technique: Technique = args.technique.parse().map_err(|e: String| anyhow::anyhow!("--technique: {e}"))?;
@@ -35,15 +36,8 @@ pub fn run(args: &CompareArgs) -> anyhow::Result<ExitCode> {
     session::report_long_waits(&ctx);
     let texels = session::volume_texels(&args.gpu);
     let cache = args.reference_cache.as_ref().map(GroundTruthCache::new);
-    let c = compare_with_reference(
-        &ctx,
-        &scene,
-        technique,
-        source,
-        texels,
-        sweeplab::vk::Profiler::FRAME_CAPACITY,
-        cache.as_ref(),
-    )?;
+    let capacity = Profiler::FRAME_CAPACITY;
+    let c = compare_with_reference(&ctx, &scene, technique, source, texels, capacity, cache.as_ref())?;
     for line in c.lines() {
         println!("{line}");
     }
