@@ -48,7 +48,7 @@ void line_invocation(uint id) {
 // (gl_GlobalInvocationID): with the loads, the work and the report behind one
 // `has_block` branch, lavapipe ran the serial kernel at 1.12x the line time of
 // the build before the kernels shared this file (engine 256, median of 8
-// rotated rounds), 1.01x in this shape (docs/ipsvi.md, "Line kernels").
+// rotated rounds), 1.01x in this shape (docs/ipsvi.md, "The line kernels").
 void main() {
     if (STEP == STEP_EMPTY) return;
     uint id = gl_GlobalInvocationID.x;

@@ -11,7 +11,6 @@ use sweeplab::bench::experiments::stability::StabilityExperiment;
 pub fn run(args: &BenchStabilityArgs) -> anyhow::Result<ExitCode> {
     // One untimed frame per cell first: llvmpipe compiles shader variants on first use.
     let harness = session::harness(1, args.repeat)?;
-    sweeplab::bench::experiments::image_sizes::check_sizes("--size", &[args.size])?;
     let dir = std::env::temp_dir().join(format!("sweeplab-bench-stability-{}", std::process::id()));
     let plan = StabilityPlan::choose(args.size, &args.cases, &args.techniques, harness, dir)?;
     experiment_runner::run(&StabilityExperiment { plan }, &args.out, &args.gpu)

@@ -5,6 +5,7 @@
 
 use super::cases::{stability_cases, StabilityCase};
 use super::{convergence, convergence_scene, load_case, run_cell, Cell, Variant, Verdict, CONVERGENCE_STEPS};
+use crate::bench::experiments::image_sizes::check_sizes;
 use crate::bench::{
     plot_heat_map, BenchError, BenchRow, BenchTable, ExperimentError, Harness, HeatCell, HeatLevel, HeatMap, OutFolder,
     Progress, RunInfo,
@@ -31,7 +32,8 @@ pub struct StabilityPlan {
 impl StabilityPlan {
     /// The cases named in `case_ids` and the techniques named in
     /// `techniques` (all for an empty list), in table order; an unknown name
-    /// is an error with a did-you-mean. Writes the cases' files to `dir`.
+    /// is an error with a did-you-mean, a size out of range an error naming
+    /// `--size`. Writes the cases' files to `dir`.
     pub fn choose(
         size: u32,
         case_ids: &[String],
@@ -39,11 +41,20 @@ impl StabilityPlan {
         harness: Harness,
         dir: PathBuf,
     ) -> Result<StabilityPlan, ExperimentError> {
+        check_sizes("--size", &[size])?;
         std::fs::create_dir_all(&dir)
             .map_err(|e| ExperimentError::Invalid(format!("creating {}: {e}", dir.display())))?;
         let cases = chosen_cases(stability_cases(&dir, size), case_ids)?;
         let variants = chosen_variants(techniques)?;
         Ok(StabilityPlan { size, cases, variants, harness, dir })
+    }
+}
+
+/// The cases' files go with the plan: a run that never starts (its output
+/// folder refused, no device) or stops on an error leaves none behind.
+impl Drop for StabilityPlan {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.dir);
     }
 }
 

@@ -2,7 +2,6 @@
 //! or convergence row that fails fails the command, after its files are written.
 
 use super::bench::{self, StabilityPlan, StabilityReport};
-use crate::bench::experiments::image_sizes::check_sizes;
 use crate::bench::{Experiment, ExperimentError, OutFolder, RunInfo};
 use crate::plural::count;
 use crate::vk::Context;
@@ -16,8 +15,9 @@ impl Experiment for StabilityExperiment {
     type Report = StabilityReport;
     const FOLDER: &'static str = "bench-stability";
 
+    /// The plan was checked when it was chosen (`StabilityPlan::choose`).
     fn check(&self) -> Result<(), ExperimentError> {
-        check_sizes("--size", &[self.plan.size])
+        Ok(())
     }
 
     fn run(&self, ctx: &Context, run: RunInfo, out: &OutFolder) -> Result<StabilityReport, ExperimentError> {
