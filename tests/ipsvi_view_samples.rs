@@ -13,23 +13,22 @@ use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::settings_table::SettingsTable;
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{
-    Camera, ControlPoint, Light, LightKind, OpticalModel, Projection, Scene, TransferFunction, Volume, VolumeFilter,
-    VoxelData,
+    Camera, ControlPoint, Light, OpticalModel, Projection, Scene, TransferFunction, Volume, VolumeFilter, VoxelData,
 };
 use sweeplab::techniques::ipsvi::{
-    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, ReadFronts, SyncStrategy,
-    WritePass, WriteRule, WriteValue,
+    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, SyncStrategy, WritePass,
+    WriteRule, WriteValue,
 };
 
 use sweeplab::vk::{Context, Profiler};
 
-const SIZE: u32 = 48;
+pub(crate) const SIZE: u32 = 48;
 
 fn slab_scene(lights: Vec<Light>) -> Scene {
     ipsvi_slab_scene(lights, SIZE)
 }
 
-fn view_samples(cache_size: u32, cache_write: CacheWrite) -> IpsviSettings {
+pub(crate) fn view_samples(cache_size: u32, cache_write: CacheWrite) -> IpsviSettings {
     IpsviSettings {
         cache_size,
         light_step_voxels: 0.125,
@@ -39,7 +38,7 @@ fn view_samples(cache_size: u32, cache_write: CacheWrite) -> IpsviSettings {
     }
 }
 
-fn ipsvi(ctx: &Context, gpu: &GpuScene, s: &IpsviSettings, sync: SyncStrategy) -> LinearImage {
+pub(crate) fn ipsvi(ctx: &Context, gpu: &GpuScene, s: &IpsviSettings, sync: SyncStrategy) -> LinearImage {
     ipsvi_study(ctx, gpu, s, &IpsviStudy::default(), sync)
 }
 
@@ -55,12 +54,12 @@ fn ipsvi_study(
     render_study(gpu, s, study, SIZE, SIZE, &mut profiler, sync).unwrap().image
 }
 
-fn reference(_ctx: &Context, gpu: &GpuScene) -> LinearImage {
+pub(crate) fn reference(_ctx: &Context, gpu: &GpuScene) -> LinearImage {
     common::reference_image(gpu, SIZE, SIZE)
 }
 
 /// RMSE relative to the brightest reference value.
-fn relative_rmse(test: &LinearImage, reference: &LinearImage) -> f64 {
+pub(crate) fn relative_rmse(test: &LinearImage, reference: &LinearImage) -> f64 {
     compare(test, reference).unwrap().rmse / reference.max_value() as f64
 }
 
@@ -139,7 +138,7 @@ fn shadow_of_b(ctx: &Context) -> Vec<bool> {
 /// tests/ipsvi.rs most texels a sample reads were never written, and piecewise
 /// integration marches back to the box entry: exact, and tested there at the
 /// light-rays tolerance.)
-const FED_CACHE: u32 = 48;
+pub(crate) const FED_CACHE: u32 = 48;
 
 /// The stated tolerance of view-samples mode at FED_CACHE against model (ii),
 /// relative RMSE: 1.5% for a directional light, 3.5% for point and spot lights
@@ -153,8 +152,8 @@ const FED_CACHE: u32 = 48;
 /// (Texel-ray writes store at the texel ray's crossing of the writer's line
 /// plane, the paper's cache plane; before, at the sample's own depth, the
 /// errors were 1.05% and 0.41% to 2.64%: NON_EMPTY_OVER_LIGHT_RAYS.)
-const DIRECTIONAL_TOLERANCE: f64 = 0.015;
-const POINT_TOLERANCE: f64 = 0.035;
+pub(crate) const DIRECTIONAL_TOLERANCE: f64 = 0.015;
+pub(crate) const POINT_TOLERANCE: f64 = 0.035;
 /// Summed over the eight scenes, non-empty's relative RMSE over light rays':
 /// measured 1.13 (storing at the sample's own depth instead of the plane
 /// crossing: 1.25, which this bound rejects).
@@ -637,192 +636,3 @@ fn empty_runs_move_depth_is_exact_without_empty_runs_and_bounded_with_them() {
 /// from 1.0% to 3.6% on the directional case: an empty run just above a
 /// surface moves the depth across the surface's edge on the texel's ray).
 const EMPTY_RUN_CHANGE_BOUND: f64 = 0.05;
-
-/// A sphere of radius 7 voxels in a 32^3 box, only its inside visible (the
-/// values below 0.3 have no extinction), under `light`, side x side pixels.
-fn visible_sphere(light: Light, side: u32) -> Scene {
-    let mut scene = scene_with(sphere_volume(32, 7.0), vec![light], side, side);
-    reference_settings(&mut scene);
-    scene.transfer = TransferFunction {
-        points: vec![
-            ControlPoint { value: 0.0, rgba: [0.0, 0.0, 0.0, 0.0] },
-            ControlPoint { value: 0.3, rgba: [0.9, 0.6, 0.3, 0.0] },
-            ControlPoint { value: 1.0, rgba: [0.9, 0.8, 0.7, 0.6] },
-        ],
-    };
-    scene
-}
-
-/// `fit_to_visible`: a sphere of radius 7 voxels in a 32^3 box, lit by a
-/// directional and a point light. Fitted to the box of the cells the transfer
-/// function can show, every mode stays within its stated tolerance; light rays
-/// (both lights) and view samples (directional light, both write rules) come
-/// nearer the ground truth than with the volume box; with the point light,
-/// view samples do not (every-sample 0.0037 -> 0.0047, printed: the cache is
-/// then finer than the view samples can feed, see the next test). Where every
-/// value is visible that box is the volume's and the image the same bit for bit.
-#[test]
-fn the_cache_fitted_to_the_visible_cells_keeps_its_tolerance_and_is_exact_where_all_is_visible() {
-    let ctx = validated_context();
-    let lights = [directional(Vec3::new(0.3, -1.0, 0.2), 2.0), point(Vec3::new(1.6, 0.4, 0.3))];
-    let modes = [
-        IpsviSettings { write_rule: WriteRule::NonEmpty, ..view_samples(FED_CACHE, CacheWrite::Farthest) },
-        IpsviSettings { write_rule: WriteRule::EverySample, ..view_samples(FED_CACHE, CacheWrite::Farthest) },
-        IpsviSettings { cache_update: CacheUpdate::LightRays, ..view_samples(FED_CACHE, CacheWrite::Farthest) },
-    ];
-    for light in lights {
-        let scene = visible_sphere(light, SIZE);
-        let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
-        let truth = reference(&ctx, &gpu);
-        for volume_box in &modes {
-            let fitted = IpsviSettings { fit_to_visible: true, ..volume_box.clone() };
-            let (a, b) = (
-                ipsvi(&ctx, &gpu, volume_box, SyncStrategy::BarrierGlobal),
-                ipsvi(&ctx, &gpu, &fitted, SyncStrategy::BarrierGlobal),
-            );
-            let (ea, eb) = (relative_rmse(&a, &truth), relative_rmse(&b, &truth));
-            let what = format!("{:?}, {:?} {:?}", light.kind, volume_box.cache_update, volume_box.write_rule);
-            println!("{what}: relative RMSE volume box {ea:.5}, visible box {eb:.5}");
-            assert!(a != b, "{what}: the fitted cache should change the image");
-            // Measured: directional 0.0053 -> 0.0048 (non-empty), 0.0040 -> 0.0028 (every-sample),
-            // 0.0040 -> 0.0013 (light rays); point 0.0051 -> 0.0051, 0.0037 -> 0.0047 (every-sample
-            // farther: finer texels than the view samples feed, next test), 0.0037 -> 0.0009 (light rays).
-            let directional = matches!(light.kind, LightKind::Directional { .. });
-            let tolerance = if directional { DIRECTIONAL_TOLERANCE } else { POINT_TOLERANCE };
-            assert!(eb <= tolerance, "{what}: {eb:.5} past the stated tolerance {tolerance}");
-            if directional || volume_box.cache_update == CacheUpdate::LightRays {
-                assert!(eb < ea, "{what}: the visible box {eb:.5} is not nearer the truth than the volume box {ea:.5}");
-            }
-        }
-        // Every value visible: the lit box is the volume box.
-        let mut all = scene.clone();
-        all.transfer = TransferFunction {
-            points: vec![
-                ControlPoint { value: 0.0, rgba: [0.5, 0.5, 0.5, 0.02] },
-                ControlPoint { value: 1.0, rgba: [0.9, 0.8, 0.7, 0.6] },
-            ],
-        };
-        let gpu = GpuScene::upload_with(&ctx, &all, VolumeTexels::Float32).unwrap();
-        for volume_box in &modes {
-            let fitted = IpsviSettings { fit_to_visible: true, ..volume_box.clone() };
-            let (a, b) = (
-                ipsvi(&ctx, &gpu, volume_box, SyncStrategy::BarrierGlobal),
-                ipsvi(&ctx, &gpu, &fitted, SyncStrategy::BarrierGlobal),
-            );
-            assert!(
-                a == b,
-                "{:?} {:?}: the volume box, fitted, must give the same image",
-                light.kind,
-                volume_box.cache_update
-            );
-        }
-    }
-    assert_validation_clean(&ctx);
-}
-
-/// Why the visible box takes view samples (under a point light) farther from
-/// the truth on this sphere although it takes light rays nearer: it makes the
-/// cache's texels finer (about half as wide here), and a view-sample cache has
-/// an optimum texel size near the view samples' own spacing (about a pixel's
-/// footprint): finer texels are written by fewer samples each and lag behind
-/// the sweep, while light rays advance every texel and only gain. Shown without
-/// the visible box: the volume box's cache at twice the resolution errs the
-/// same way, and the visible box's error is nearer the volume box's at the same
-/// texel size than at the same texel count.
-#[test]
-fn the_visible_box_errs_for_view_samples_only_by_refining_the_cache_past_their_spacing() {
-    use sweeplab::render::light_space::LightSpacePlane;
-    use sweeplab::scene::transfer::TransferLut;
-    use sweeplab::techniques::ipsvi::lit_box::lit_box;
-
-    let ctx = validated_context();
-    let light = point(Vec3::new(1.6, 0.4, 0.3));
-    let scene = visible_sphere(light, SIZE);
-    // The volume box's cache size whose texel is nearest the visible box's at FED_CACHE.
-    let bx = scene.volume_box();
-    let lit = lit_box(&scene.volume, &scene.transfer.bake(TransferLut::DEFAULT_SIZE), &bx);
-    let radius = bx.half_extent.length();
-    let texel = |corners: &[Vec3; 8], size: u32| LightSpacePlane::fit_to(&light.kind, corners, radius, size).texel;
-    let (volume_texel, fitted_texel) = (texel(&bx.corners(), FED_CACHE), texel(&lit.corners(), FED_CACHE));
-    assert!(
-        fitted_texel < 0.7 * volume_texel,
-        "the visible box should refine the cache: {fitted_texel} {volume_texel}"
-    );
-    let off = |size: u32| (texel(&bx.corners(), size) / fitted_texel - 1.0).abs();
-    let same_texel = (FED_CACHE..8 * FED_CACHE).min_by(|&a, &b| off(a).total_cmp(&off(b))).unwrap();
-    assert!(off(same_texel) < 0.05, "cache {same_texel}: texel {} off the visible box's", off(same_texel));
-
-    // Both filters (docs/filtering.md): the mechanism is the cache's, not the sampler's.
-    for filter in VolumeFilter::ALL {
-        let mut scene = scene.clone();
-        scene.render.filter = filter;
-        let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
-        let truth = reference(&ctx, &gpu);
-        // Blended fronts: the mechanism below is theirs. Per-texel fronts, which
-        // `read_fronts = "auto"` takes on texels under a pixel, keep a fine
-        // texel from lagging (checked after the loop).
-        let every = IpsviSettings {
-            write_rule: WriteRule::EverySample,
-            read_fronts: ReadFronts::Blended,
-            ..view_samples(FED_CACHE, CacheWrite::Farthest)
-        };
-        let error = |s: &IpsviSettings| relative_rmse(&ipsvi(&ctx, &gpu, s, SyncStrategy::BarrierGlobal), &truth);
-        let with = |cache_size: u32, fit_to_visible: bool, s: &IpsviSettings| {
-            error(&IpsviSettings { cache_size, fit_to_visible, ..s.clone() })
-        };
-        let volume = with(FED_CACHE, false, &every);
-        let (fitted, volume_finer) = (with(FED_CACHE, true, &every), with(2 * FED_CACHE, false, &every));
-        let volume_same_texel = with(same_texel, false, &every);
-        println!(
-            "{filter:?}, every-sample: volume box {volume:.5} (cache {FED_CACHE}), {volume_finer:.5} (cache {}), \
-             {volume_same_texel:.5} (cache {same_texel}, the visible box's texel); visible box {fitted:.5} (cache {FED_CACHE})",
-            2 * FED_CACHE
-        );
-        // Measured (exact filter): 0.00370, 0.00485, 0.00502 (cache 104); 0.00465.
-        assert!(fitted > volume, "the visible box at {FED_CACHE} no longer errs for view samples: update the docs");
-        assert!(volume_finer > volume, "finer texels, volume box: {volume_finer:.5} not farther than {volume:.5}");
-        assert!(
-            (fitted - volume_same_texel).abs() < (fitted - volume).abs(),
-            "the visible box {fitted:.5} is not nearer the volume box at its texel size ({volume_same_texel:.5}) \
-             than at its texel count ({volume:.5})"
-        );
-        // Light rays advance every texel: finer is nearer (0.0037 -> 0.0010 measured).
-        let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..every.clone() };
-        let (coarse, fine) = (with(FED_CACHE, false, &rays), with(2 * FED_CACHE, false, &rays));
-        assert!(fine < coarse, "light rays, finer cache: {fine:.5} not nearer than {coarse:.5}");
-        // The default fronts on these sub-pixel texels are per texel: there the
-        // visible box takes view samples nearer too (measured, exact filter:
-        // 0.00206 against 0.00370).
-        let auto = IpsviSettings { read_fronts: ReadFronts::Auto, ..every.clone() };
-        let (auto_volume, auto_fitted) = (with(FED_CACHE, false, &auto), with(FED_CACHE, true, &auto));
-        println!("{filter:?}, every-sample, auto fronts: volume box {auto_volume:.5}, visible box {auto_fitted:.5}");
-        assert!(
-            auto_fitted < auto_volume,
-            "auto fronts: the visible box {auto_fitted:.5} not nearer than {auto_volume:.5}"
-        );
-    }
-    assert_validation_clean(&ctx);
-}
-
-/// The cache texel's width in pixels that `render`, `compare` and `bench ipsvi`
-/// report: half as wide for twice the texels, twice as wide for twice the
-/// pixels, narrower with the visible box, none without a light.
-#[test]
-fn the_printed_texel_width_follows_the_cache_the_image_and_the_box() {
-    use sweeplab::techniques::ipsvi::cache_plane::texel_pixels;
-    for light in [directional(Vec3::new(0.3, -1.0, 0.2), 2.0), point(Vec3::new(1.6, 0.4, 0.3))] {
-        let mut scene = visible_sphere(light, 64);
-        // square()'s texel is side / (size - 2).
-        let s = IpsviSettings { cache_size: 66, ..IpsviSettings::default() };
-        let width = |s: &IpsviSettings, side: u32| texel_pixels(&scene, s, side, side);
-        let base = width(&s, 64).unwrap();
-        let finer = width(&IpsviSettings { cache_size: 130, ..s.clone() }, 64).unwrap();
-        assert!((finer / base - 0.5).abs() < 1e-4, "{:?}: {base} {finer}", light.kind);
-        let fitted = width(&IpsviSettings { fit_to_visible: true, ..s.clone() }, 64).unwrap();
-        assert!(fitted < 0.7 * base, "{:?}: visible box {fitted} against {base}", light.kind);
-        let more_pixels = width(&s, 128).unwrap();
-        assert!((more_pixels / base - 2.0).abs() < 1e-3, "{:?}: {base} {more_pixels}", light.kind);
-        scene.lights.clear();
-        assert_eq!(texel_pixels(&scene, &s, 64, 64), None);
-    }
-}

@@ -37,6 +37,7 @@ mod ipsvi_line_group;
 mod ipsvi_merged_sweeps;
 mod ipsvi_segmented;
 mod ipsvi_view_samples;
+mod ipsvi_visible_box;
 mod layers;
 mod lightvolume;
 mod lightvolume_coarse_error;

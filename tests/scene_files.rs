@@ -469,7 +469,7 @@ fn settings_of(tables: &str, overrides: &[&str]) -> TechniqueSettings {
 #[test]
 fn technique_defaults_are_the_documented_ones() {
     let ipsvi = IpsviSettings::default();
-    assert_eq!((ipsvi.line_width, ipsvi.cache_size, ipsvi.piecewise), (1, 256, true));
+    assert_eq!((ipsvi.line_width, ipsvi.cache_size, ipsvi.piecewise), (1, 0, true));
     assert_eq!((ipsvi.early_termination, ipsvi.albedo, ipsvi.cone_angle_deg), (EarlyTermination::Plain, 0.0, 15.0));
     assert_eq!((ipsvi.zone_blend_px, ipsvi.light_step_voxels, ipsvi.ert_scale), (2.0, 0.5, 4));
     assert_eq!(ipsvi.sync, SyncStrategy::BarrierGlobal);
@@ -616,8 +616,11 @@ fn unknown_tables_are_errors_naming_them() {
 fn technique_values_out_of_range_name_key_value_and_range() {
     let cases: &[(&str, &str)] = &[
         ("[ipsvi]\nline_width = 99", "ipsvi.line_width = 99: must be a whole number in 1..=32"),
-        ("[ipsvi]\ncache_size = 8", "ipsvi.cache_size = 8: must be a whole number in 16..=4096"),
-        ("[ipsvi]\ncache_size = -5", "ipsvi.cache_size: must be a whole number in 16..=4096, not the integer `-5`"),
+        ("[ipsvi]\ncache_size = 8", "ipsvi.cache_size = 8: must be 0 (auto) or a whole number in 16..=4096"),
+        (
+            "[ipsvi]\ncache_size = -5",
+            "ipsvi.cache_size: must be 0 (auto) or a whole number in 16..=4096, not the integer `-5`",
+        ),
         ("[ipsvi]\nalbedo = 1.5", "ipsvi.albedo = 1.5: must be in 0..=1"),
         ("[ipsvi]\ncone_angle = 90", "ipsvi.cone_angle = 90: must be in 0..=80"),
         ("[ipsvi]\nzone_blend = -1", "ipsvi.zone_blend = -1: must be in 0..=64"),

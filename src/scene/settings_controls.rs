@@ -24,6 +24,12 @@ pub enum Kind {
         lo: u32,
         hi: u32,
     },
+    /// 0, which the technique resolves itself (the doc says how), or a whole
+    /// number in `lo..=hi`.
+    WholeOrAuto {
+        lo: u32,
+        hi: u32,
+    },
     /// A real number in `lo..=hi` (`hi` infinite where only `lo` bounds it).
     Real {
         lo: f64,
@@ -116,6 +122,9 @@ pub fn check_declared_ranges<S: DeclaredSettings>(settings: &S) -> Result<(), Se
         let Current::Number(v) = value(settings) else { continue };
         match kind {
             Kind::Whole { lo, hi } => check_whole(S::TABLE, key, v as u32, lo, hi)?,
+            Kind::WholeOrAuto { lo, hi } if v != 0.0 && !(f64::from(lo)..=f64::from(hi)).contains(&v) => {
+                return Err(out_of_range(S::TABLE, key, v, format!("0 (auto) or a whole number in {lo}..={hi}")));
+            }
             // The keys are f32: the value and the ends as the table holds them.
             Kind::Real { lo, hi } if hi.is_finite() => check_range(S::TABLE, key, v as f32, lo as f32, hi as f32)?,
             Kind::Real { lo, .. } if !(v.is_finite() && v >= lo) => {

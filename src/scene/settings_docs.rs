@@ -64,6 +64,7 @@ fn range_text(kind: &Kind) -> Option<String> {
     match kind {
         Kind::Toggle | Kind::Text => None,
         Kind::Whole { lo, hi } => Some(format!("{lo}..={hi}")),
+        Kind::WholeOrAuto { lo, hi } => Some(format!("0 (auto) or {lo}..={hi}")),
         Kind::Real { lo, hi } if hi.is_finite() => Some(format!("{}..={}", number_text(*lo), number_text(*hi))),
         Kind::Real { lo, .. } if *lo == f64::MIN_POSITIVE => Some("> 0".into()),
         Kind::Real { lo, .. } => Some(format!(">= {}", number_text(*lo))),
@@ -96,6 +97,7 @@ mod tests {
         assert_eq!(range_text(&Kind::Real { lo: 0.01, hi: 16.0 }).unwrap(), "0.01..=16");
         assert_eq!(range_text(&Kind::Real { lo: f64::MIN_POSITIVE, hi: f64::INFINITY }).unwrap(), "> 0");
         assert_eq!(range_text(&Kind::Numbers(&[1, 2, 4])).unwrap(), "1, 2 or 4");
+        assert_eq!(range_text(&Kind::WholeOrAuto { lo: 16, hi: 4096 }).unwrap(), "0 (auto) or 16..=4096");
         assert_eq!(range_text(&Kind::Choice(vec!["a", "b"])).unwrap(), "\"a\" or \"b\"");
         assert_eq!(range_text(&Kind::Toggle), None);
     }

@@ -111,7 +111,9 @@ pub fn preview_scene(scene: &Scene, scale: u32) -> Scene {
     let mut preview = scene.clone();
     let shrink = |texels: u32| (texels / scale.max(1)).max(MIN_BUFFER).min(texels);
     let ipsvi = preview.settings.get_mut::<IpsviSettings>();
-    ipsvi.cache_size = shrink(ipsvi.cache_size);
+    // `cache_size = 0` as the full frame resolves it, shrunk alike.
+    let full = ipsvi.sized_for(scene, scene.render.width, scene.render.height).cache_size;
+    ipsvi.cache_size = shrink(full);
     let half_angle = preview.settings.get_mut::<HalfAngleSettings>();
     half_angle.light_buffer_size = shrink(half_angle.light_buffer_size);
     preview
@@ -164,7 +166,9 @@ mod tests {
     #[test]
     fn a_preview_scene_shrinks_the_resolutions_tied_to_the_image() {
         let scene = crate::techniques::default_scene(&["volume.size=8".to_string()]).unwrap();
-        let full = scene.settings.get::<IpsviSettings>().cache_size;
+        let (width, height) = (scene.render.width, scene.render.height);
+        let full = scene.settings.get::<IpsviSettings>().sized_for(&scene, width, height).cache_size;
+        assert!(full >= 256, "cache_size = 0 resolves to {full}");
         let p = preview_scene(&scene, 4);
         assert_eq!(p.settings.get::<IpsviSettings>().cache_size, full / 4);
         assert_eq!(p.settings.get::<HalfAngleSettings>().light_buffer_size, 256 / 4);

@@ -73,6 +73,18 @@ impl SettingsPanel {
                     push(Current::Number(v as f64));
                 }
             }
+            (Kind::WholeOrAuto { lo, hi }, Current::Number(n)) => {
+                let current = *n as u32;
+                let mut auto = current == 0;
+                let mut v = if auto { *lo } else { current };
+                let toggled = ui.checkbox(&mut auto, "auto").changed();
+                let r = ui.add_enabled(!auto, egui::DragValue::new(&mut v).range(*lo..=*hi));
+                ui.label(c.key);
+                let chosen = if auto { 0 } else { v };
+                if chosen != current && (toggled || !r.dragged()) {
+                    push(Current::Number(chosen as f64));
+                }
+            }
             (Kind::Real { lo, hi }, Current::Number(n)) => {
                 let mut v = *n;
                 let speed = if hi.is_finite() { (hi - lo) / 200.0 } else { n.abs().max(1e-6) / 20.0 };
@@ -207,6 +219,10 @@ mod tests {
         for c in controls() {
             let (lo, hi, step, whole) = match c.kind {
                 Kind::Whole { lo, hi } => (lo as f64, hi as f64, 1.0, true),
+                Kind::WholeOrAuto { lo, hi } => {
+                    assert!(!out_of_range(c.table, c.key, 0.0, true), "{} = 0 (auto) is refused", c.path());
+                    (lo as f64, hi as f64, 1.0, true)
+                }
                 Kind::Real { lo, hi } => (lo, hi, 1e-3 * (if hi.is_finite() { hi - lo } else { 1.0 }), false),
                 _ => continue,
             };
@@ -231,7 +247,10 @@ mod tests {
             let kind_fits = matches!(
                 (&c.kind, &current),
                 (Kind::Toggle, Current::Bool(_))
-                    | (Kind::Whole { .. } | Kind::Real { .. } | Kind::Numbers(_), Current::Number(_))
+                    | (
+                        Kind::Whole { .. } | Kind::WholeOrAuto { .. } | Kind::Real { .. } | Kind::Numbers(_),
+                        Current::Number(_)
+                    )
                     | (Kind::Choice(_), Current::Name(_))
                     | (Kind::Text, Current::Text(_))
             );

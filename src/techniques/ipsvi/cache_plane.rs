@@ -19,7 +19,9 @@ pub struct CachePlanes {
     pub planes: Vec<LightSpacePlane>,
 }
 
+/// `settings.cache_size` must be resolved ([`IpsviSettings::sized_for`]).
 pub fn cache_planes(scene: &Scene, settings: &IpsviSettings) -> CachePlanes {
+    assert!(settings.cache_size != 0, "ipsvi.cache_size = 0 is resolved per image before the cache is fitted");
     let bx = scene.volume_box();
     let lit = if settings.fit_to_visible {
         lit_box(&scene.volume, &scene.transfer.bake(TransferLut::DEFAULT_SIZE), &bx)
@@ -38,6 +40,9 @@ pub fn cache_planes(scene: &Scene, settings: &IpsviSettings) -> CachePlanes {
 /// The narrowest light's cache texel at the lit box's centre, in pixels of a
 /// `width` x `height` image of the scene there (None without lights).
 pub fn texel_pixels(scene: &Scene, settings: &IpsviSettings, width: u32, height: u32) -> Option<f32> {
+    if settings.cache_size == 0 {
+        return texel_pixels(scene, &settings.sized_for(scene, width, height), width, height);
+    }
     let CachePlanes { lit, planes } = cache_planes(scene, settings);
     let centre = (lit.min + lit.max) * 0.5;
     let pixel = scene.camera.basis(width, height).pixel_size_at(centre, height);
@@ -55,4 +60,77 @@ pub fn texel_pixels(scene: &Scene, settings: &IpsviSettings, width: u32, height:
             world / pixel
         })
         .reduce(f32::min)
+}
+
+/// `cache_size = 0` starts from this many texels per side (the paper's
+/// Table 1 runs, and the size that serves images up to about 256 pixels).
+pub const AUTO_CACHE_MIN: u32 = 256;
+/// `cache_size = 0` grows the cache until a texel is at most this wide
+/// (pixels at the lit box's centre): on the engine at 512x512, 2.15 px texels
+/// (256) give 33.5 dB, 1.43 px (384) 37.5 dB (docs/ipsvi.md, "Default images").
+pub const AUTO_TEXEL_PX: f32 = 1.5;
+
+/// What `cache_size = 0` means for a `width` x `height` image of `scene`:
+/// [`AUTO_CACHE_MIN`], or more (a multiple of 16) where its texel would be
+/// wider than [`AUTO_TEXEL_PX`], never more than the image's longer side
+/// (a camera close to the volume sees only part of the cache).
+pub fn auto_cache_size(scene: &Scene, settings: &IpsviSettings, width: u32, height: u32) -> u32 {
+    let at = |size: u32| IpsviSettings { cache_size: size, ..settings.clone() };
+    let most = width.max(height).next_multiple_of(16).clamp(AUTO_CACHE_MIN, MAX_CACHE_SIZE);
+    let Some(px) = texel_pixels(scene, &at(AUTO_CACHE_MIN), width, height) else { return AUTO_CACHE_MIN };
+    if px <= AUTO_TEXEL_PX {
+        return AUTO_CACHE_MIN;
+    }
+    // An orthographic or perspective texel is its side over (size - 2), an
+    // octahedral one pi / size: start from the first, step while too wide.
+    let needed = 2.0 + (AUTO_CACHE_MIN - 2) as f32 * px / AUTO_TEXEL_PX;
+    let mut size = (needed.ceil() as u32).next_multiple_of(16).min(most);
+    while size < most && texel_pixels(scene, &at(size), width, height).is_some_and(|p| p > AUTO_TEXEL_PX) {
+        size += 16;
+    }
+    size
+}
+
+/// The largest `cache_size` a table accepts (every Vulkan device's
+/// guaranteed 2D image side).
+pub const MAX_CACHE_SIZE: u32 = 4096;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The texel width of a `size`-texel cache in a `side` x `side` image.
+    fn px(scene: &Scene, size: u32, side: u32) -> f32 {
+        let s = IpsviSettings { cache_size: size, ..IpsviSettings::default() };
+        texel_pixels(scene, &s, side, side).expect("the scene has a light")
+    }
+
+    #[test]
+    fn auto_cache_is_the_smallest_multiple_of_16_whose_texel_fits_and_no_larger_than_the_image() {
+        let mut scene = crate::techniques::default_scene(&["volume.size=8".to_string()]).unwrap();
+        let auto = IpsviSettings::default();
+        assert_eq!(auto.cache_size, 0, "the default is sized per image");
+        let mut grown = 0;
+        for side in [64, 256, 512, 1024, 2048] {
+            let size = auto_cache_size(&scene, &auto, side, side);
+            assert_eq!(auto.sized_for(&scene, side, side).cache_size, size);
+            if px(&scene, AUTO_CACHE_MIN, side) <= AUTO_TEXEL_PX {
+                assert_eq!(size, AUTO_CACHE_MIN, "{side}: 256 texels fit");
+                continue;
+            }
+            grown += 1;
+            assert!(size.is_multiple_of(16) && size < side.max(AUTO_CACHE_MIN), "{side}: {size}");
+            assert!(px(&scene, size, side) <= AUTO_TEXEL_PX, "{side}: {size} texels too wide");
+            assert!(px(&scene, size - 16, side) > AUTO_TEXEL_PX, "{side}: {size} is not the smallest");
+        }
+        assert!(grown >= 2, "the sides grow the cache {grown} times");
+        // A size the scene sets is kept.
+        let set = IpsviSettings { cache_size: 64, ..auto.clone() };
+        assert_eq!(set.sized_for(&scene, 2048, 2048).cache_size, 64);
+        // Zoomed in, a texel would need more texels than the image has pixels.
+        scene.camera.projection = crate::scene::camera::Projection::Perspective { fov_y_deg: 2.0 };
+        assert!(px(&scene, 512, 512) > AUTO_TEXEL_PX);
+        assert_eq!(auto_cache_size(&scene, &auto, 512, 500), 512);
+        assert_eq!(auto_cache_size(&scene, &auto, 100, 100), AUTO_CACHE_MIN);
+    }
 }

@@ -1,6 +1,7 @@
 //! The [ipsvi] keys declared once: doc, kind, range and value of each, from which
 //! the viewer's panel and the range checks are built (`crate::scene::settings_controls`).
 
+use super::cache_plane::MAX_CACHE_SIZE;
 use super::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
 use super::line_kernel::LineKernel;
 use super::read_fronts::ReadFronts;
@@ -11,7 +12,7 @@ use crate::scene::settings_controls::{Current, DeclaredSettings, Key, Kind};
 impl DeclaredSettings for IpsviSettings {
     fn keys() -> Vec<Key<Self>> {
         use Current::{Bool, Name, Number};
-        use Kind::{Choice, Numbers, Real, Toggle, Whole};
+        use Kind::{Choice, Numbers, Real, Toggle, Whole, WholeOrAuto};
         let control = Key::<Self>::new;
         let names = |all: &[&'static str]| all.to_vec();
         vec![
@@ -20,8 +21,8 @@ impl DeclaredSettings for IpsviSettings {
             }),
             control(
                 "cache_size",
-                "cache texels per side (render prints a texel's width in pixels; view samples err least near 1)",
-                Whole { lo: 16, hi: 4096 },
+                "cache texels per side; 0: 256, more where a texel is wider than 1.5 px (render prints the width)",
+                WholeOrAuto { lo: 16, hi: MAX_CACHE_SIZE },
                 |s| Number(s.cache_size as f64),
             ),
             control(

@@ -204,6 +204,7 @@ impl<'a> IpsviRenderer<'a> {
             return Err(RenderError::Invalid(format!("image size {width}x{height} is empty")));
         }
         settings.validate()?;
+        let settings = &settings.sized_for(scene, width, height);
         let ctx = gpu.ctx;
         // glsl/ipsvi_line.comp declares 64-bit atomics (the claims of the
         // deterministic cache writes) for every variant of the module.

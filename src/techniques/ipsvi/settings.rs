@@ -1,7 +1,7 @@
 //! IPSVI parameters from the scene file's `[ipsvi]` table (or `--set ipsvi.key=value`),
 //! read when the scene is read ([`crate::scene::settings_table`]).
 
-use super::cache_plane::texel_pixels;
+use super::cache_plane::{auto_cache_size, texel_pixels};
 use super::cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};
 use super::line_kernel::{segmented_refusal, LineKernel, DEFAULT_ROUNDS};
 use super::read_fronts::ReadFronts;
@@ -21,7 +21,9 @@ pub const MAX_LINE_WIDTH: u32 = 32;
 pub struct IpsviSettings {
     /// Lines per dispatch, 1..=[`MAX_LINE_WIDTH`]; the first block of a sweep is always one line.
     pub line_width: u32,
-    /// The cache is cache_size x cache_size texels.
+    /// The cache is cache_size x cache_size texels; 0 (default): sized to the
+    /// image ([`super::cache_plane::auto_cache_size`]), resolved by
+    /// [`IpsviSettings::sized_for`].
     pub cache_size: u32,
     /// Piecewise integration from each sample toward the cache front (section 4.4).
     pub piecewise: bool,
@@ -137,7 +139,7 @@ impl Default for IpsviSettings {
     fn default() -> Self {
         IpsviSettings {
             line_width: 1,
-            cache_size: 256,
+            cache_size: 0,
             piecewise: true,
             read_fronts: ReadFronts::Auto,
             early_termination: EarlyTermination::Plain,
@@ -190,6 +192,16 @@ impl IpsviSettings {
             && self.piecewise
             && !self.empty_runs_move_depth;
         claims && (keep_redundant_claims || self.texel_pass() || !same_value_from_every_writer)
+    }
+
+    /// These settings with `cache_size = 0` resolved for a `width` x `height`
+    /// image of `scene` ([`super::cache_plane::auto_cache_size`]); a size set
+    /// in the scene is kept.
+    pub fn sized_for(&self, scene: &Scene, width: u32, height: u32) -> IpsviSettings {
+        match self.cache_size {
+            0 => IpsviSettings { cache_size: auto_cache_size(scene, self, width, height), ..self.clone() },
+            _ => self.clone(),
+        }
     }
 
     /// Whether piecewise integration marches from each texel's own depth

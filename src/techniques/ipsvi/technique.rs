@@ -39,7 +39,7 @@ impl RenderTechnique for Ipsvi {
         if scene.lights.is_empty() {
             return raycast::resources(scene, Shading::EmissionOnly, width, height);
         }
-        let s = &scene.settings.get::<IpsviSettings>();
+        let s = &scene.settings.get::<IpsviSettings>().sized_for(scene, width, height);
         let plans = scene_plans(scene, s, width, height);
         let blocks: usize = plans.iter().flat_map(|p| &p.sweeps).map(|sweep| sweep.blocks.len()).sum();
         let sweeps: usize = plans.iter().map(|p| p.sweeps.len()).sum();
@@ -135,20 +135,22 @@ impl RenderTechnique for Ipsvi {
     }
 
     fn settings_note(&self, scene: &Scene) -> Option<String> {
-        let s = &scene.settings.get::<IpsviSettings>();
+        let (width, height) = (scene.render.width, scene.render.height);
+        let set = scene.settings.get::<IpsviSettings>();
+        let s = &set.sized_for(scene, width, height);
         let write = match s.write_pass_run() {
             Some(pass) => format!(", cache_write: {}, write_pass: {}", s.cache_write.name(), pass.name()),
             None => String::new(),
         };
-        let (width, height) = (scene.render.width, scene.render.height);
         let fronts = match (s.piecewise, s.per_texel_fronts(scene, width, height)) {
             (false, _) => "",
             (true, false) => ", read_fronts: blended",
             (true, true) => ", read_fronts: per-texel",
         };
         // View samples err least near a texel of about one pixel (docs/ipsvi.md).
+        let auto = if set.cache_size == 0 { " (auto)" } else { "" };
         let texel = super::cache_plane::texel_pixels(scene, s, width, height)
-            .map(|px| format!("; cache texel {px:.2} px at the lit box's centre"))
+            .map(|px| format!("; cache {}{auto}, texel {px:.2} px at the lit box's centre", s.cache_size))
             .unwrap_or_default();
         // The kernel `auto` takes depends on the device: the frame's line shape names it.
         let kernel = match s.segments {

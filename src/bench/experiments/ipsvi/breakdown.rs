@@ -131,7 +131,7 @@ fn set_view_sample_writes(row: &mut BenchRow, s: &IpsviSettings) {
     if let Some(pass) = s.write_pass_run() {
         row.set("write_rule", s.write_rule.name()).set("write_pass", pass.name());
     }
-    row.set("line_kernel", s.line_kernel.name());
+    row.set("line_kernel", s.line_kernel.name()).set("cache_size", s.cache_size);
 }
 
 /// The steps of one mode, in the order they stack: the DVR, then [`STEPS`].
@@ -242,6 +242,8 @@ pub fn run(
                 .chain(of_mode().filter(|(r, _)| r.line_width.is_none()).map(|(r, t)| (r.label, t)))
                 .collect();
             let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
+            // The rows name the cache as it ran (cache_size = 0 resolved for the size).
+            let s = &s.sized_for(scene, size, size);
             report.step_rows(size, s, lines, &steps);
             let widths: Vec<(u32, &Timings<Counts>)> =
                 of_mode().filter_map(|(r, t)| r.line_width.map(|lw| (lw, t))).collect();

@@ -362,7 +362,10 @@ pub fn run(
                 let stats = compare(&t.last.image, &reference.image)?;
                 let gpu_ms = t.median();
                 let mut row = size_row("ipsvi", size);
-                row.set("line_width", s.line_width).set("cache_size", s.cache_size);
+                // cache_size = 0 as resolved for this size, the setting beside it.
+                let cache_size = s.sized_for(&scene, size, size).cache_size;
+                row.set("line_width", s.line_width).set("cache_size", cache_size);
+                row.set("cache_sizing", if s.cache_size == 0 { "auto" } else { "set" });
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
                 row.set("mode", mode_name(s)).set("cache_update", s.cache_update.name());
                 row.set("fit_to_visible", s.fit_to_visible);
@@ -661,7 +664,8 @@ mod tests {
 
     #[test]
     fn the_other_kernel_measures_every_mode_at_every_cache_size_where_it_runs() {
-        let base = IpsviSettings { line_kernel: LineKernel::Serial, ..IpsviSettings::default() };
+        // A scene that sets its cache (256), listed again below: measured once.
+        let base = IpsviSettings { line_kernel: LineKernel::Serial, cache_size: 256, ..IpsviSettings::default() };
         let both = IpsviPlan {
             one_at_a_time: true,
             cache_sizes: vec![64, 256],
