@@ -1,7 +1,7 @@
 //! IPSVI's cache fitted to the visible cells (`fit_to_visible`) and the cache
 //! texel's width in pixels: tolerances kept, exact where all is visible, why
 //! view samples lose on a cache finer than their spacing, and the width that
-//! `render`, `compare` and `bench ipsvi` print.
+//! `render`, `compare` and `bench ipsvi` print, and the cache sized from it.
 use crate::common;
 use crate::ipsvi_view_samples::{
     ipsvi, reference, relative_rmse, view_samples, DIRECTIONAL_TOLERANCE, FED_CACHE, POINT_TOLERANCE, SIZE,
@@ -11,6 +11,7 @@ use common::*;
 use glam::Vec3;
 use sweeplab::render::{GpuScene, VolumeTexels};
 use sweeplab::scene::{ControlPoint, Light, LightKind, Scene, TransferFunction, VolumeFilter};
+use sweeplab::techniques::ipsvi::cache_plane::{auto_cache_size, texel_pixels, AUTO_CACHE_MIN, AUTO_TEXEL_PX};
 use sweeplab::techniques::ipsvi::{CacheUpdate, CacheWrite, IpsviSettings, ReadFronts, SyncStrategy, WriteRule};
 /// A sphere of radius 7 voxels in a 32^3 box, only its inside visible (the
 /// values below 0.3 have no extinction), under `light`, side x side pixels.
@@ -183,7 +184,6 @@ fn the_visible_box_errs_for_view_samples_only_by_refining_the_cache_past_their_s
 /// pixels, narrower with the visible box, none without a light.
 #[test]
 fn the_printed_texel_width_follows_the_cache_the_image_and_the_box() {
-    use sweeplab::techniques::ipsvi::cache_plane::texel_pixels;
     for light in [directional(Vec3::new(0.3, -1.0, 0.2), 2.0), point(Vec3::new(1.6, 0.4, 0.3))] {
         let mut scene = visible_sphere(light, 64);
         // square()'s texel is side / (size - 2).
@@ -199,4 +199,42 @@ fn the_printed_texel_width_follows_the_cache_the_image_and_the_box() {
         scene.lights.clear();
         assert_eq!(texel_pixels(&scene, &s, 64, 64), None);
     }
+}
+
+/// The texel width of a `size`-texel cache in a `side` x `side` image.
+fn auto_px(scene: &Scene, size: u32, side: u32) -> f32 {
+    let s = IpsviSettings { cache_size: size, ..IpsviSettings::default() };
+    texel_pixels(scene, &s, side, side).expect("the scene has a light")
+}
+
+/// `cache_size = 0` (the default): 256 texels where their texel fits in
+/// 1.5 px, else the smallest multiple of 16 that fits, at most the image's
+/// longer side; a size set is kept.
+#[test]
+fn auto_cache_is_the_smallest_multiple_of_16_whose_texel_fits_and_no_larger_than_the_image() {
+    let mut scene = sweeplab::techniques::default_scene(&["volume.size=8".to_string()]).unwrap();
+    let auto = IpsviSettings::default();
+    assert_eq!(auto.cache_size, 0, "the default is sized per image");
+    let mut grown = 0;
+    for side in [64, 256, 512, 1024, 2048] {
+        let size = auto_cache_size(&scene, &auto, side, side);
+        assert_eq!(auto.sized_for(&scene, side, side).cache_size, size);
+        if auto_px(&scene, AUTO_CACHE_MIN, side) <= AUTO_TEXEL_PX {
+            assert_eq!(size, AUTO_CACHE_MIN, "{side}: 256 texels fit");
+            continue;
+        }
+        grown += 1;
+        assert!(size.is_multiple_of(16) && size < side.max(AUTO_CACHE_MIN), "{side}: {size}");
+        assert!(auto_px(&scene, size, side) <= AUTO_TEXEL_PX, "{side}: {size} texels too wide");
+        assert!(auto_px(&scene, size - 16, side) > AUTO_TEXEL_PX, "{side}: {size} is not the smallest");
+    }
+    assert!(grown >= 2, "the sides grow the cache {grown} times");
+    // A size the scene sets is kept.
+    let set = IpsviSettings { cache_size: 64, ..auto.clone() };
+    assert_eq!(set.sized_for(&scene, 2048, 2048).cache_size, 64);
+    // Zoomed in, a texel would need more texels than the image has pixels.
+    scene.camera.projection = sweeplab::scene::Projection::Perspective { fov_y_deg: 2.0 };
+    assert!(auto_px(&scene, 512, 512) > AUTO_TEXEL_PX);
+    assert_eq!(auto_cache_size(&scene, &auto, 512, 500), 512);
+    assert_eq!(auto_cache_size(&scene, &auto, 100, 100), AUTO_CACHE_MIN);
 }
