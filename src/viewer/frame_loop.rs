@@ -186,6 +186,8 @@ fn frame_loop<'c>(
     // and that frame (to show again under a redrawn panel).
     let mut generation = 0u64;
     let mut full_shown: Option<(u64, u32, u32)> = None;
+    // The scene generation and preview scale last warmed up (`preview::warm_up`).
+    let mut warmed: Option<(u64, u32)> = None;
     let mut last_shown: Option<Shown> = None;
     let mut frame_index = 0u64;
     let mut script_done_for: Option<u64> = None;
@@ -414,6 +416,11 @@ fn frame_loop<'c>(
             let panel_wants = events.panel_input || ui.as_ref().is_some_and(|u| u.wants_repaint);
             if on_screen && !recreated && keys.is_empty() && ui_edits.is_empty() && !panel_wants {
                 resolve_finished(ctx, frames, log)?;
+                // Idle: the preview a drag would start with, rendered once and dropped.
+                if let Some(s) = log.preview.next_preview_scale().filter(|&s| warmed != Some((generation, s))) {
+                    preview::warm_up(ctx, &scene, &volume, technique, s, (iw, ih))?;
+                    warmed = Some((generation, s));
+                }
                 events.pump(event_loop, IDLE_WAIT)?;
                 continue;
             }

@@ -79,10 +79,12 @@ impl Preview {
     }
 
     /// A frame rendered at `scale` took `gpu_ms`: a preview over twice the
-    /// budget or under a quarter of it changes the next one's scale by the
-    /// square root of its time over the budget, at most by two per frame.
-    /// (Only then: each new size creates its images anew, and may compile
-    /// pipeline variants, a cost the next preview pays once.)
+    /// budget or under a quarter of it halves or doubles the next one's sides
+    /// (only then: each new size creates its images anew). Scales are powers
+    /// of two, so a preview's images are powers of two where the full
+    /// frame's are: lavapipe compiles a shader anew, at its first dispatch,
+    /// for images of the other kind (1-2 s for IPSVI's line shader, once per
+    /// kind and pipeline; docs/viewer.md).
     pub fn measured(&mut self, scale: u32, gpu_ms: f64) {
         if !(gpu_ms.is_finite() && gpu_ms > 0.0) {
             return;
@@ -91,11 +93,40 @@ impl Preview {
         if scale == 1 {
             self.full_ms = Some(gpu_ms);
             // A fresh start from the full frame's cost.
-            self.scale = (ratio.ceil() as u32).clamp(2, MAX_SCALE);
-        } else if scale == self.scale && !(0.5..=2f64.sqrt()).contains(&ratio) {
-            self.scale = ((scale as f64 * ratio.clamp(0.5, 2.0)).round() as u32).clamp(2, MAX_SCALE);
+            self.scale = (ratio.ceil() as u32).next_power_of_two().clamp(2, MAX_SCALE);
+        } else if scale == self.scale && ratio > 2f64.sqrt() {
+            self.scale = (scale * 2).min(MAX_SCALE);
+        } else if scale == self.scale && ratio < 0.5 {
+            self.scale = (scale / 2).max(2);
         }
     }
+
+    /// The scale a drag starting now would preview at, where one would (the
+    /// viewer renders it once while idle: [`warm_up`]).
+    pub fn next_preview_scale(&self) -> Option<u32> {
+        let slow = self.full_ms.is_some_and(|ms| ms > PREVIEW_ABOVE_MS);
+        (self.mode == PreviewMode::On && slow).then_some(self.scale.max(2))
+    }
+}
+
+/// Renders one preview of `scene` at 1/`scale` of `size` and drops it, so the
+/// first drag's preview finds its pipelines created and compiled for its
+/// images' kind (IPSVI on lavapipe: 1-2 s otherwise, in the drag's first
+/// frame). Its own images: the frame on screen is left as it is.
+pub fn warm_up(
+    ctx: &crate::vk::Context,
+    scene: &Scene,
+    volume: &crate::render::UploadedVolume,
+    technique: crate::techniques::Technique,
+    scale: u32,
+    size: (u32, u32),
+) -> Result<(), super::error::ViewerError> {
+    let preview = preview_scene(scene, scale);
+    let gpu = crate::render::GpuScene::on_volume(ctx, &preview, volume, crate::render::FrameImages::kept())?;
+    let (width, height) = reduced(size, scale);
+    let mut profiler = crate::vk::Profiler::new(ctx, super::frames::PROFILER_CAPACITY)?;
+    crate::techniques::render(&gpu, technique, width, height, &mut profiler)?;
+    Ok(())
 }
 
 /// `(width, height)` at 1/`scale` of the sides, at least 1 pixel each.
@@ -148,6 +179,20 @@ mod tests {
         // A preview at a scale no longer current says nothing of the next one.
         p.measured(3, 5000.0);
         assert_eq!(p.scale_at(t0), 8);
+    }
+
+    #[test]
+    fn the_scale_a_drag_would_take_is_known_before_it_and_a_power_of_two() {
+        let mut p = Preview::new(PreviewMode::On);
+        assert_eq!(p.next_preview_scale(), None, "nothing measured");
+        // sqrt(6 s / 0.2 s) = 5.5: 8, not 6.
+        p.measured(1, 6000.0);
+        assert_eq!(p.next_preview_scale(), Some(8));
+        p.measured(1, PREVIEW_ABOVE_MS * 0.9);
+        assert_eq!(p.next_preview_scale(), None, "a fast full frame needs no preview");
+        let mut off = Preview::new(PreviewMode::Off);
+        off.measured(1, 6000.0);
+        assert_eq!(off.next_preview_scale(), None);
     }
 
     #[test]
