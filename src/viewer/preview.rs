@@ -81,10 +81,10 @@ impl Preview {
     /// A frame rendered at `scale` took `gpu_ms`: a preview over twice the
     /// budget or under a quarter of it halves or doubles the next one's sides
     /// (only then: each new size creates its images anew). Scales are powers
-    /// of two, so a preview's images are powers of two where the full
-    /// frame's are: lavapipe compiles a shader anew, at its first dispatch,
-    /// for images of the other kind (1-2 s for IPSVI's line shader, once per
-    /// kind and pipeline; docs/viewer.md).
+    /// of two, so every preview's images are of one kind (power-of-two sides
+    /// where the full frame's are): lavapipe compiles a shader at its first
+    /// dispatch, for a key that holds the images' state, and the one preview
+    /// warmed up ([`warm_up`]) should stand for every scale (docs/viewer.md).
     pub fn measured(&mut self, scale: u32, gpu_ms: f64) {
         if !(gpu_ms.is_finite() && gpu_ms > 0.0) {
             return;
