@@ -142,7 +142,8 @@ pub fn preview_scene(scene: &Scene, scale: u32) -> Scene {
     let mut preview = scene.clone();
     let shrink = |texels: u32| (texels / scale.max(1)).max(MIN_BUFFER).min(texels);
     let ipsvi = preview.settings.get_mut::<IpsviSettings>();
-    // `cache_size = 0` as the full frame resolves it, shrunk alike.
+    // `cache_size = 0` resolved at the scene's image size (the window's
+    // first; a resized window keeps it), shrunk alike.
     let full = ipsvi.sized_for(scene, scene.render.width, scene.render.height).cache_size;
     ipsvi.cache_size = shrink(full);
     let half_angle = preview.settings.get_mut::<HalfAngleSettings>();

@@ -362,9 +362,9 @@ pub fn run(
                 let stats = compare(&t.last.image, &reference.image)?;
                 let gpu_ms = t.median();
                 let mut row = size_row("ipsvi", size);
-                // cache_size = 0 as resolved for this size, the setting beside it.
-                let cache_size = s.sized_for(&scene, size, size).cache_size;
-                row.set("line_width", s.line_width).set("cache_size", cache_size);
+                // cache_size = 0 resolved once for this size (the cache as it ran), the setting beside it.
+                let sized = s.sized_for(&scene, size, size);
+                row.set("line_width", s.line_width).set("cache_size", sized.cache_size);
                 row.set("cache_sizing", if s.cache_size == 0 { "auto" } else { "set" });
                 row.set("piecewise", s.piecewise).set("early_termination", s.early_termination.name());
                 row.set("mode", mode_name(s)).set("cache_update", s.cache_update.name());
@@ -378,11 +378,11 @@ pub fn run(
                     row.set("write_rule", s.write_rule.name()).set("write_pass", pass.name());
                 }
                 if s.piecewise {
-                    let per_texel = s.per_texel_fronts(&scene, size, size);
+                    let per_texel = sized.per_texel_fronts(&scene, size, size);
                     row.set("read_fronts", if per_texel { "per-texel" } else { "blended" });
                 }
                 // Which side of the view samples' optimum (about a pixel) the cache is on.
-                if let Some(px) = texel_pixels(&scene, s, size, size) {
+                if let Some(px) = texel_pixels(&scene, &sized, size, size) {
                     row.set("cache_texel_px", px as f64);
                 }
                 row.set_timing("gpu_ms", t);
