@@ -111,8 +111,10 @@ fn a_scene_built_in_code_with_a_point_light_at_1e20_gets_the_directional_image_i
         let (a, b) = (frame(&ctx, &far, technique), frame(&ctx, &directional, technique));
         let stats = compare(&a, &b).unwrap();
         assert!(b.max_value() > 0.05, "{technique}: the directional image is lit");
-        // Same inputs on the GPU; IPSVI's view-sample cache writes race in
-        // float rounding only (1e-6 measured), so a hair of slack.
+        // Same lights on the GPU; IPSVI's two images differ by 2.4e-7 at this
+        // image's 256-texel cache, so a hair of slack. Each is bit-identical
+        // from run to run, yet at 64 texels they differ by 1e-3: some input
+        // other than the lights differs there (docs/testing.md), not found yet.
         assert!(stats.max_abs <= 1e-5, "{technique}: the far point light differs from the directional one: {stats:?}");
         for kind in [CpuRenderKind::Reference(technique.reference_model(&far)), CpuRenderKind::Phong] {
             let (a, b) = (render_cpu(&far, kind, 8, 8).unwrap(), render_cpu(&directional, kind, 8, 8).unwrap());

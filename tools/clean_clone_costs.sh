@@ -53,7 +53,7 @@ phase tests env SWEEPLAB_VALIDATE=1 cargo test --release --no-fail-fast
 
 summary=$(bash tools/test_summary.sh <"$dir/tests.log" | tail -n 1)
 mesa=$(vulkaninfo --summary 2>/dev/null | sed -nE 's/^[[:space:]]*driverInfo[[:space:]]*=[[:space:]]*//p' | head -n 1)
-echo "Clean clone of $commit, $(date -u +%Y-%m-%d), $(nproc) cores ($(sed -nE 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)), Mesa ${mesa:-unknown}: $summary"
+echo "Clean clone of $commit, $(date -u +%Y-%m-%d), $(nproc) cores ($(sed -nE 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)), driver ${mesa:-unknown}: $summary"
 echo
 echo "| phase | command | wall s | CPU s |"
 echo "| --- | --- | ---: | ---: |"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what sweeplab needs on a fresh Debian machine (as root), only where
-# missing, then builds. Safe to run again.
+# missing, and sets the environment the build needs (the callers build). Safe to
+# run again.
 #   Vulkan loader + lavapipe (CPU Vulkan) + Khronos validation layers,
 #   Xvfb and the X11 libraries of the viewer (and its tests),
 #   Debian's static shaderc/glslang/SPIRV-Tools (build.rs links them: no 12-minute
