@@ -61,8 +61,11 @@ impl Light {
         use crate::scene::light_paths::{cone, falloff, toward_light};
         let at_centre = toward_light(self, glam::DVec3::ZERO);
         let scale = falloff(self, &at_centre, 0.0) * cone(self, &at_centre);
+        // `+ 0` turns the negation's -0 components into +0: the light then is
+        // the directional light written with plain zeros, bit for bit (IPSVI's
+        // cache lays its texels out by the sign of z, and 1/-0 is -inf).
         Light {
-            kind: LightKind::Directional { direction: (-at_centre.toward).as_vec3() },
+            kind: LightKind::Directional { direction: (-at_centre.toward).as_vec3() + Vec3::ZERO },
             color: self.color,
             intensity: (self.intensity as f64 * scale) as f32,
             falloff: Falloff::None,
