@@ -12,9 +12,9 @@
 #
 #   tools/clean_clone_costs.sh            (KEEP=1 keeps the clone and its logs)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+repo=$(cd "$(dirname "$0")/.." && pwd)
+cd "$repo"
 source tools/setup.sh
-repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 commit=$(git -C "$repo" rev-parse --short HEAD)
 dir=$(mktemp -d "${TMPDIR:-/tmp}/sweeplab-clean-clone.XXXXXX")
 [ "${KEEP:-0}" = 1 ] || trap 'rm -rf "$dir"' EXIT

@@ -7,7 +7,8 @@
 #   Debian's static shaderc/glslang/SPIRV-Tools (build.rs links them: no 12-minute
 #   source build), and a Rust toolchain if none is on PATH.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+# Its own folder, also when sourced from a script run by a relative path.
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 packages=(
   libvulkan1 libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
