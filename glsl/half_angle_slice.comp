@@ -5,7 +5,8 @@
 // directions, taken in order from the light's side. Invocations below
 // `pixel_count` composite the slice into the eye buffer, lit by the light buffer
 // as it stands after the previous slices; the rest attenuate the light buffer by
-// this slice, writing the other image of the ping-pong pair. The pair is a
+// this slice, writing the other image of the ping-pong pair (the texels whose
+// rays cross this slice's or the previous slice's slab inside the box). The pair is a
 // small set 1, {in = a, out = b} or {in = b, out = a}, bound per slice (cheap
 // on lavapipe, unlike set 0: tools/dispatch_probe.rs); reads and writes are
 // separate bindings, so validation sees what a slice touches.
@@ -29,6 +30,7 @@ layout(push_constant) uniform Slice {
     vec4 half_vector;   // xyz h; w plane offset s (points x with dot(x, h) = s)
     vec4 spacing;       // x slice spacing (world); y 1 = front to back; z unused; w 1 = add the background (last slice, front to back)
     uvec4 rect;         // pixels x0, y0, w, h
+    uvec4 light_rect;   // light buffer texels x0, y0, w, h this slice updates
     uint pixel_count;
 } slice;
 
@@ -100,9 +102,11 @@ void shade(uint index) {
     imageStore(eye, ip, acc);
 }
 
+// A texel of `light_rect`: the slab's and the previous slab's region
+// (src/render/light_region.rs); every other texel of light_out already holds
+// its value as of this slice, written two slices ago and not changed since.
 void attenuate(uint index) {
-    uint n = light_buffer.size;
-    uvec2 k = uvec2(index % n, index / n);
+    uvec2 k = slice.light_rect.xy + uvec2(index % slice.light_rect.z, index / slice.light_rect.z);
     float T = imageLoad(light_in, ivec2(k)).r;
     Ray r = light_space_ray(light_buffer, k);
     vec3 h = slice.half_vector.xyz;
@@ -122,7 +126,7 @@ void main() {
     uint id = gl_GlobalInvocationID.x;
     if (id < slice.pixel_count) {
         shade(id);
-    } else if (id - slice.pixel_count < light_buffer.size * light_buffer.size) {
+    } else if (id - slice.pixel_count < slice.light_rect.z * slice.light_rect.w) {
         attenuate(id - slice.pixel_count);
     }
 }

@@ -13,6 +13,8 @@ fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
         .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--line-widths", "1,4"])
         // The segmented kernel's modes only (the serial kernel's: tests/bench_ipsvi_experiment.rs).
         .args(["--kernels", "segmented"])
+        // A small light cache: the rows and their ratios do not depend on its size.
+        .args(["--set", "ipsvi.cache_size=16"])
         .args(["--out-dir", dir.to_str().unwrap()])
         .env_remove("SWEEPLAB_VALIDATE")
         .output()

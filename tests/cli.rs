@@ -269,7 +269,8 @@ fn bench_output_folders_are_refused_when_full_and_forced_hold_no_stale_files() {
         #[rustfmt::skip]
         let mut args = vec![
             "bench", "sync", "--size", "8x8", "--line-widths", "1,2", "--workloads", "sweep",
-            "--strategies", strategies, "--repeat", "6", "--max-rounds", "6", "--out-dir", dir.to_str().unwrap(),
+            // A small light cache: what is tested is the folder, not the sweep's cost.
+            "--set", "ipsvi.cache_size=16", "--strategies", strategies, "--repeat", "6", "--max-rounds", "6", "--out-dir", dir.to_str().unwrap(),
         ];
         if force {
             args.push("--force");
@@ -377,6 +378,8 @@ fn bench_ipsvi_breakdown_writes_every_step_of_both_modes() {
     let out = dir.join("breakdown");
     let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
         .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--out-dir", out.to_str().unwrap()])
+        // A small light cache: the steps and their rows do not depend on its size.
+        .args(["--set", "ipsvi.cache_size=16"])
         // The serial kernel's modes (the segmented kernel's: tests/bench_breakdown_line_widths.rs).
         .args(["--kernels", "serial"])
         .env_remove("SWEEPLAB_VALIDATE")

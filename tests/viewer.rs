@@ -386,8 +386,11 @@ fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
     // DVR, the ground truth, the light volume and IPSVI record into the frame
     // slot's command buffer: their scopes and the present pass's are in one
     // profile, no upload.
+    // IPSVI's light cache small in this test: where a frame goes does not depend on its size.
+    let small_cache = ["--set", "ipsvi.cache_size=16"];
     for technique in ["dvr", "reference", "lightvolume", "ipsvi"] {
-        for f in view_log(&x, technique, technique, "32x32", "3", &[]) {
+        let extra: &[&str] = if technique == "ipsvi" { &small_cache } else { &[] };
+        for f in view_log(&x, technique, technique, "32x32", "3", extra) {
             let p = passes(&f);
             assert!(p.iter().any(|s| s.starts_with(technique)), "{technique}: {p:?}");
             assert!(p.contains(&"present_blit".to_string()), "{technique}: {p:?}");
@@ -398,7 +401,14 @@ fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
     // Every IPSVI strategy that fits in one submission records too ...
     for sync in ["barrier-image", "events", "secondary"] {
         let set = format!("ipsvi.sync={sync}");
-        for f in view_log(&x, &format!("ipsvi-{sync}"), "ipsvi", "24x24", "2", &["--set", &set]) {
+        for f in view_log(
+            &x,
+            &format!("ipsvi-{sync}"),
+            "ipsvi",
+            "24x24",
+            "2",
+            &["--set", &set, small_cache[0], small_cache[1]],
+        ) {
             let p = passes(&f);
             assert!(p.iter().any(|s| s.starts_with("ipsvi/ipsvi_sweep_")), "{sync}: {p:?}");
             assert!(!p.contains(&"frame_upload".to_string()), "{sync}: host round trip: {p:?}");
@@ -406,7 +416,14 @@ fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
     }
     // ... but `submits`, one submission per line block: rendered, read back and
     // uploaded, and its profile says so.
-    for f in view_log(&x, "ipsvi-submits", "ipsvi", "24x24", "2", &["--set", "ipsvi.sync=submits"]) {
+    for f in view_log(
+        &x,
+        "ipsvi-submits",
+        "ipsvi",
+        "24x24",
+        "2",
+        &["--set", "ipsvi.sync=submits", small_cache[0], small_cache[1]],
+    ) {
         assert!(passes(&f).contains(&"frame_upload".to_string()), "{f}");
     }
 }
@@ -661,7 +678,12 @@ fn unchanged_frames_and_camera_moves_create_nothing_and_a_resize_only_what_has_t
     // A mouse orbit and a wheel zoom (camera moves), then a resize.
     std::fs::write(&script, "2 orbit 20 -6\n3 zoom 1\n5 resize 40x32\n").unwrap();
     for technique in VIEWER_TECHNIQUES {
-        let frames = view_log(&x, technique, technique, "32x32", "8", &["--script", script.to_str().unwrap()]);
+        let mut args = vec!["--script", script.to_str().unwrap()];
+        // IPSVI with a small light cache: what is created does not depend on its size.
+        if technique == "ipsvi" {
+            args.extend(["--set", "ipsvi.cache_size=16"]);
+        }
+        let frames = view_log(&x, technique, technique, "32x32", "8", &args);
         assert_eq!(frames.len(), 8);
         let c: Vec<(u64, u64, u64)> = frames.iter().map(created).collect();
         assert!(c[0].0 > 0, "{technique}: the first frame compiles its pipelines: {c:?}");

@@ -14,6 +14,7 @@ pub mod frame_result;
 pub mod gpu_scene;
 pub mod image_space;
 pub mod light_grid_limits;
+pub mod light_region;
 pub mod light_space;
 pub mod line_shape;
 pub mod output;

@@ -4,7 +4,11 @@
 //! directions and processed in order from the light's side, each slice one
 //! dispatch followed by the barrier `slice_write_to_next_slice_read`. A light
 //! buffer (ping-pong pair in light space) carries the transmittance from slice to
-//! slice; the eye buffer accumulates the image. Approximates optical model (i)
+//! slice; the eye buffer accumulates the image. A slice updates only the light
+//! buffer texels whose rays cross its slab or the previous slice's inside the
+//! box (src/render/light_region.rs), the image the same bit for bit: on a
+//! cube-like volume that is nearly the whole buffer, on an elongated one
+//! (a rod, anisotropic spacing) a small part of it. Approximates optical model (i)
 //! (docs/optical-model.md). One light (directional, or a point/spot light outside
 //! the volume's bounding sphere); none renders the emission term alone.
 
@@ -18,6 +22,7 @@ pub use technique::HalfAngle;
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
+use crate::render::light_region::{slab_region, TexelRect};
 use crate::render::light_space::{LightProjection, LightSpacePlane};
 use crate::render::view_chunks::ChunkSync;
 use crate::render::{render_recorded, GpuScene, RecordedFrame, RenderError};
@@ -59,10 +64,22 @@ struct SlicePush {
     half_vector: [f32; 4],
     spacing: [f32; 4],
     rect: [u32; 4],
+    light_rect: [u32; 4],
     pixel_count: u32,
 }
 
-crate::assert_gpu_layout!(SlicePush, shader::layout::SLICE, [half_vector, spacing, rect, pixel_count]);
+crate::assert_gpu_layout!(SlicePush, shader::layout::SLICE, [half_vector, spacing, rect, light_rect, pixel_count]);
+
+/// Which light buffer texels a slice updates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightRegions {
+    /// Those whose rays cross this slice's or the previous slice's slab inside
+    /// the box ([`slab_region`]): what `render` does.
+    Slices,
+    /// Every texel, every slice: the same image bit for bit, kept as the
+    /// check that the regions leave nothing out (tests/half_angle.rs).
+    Whole,
+}
 
 /// The slicing of the volume: half-angle vector, order and slice planes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -132,8 +149,19 @@ fn r32f(gpu: &GpuScene, name: &str, n: u32) -> Result<Arc<Image>, RenderError> {
 }
 
 pub fn render(gpu: &GpuScene, width: u32, height: u32, profiler: &mut Profiler) -> Result<FrameResult, RenderError> {
+    render_with(gpu, width, height, profiler, LightRegions::Slices)
+}
+
+/// [`render`] with the light buffer updated as `regions` says.
+pub fn render_with(
+    gpu: &GpuScene,
+    width: u32,
+    height: u32,
+    profiler: &mut Profiler,
+    regions: LightRegions,
+) -> Result<FrameResult, RenderError> {
     // With no light, `record` draws the emission-only ray cast.
-    render_recorded(gpu, |rec| record(gpu, width, height, rec, profiler))
+    render_recorded(gpu, |rec| record_with(gpu, width, height, rec, profiler, regions))
 }
 
 /// Records one frame into `rec` (see [`RecordedFrame`]): what `render` submits
@@ -144,6 +172,17 @@ pub fn record(
     height: u32,
     rec: &mut Recorder,
     profiler: &mut Profiler,
+) -> Result<RecordedFrame, RenderError> {
+    record_with(gpu, width, height, rec, profiler, LightRegions::Slices)
+}
+
+fn record_with(
+    gpu: &GpuScene,
+    width: u32,
+    height: u32,
+    rec: &mut Recorder,
+    profiler: &mut Profiler,
+    regions: LightRegions,
 ) -> Result<RecordedFrame, RenderError> {
     let scene = gpu.scene;
     let settings = &scene.settings.get::<HalfAngleSettings>();
@@ -225,20 +264,32 @@ pub fn record(
     }
     let scope = profiler.begin(rec, "half_angle")?;
     rec.bind(&pipeline, set);
+    let corners = bx.corners();
+    let mut previous = TexelRect::default();
     for k in 0..sl.count {
+        let plane = sl.first_plane + (k as f32 + 0.5) * sl.spacing;
+        // A texel samples the slab at its own phase within it (the shader's
+        // `attenuate`): the whole slab's region, and the previous slice's.
+        let own = slab_region(&geometry, &corners, sl.half_vector, plane - 0.5 * sl.spacing, plane + 0.5 * sl.spacing);
+        let light_rect = match regions {
+            LightRegions::Slices => own.union(&previous),
+            LightRegions::Whole => TexelRect::full(n),
+        };
+        previous = own;
         let detail = profiler.begin_detail(rec, "half_angle_slice")?;
         rec.bind_set1(&pipeline, sides[(k % 2) as usize]);
         let background = sl.front_to_back && k + 1 == sl.count;
         let rect = if background { whole_image } else { rect };
         let pixel_count = rect[2] * rect[3];
         let push = SlicePush {
-            half_vector: sl.half_vector.extend(sl.first_plane + (k as f32 + 0.5) * sl.spacing).to_array(),
+            half_vector: sl.half_vector.extend(plane).to_array(),
             spacing: [sl.spacing, if sl.front_to_back { 1.0 } else { 0.0 }, 0.0, if background { 1.0 } else { 0.0 }],
             rect,
+            light_rect: [light_rect.x0, light_rect.y0, light_rect.w, light_rect.h],
             pixel_count,
         };
         rec.push(&pipeline, &push);
-        rec.dispatch((pixel_count + n * n).div_ceil(64), 1, 1);
+        rec.dispatch((pixel_count + light_rect.count()).div_ceil(64), 1, 1);
         profiler.end(rec, detail)?;
         // This slice's light and eye writes are what the next slice reads.
         rec.barrier(&Barrier::memory(

@@ -1,12 +1,12 @@
 //! The parameters of every line block of an IPSVI frame (glsl/ipsvi_line_interface.glsl
 //! `BlockParams`), planned on the host.
 
-use super::cache_region::{plane_region, TexelRect};
 use super::cache_update::CacheUpdate;
 use super::gpu_params::BlockParams;
 use super::settings::IpsviSettings;
 use super::study::IpsviStudy;
 use super::sweep_plan::{LineAxis, SweepPlan};
+use crate::render::light_region::{plane_region, TexelRect};
 use crate::render::light_space::LightSpacePlane;
 use crate::render::RenderError;
 

@@ -12,7 +12,6 @@ pub mod block_records;
 pub mod breakdown;
 pub mod cache_images;
 pub mod cache_plane;
-pub mod cache_region;
 pub mod cache_update;
 mod controls;
 pub mod exit_points;

@@ -1,9 +1,11 @@
-//! Which cache texels a line block can change: the light rays that cross the
-//! block's sweep plane inside the volume, i.e. the projection of the plane's
-//! cross-section of the box onto the cache. A block updates that region and the
-//! previous block's: with ping-pong images, each image then holds every texel
-//! as of its own block (a texel outside both regions did not change since the
-//! image was last written two blocks ago), so nothing stale is ever read.
+//! Which texels of a light-space image a pass can change: the light rays that
+//! cross a plane (or a slab between two parallel planes) inside the volume's
+//! box, i.e. the projection of its cross-section of the box. IPSVI's line
+//! blocks update that region of the cache, half-angle's slices that region of
+//! the light buffer, each together with the previous pass's region: with
+//! ping-pong images, each image then holds every texel as of its own pass (a
+//! texel outside both regions did not change since the image was last written
+//! two passes ago), so nothing stale is ever read.
 
 use crate::render::light_space::{LightProjection, LightSpacePlane};
 use glam::Vec3;
@@ -76,6 +78,31 @@ pub fn plane_region(geometry: &LightSpacePlane, corners: &[Vec3; 8], plane: [f32
     TexelRect { x0, y0, w: x1.saturating_sub(x0), h: y1.saturating_sub(y0) }
 }
 
+/// Texels whose rays cross the slab `lo <= dot(x, normal) <= hi` inside the
+/// box of `corners`, one texel of margin: the projection of the box's part
+/// between the two planes (its vertices are the crossings of the box's edges
+/// with both planes and the corners between them).
+pub fn slab_region(geometry: &LightSpacePlane, corners: &[Vec3; 8], normal: Vec3, lo: f32, hi: f32) -> TexelRect {
+    let size = geometry.size;
+    if geometry.projection == LightProjection::Octahedral {
+        return TexelRect::full(size);
+    }
+    let faces = [normal.x, normal.y, normal.z];
+    let mut region = plane_region(geometry, corners, [faces[0], faces[1], faces[2], -lo]).union(&plane_region(
+        geometry,
+        corners,
+        [faces[0], faces[1], faces[2], -hi],
+    ));
+    for c in corners.iter().filter(|c| (lo..=hi).contains(&normal.dot(**c))) {
+        let (x, y, _) = geometry.coord(*c);
+        let clamp = |v: f32| v.clamp(0.0, size as f32) as u32;
+        let (x0, y0) = (clamp(x.floor() - 1.0), clamp(y.floor() - 1.0));
+        let (x1, y1) = (clamp(x.ceil() + 1.0), clamp(y.ceil() + 1.0));
+        region = region.union(&TexelRect { x0, y0, w: x1.saturating_sub(x0), h: y1.saturating_sub(y0) });
+    }
+    region
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -93,6 +120,26 @@ mod tests {
         let along = plane_region(&g, &bx.corners(), [0.0, 1.0, 0.0, -0.1]);
         assert!(along.w.min(along.h) <= 4, "{along:?}");
         assert_eq!(plane_region(&g, &bx.corners(), [0.0, 1.0, 0.0, -3.0]).count(), 0);
+    }
+
+    #[test]
+    fn a_slab_covers_both_planes_and_the_corners_between_them() {
+        let bx = crate::scene::VolumeBox::new(UVec3::splat(32), Vec3::ONE);
+        let g = LightSpacePlane::fit(&LightKind::Directional { direction: Vec3::NEG_X }, &bx, 64);
+        let (n, corners) = (Vec3::new(0.0, 1.0, 0.0), bx.corners());
+        // A thin slab is the band of its planes; one holding the whole box is the whole projection.
+        let thin = slab_region(&g, &corners, n, 0.05, 0.1);
+        assert_eq!(
+            thin,
+            plane_region(&g, &corners, [0.0, 1.0, 0.0, -0.05]).union(&plane_region(
+                &g,
+                &corners,
+                [0.0, 1.0, 0.0, -0.1]
+            ))
+        );
+        let whole = slab_region(&g, &corners, n, -10.0, 10.0);
+        assert!(whole.count() > 60 * 60, "{whole:?}");
+        assert_eq!(slab_region(&g, &corners, n, 3.0, 4.0).count(), 0);
     }
 
     #[test]
