@@ -10,7 +10,7 @@
 use crate::render::light_space::{LightProjection, LightSpacePlane};
 use glam::Vec3;
 
-/// Texels [x0, x0 + w) x [y0, y0 + h) of the cache.
+/// Texels [x0, x0 + w) x [y0, y0 + h) of a light-space image.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub struct TexelRect {
     pub x0: u32,
