@@ -270,7 +270,8 @@ fn bench_output_folders_are_refused_when_full_and_forced_hold_no_stale_files() {
         let mut args = vec![
             "bench", "sync", "--size", "8x8", "--line-widths", "1,2", "--workloads", "sweep",
             // A small light cache: what is tested is the folder, not the sweep's cost.
-            "--set", "ipsvi.cache_size=16", "--strategies", strategies, "--repeat", "6", "--max-rounds", "6", "--out-dir", dir.to_str().unwrap(),
+            "--set", "ipsvi.cache_size=16",
+            "--strategies", strategies, "--repeat", "6", "--max-rounds", "6", "--out-dir", dir.to_str().unwrap(),
         ];
         if force {
             args.push("--force");

@@ -72,6 +72,12 @@ pub fn plane_region(geometry: &LightSpacePlane, corners: &[Vec3; 8], plane: [f32
     if !any {
         return TexelRect::default();
     }
+    covering(lo, hi, size)
+}
+
+/// The texels of a `size`-texel image covering texel coordinates [lo, hi],
+/// with one texel of margin.
+fn covering(lo: (f32, f32), hi: (f32, f32), size: u32) -> TexelRect {
     let clamp = |v: f32| v.clamp(0.0, size as f32) as u32;
     let (x0, y0) = (clamp(lo.0.floor() - 1.0), clamp(lo.1.floor() - 1.0));
     let (x1, y1) = (clamp(hi.0.ceil() + 1.0), clamp(hi.1.ceil() + 1.0));
@@ -83,24 +89,15 @@ pub fn plane_region(geometry: &LightSpacePlane, corners: &[Vec3; 8], plane: [f32
 /// between the two planes (its vertices are the crossings of the box's edges
 /// with both planes and the corners between them).
 pub fn slab_region(geometry: &LightSpacePlane, corners: &[Vec3; 8], normal: Vec3, lo: f32, hi: f32) -> TexelRect {
-    let size = geometry.size;
     if geometry.projection == LightProjection::Octahedral {
-        return TexelRect::full(size);
+        return TexelRect::full(geometry.size);
     }
-    let faces = [normal.x, normal.y, normal.z];
-    let mut region = plane_region(geometry, corners, [faces[0], faces[1], faces[2], -lo]).union(&plane_region(
-        geometry,
-        corners,
-        [faces[0], faces[1], faces[2], -hi],
-    ));
-    for c in corners.iter().filter(|c| (lo..=hi).contains(&normal.dot(**c))) {
+    let plane = |d: f32| [normal.x, normal.y, normal.z, -d];
+    let planes = plane_region(geometry, corners, plane(lo)).union(&plane_region(geometry, corners, plane(hi)));
+    corners.iter().filter(|c| (lo..=hi).contains(&normal.dot(**c))).fold(planes, |region, c| {
         let (x, y, _) = geometry.coord(*c);
-        let clamp = |v: f32| v.clamp(0.0, size as f32) as u32;
-        let (x0, y0) = (clamp(x.floor() - 1.0), clamp(y.floor() - 1.0));
-        let (x1, y1) = (clamp(x.ceil() + 1.0), clamp(y.ceil() + 1.0));
-        region = region.union(&TexelRect { x0, y0, w: x1.saturating_sub(x0), h: y1.saturating_sub(y0) });
-    }
-    region
+        region.union(&covering((x, y), (x, y), geometry.size))
+    })
 }
 
 #[cfg(test)]
