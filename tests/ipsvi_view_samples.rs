@@ -16,8 +16,8 @@ use sweeplab::scene::{
     Camera, ControlPoint, Light, OpticalModel, Projection, Scene, TransferFunction, Volume, VolumeFilter, VoxelData,
 };
 use sweeplab::techniques::ipsvi::{
-    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, SyncStrategy, WritePass,
-    WriteRule, WriteValue,
+    render_study, CacheUpdate, CacheWrite, EarlyTermination, IpsviSettings, IpsviStudy, ReadFronts, SyncStrategy,
+    WritePass, WriteRule, WriteValue,
 };
 
 use sweeplab::vk::{Context, Profiler};
@@ -548,7 +548,9 @@ fn claimed_writes_are_deterministic_and_racy_writes_are_reported() {
 /// last is the IPSVI frame bit for bit, and with view samples (farthest claims,
 /// texel-ray writes: every part on) each earlier step leaves a part out and
 /// renders another image; with light rays every step from the carry (their
-/// texel advance) on is the frame. Both write rules.
+/// texel advance) on is the frame. Both write rules. Per-texel fronts, as the
+/// command line's breakdown test reads at its 16 px (cli.rs): the same shader
+/// variants, which a fresh machine then compiles once, not twice.
 #[test]
 fn breakdown_steps_end_in_the_ipsvi_frame() {
     use sweeplab::techniques::ipsvi::BreakdownStep;
@@ -564,7 +566,13 @@ fn breakdown_steps_end_in_the_ipsvi_frame() {
         (CacheUpdate::LightRays, WriteRule::NonEmpty, WritePass::Sample),
     ];
     for (cache_update, write_rule, write_pass) in cases {
-        let s = IpsviSettings { cache_update, write_rule, write_pass, ..view_samples(FED_CACHE, CacheWrite::Farthest) };
+        let s = IpsviSettings {
+            cache_update,
+            write_rule,
+            write_pass,
+            read_fronts: ReadFronts::PerTexel,
+            ..view_samples(FED_CACHE, CacheWrite::Farthest)
+        };
         let frame = ipsvi(&ctx, &gpu, &s, SyncStrategy::BarrierGlobal);
         let steps: Vec<LinearImage> = BreakdownStep::ALL
             .iter()

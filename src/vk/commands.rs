@@ -623,7 +623,17 @@ impl SecondaryCommands {
 
 impl Drop for SecondaryCommands {
     fn drop(&mut self) {
-        // SAFETY: dropped after the frames that executed the secondaries completed.
-        unsafe { self.device.destroy_command_pool(self.pool, None) };
+        // Freed one by one before the pool goes: the Khronos validation layer
+        // 1.3.239 (Debian 12's) forgets a secondary only when it is freed; one
+        // destroyed with its pool stays in a process-wide list that every later
+        // vkDestroyCommandPool scans (docs/testing.md).
+        // SAFETY: dropped after the frames that executed the secondaries
+        // completed; the buffers were allocated from this pool.
+        unsafe {
+            if !self.buffers.is_empty() {
+                self.device.free_command_buffers(self.pool, &self.buffers);
+            }
+            self.device.destroy_command_pool(self.pool, None)
+        };
     }
 }
