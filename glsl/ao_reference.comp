@@ -18,14 +18,19 @@ layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 #include "transfer_lut.glsl"
 
-layout(std140, set = 0, binding = 0) uniform AoReferenceParams {
+struct AoReferenceParams {
     uvec4 dims;          // xyz voxels
     vec4 step_scale;     // xyz: d_min / spacing (voxels per d_min); w: sample spacing in d_min
     float radius;        // r, in d_min
     float lut_size;
     uint steps;          // samples per ray
     float inv_pairs;     // 1 / direction pairs: the mean over a hemisphere's directions
-} params;
+};
+// A storage buffer read once into registers (load_params), not a uniform block:
+// see frame.glsl.
+layout(std140, set = 0, binding = 0) readonly buffer AoReferenceBlock { AoReferenceParams p; } params_buffer;
+AoReferenceParams params;
+void load_params() { params = params_buffer.p; }
 #include "volume_fetch.glsl"
 // Unit directions (xyz; w unused), one per pair.
 layout(std430, set = 0, binding = 3) readonly buffer Directions { vec4 directions[]; };
@@ -64,6 +69,7 @@ vec4 ray(vec3 x, vec3 w) {
 }
 
 void main() {
+    load_params();
     ivec3 v = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(uvec3(v), params.dims.xyz))) return;
     uint index = uint(v.x) + params.dims.x * (uint(v.y) + params.dims.y * uint(v.z));

@@ -27,12 +27,17 @@ layout(set = 0, binding = 5, rgba32f) readonly uniform image2D state_in;
 layout(std430, set = 0, binding = 6) readonly buffer ClusterIds { uint cluster_ids[]; };
 // (E_env rgb, O_env) per entry, then in MODE 3 (glow colour, glow intensity).
 layout(std430, set = 0, binding = 7) readonly buffer Environment { vec4 env[]; };
-layout(std140, set = 0, binding = 8) uniform AoParams {
+struct AoParams {
     uint entries;     // (E_env, O_env) entries before the glow block
     float isovalue;   // MODE 0
     float phase_g;    // MODE 2
     float glow_max;   // MODE 3: h_max
-} ao;
+};
+// A storage buffer read once into registers (load_ao_params), not a uniform block:
+// see frame.glsl.
+layout(std140, set = 0, binding = 8) readonly buffer AoBlock { AoParams p; } ao_buffer;
+AoParams ao;
+void load_ao_params() { ao = ao_buffer.p; }
 
 const float PI = 3.14159265358979;
 
@@ -113,6 +118,8 @@ vec3 shade(vec3 p, vec3 rgb, vec3 d, uvec2 entries) {
 }
 
 void main() {
+    load_ao_params();
+    load_frame();
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     ViewMarch v = pixel_march(px, frame.view_step);

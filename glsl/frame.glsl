@@ -3,7 +3,7 @@
 #ifndef FRAME_GLSL
 #define FRAME_GLSL
 
-layout(std140, set = 0, binding = 0) uniform Frame {
+struct FrameParams {
     vec3 cam_origin;
     uint orthographic;        // 1: parallel rays from the image plane
     vec4 cam_forward;         // unit (w unused)
@@ -26,7 +26,17 @@ layout(std140, set = 0, binding = 0) uniform Frame {
     uvec2 image_size;         // width, height
     uint jitter;              // 1: each pixel's view samples start at its own phase (view_ray.glsl)
     uint frame_unused;
-} frame;
+};
+
+// A storage buffer, not a uniform block: lavapipe (Mesa 22.3) recompiles a
+// shader whose branches and loop bounds read a uniform block, once with the
+// block's values folded in and again without them (docs/testing.md).
+layout(std140, set = 0, binding = 0) readonly buffer FrameBlock { FrameParams params; } frame_buffer;
+
+// The invocation's copy, read once at the top of main (load_frame), so the
+// hot loops read registers rather than the buffer.
+FrameParams frame;
+void load_frame() { frame = frame_buffer.params; }
 
 struct Ray { vec3 origin; vec3 dir; };
 

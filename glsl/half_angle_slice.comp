@@ -123,6 +123,7 @@ void attenuate(uint index) {
 }
 
 void main() {
+    load_frame();
     uint id = gl_GlobalInvocationID.x;
     if (id < slice.pixel_count) {
         shade(id);

@@ -18,6 +18,7 @@ layout(push_constant) uniform Push {
 } push;
 
 void main() {
+    load_frame();
     uvec2 q = gl_GlobalInvocationID.xy;
     if (q.x >= push.width || q.y >= push.height) return;
     // Half the sampling rate of the main pass.

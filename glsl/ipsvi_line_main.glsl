@@ -50,6 +50,7 @@ void line_invocation(uint id) {
 // the build before the kernels shared this file (engine 256, median of 8
 // rotated rounds), 1.01x in this shape (docs/ipsvi.md, "The line kernels").
 void main() {
+    load_frame();
     if (STEP == STEP_EMPTY) return;
     uint id = gl_GlobalInvocationID.x;
     block_index = push.block_index;

@@ -59,6 +59,7 @@ vec3 illumination_at(vec3 p) {
 }
 
 void main() {
+    load_frame();
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     ViewMarch v = pixel_march(px, frame.view_step);

@@ -323,6 +323,7 @@ LightStep step_at_voxel(GroupEntry entry, Light l, vec3 p, ivec2 size, int k, fl
 }
 
 void main() {
+    load_frame();
     int a = pass.axis;
     int u = (a + 1) % 3;
     int v = (a + 2) % 3;

@@ -21,4 +21,4 @@ layout(set = 0, binding = 6, rgba32f) writeonly uniform image2D a_write;
 #define image_out a_write
 #endif
 
-void main() { imageStore(image_out, ivec2(0), probe_block(imageLoad(image_in, ivec2(0)))); }
+void main() { load_frame(); imageStore(image_out, ivec2(0), probe_block(imageLoad(image_in, ivec2(0)))); }

@@ -10,4 +10,4 @@ layout(local_size_x = 1) in;
 layout(set = 1, binding = 0, rgba32f) readonly uniform image2D image_in;
 layout(set = 1, binding = 1, rgba32f) writeonly uniform image2D image_out;
 
-void main() { imageStore(image_out, ivec2(0), probe_block(imageLoad(image_in, ivec2(0)))); }
+void main() { load_frame(); imageStore(image_out, ivec2(0), probe_block(imageLoad(image_in, ivec2(0)))); }

@@ -29,6 +29,7 @@ vec3 blinn_phong(vec3 p, vec3 rgb, vec3 d) {
 }
 
 void main() {
+    load_frame();
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     ViewMarch v = pixel_march(px, frame.view_step);

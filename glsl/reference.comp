@@ -26,6 +26,7 @@ layout(push_constant) uniform Chunk {
 } chunk;
 
 void main() {
+    load_frame();
     uvec2 px = gl_GlobalInvocationID.xy;
     if (px.x >= frame.image_size.x || px.y >= frame.image_size.y) return;
     vec4 acc = chunk.is_first != 0 ? vec4(0.0, 0.0, 0.0, 1.0) : imageLoad(accum_in, ivec2(px));

@@ -130,3 +130,59 @@ fn an_empty_directory_setting_turns_the_cache_off() {
     drop(dvr_pipeline(&ctx));
     assert_eq!(ctx.save_pipeline_cache().unwrap(), None);
 }
+
+/// Files of Mesa's on-disk shader cache under `xdg_cache` (one per compiled
+/// shader variant; `index` is not one).
+fn mesa_cache_entries(xdg_cache: &std::path::Path) -> usize {
+    fn walk(dir: &std::path::Path) -> usize {
+        let Ok(entries) = std::fs::read_dir(dir) else { return 0 };
+        entries
+            .map(|e| e.unwrap().path())
+            .map(|p| if p.is_dir() { walk(&p) } else { usize::from(p.file_name().is_some_and(|n| n != "index")) })
+            .sum()
+    }
+    walk(&xdg_cache.join("mesa_shader_cache"))
+}
+
+/// On lavapipe a frame compiles each of its pipelines once: a process with an
+/// empty cache folder leaves as many compiled shaders in Mesa's shader cache
+/// as the frame creates pipelines. Lavapipe (Mesa 22.3) folds the values of a
+/// uniform block that steer a shader's branches and loops into a variant of
+/// their own at the first dispatch after the block is bound, and compiles the
+/// shader again without them at the next; so the frame parameters are read
+/// from storage buffers (glsl/frame.glsl). Techniques of many dispatches per
+/// frame, one pipeline each (half-angle) and two (IPSVI).
+#[test]
+fn a_frame_compiles_each_pipeline_once_on_lavapipe() {
+    use crate::common::cli::temp_dir;
+    use sweeplab::render::GpuScene;
+    use sweeplab::techniques::{load_scene, render, Technique};
+    let scene_file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/slab-under-sphere.toml");
+    for (name, technique) in [("half-angle", Technique::HalfAngle), ("ipsvi", Technique::Ipsvi)] {
+        // The pipelines the frame creates, counted by a context of its own.
+        let ctx = crate::common::validated_context();
+        if !ctx.info.name.contains("llvmpipe") {
+            println!("{}: not lavapipe, nothing to check", ctx.info.name);
+            return;
+        }
+        let scene = load_scene(&scene_file, &[]).unwrap();
+        let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+        let mut profiler = sweeplab::vk::Profiler::new(&ctx, 4096).unwrap();
+        render(&gpu, technique, 8, 8, &mut profiler).unwrap();
+        let pipelines = ctx.creation_counts().pipelines as usize;
+        crate::common::assert_validation_clean(&ctx);
+
+        let dir = temp_dir(&format!("compiles-once-{name}"));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_sweeplab"))
+            .args(["render", "--scene", scene_file.to_str().unwrap(), "--technique", name, "--size", "8x8", "--out"])
+            .arg(dir.join("frame.png"))
+            .env("XDG_CACHE_HOME", &dir)
+            .env("SWEEPLAB_PIPELINE_CACHE", dir.join("pipelines"))
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let compiled = mesa_cache_entries(&dir);
+        assert_eq!(compiled, pipelines, "{name}: {compiled} shaders compiled for {pipelines} pipelines");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

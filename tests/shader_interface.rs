@@ -20,12 +20,12 @@ fn sets_are_checked_by_binding_name() {
     let ctx = validated_context();
     let scene = scene_with(sphere_volume(8, 3.0), vec![directional(Vec3::NEG_Y, 1.0)], 4, 4);
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
-    let frame = Buffer::with_data(&ctx, "frame", &[0u32; 64], vk::BufferUsageFlags::UNIFORM_BUFFER).unwrap();
+    let frame = Buffer::with_data(&ctx, "frame", &[0u32; 64], vk::BufferUsageFlags::STORAGE_BUFFER).unwrap();
     let output = OutputImage::new(&ctx, "out", 4, 4).unwrap();
     let desc = ComputePipelineDesc { name: "dvr", shader: &raycast::INTERFACE, specialization: &[], max_sets: 4 };
     let mut pipeline = ComputePipeline::new(&ctx, &desc).unwrap();
     let scene_part = [
-        (raycast::FRAME, Resource::UniformBuffer(&frame)),
+        (raycast::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
         (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
         (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
         (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),

@@ -136,7 +136,7 @@ pub fn record_with(
     let ctx = gpu.ctx;
     let scene = gpu.scene;
     let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::reference(scene));
-    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let accum = [
         gpu.frame_images.output(ctx, "reference accum a", width, height)?,
         gpu.frame_images.output(ctx, "reference accum b", width, height)?,
@@ -162,7 +162,7 @@ pub fn record_with(
     let mut sets = Vec::new();
     for (src, dst) in [(0, 1), (1, 0)] {
         sets.push(pipeline.create_set(&[
-            (shader::FRAME, Resource::UniformBuffer(&frame)),
+            (shader::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
             (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             (shader::LIGHTS, Resource::StorageBuffer(&gpu.lights)),

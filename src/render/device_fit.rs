@@ -25,7 +25,7 @@ pub fn needs(technique: &dyn RenderTechnique, scene: &Scene, width: u32, height:
         Need::new(Limit::ImageDimension2D, width.max(height) as u64, "the output image", IMAGE_SIZE),
         Need::new(Limit::WorkGroupCount(0), width.div_ceil(8) as u64, "an image pass (8x8 groups)", IMAGE_SIZE),
         Need::new(Limit::WorkGroupCount(1), height.div_ceil(8) as u64, "an image pass (8x8 groups)", IMAGE_SIZE),
-        Need::new(Limit::UniformBufferRange, std::mem::size_of::<FrameParams>() as u64, "the frame parameters", "none"),
+        Need::new(Limit::StorageBufferRange, std::mem::size_of::<FrameParams>() as u64, "the frame parameters", "none"),
     ];
     let setting = format!("{}'s size settings", technique.name());
     for r in technique.resources(scene, width, height) {

@@ -45,7 +45,7 @@ pub struct FrameParams {
 
 crate::assert_gpu_layout!(
     FrameParams,
-    crate::shaders::raycast::layout::FRAME,
+    crate::shaders::raycast::layout::FRAME_PARAMS,
     [
         cam_origin,
         orthographic,

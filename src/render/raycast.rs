@@ -70,13 +70,13 @@ pub fn record_with(
     let name = shading.pass_name();
     let chunks = ViewChunks::for_render(gpu.scene, name, iterations_per_sample(gpu.scene, shading))?;
     let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
-    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let pipeline = ComputePipeline::new(
         ctx,
         &ComputePipelineDesc { name, shader: &raycast::INTERFACE, specialization: &[(0, shading as u32)], max_sets: 2 },
     )?;
     let shared = [
-        (raycast::FRAME, Resource::UniformBuffer(&frame)),
+        (raycast::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
         (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
         (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
         (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),

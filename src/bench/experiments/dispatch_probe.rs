@@ -87,7 +87,7 @@ pub fn probe(
     let scene = default_scene(&["volume.size=8".into()]).map_err(|e| ExperimentError::Invalid(e.to_string()))?;
     let gpu = GpuScene::upload(ctx, &scene)?;
     let params = frame_params(&scene, 1, 1, gpu.lut_size, MarchSteps::render(&scene));
-    let frame = Buffer::with_data(ctx, "probe frame", &[params], ash::vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let frame = Buffer::with_data(ctx, "probe frame", &[params], ash::vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let out = OutputImage::new(ctx, "probe out", 1, 1)?;
     // Read only where a chunk is not the first; every probe dispatch is.
     let state = OutputImage::new(ctx, "probe state", 1, 1)?;
@@ -100,7 +100,7 @@ pub fn probe(
     let mut first = pipeline("probe", 0)?;
     let second = pipeline("probe second", 1)?;
     let set = first.create_set(&[
-        (raycast::FRAME, Resource::UniformBuffer(&frame)),
+        (raycast::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
         (raycast::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
         (raycast::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
         (raycast::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
@@ -267,13 +267,13 @@ pub fn probe_ping_pong(
     let scene = default_scene(&["volume.size=8".into()]).map_err(|e| ExperimentError::Invalid(e.to_string()))?;
     let gpu = GpuScene::upload(ctx, &scene)?;
     let params = frame_params(&scene, 1, 1, gpu.lut_size, MarchSteps::render(&scene));
-    let frame = Buffer::with_data(ctx, "probe frame", &[params], ash::vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let frame = Buffer::with_data(ctx, "probe frame", &[params], ash::vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let a = OutputImage::new(ctx, "probe ping-pong a", 1, 1)?;
     let b = OutputImage::new(ctx, "probe ping-pong b", 1, 1)?;
     let desc = |name| ComputePipelineDesc { name, shader: &probe_parity::INTERFACE, specialization: &[], max_sets: 1 };
     let mut parity = parity_pair(ctx, &desc("probe parity"))?;
     let parity_set = parity[0].create_set(&[
-        (probe_parity::FRAME, Resource::UniformBuffer(&frame)),
+        (probe_parity::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
         (probe_parity::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
         (probe_parity::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
         (probe_parity::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
@@ -291,7 +291,7 @@ pub fn probe_ping_pong(
         bound.set_layouts[0],
         shader.bindings,
         &[
-            (probe_sets::FRAME, Resource::UniformBuffer(&frame)),
+            (probe_sets::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
             (probe_sets::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (probe_sets::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             (probe_sets::LIGHTS, Resource::StorageBuffer(&gpu.lights)),

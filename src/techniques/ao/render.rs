@@ -141,8 +141,8 @@ impl AoRenderer {
         let scene = gpu.scene;
         let chunks = ViewChunks::for_render(scene, PASS, iterations_per_sample(scene))?;
         let frame = frame_params(scene, width, height, gpu.lut_size, MarchSteps::render(scene));
-        let frame = Buffer::with_data(ctx, "frame params", &[frame], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
-        let ao = Buffer::with_data(ctx, "ao params", &[self.params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+        let frame = Buffer::with_data(ctx, "frame params", &[frame], vk::BufferUsageFlags::STORAGE_BUFFER)?;
+        let ao = Buffer::with_data(ctx, "ao params", &[self.params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let (ids, env, source) = match &self.lookup {
             Lookup::Clustered { ids, environment } => (ids, &environment.env, 0),
             Lookup::PerVoxel { env, placeholder_ids } => (placeholder_ids, env, 1),
@@ -157,13 +157,13 @@ impl AoRenderer {
             },
         )?;
         let shared = [
-            (shader::FRAME, Resource::UniformBuffer(&frame)),
+            (shader::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
             (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             (shader::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
             (shader::CLUSTER_IDS, Resource::StorageBuffer(ids)),
             (shader::ENVIRONMENT, Resource::StorageBuffer(env)),
-            (shader::AO, Resource::UniformBuffer(&ao)),
+            (shader::AO_BUFFER, Resource::StorageBuffer(&ao)),
         ];
         let march = ChunkedMarch { name: PASS, chunks, size: (width, height), sync: ChunkSync::Barrier };
         let mut recorded =

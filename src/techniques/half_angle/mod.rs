@@ -221,7 +221,7 @@ fn record_with(
     let whole_image = [0, 0, width, height];
 
     let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::render(scene));
-    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let g = &geometry;
     let light_params = LightBufferParams {
         origin: g.origin.extend(g.projection as u32 as f32).to_array(),
@@ -242,7 +242,7 @@ fn record_with(
         ComputePipelineDesc { name: "half_angle_slice", shader: &shader::INTERFACE, specialization: &[], max_sets: 1 };
     let mut pipeline = ComputePipeline::new(ctx, &desc)?;
     let set = pipeline.create_set(&[
-        (shader::FRAME, Resource::UniformBuffer(&frame)),
+        (shader::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
         (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
         (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
         (shader::LIGHTS, Resource::StorageBuffer(&gpu.lights)),

@@ -118,7 +118,7 @@ impl ExitPoints {
             },
         )?;
         let depths_set = depths_pipeline.create_set(&[
-            (ipsvi_ert_depths::FRAME, Resource::UniformBuffer(frame)),
+            (ipsvi_ert_depths::FRAME_BUFFER, Resource::StorageBuffer(frame)),
             (ipsvi_ert_depths::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (ipsvi_ert_depths::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             (ipsvi_ert_depths::DEPTHS, Resource::StorageImage(&depths)),

@@ -222,7 +222,7 @@ impl<'a> IpsviRenderer<'a> {
 
         let steps = MarchSteps { shadow_step_voxels: settings.light_step_voxels, ..MarchSteps::render(scene) };
         let params = frame_params(scene, width, height, gpu.lut_size, steps);
-        let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+        let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let output = gpu.frame_images.output(ctx, "ipsvi output", width, height)?;
         let sweep_count = plans.iter().map(|p| p.sweeps.len() as u32).sum::<u32>();
         // One sweep has nothing to merge with: the unmerged frame, no sum pass.
@@ -378,7 +378,7 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_cache_init::PACKED_SAMPLES_B, Resource::StorageImage(&cache.packed_samples[1])),
         ])?;
         let line_set = line.create_set(&[
-            (ipsvi_line::FRAME, Resource::UniformBuffer(&frame)),
+            (ipsvi_line::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
             (ipsvi_line::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (ipsvi_line::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             (ipsvi_line::LIGHTS, Resource::StorageBuffer(&gpu.lights)),

@@ -219,7 +219,7 @@ impl Propagation {
         // Only the box geometry is read: any image size will do.
         let params = frame_params(scene, 1, 1, gpu.lut_size, MarchSteps::render(scene));
         let frame =
-            Buffer::with_data(ctx, "lightvolume frame params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+            Buffer::with_data(ctx, "lightvolume frame params", &[params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let host_buffer = |name: &str, bytes: usize, usage: vk::BufferUsageFlags| {
             Buffer::new(ctx, name, bytes as u64, usage, MemoryLocation::CpuToGpu)
         };
@@ -276,7 +276,7 @@ impl Propagation {
         let mut pipelines = [build(LightMix::Directional)?, build(LightMix::Far)?, build(LightMix::Near)?];
         // All three share one layout: one set serves them all.
         let set = pipelines[0].create_set(&[
-            (shader::FRAME, Resource::UniformBuffer(&frame)),
+            (shader::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
             (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             // The lights a pass propagates: current states and, for subtractions, old ones.

@@ -48,7 +48,7 @@ impl RayCast {
         let mut sets = [vk::DescriptorSet::null(); 2];
         for (i, (write, read)) in [(&output.image, &*state), (&*state, &output.image)].into_iter().enumerate() {
             sets[i] = pipeline.create_set(&[
-                (shader::FRAME, Resource::UniformBuffer(frame)),
+                (shader::FRAME_BUFFER, Resource::StorageBuffer(frame)),
                 (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
                 (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
                 (shader::ILLUMINATION, Resource::StorageImage(&illumination.image)),

@@ -255,7 +255,7 @@ impl<'s> LightVolumeRenderer<'s> {
         }
         let (gpu, ctx) = (self.gpu, self.gpu.ctx);
         let params = frame_params(gpu.scene, width, height, gpu.lut_size, MarchSteps::render(gpu.scene));
-        let frame = Buffer::with_data(ctx, "lightvolume view params", &[params], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+        let frame = Buffer::with_data(ctx, "lightvolume view params", &[params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let output = gpu.frame_images.output(ctx, "lightvolume output", width, height)?;
         let raycast = RayCast::new(gpu, &frame, &self.illumination, &output)?;
         let readback = output.readback_buffer(ctx)?;

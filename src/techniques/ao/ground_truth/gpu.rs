@@ -87,7 +87,7 @@ pub fn reference_gpu(
     };
     let directions: Vec<[f32; 4]> = direction_pairs(params.pairs).iter().map(|w| [w[0], w[1], w[2], 0.0]).collect();
     let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
-    let uniform = Buffer::with_data(ctx, "ao reference params", &[uniform], vk::BufferUsageFlags::UNIFORM_BUFFER)?;
+    let uniform = Buffer::with_data(ctx, "ao reference params", &[uniform], usage)?;
     let directions = device_buffer_with_data(ctx, "ao reference directions", &directions, usage)?;
     let entries = 2 * volume.voxel_count();
     let bytes = entries as u64 * 16;
@@ -106,7 +106,7 @@ pub fn reference_gpu(
     let mut sets = [vk::DescriptorSet::null(); 2];
     for (i, set) in sets.iter_mut().enumerate() {
         *set = pipeline.create_set(&[
-            (shader::PARAMS, Resource::UniformBuffer(&uniform)),
+            (shader::PARAMS_BUFFER, Resource::StorageBuffer(&uniform)),
             (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             (shader::DIRECTIONS, Resource::StorageBuffer(&directions)),
