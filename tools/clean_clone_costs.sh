@@ -47,7 +47,7 @@ phase() {
 }
 
 phase fmt cargo fmt --all -- --check
-phase clippy cargo clippy --all-targets --quiet -- -D warnings
+phase clippy cargo clippy --release --all-targets --quiet -- -D warnings
 phase build cargo test --release --no-run
 phase tests env SWEEPLAB_VALIDATE=1 cargo test --release --no-fail-fast
 

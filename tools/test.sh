@@ -6,7 +6,9 @@ cd "$(dirname "$0")/.."
 source tools/setup.sh
 export SWEEPLAB_VALIDATE=1
 cargo fmt --all -- --check
-cargo clippy --all-targets --quiet -- -D warnings
+# --release: clippy then shares the proc macros, the build scripts and their
+# runs (build.rs compiles the shaders) with the test build below.
+cargo clippy --release --all-targets --quiet -- -D warnings
 # The whole output stays on the terminal; the last line sums cargo's
 # `test result:` lines (CI reads it). The exit status is cargo test's.
 log="$(mktemp)"
