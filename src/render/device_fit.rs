@@ -2,7 +2,7 @@
 //! ([`crate::vk::limits`]), from the scene and the image size alone, checked
 //! before any GPU work: the volume image, the output image and its 8x8
 //! dispatch, every image and buffer the technique lists as its resources
-//! ([`RenderTechnique::resources`]) and the frame's uniform block. Dispatches
+//! ([`RenderTechnique::resources`]) and the frame's parameters. Dispatches
 //! whose size depends on planning (IPSVI's 1-D line blocks) are checked as they
 //! are recorded: [`crate::vk::Recorder::check_limits`] refuses the submission.
 

@@ -1,4 +1,4 @@
-//! Host mirrors of the shader-side `Frame` uniform block and `Light` records
+//! Host mirrors of the shader-side `FrameParams` (a std140 storage buffer) and `Light` records
 //! (glsl/frame.glsl, glsl/lights.glsl); `assert_gpu_layout!` checks them against
 //! the offsets reflected from the SPIR-V.
 

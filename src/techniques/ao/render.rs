@@ -27,7 +27,7 @@ use crate::vk::{Buffer, Profiler, Recorder};
 /// The pass's name: debug label, profiler scope and technique name.
 pub const PASS: &str = "ao";
 
-/// The uniform block `AoParams` of glsl/ao_render.comp.
+/// `AoParams` of glsl/ao_render.comp (a std140 storage buffer).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct AoParams {

@@ -24,7 +24,7 @@ use crate::vk::{Buffer, Profiler};
 /// The pass's name: debug label and profiler scope.
 pub const PASS: &str = "ao_reference";
 
-/// The uniform block `AoReferenceParams` of glsl/ao_reference.comp.
+/// `AoReferenceParams` of glsl/ao_reference.comp (a std140 storage buffer).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuAoReferenceParams {
@@ -77,7 +77,7 @@ pub fn reference_gpu(
     let volume = &gpu.scene.volume;
     let (steps, h) = params.samples();
     let scale = step_scale(volume);
-    let uniform = GpuAoReferenceParams {
+    let gpu_params = GpuAoReferenceParams {
         dims: [volume.dims.x, volume.dims.y, volume.dims.z, 0],
         step_scale: [scale.x as f32, scale.y as f32, scale.z as f32, h as f32],
         radius: params.radius as f32,
@@ -87,7 +87,7 @@ pub fn reference_gpu(
     };
     let directions: Vec<[f32; 4]> = direction_pairs(params.pairs).iter().map(|w| [w[0], w[1], w[2], 0.0]).collect();
     let usage = vk::BufferUsageFlags::STORAGE_BUFFER;
-    let uniform = Buffer::with_data(ctx, "ao reference params", &[uniform], usage)?;
+    let params_buffer = Buffer::with_data(ctx, "ao reference params", &[gpu_params], usage)?;
     let directions = device_buffer_with_data(ctx, "ao reference directions", &directions, usage)?;
     let entries = 2 * volume.voxel_count();
     let bytes = entries as u64 * 16;
@@ -106,7 +106,7 @@ pub fn reference_gpu(
     let mut sets = [vk::DescriptorSet::null(); 2];
     for (i, set) in sets.iter_mut().enumerate() {
         *set = pipeline.create_set(&[
-            (shader::PARAMS_BUFFER, Resource::StorageBuffer(&uniform)),
+            (shader::PARAMS_BUFFER, Resource::StorageBuffer(&params_buffer)),
             (shader::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (shader::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
             (shader::DIRECTIONS, Resource::StorageBuffer(&directions)),
