@@ -34,7 +34,11 @@ struct FrameParams {
 layout(std140, set = 0, binding = 0) readonly buffer FrameBlock { FrameParams params; } frame_buffer;
 
 // The invocation's copy, read once at the top of main (load_frame), so the
-// hot loops read registers rather than the buffer.
+// hot loops read registers rather than the buffer. A shader that reads `frame`
+// without calling load_frame has no `frame_buffer` binding in its reflected
+// interface, so its Rust code cannot name FRAME_BUFFER: the build fails there.
+// (A global initializer instead of the call would make every shader that
+// includes this file read the buffer, whether it uses `frame` or not.)
 FrameParams frame;
 void load_frame() { frame = frame_buffer.params; }
 
