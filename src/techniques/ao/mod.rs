@@ -12,6 +12,7 @@
 
 pub mod bin_runs;
 pub mod cache;
+mod codebook_lanes;
 mod controls;
 pub mod environment;
 pub mod error;
@@ -20,6 +21,7 @@ pub mod gradient;
 pub mod ground_truth;
 pub mod histogram;
 pub mod lane_rows;
+mod lloyd_bounds;
 pub mod packing;
 pub mod parallel;
 pub mod preprocess;

@@ -29,7 +29,12 @@
 //! - Search: partial distance elimination, started from a hint (the previous
 //!   iteration's codeword, or the neighbouring voxel's). The result is the exact
 //!   nearest codeword, ties to the lowest index, whatever the hint.
+//! - Lloyd iterations skip the search of a vector whose codeword provably stays
+//!   its unique nearest (Hamerly's bounds, see [`super::lloyd_bounds`]): the
+//!   same assignment, codebook and distortion as searching every vector.
 
+use super::codebook_lanes::CodebookLanes;
+use super::lloyd_bounds::{drift, LowerBounds};
 use super::parallel::for_each_chunk;
 use super::settings::Metric;
 
@@ -104,6 +109,25 @@ impl Codebook {
         }
         (best, best_d)
     }
+
+    /// As [`Codebook::nearest`] (the same codeword and distance), and a
+    /// distance no larger than that of any other codeword (infinite for a
+    /// codebook of one word).
+    pub fn nearest_two(&self, metric: Metric, x: &[f32], hint: usize) -> (usize, f32, f32) {
+        let n = self.len();
+        let start = hint.min(n - 1);
+        let (mut best, mut best_d, mut second_d) = (start, distance(metric, x, self.word(start)), f32::INFINITY);
+        for j in (0..n).filter(|&j| j != start) {
+            // Stopped above second_d: neither the nearest nor the second.
+            let d = distance_within(metric, x, self.word(j), second_d);
+            if d < best_d || (d == best_d && j < best) {
+                (best, best_d, second_d) = (j, d, best_d);
+            } else if d < second_d {
+                second_d = d;
+            }
+        }
+        (best, best_d, second_d)
+    }
 }
 
 /// LBG parameters.
@@ -128,11 +152,21 @@ pub struct Training {
     pub iterations: u32,
     /// (codebook size, distortion) at the end of each size.
     pub history: Vec<(usize, f64)>,
+    /// Vector assignments over all iterations, and those whose search the
+    /// bounds skipped.
+    pub assignments: u64,
+    pub searches_skipped: u64,
 }
 
 /// Trains a codebook of `params.clusters` words on `vectors` (rows of `dim`,
 /// at least one); `progress(fraction)` after every codebook size.
 pub fn train_lbg(vectors: &[f32], dim: usize, params: LbgParams, progress: &mut dyn FnMut(f64)) -> Training {
+    train(vectors, dim, params, true, progress)
+}
+
+/// [`train_lbg`]; `bounded = false` searches every vector in every iteration
+/// (what the tests compare the bounds with).
+fn train(vectors: &[f32], dim: usize, params: LbgParams, bounded: bool, progress: &mut dyn FnMut(f64)) -> Training {
     let n = vectors.len() / dim;
     assert!(n > 0 && dim > 0, "LBG needs at least one training vector");
     let metric = params.metric;
@@ -151,17 +185,21 @@ pub fn train_lbg(vectors: &[f32], dim: usize, params: LbgParams, progress: &mut 
     let mut done_work = 0;
 
     let mut history = Vec::new();
-    let mut iterations = 0;
+    let (mut iterations, mut assignments, mut searches_skipped) = (0, 0, 0);
     let mut distances = vec![0f32; n];
     let mut distortion;
     loop {
-        // Lloyd iterations at this size.
+        // Lloyd iterations at this size; the first searches every vector.
         let mut previous = f64::INFINITY;
         let mut iteration = 0;
+        let mut bounds: Option<LowerBounds> = None;
         loop {
-            let (new_assignment, new_distances) = assign_all(metric, vectors, &codebook, &assignment);
-            assignment = new_assignment;
-            distances = new_distances;
+            let known = bounds.as_ref().filter(|_| bounded);
+            let assigned = assign_all(metric, vectors, &codebook, &assignment, known);
+            (assignment, distances) = (assigned.ids, assigned.distances);
+            assignments += n as u64;
+            searches_skipped += assigned.skipped;
+            bounds = Some(assigned.lower);
             distortion = distances.iter().map(|&d| d as f64).sum::<f64>() / n as f64;
             iterations += 1;
             iteration += 1;
@@ -170,8 +208,12 @@ pub fn train_lbg(vectors: &[f32], dim: usize, params: LbgParams, progress: &mut 
                 break;
             }
             previous = distortion;
+            let before = codebook.clone();
             update_centroids(metric, vectors, dim, &assignment, &mut codebook);
             relocate_empty(vectors, dim, &assignment, &distances, &mut codebook);
+            if let Some(lower) = bounds.as_mut() {
+                lower.codewords_moved(&assignment, &drift(metric, &before, &codebook));
+            }
         }
         let size = codebook.len();
         history.push((size, distortion));
@@ -182,16 +224,38 @@ pub fn train_lbg(vectors: &[f32], dim: usize, params: LbgParams, progress: &mut 
         }
         split(&mut codebook, &assignment, &distances, target);
     }
-    Training { codebook, assignment, distortion, iterations, history }
+    Training { codebook, assignment, distortion, iterations, history, assignments, searches_skipped }
+}
+
+/// What [`assign_all`] gives: each vector's codeword and distance, the lower
+/// bounds on its distance to every other codeword, and how many searches the
+/// bounds skipped.
+struct Assigned {
+    ids: Vec<u32>,
+    distances: Vec<f32>,
+    lower: LowerBounds,
+    skipped: u64,
 }
 
 /// Nearest codeword and distance of every vector, over all cores, each search
-/// started at the vector's previous codeword.
-fn assign_all(metric: Metric, vectors: &[f32], codebook: &Codebook, hints: &[u32]) -> (Vec<u32>, Vec<f32>) {
+/// started at the vector's previous codeword. With `known` (the lower bounds of
+/// the previous assignment, moved by the codewords' drift since), a vector whose
+/// distance to its previous codeword is below its bound keeps that codeword
+/// unsearched: no other can be as near.
+fn assign_all(
+    metric: Metric,
+    vectors: &[f32],
+    codebook: &Codebook,
+    previous: &[u32],
+    known: Option<&LowerBounds>,
+) -> Assigned {
     let dim = codebook.dim;
     let n = vectors.len() / dim;
     let mut ids = vec![0u32; n];
     let mut distances = vec![0f32; n];
+    let mut lower = LowerBounds::unknown(n, dim);
+    let mut skipped = 0;
+    let lanes = CodebookLanes::new(codebook);
     for_each_chunk(
         n.div_ceil(CHUNK),
         || (),
@@ -199,19 +263,28 @@ fn assign_all(metric: Metric, vectors: &[f32], codebook: &Codebook, hints: &[u32
             let range = c * CHUNK..((c + 1) * CHUNK).min(n);
             range
                 .map(|i| {
-                    let (j, d) = codebook.nearest(metric, &vectors[i * dim..(i + 1) * dim], hints[i] as usize);
-                    (j as u32, d)
+                    let (x, hint) = (&vectors[i * dim..(i + 1) * dim], previous[i] as usize);
+                    if let Some(known) = known {
+                        let d = distance(metric, x, codebook.word(hint));
+                        if known.keeps(i, metric, d) {
+                            return (hint as u32, d, known.get(i), true);
+                        }
+                    }
+                    let (j, d, second) = lanes.nearest_two(metric, codebook, x, hint);
+                    (j as u32, d, LowerBounds::from_second(metric, second, dim), false)
                 })
                 .collect::<Vec<_>>()
         },
         |c, result, _| {
-            for (k, (j, d)) in result.into_iter().enumerate() {
+            for (k, (j, d, bound, kept)) in result.into_iter().enumerate() {
                 ids[c * CHUNK + k] = j;
                 distances[c * CHUNK + k] = d;
+                lower.set(c * CHUNK + k, bound);
+                skipped += kept as u64;
             }
         },
     );
-    (ids, distances)
+    Assigned { ids, distances, lower, skipped }
 }
 
 /// Moves every codeword that has members to its metric's centroid of them.
@@ -398,6 +471,30 @@ mod tests {
             for (i, v) in data.chunks(dim).enumerate() {
                 assert_eq!(t.codebook.nearest(metric, v, 0).0, t.assignment[i] as usize);
             }
+        }
+    }
+
+    /// The bounds skip searches and change nothing: the same codebook,
+    /// assignment and distortion at every size as searching every vector.
+    #[test]
+    fn bounded_training_is_the_training_that_searches_every_vector() {
+        let dim = 12;
+        let data = blobs(3000, dim, 40);
+        for metric in Metric::ALL {
+            let params = LbgParams { metric, clusters: 37, max_iterations: 25, threshold: 1e-5 };
+            let bounded = train(&data, dim, params, true, &mut |_| {});
+            let searched = train(&data, dim, params, false, &mut |_| {});
+            assert_eq!(bounded.codebook, searched.codebook, "{metric:?}");
+            assert_eq!(bounded.assignment, searched.assignment, "{metric:?}");
+            assert_eq!(bounded.history, searched.history, "{metric:?}");
+            assert_eq!(bounded.iterations, searched.iterations, "{metric:?}");
+            assert_eq!(searched.searches_skipped, 0);
+            assert!(
+                bounded.searches_skipped * 5 > bounded.assignments,
+                "{metric:?}: {} of {} searches skipped",
+                bounded.searches_skipped,
+                bounded.assignments
+            );
         }
     }
 
