@@ -6,8 +6,8 @@
 # machine; the pipeline and ground-truth caches live in the clone's target/).
 # Crates are fetched first from the local registry and not timed (a new
 # machine downloads them too; that depends on its network). Then test.sh's
-# steps, each under /usr/bin/time: fmt, clippy, the test build, the tests
-# (with validation). Prints a Markdown table (wall and CPU seconds) and the
+# steps, each under /usr/bin/time: fmt, the test build (clippy lints it), the
+# tests (with validation). Prints a Markdown table (wall and CPU seconds) and the
 # machine; docs/testing.md quotes it. Takes about as long as it measures.
 #
 #   tools/clean_clone_costs.sh            (KEEP=1 keeps the clone and its logs)
@@ -47,7 +47,7 @@ phase() {
 }
 
 phase fmt cargo fmt --all -- --check
-phase clippy cargo clippy --release --all-targets --quiet -- -D warnings
+source tools/clippy_in_build.sh
 phase build cargo test --release --no-run
 phase tests env SWEEPLAB_VALIDATE=1 cargo test --release --no-fail-fast
 

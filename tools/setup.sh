@@ -43,13 +43,20 @@ if ! command -v cargo >/dev/null 2>&1; then
   else
     echo "setup: installing Rust with rustup"
     rustup_log="${TMPDIR:-/tmp}/sweeplab-setup-rustup.log"
-    if ! curl -sSf https://sh.rustup.rs 2>"$rustup_log" | sh -s -- -y --profile minimal >>"$rustup_log" 2>&1; then
+    if ! curl -sSf https://sh.rustup.rs 2>"$rustup_log" | sh -s -- -y --profile minimal --component clippy,rustfmt >>"$rustup_log" 2>&1; then
       echo "setup: installing Rust failed; the last lines of $rustup_log:" >&2
       tail -n 20 "$rustup_log" >&2
       exit 1
     fi
     export PATH="$HOME/.cargo/bin:$PATH"
   fi
+fi
+# tools/test.sh checks formatting and lints: a minimal rustup toolchain has
+# neither rustfmt nor clippy (rustup's proxies for them exist all the same, so
+# ask each for its version).
+if ! { clippy-driver -V && rustfmt --version; } >/dev/null 2>&1 && command -v rustup >/dev/null 2>&1; then
+  echo "setup: adding the clippy and rustfmt components"
+  rustup component add clippy rustfmt >/dev/null 2>&1 || echo "setup: rustup could not add clippy and rustfmt" >&2
 fi
 
 # lavapipe needs a runtime dir for its shader cache warnings to stay quiet.
