@@ -48,7 +48,7 @@ phase() {
 
 phase fmt cargo fmt --all -- --check
 source tools/clippy_in_build.sh
-phase build cargo test --release --no-run
+phase build+clippy cargo test --release --no-run
 phase tests env SWEEPLAB_VALIDATE=1 cargo test --release --no-fail-fast
 
 summary=$(bash tools/test_summary.sh <"$dir/tests.log" | tail -n 1)
