@@ -109,25 +109,6 @@ impl Codebook {
         }
         (best, best_d)
     }
-
-    /// As [`Codebook::nearest`] (the same codeword and distance), and a
-    /// distance no larger than that of any other codeword (infinite for a
-    /// codebook of one word).
-    pub fn nearest_two(&self, metric: Metric, x: &[f32], hint: usize) -> (usize, f32, f32) {
-        let n = self.len();
-        let start = hint.min(n - 1);
-        let (mut best, mut best_d, mut second_d) = (start, distance(metric, x, self.word(start)), f32::INFINITY);
-        for j in (0..n).filter(|&j| j != start) {
-            // Stopped above second_d: neither the nearest nor the second.
-            let d = distance_within(metric, x, self.word(j), second_d);
-            if d < best_d || (d == best_d && j < best) {
-                (best, best_d, second_d) = (j, d, best_d);
-            } else if d < second_d {
-                second_d = d;
-            }
-        }
-        (best, best_d, second_d)
-    }
 }
 
 /// LBG parameters.

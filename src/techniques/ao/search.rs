@@ -105,10 +105,11 @@ impl<'c> CodebookSearch<'c> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
 
-    fn pseudo_random(n: usize, seed: u64) -> Vec<f32> {
+    /// Deterministic values in [0, 1) (also the codebook lanes' test data).
+    pub(in crate::techniques::ao) fn pseudo_random(n: usize, seed: u64) -> Vec<f32> {
         let mut state = seed;
         (0..n)
             .map(|_| {
