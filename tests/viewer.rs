@@ -367,8 +367,6 @@ fn viewer_flags_and_script_mistakes_are_errors_with_suggestions() {
     assert!(!o.status.success() && stderr(&o).contains("did you mean resize?"), "{}", stderr(&o));
 }
 
-/// The viewer's log of one run of `technique` (no panel) with `extra`
-/// arguments, validation clean.
 /// Settings that make a technique's frame cheap on lavapipe without changing
 /// what the viewer tests check (what a frame creates, records and presents,
 /// and that the view is the headless render of the same settings): coarse
@@ -384,6 +382,8 @@ fn cheap(technique: &str) -> &'static [&'static str] {
     }
 }
 
+/// The viewer's log of one run of `technique` (no panel) with `extra`
+/// arguments, validation clean.
 fn view_log(x: &Xvfb, name: &str, technique: &str, size: &str, frames: &str, extra: &[&str]) -> Vec<serde_json::Value> {
     let log_path = temp_dir(name).join("log.json");
     let args = ["view", "--size", size, "--technique", technique, "--frames", frames, "--no-ui", "--log-json"];
