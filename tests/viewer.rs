@@ -402,7 +402,6 @@ fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
     // slot's command buffer: their scopes and the present pass's are in one
     // profile, no upload.
     // Cheap settings: where a frame goes does not depend on its steps or cache sizes.
-    let small_cache = cheap("ipsvi");
     for technique in ["dvr", "reference", "lightvolume", "ipsvi"] {
         for f in view_log(&x, technique, technique, "32x32", "3", cheap(technique)) {
             let p = passes(&f);
@@ -421,7 +420,7 @@ fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
             "ipsvi",
             "24x24",
             "2",
-            &["--set", &set, small_cache[0], small_cache[1]],
+            &[&["--set", set.as_str()][..], cheap("ipsvi")].concat(),
         ) {
             let p = passes(&f);
             assert!(p.iter().any(|s| s.starts_with("ipsvi/ipsvi_sweep_")), "{sync}: {p:?}");
@@ -436,7 +435,7 @@ fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
         "ipsvi",
         "24x24",
         "2",
-        &["--set", "ipsvi.sync=submits", small_cache[0], small_cache[1]],
+        &[&["--set", "ipsvi.sync=submits"][..], cheap("ipsvi")].concat(),
     ) {
         assert!(passes(&f).contains(&"frame_upload".to_string()), "{f}");
     }
