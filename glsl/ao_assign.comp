@@ -10,6 +10,14 @@
 // so both searches pick the same codeword for the same vector. The walk is
 // split into chunks of list entries over dispatches (llvmpipe's loop cap),
 // its state carried in `states`.
+//
+// A histogram equal to the one `copy_stride` before it (the same hemisphere
+// of the previous voxel) is not searched: the nearest codeword depends only
+// on the vector (ties to the lowest index), so after the walk a run-copy
+// dispatch (`run_copy`) gives it the result of its run's first histogram, as
+// the CPU's assignment reuses its previous voxel's codeword. Runs restart
+// every RUN_WINDOW voxels, which bounds the copy's walk back to its run's
+// start.
 
 layout(local_size_x = 64) in;
 
@@ -30,7 +38,16 @@ layout(push_constant) uniform Assign {
     int last_chunk;      // 1: leave the result as the next slice's hint
     int clusters;        // n_c
     int packed_stride;   // floats per packed histogram and codeword (multiple of 8)
+    int copy_stride;     // histograms from one to the next it may copy (2: voxel after voxel); 0: none
+    int run_copy;        // 1: this dispatch gives each copy its run's result (after the walk)
 } assign;
+
+const int RUN_WINDOW = 32;  // voxels (histograms / copy_stride) per window of runs
+
+// SearchState.done
+const uint SEARCHING = 0u;
+const uint FOUND = 1u;
+const uint COPY = 2u;  // equal to the histogram copy_stride before: takes its run's result
 
 struct SearchState {
     uint hint;
@@ -46,6 +63,10 @@ layout(std430, set = 0, binding = 1) readonly buffer Codewords { float codewords
 layout(std430, set = 0, binding = 2) readonly buffer Order { uint order[]; };
 layout(std430, set = 0, binding = 3) readonly buffer OrderDistances { float order_distances[]; };
 layout(std430, set = 0, binding = 4) buffer States { SearchState states[]; };
+// The run-copy dispatch reads the walk's results through a read-only binding
+// of the same buffer, so that synchronization validation sees the read and
+// reports a missing `search_state_write_to_run_copy_read`.
+layout(std430, set = 0, binding = 7) readonly buffer StatesIn { SearchState states_in[]; };
 // The hints ping-pong between the two halves of one buffer (a slice reads the
 // half the slice before wrote and writes the other), bound twice so that the
 // read and the write are separate bindings: synchronization validation then
@@ -91,23 +112,60 @@ float true_distance(float raw) {
     return METRIC == 0 ? sqrt(raw) : raw;
 }
 
+// Whether histogram i of the range equals the one copy_stride before it,
+// within its window of runs; compared in chunks of 8 (the loop budget counts
+// stride / 8 iterations, as for one distance).
+bool same_as_previous(int i, int x) {
+    if (assign.copy_stride == 0 || (i / assign.copy_stride) % RUN_WINDOW == 0) return false;
+    int y = x - assign.copy_stride * assign.packed_stride;
+    for (int c = x; c < x + assign.packed_stride; c += 8) {
+        int d = c - x + y;
+        bvec4 low = equal(vec4(packed[c], packed[c + 1], packed[c + 2], packed[c + 3]),
+                          vec4(packed[d], packed[d + 1], packed[d + 2], packed[d + 3]));
+        bvec4 high = equal(vec4(packed[c + 4], packed[c + 5], packed[c + 6], packed[c + 7]),
+                           vec4(packed[d + 4], packed[d + 5], packed[d + 6], packed[d + 7]));
+        if (!all(low) || !all(high)) return false;
+    }
+    return true;
+}
+
+// The run-copy dispatch: a copy takes the codeword and distance of its run's
+// first histogram (searched, within RUN_WINDOW voxels before it). Reads only
+// the copies' `done` and the searched histograms' results, writes only the
+// copies' results: no invocation reads what another writes.
+void copy_run_result(int i, int histogram) {
+    if (states_in[histogram].done != COPY) return;
+    int first = histogram - assign.copy_stride;
+    while (states_in[first].done == COPY) first -= assign.copy_stride;
+    uint best = states_in[first].best;
+    states[histogram].best = best;
+    states[histogram].best_raw = states_in[first].best_raw;
+    hints_out[assign.hint_out_first + i] = best;
+}
+
 void main() {
     int i = int(gl_GlobalInvocationID.x);
     if (i >= assign.count) return;
     int histogram = assign.first + i;
+    if (assign.run_copy != 0) {
+        copy_run_result(i, histogram);
+        return;
+    }
     int x = histogram * assign.packed_stride;
     SearchState s;
-    if (assign.first_chunk != 0) {
+    if (assign.first_chunk != 0 && same_as_previous(i, x)) {
+        s = SearchState(0u, 0.0, 0u, 0.0, COPY);
+    } else if (assign.first_chunk != 0) {
         uint h = assign.has_hints != 0 ? min(hints_in[assign.hint_first + i], uint(assign.clusters - 1)) : 0u;
         s.hint = h;
         s.best = h;
         s.best_raw = distance_within(x, int(h) * assign.packed_stride, INFINITY);
         s.to_hint = true_distance(s.best_raw);
-        s.done = 0u;
+        s.done = SEARCHING;
     } else {
         s = states[histogram];
     }
-    if (s.done == 0u) {
+    if (s.done == SEARCHING) {
         int row = int(s.hint) * assign.clusters;
         int end = min(assign.first_entry + assign.entries, assign.clusters);
         for (int k = assign.first_entry; k < end; ++k) {
@@ -117,7 +175,7 @@ void main() {
             // to_hint - best < apart < to_hint + best can hold a better codeword.
             precise float upper = (best_true + s.to_hint) * SLACK_UP + MIN_POSITIVE;
             if (apart > upper) {
-                s.done = 1u;
+                s.done = FOUND;
                 break;
             }
             uint j = order[row + k];
@@ -131,5 +189,6 @@ void main() {
         }
     }
     states[histogram] = s;
-    if (assign.last_chunk != 0) hints_out[assign.hint_out_first + i] = s.best;
+    // A copy's hint is written by the run-copy dispatch.
+    if (assign.last_chunk != 0 && s.done != COPY) hints_out[assign.hint_out_first + i] = s.best;
 }

@@ -1,7 +1,8 @@
 //! AO preprocessing on the GPU (docs/ao.md, "GPU space sweep"): the space
 //! sweep equals the brute-force CPU histograms, its assignment equals the CPU
-//! search on the same packed vectors, the slice barrier is load-bearing, and
-//! the GPU assignment of given vectors equals the CPU's for every metric.
+//! search on the same packed vectors (a histogram equal to its neighbour's
+//! copied, not searched), the barriers are load-bearing, and the GPU
+//! assignment of given vectors equals the CPU's for every metric.
 //! Validation and synchronization validation on: any message fails.
 
 use crate::common;
@@ -10,7 +11,7 @@ use common::{assert_validation_clean, validated_context};
 use glam::{UVec3, Vec3};
 use sweeplab::scene::Volume;
 use sweeplab::techniques::ao::gpu::{
-    assign_packed, batch_bytes, supported_plan, GpuSweep, SliceSync, SweepInputs, BATCH_BYTES,
+    assign_packed, batch_bytes, supported_plan, GpuSweep, SearchState, SliceSync, SweepInputs, BATCH_BYTES,
 };
 use sweeplab::techniques::ao::gradient::central_gradient;
 use sweeplab::techniques::ao::histogram::LocalHistograms;
@@ -75,6 +76,12 @@ struct Comparison {
     search_mismatches: usize,
     batches: usize,
     voxels: usize,
+    /// Hemisphere histograms the GPU copied instead of searching...
+    copies: usize,
+    /// ... and those equal to the same hemisphere of the voxel before, that
+    /// voxel in the same slice and window of 32 voxels (where the parts are
+    /// whole slices, exactly the ones to copy).
+    equal_to_previous: usize,
 }
 
 /// Sweeps `volume` on the GPU and compares with the brute-force reference.
@@ -112,10 +119,13 @@ fn compare(
         max_batch_bytes,
     };
     let mut sweep = GpuSweep::new(ctx, &inputs).unwrap();
-    let mut result = Comparison { worst: 0.0, search_mismatches: 0, batches: 0, voxels: 0 };
+    let mut result =
+        Comparison { worst: 0.0, search_mismatches: 0, batches: 0, voxels: 0, copies: 0, equal_to_previous: 0 };
     let (mut f, mut b) = (vec![0f32; h.bins()], vec![0f32; h.bins()]);
     let mut scratch = h.scratch();
     let mut packed = vec![0f32; packing.packed_dim];
+    let slice_voxels = (volume.dims.x * volume.dims.y) as usize;
+    let mut previous = [vec![], vec![]];
     sweep
         .run(sync, |batch| {
             assert_eq!(batch.voxels.start, result.voxels, "batches in order");
@@ -136,6 +146,10 @@ fn compare(
                     let state = batch.states[2 * i + side];
                     let cpu = codebook.nearest(metric, &packed, 0);
                     result.search_mismatches += usize::from((state.best as usize, state.best_raw) != cpu);
+                    result.copies += usize::from(state.done == SearchState::COPY);
+                    let in_window = !(voxel % slice_voxels).is_multiple_of(32);
+                    result.equal_to_previous += usize::from(in_window && packed == previous[side]);
+                    previous[side].clone_from(&packed);
                 }
             }
             result.voxels = batch.voxels.end;
@@ -168,6 +182,28 @@ fn the_space_sweep_equals_brute_force_on_small_volumes() {
         } else {
             assert_eq!(c.batches, 1, "case {i}");
         }
+    }
+    assert_validation_clean(&ctx);
+}
+
+/// A hemisphere histogram equal to the previous voxel's is not searched: the
+/// GPU copies its run's result after the walk (the CPU's shortcut), exactly
+/// where the histograms are equal, and still picks the exhaustive search's
+/// codeword.
+#[test]
+fn equal_neighbours_take_their_runs_result_without_a_search() {
+    let ctx = validated_context();
+    // Noise beside a flat block (x >= 8, one bin), so runs of equal
+    // histograms along x, broken where the stencil meets the noise.
+    let dims = UVec3::new(48, 6, 5);
+    let value = |p: UVec3, random: u64| if p.x >= 8 { 200 } else { (random >> 56) as u8 };
+    let volume = common::seeded_volume("ao-gpu-runs", dims, Vec3::ONE, 17, value);
+    for metric in Metric::ALL {
+        let c = compare(&ctx, &volume, 1, 4, metric, BATCH_BYTES, SliceSync::Barrier);
+        assert_eq!(c.batches, 1, "{metric:?}: whole slices in one batch");
+        assert_eq!(c.search_mismatches, 0, "{metric:?}: a copy differs from the exhaustive search");
+        assert_eq!(c.copies, c.equal_to_previous, "{metric:?}: copied exactly where equal to the voxel before");
+        assert!(c.copies * 2 > 2 * volume.voxel_count(), "{metric:?}: {} of the histograms copied", c.copies);
     }
     assert_validation_clean(&ctx);
 }
@@ -285,6 +321,14 @@ fn the_sweep_without_its_slice_barrier_is_reported_by_sync_validation() {
 #[test]
 fn the_sweep_without_its_hints_barrier_is_reported_by_sync_validation() {
     assert_racy_sweep_reported(SliceSync::RacyNoHintsBarrier, "ao search hints");
+}
+
+/// The barrier between a part's searches and the copies of their results to
+/// equal neighbours is load-bearing (the copies read the results through a
+/// read-only binding of the states).
+#[test]
+fn the_sweep_without_its_run_copy_barrier_is_reported_by_sync_validation() {
+    assert_racy_sweep_reported(SliceSync::RacyNoRunCopyBarrier, "ao search states");
 }
 
 #[test]

@@ -3,13 +3,17 @@
 //! hint, one invocation per packed hemisphere histogram. The walk along a
 //! list is split into dispatches of [`SweepPlan::walk_entries`] entries
 //! (llvmpipe's loop cap), its state carried between them behind the barrier
-//! `search_state_write_to_next_walk_read`.
+//! `search_state_write_to_next_walk_read`. A histogram equal to the same
+//! hemisphere's of the previous voxel is not searched: after the walk, a
+//! run-copy dispatch behind `search_state_write_to_run_copy_read` gives it
+//! its run's result (the CPU's assignment skips such a search too).
 
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
 use gpu_allocator::MemoryLocation;
 
 use super::plan::{packed_stride, SweepPlan};
+use super::sweep::SliceSync;
 use crate::shaders::ao_assign as shader;
 use crate::techniques::ao::error::AoError;
 use crate::techniques::ao::quantize::Codebook;
@@ -42,6 +46,8 @@ struct AssignPush {
     last_chunk: i32,
     clusters: i32,
     packed_stride: i32,
+    copy_stride: i32,
+    run_copy: i32,
 }
 
 crate::assert_gpu_layout!(
@@ -58,7 +64,9 @@ crate::assert_gpu_layout!(
         first_chunk,
         last_chunk,
         clusters,
-        packed_stride
+        packed_stride,
+        copy_stride,
+        run_copy
     ]
 );
 
@@ -71,7 +79,18 @@ pub struct SearchState {
     pub best: u32,
     /// Distance to `best` as [`crate::techniques::ao::quantize::distance`] gives it (L2 squared).
     pub best_raw: f32,
+    /// [`SearchState::SEARCHING`], [`SearchState::FOUND`] or [`SearchState::COPY`].
     pub done: u32,
+}
+
+impl SearchState {
+    /// The walk reached the end of the list (or has not stopped yet).
+    pub const SEARCHING: u32 = 0;
+    /// The walk stopped where no later codeword could win.
+    pub const FOUND: u32 = 1;
+    /// Not searched: equal to the previous voxel's histogram, it took the
+    /// result of its run's first histogram.
+    pub const COPY: u32 = 2;
 }
 
 crate::assert_gpu_layout!(SearchState, shader::layout::SEARCH_STATE, [hint, to_hint, best, best_raw, done]);
@@ -89,6 +108,10 @@ pub struct AssignRange {
     pub hint_out_first: usize,
     /// false: start every search at codeword 0.
     pub has_hints: bool,
+    /// Histograms from one to the next that may take its result when equal
+    /// (2 in the sweep: the same hemisphere of the previous voxel); 0: every
+    /// histogram is searched.
+    pub copy_stride: usize,
 }
 
 pub struct AssignPass {
@@ -145,6 +168,7 @@ impl AssignPass {
             (shader::STATES, Resource::StorageBuffer(states)),
             (shader::HINTS_IN, Resource::StorageBuffer(hints)),
             (shader::HINTS_OUT, Resource::StorageBuffer(hints)),
+            (shader::STATES_IN, Resource::StorageBuffer(states)),
         ])?;
         Ok(AssignPass {
             pipeline,
@@ -164,19 +188,20 @@ impl AssignPass {
     /// result in `states` and, as the next slice's hint, in `hints`. Each
     /// range is one slice (or part of one) and starts at the hints the range
     /// before wrote.
-    /// Without `hints_barrier` (RACY, only for proving that synchronization
-    /// validation reports it) the ranges are not ordered after each other.
+    /// `sync` other than [`SliceSync::Barrier`] (RACY, only for proving that
+    /// synchronization validation reports it) leaves out the ranges' order
+    /// after each other or the run copies' after the walk.
     pub fn record(
         &self,
         rec: &mut Recorder,
         profiler: &mut Profiler,
         ranges: &[AssignRange],
-        hints_barrier: bool,
+        sync: SliceSync,
     ) -> Result<(), VkError> {
         let scope = profiler.begin(rec, ASSIGN_PASS)?;
         rec.bind(&self.pipeline, self.set);
         for (i, range) in ranges.iter().enumerate() {
-            if i > 0 && hints_barrier {
+            if i > 0 && sync != SliceSync::RacyNoHintsBarrier {
                 rec.barrier(&Barrier::memory(
                     "search_hints_write_to_next_slice_read",
                     Access::COMPUTE_WRITE,
@@ -184,8 +209,39 @@ impl AssignPass {
                 ));
             }
             self.record_walk(rec, range);
+            if range.copy_stride > 0 {
+                if sync != SliceSync::RacyNoRunCopyBarrier {
+                    rec.barrier(&Barrier::memory(
+                        "search_state_write_to_run_copy_read",
+                        Access::COMPUTE_WRITE,
+                        Access::COMPUTE_READ_WRITE,
+                    ));
+                }
+                rec.push(&self.pipeline, &self.push(range, 0, true));
+                rec.dispatch((range.count as u32).div_ceil(GROUP_SIZE), 1, 1);
+            }
         }
         profiler.end(rec, scope)
+    }
+
+    /// The push constants of walk chunk `chunk` of `range`, or of its run
+    /// copies.
+    fn push(&self, range: &AssignRange, chunk: usize, run_copy: bool) -> AssignPush {
+        AssignPush {
+            first: range.first as i32,
+            count: range.count as i32,
+            hint_first: range.hint_first as i32,
+            hint_out_first: range.hint_out_first as i32,
+            has_hints: range.has_hints as i32,
+            first_entry: (chunk * self.walk_entries) as i32,
+            entries: self.walk_entries as i32,
+            first_chunk: (chunk == 0) as i32,
+            last_chunk: (chunk + 1 == self.walk_chunks) as i32,
+            clusters: self.clusters as i32,
+            packed_stride: self.stride as i32,
+            copy_stride: range.copy_stride as i32,
+            run_copy: run_copy as i32,
+        }
     }
 
     /// One range's walk, in dispatches of `walk_entries` list entries.
@@ -198,20 +254,7 @@ impl AssignPass {
                     Access::COMPUTE_READ_WRITE,
                 ));
             }
-            let push = AssignPush {
-                first: range.first as i32,
-                count: range.count as i32,
-                hint_first: range.hint_first as i32,
-                hint_out_first: range.hint_out_first as i32,
-                has_hints: range.has_hints as i32,
-                first_entry: (chunk * self.walk_entries) as i32,
-                entries: self.walk_entries as i32,
-                first_chunk: (chunk == 0) as i32,
-                last_chunk: (chunk + 1 == self.walk_chunks) as i32,
-                clusters: self.clusters as i32,
-                packed_stride: self.stride as i32,
-            };
-            rec.push(&self.pipeline, &push);
+            rec.push(&self.pipeline, &self.push(range, chunk, false));
             rec.dispatch((range.count as u32).div_ceil(GROUP_SIZE), 1, 1);
         }
     }
@@ -219,8 +262,9 @@ impl AssignPass {
 
 /// The nearest codeword (index, distance as [`Codebook::nearest`] gives it)
 /// of each of `vectors` (`codebook.dim` floats each), searched on the GPU,
-/// each search started at `hints[i]` (codeword 0 without hints). One
-/// submission; for tests and for assigning vectors the CPU already holds.
+/// each search started at `hints[i]` (codeword 0 without hints), a vector
+/// equal to the one before it taking that one's result. One submission; for
+/// tests and for assigning vectors the CPU already holds.
 pub fn assign_packed(
     ctx: &Context,
     vectors: &[f32],
@@ -258,8 +302,15 @@ pub fn assign_packed(
     uploads.finish()?;
     let mut profiler = Profiler::new(ctx, 4)?;
     submit_and_wait(ctx, "ao assign packed", |rec| {
-        let range = AssignRange { first: 0, count, hint_first: 0, hint_out_first: count, has_hints: hints.is_some() };
-        pass.record(rec, &mut profiler, &[range], true)?;
+        let range = AssignRange {
+            first: 0,
+            count,
+            hint_first: 0,
+            hint_out_first: count,
+            has_hints: hints.is_some(),
+            copy_stride: 1,
+        };
+        pass.record(rec, &mut profiler, &[range], SliceSync::Barrier)?;
         rec.barrier(&Barrier::memory(
             "search_state_write_to_readback_copy",
             Access::COMPUTE_WRITE,

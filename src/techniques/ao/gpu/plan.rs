@@ -151,9 +151,11 @@ impl SweepPlan {
         if pack_iterations > budget {
             return Err(format!("packing {bins} bins into {packed_dim} takes more than llvmpipe's loop cap"));
         }
-        // One distance: stride / 8 chunks (Lmax: each with an 8-step inner loop).
+        // One distance: stride / 8 chunks (Lmax: each with an 8-step inner loop);
+        // the first chunk also compares the histogram with the previous
+        // voxel's (stride / 8) and finds the hint's distance.
         let distance = (stride / 8) * if lmax { 9 } else { 1 };
-        let walk_entries = (budget - distance - 2) / (distance + 1);
+        let walk_entries = (budget - stride / 8 - distance - 2) / (distance + 1);
         if walk_entries == 0 {
             return Err(format!("a packed dimension of {packed_dim} does not fit llvmpipe's loop cap"));
         }
@@ -237,6 +239,8 @@ mod tests {
         assert_eq!(plan.stencil_chunks.last().unwrap().end, 137_064);
         assert!(plan.stencil_chunks.iter().all(|c| c.len() + 8 <= LOOP_BUDGET as usize));
         assert!(plan.walk_chunks * plan.walk_entries >= 2048);
-        assert!(plan.walk_entries * (8 * 9 + 1) + 8 * 9 + 2 <= LOOP_BUDGET as usize);
+        // The first chunk: the comparison with the previous voxel (8 chunks of
+        // 8), the hint's distance, then the entries.
+        assert!(8 + plan.walk_entries * (8 * 9 + 1) + 8 * 9 + 2 <= LOOP_BUDGET as usize);
     }
 }

@@ -109,6 +109,11 @@ pub enum SliceSync {
     /// searches. Only for proving that synchronization validation reports
     /// it; the search starts (not their results) are undefined.
     RacyNoHintsBarrier,
+    /// RACY: no `search_state_write_to_run_copy_read` between a part's
+    /// searches and the copies of their results to equal neighbours. Only for
+    /// proving that synchronization validation reports it; the copies'
+    /// results are undefined.
+    RacyNoRunCopyBarrier,
 }
 
 /// What one batch leaves for the CPU, read in place from the GPU's buffers.
@@ -668,10 +673,12 @@ impl<'c> GpuSweep<'c> {
                         hint_first: read + row_offset,
                         hint_out_first: write + row_offset,
                         has_hints: part.z > 0,
+                        // The same hemisphere of the previous voxel.
+                        copy_stride: 2,
                     }
                 })
                 .collect();
-            assign.record(rec, profiler, &ranges, sync != SliceSync::RacyNoHintsBarrier)?;
+            assign.record(rec, profiler, &ranges, sync)?;
             // The next batch's first slice starts at the hints this batch's
             // last slice wrote.
             rec.barrier(&Barrier::memory(
