@@ -203,7 +203,8 @@ fn equal_neighbours_take_their_runs_result_without_a_search() {
         assert_eq!(c.batches, 1, "{metric:?}: whole slices in one batch");
         assert_eq!(c.search_mismatches, 0, "{metric:?}: a copy differs from the exhaustive search");
         assert_eq!(c.copies, c.equal_to_previous, "{metric:?}: copied exactly where equal to the voxel before");
-        assert!(c.copies * 2 > 2 * volume.voxel_count(), "{metric:?}: {} of the histograms copied", c.copies);
+        // More than half of the 2 x voxels hemisphere histograms.
+        assert!(c.copies > volume.voxel_count(), "{metric:?}: {} of the histograms copied", c.copies);
     }
     assert_validation_clean(&ctx);
 }

@@ -217,6 +217,7 @@ impl AssignPass {
                         Access::COMPUTE_READ_WRITE,
                     ));
                 }
+                // The walk's chunk fields do not matter to the run copies.
                 rec.push(&self.pipeline, &self.push(range, 0, true));
                 rec.dispatch((range.count as u32).div_ceil(GROUP_SIZE), 1, 1);
             }
