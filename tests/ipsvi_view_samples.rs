@@ -39,17 +39,7 @@ pub(crate) fn view_samples(cache_size: u32, cache_write: CacheWrite) -> IpsviSet
 }
 
 pub(crate) fn ipsvi(ctx: &Context, gpu: &GpuScene, s: &IpsviSettings, sync: SyncStrategy) -> LinearImage {
-    ipsvi_study(ctx, gpu, s, &IpsviStudy::default(), sync)
-}
-
-fn ipsvi_study(
-    ctx: &Context,
-    gpu: &GpuScene,
-    s: &IpsviSettings,
-    study: &IpsviStudy,
-    sync: SyncStrategy,
-) -> LinearImage {
-    render_at(ctx, gpu, s, study, sync, SIZE)
+    render_at(ctx, gpu, s, &IpsviStudy::default(), sync, SIZE)
 }
 
 fn render_at(
@@ -412,6 +402,7 @@ fn four_light_setups() -> [(&'static str, Scene); 4] {
 fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
     let ctx = validated_context();
     let scenes = four_light_setups();
+    let plain = IpsviStudy::default();
     for (what, scene) in &scenes {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
         for write in [CacheWrite::Farthest, CacheWrite::Nearest] {
@@ -420,10 +411,8 @@ fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
                 let left_out = IpsviSettings { write_rule, write_pass: WritePass::Sample, ..identity_samples(write) };
                 let kept = IpsviStudy { keep_redundant_claims: true, ..IpsviStudy::default() };
                 assert!(!left_out.records_claims() && left_out.claims_recorded(kept.keep_redundant_claims));
-                let (a, b) = (
-                    identity_frame(&ctx, &gpu, &left_out, &IpsviStudy::default()),
-                    identity_frame(&ctx, &gpu, &left_out, &kept),
-                );
+                let (a, b) =
+                    (identity_frame(&ctx, &gpu, &left_out, &plain), identity_frame(&ctx, &gpu, &left_out, &kept));
                 assert!(a == b, "{what}, {}, {write_rule:?}: the image changed without the claim pass", write.name());
             }
         }
@@ -434,9 +423,8 @@ fn the_claim_pass_left_out_at_one_line_per_block_changes_nothing() {
         IpsviSettings { line_width: 2, write_pass: WritePass::Sample, ..identity_samples(CacheWrite::Farthest) };
     assert!(two_lines.records_claims());
     let gpu = GpuScene::upload_with(&ctx, &scenes[1].1, VolumeTexels::Float32).unwrap();
-    let study = IpsviStudy::default();
-    let claimed = identity_frame(&ctx, &gpu, &two_lines, &study);
-    let racy = identity_frame(&ctx, &gpu, &IpsviSettings { cache_write: CacheWrite::Racy, ..two_lines }, &study);
+    let claimed = identity_frame(&ctx, &gpu, &two_lines, &plain);
+    let racy = identity_frame(&ctx, &gpu, &IpsviSettings { cache_write: CacheWrite::Racy, ..two_lines }, &plain);
     assert!(claimed != racy, "at two lines per block the claims must change the image");
     assert_validation_clean(&ctx);
 }
@@ -457,12 +445,12 @@ fn the_packed_store_is_bit_identical_to_two_stores() {
         }
     }
     modes.push(IpsviSettings { line_width: 2, ..identity_samples(CacheWrite::Farthest) });
-    let study = IpsviStudy::default();
+    let plain = IpsviStudy::default();
     for (what, scene) in &four_light_setups() {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
         for two in &modes {
             let packed = IpsviSettings { packed_store: true, ..two.clone() };
-            let (a, b) = (identity_frame(&ctx, &gpu, two, &study), identity_frame(&ctx, &gpu, &packed, &study));
+            let (a, b) = (identity_frame(&ctx, &gpu, two, &plain), identity_frame(&ctx, &gpu, &packed, &plain));
             let mode = format!(
                 "{what}, {:?} {} {:?} {:?} lw {}",
                 two.cache_update,
@@ -488,6 +476,7 @@ fn the_packed_store_is_bit_identical_to_two_stores() {
 #[test]
 fn the_texel_write_pass_is_bit_identical_to_the_sample_loop() {
     let ctx = validated_context();
+    let plain = IpsviStudy::default();
     let mut modes = Vec::new();
     for write in [CacheWrite::Farthest, CacheWrite::Nearest] {
         for write_rule in WriteRule::ALL {
@@ -509,8 +498,7 @@ fn the_texel_write_pass_is_bit_identical_to_the_sample_loop() {
             let texel = IpsviSettings { write_pass: WritePass::Texel, ..mode.clone() };
             assert!(texel.texel_pass() && texel.records_claims() && texel.validate().is_ok());
             assert!(!sample.texel_pass() && mode.texel_pass(), "auto takes the texel pass");
-            let study = IpsviStudy::default();
-            let (a, b) = (identity_frame(&ctx, &gpu, sample, &study), identity_frame(&ctx, &gpu, &texel, &study));
+            let (a, b) = (identity_frame(&ctx, &gpu, sample, &plain), identity_frame(&ctx, &gpu, &texel, &plain));
             let mode = format!(
                 "{what}, {} {:?} lw {} packed {} merged {} {:?} visible box {}",
                 sample.cache_write.name(),
@@ -603,7 +591,7 @@ fn breakdown_steps_end_in_the_ipsvi_frame() {
             .iter()
             .map(|&breakdown_step| {
                 let study = IpsviStudy { breakdown_step, ..IpsviStudy::default() };
-                ipsvi_study(&ctx, &gpu, &s, &study, SyncStrategy::BarrierGlobal)
+                render_at(&ctx, &gpu, &s, &study, SyncStrategy::BarrierGlobal, SIZE)
             })
             .collect();
         let what = format!("{cache_update:?}/{write_rule:?}/{write_pass:?}");
