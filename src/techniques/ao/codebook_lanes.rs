@@ -73,13 +73,17 @@ impl CodebookLanes {
     }
 }
 
-/// Per lane: the sum over chunks of the chunk's sum of `term(x - w)`.
+/// Per lane: the sum over chunks of the chunk's sum of `term(x - w)`. Index
+/// loops, as in `distance_within` (iterator adapters stayed out-of-line calls
+/// in the test build).
 #[inline(always)]
 fn sum_lanes(x: &[f32], words: &[[f32; LANES]], bound: f32, term: impl Fn(f32) -> f32) -> Option<[f32; LANES]> {
-    let mut total = [0f32; LANES];
-    for (xs, ws) in x.chunks(CHUNK).zip(words.chunks(CHUNK)) {
+    let (n, mut total, mut start) = (x.len().min(words.len()), [0f32; LANES], 0);
+    while start < n {
+        let end = (start + CHUNK).min(n);
         let mut chunk = [0f32; LANES];
-        for (&xv, w) in xs.iter().zip(ws) {
+        for c in start..end {
+            let (xv, w) = (x[c], &words[c]);
             for l in 0..LANES {
                 chunk[l] += term(xv - w[l]);
             }
@@ -87,9 +91,10 @@ fn sum_lanes(x: &[f32], words: &[[f32; LANES]], bound: f32, term: impl Fn(f32) -
         for l in 0..LANES {
             total[l] += chunk[l];
         }
-        if total.iter().all(|&t| t > bound) {
+        if all_above(&total, bound) {
             return None;
         }
+        start = end;
     }
     Some(total)
 }
@@ -97,18 +102,30 @@ fn sum_lanes(x: &[f32], words: &[[f32; LANES]], bound: f32, term: impl Fn(f32) -
 /// Per lane: the largest |x - w|.
 #[inline(always)]
 fn max_lanes(x: &[f32], words: &[[f32; LANES]], bound: f32) -> Option<[f32; LANES]> {
-    let mut total = [0f32; LANES];
-    for (xs, ws) in x.chunks(CHUNK).zip(words.chunks(CHUNK)) {
-        for (&xv, w) in xs.iter().zip(ws) {
+    let (n, mut total, mut start) = (x.len().min(words.len()), [0f32; LANES], 0);
+    while start < n {
+        let end = (start + CHUNK).min(n);
+        for c in start..end {
+            let (xv, w) = (x[c], &words[c]);
             for l in 0..LANES {
                 total[l] = total[l].max((xv - w[l]).abs());
             }
         }
-        if total.iter().all(|&t| t > bound) {
+        if all_above(&total, bound) {
             return None;
         }
+        start = end;
     }
     Some(total)
+}
+
+#[inline(always)]
+fn all_above(lanes: &[f32; LANES], bound: f32) -> bool {
+    let mut all = true;
+    for &t in lanes {
+        all &= t > bound;
+    }
+    all
 }
 
 #[cfg(test)]

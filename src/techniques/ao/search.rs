@@ -83,7 +83,8 @@ impl<'c> CodebookSearch<'c> {
         let mut best_raw = distance(metric, x, codebook.word(h));
         let to_hint = true_distance(metric, best_raw);
         let row = h * n..(h + 1) * n;
-        for (&j, &apart) in self.order[row.clone()].iter().zip(&self.distances[row]) {
+        for k in row {
+            let (j, apart) = (self.order[k], self.distances[k]);
             let best_true = true_distance(metric, best_raw);
             // d(x, c_j) >= |d(c_h, c_j) - d(x, c_h)|: only the shell
             // to_hint - best < apart < to_hint + best can hold a better codeword.
