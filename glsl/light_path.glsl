@@ -6,6 +6,8 @@
 
 // Midpoint rule over `len` world units from x along `dir`, in steps of
 // frame.shadow_step voxels, at most `max_steps` of them (longer steps beyond that).
+// A shader that defines LIGHT_PATH_SKIPS_EMPTY_CELLS (and includes
+// empty_cells.glsl first) steps over empty cells: the same sums.
 // Returns (sum of T_before * alpha * rgb over the samples, optical depth): the
 // medium's emission arriving at x is rgb * emission scale.
 vec4 integrate_light_path(vec3 x, vec3 dir, float len, float max_steps, bool gather_emission) {
@@ -17,8 +19,25 @@ vec4 integrate_light_path(vec3 x, vec3 dir, float len, float max_steps, bool gat
     int m = int(M);
     float tau = 0.0;
     vec3 E = vec3(0.0);
+#ifdef LIGHT_PATH_SKIPS_EMPTY_CELLS
+    // empty_cells.glsl: a cell is looked up once per crossing; the samples in
+    // an empty one are skipped (each would add exactly 0).
+    CellWalk walk = cell_walk(dir);
+    int cell_end = 0;
+#endif
     for (int j = 0; j < m; ++j) {
-        vec4 med = medium(x + dir * ((float(j) + 0.5) * g));
+        vec3 q = x + dir * ((float(j) + 0.5) * g);
+#ifdef LIGHT_PATH_SKIPS_EMPTY_CELLS
+        if (j >= cell_end) {
+            bool empty;
+            cell_end = cell_exit(walk, q, g, j, empty);
+            if (empty) {
+                j = cell_end - 1;
+                continue;
+            }
+        }
+#endif
+        vec4 med = medium(q);
         if (gather_emission) E += exp(-tau) * (1.0 - exp(-med.a * gv)) * med.rgb;
         tau += med.a * gv;
     }

@@ -12,6 +12,9 @@ layout(constant_id = 0) const uint MODEL = 0; // 0: single scattering, 1: emissi
 // Coloured extinction along shadow rays (`reference.chromatic`, model (i) only).
 layout(constant_id = 1) const bool CHROMATIC = false;
 
+// Shadow rays step over the volume's empty cells (empty_cells.glsl): the same sums.
+#define LIGHT_PATH_SKIPS_EMPTY_CELLS
+#include "empty_cells.glsl"
 #include "shadow.glsl"
 #include "view_ray.glsl"
 

@@ -51,6 +51,7 @@ mod ray_jitter;
 mod readme_gallery;
 mod reference_convergence;
 mod reference_cpu;
+mod reference_empty_cells;
 mod scene_examples_render;
 mod scene_files;
 mod scene_fuzz;

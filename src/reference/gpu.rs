@@ -2,8 +2,11 @@
 //! brute-force shadow ray to every light. llvmpipe silently ends an invocation
 //! after 65,535 loop iterations, so the view rays are marched in chunks of
 //! samples, one dispatch per chunk, each within a loop budget; the partial sums
-//! travel between dispatches through a ping-pong pair of images.
+//! travel between dispatches through a ping-pong pair of images. Shadow rays
+//! step over the volume's empty cells ([`crate::render::empty_cells`]), where every
+//! sample would add exactly 0: the same image as marching every sample.
 
+use crate::render::empty_cells::EmptyCells;
 use crate::render::frame_params::{frame_params, FrameParams, MarchSteps};
 use crate::render::view_chunks::{ChunkSync, LOOP_BUDGET};
 use crate::render::{
@@ -86,11 +89,12 @@ impl RenderTechnique for Reference {
     fn reference_model(&self, scene: &Scene) -> OpticalModel {
         scene.reference.model
     }
-    fn resources(&self, _scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
+    fn resources(&self, scene: &Scene, width: u32, height: u32) -> Vec<ResourceNeed> {
         vec![
             ResourceNeed::output_image("reference accum a", width, height),
             ResourceNeed::output_image("reference accum b", width, height),
             ResourceNeed::of::<FrameParams>("frame params", 1),
+            ResourceNeed::of::<u32>("reference empty cells", EmptyCells::buffer_len(&scene.volume)),
         ]
     }
     fn render(
@@ -110,7 +114,7 @@ impl RenderTechnique for Reference {
         height: u32,
         profiler: &mut Profiler,
     ) -> Result<Option<RecordedFrame>, RenderError> {
-        record_with(gpu, (width, height), rec, profiler, ChunkSync::Barrier).map(Some)
+        record_with(gpu, (width, height), rec, profiler, ChunkSync::Barrier, EmptyCells::of_scene(gpu)).map(Some)
     }
 }
 
@@ -121,7 +125,19 @@ pub fn render_with(
     profiler: &mut Profiler,
     sync: ChunkSync,
 ) -> Result<FrameResult, RenderError> {
-    render_recorded(gpu, |rec| record_with(gpu, (width, height), rec, profiler, sync))
+    render_with_cells(gpu, (width, height), profiler, sync, EmptyCells::of_scene(gpu))
+}
+
+/// As [`render_with`], the shadow rays stepping over `cells`' empty cells
+/// ([`EmptyCells::none_empty`]: every sample, the brute-force march itself).
+pub fn render_with_cells(
+    gpu: &GpuScene,
+    size: (u32, u32),
+    profiler: &mut Profiler,
+    sync: ChunkSync,
+    cells: &EmptyCells,
+) -> Result<FrameResult, RenderError> {
+    render_recorded(gpu, |rec| record_with(gpu, size, rec, profiler, sync, cells))
 }
 
 /// Records the frame into `rec` (see [`RecordedFrame`]): the image the last
@@ -132,11 +148,15 @@ pub fn record_with(
     rec: &mut Recorder,
     profiler: &mut Profiler,
     sync: ChunkSync,
+    cells: &EmptyCells,
 ) -> Result<RecordedFrame, RenderError> {
     let ctx = gpu.ctx;
     let scene = gpu.scene;
     let params = frame_params(scene, width, height, gpu.lut_size, MarchSteps::reference(scene));
     let frame = Buffer::with_data(ctx, "frame params", &[params], vk::BufferUsageFlags::STORAGE_BUFFER)?;
+    // Written by the host before the submission: no barrier.
+    let cells =
+        Buffer::with_data(ctx, "reference empty cells", &cells.buffer_words(), vk::BufferUsageFlags::STORAGE_BUFFER)?;
     let accum = [
         gpu.frame_images.output(ctx, "reference accum a", width, height)?,
         gpu.frame_images.output(ctx, "reference accum b", width, height)?,
@@ -168,6 +188,7 @@ pub fn record_with(
             (shader::LIGHTS, Resource::StorageBuffer(&gpu.lights)),
             (shader::ACCUM_IN, Resource::StorageImage(&accum[src].image)),
             (shader::ACCUM_OUT, Resource::StorageImage(&accum[dst].image)),
+            (shader::EMPTY_CELLS, Resource::StorageBuffer(&cells)),
         ])?);
     }
     let plan = plan_for(gpu);
@@ -203,5 +224,5 @@ pub fn record_with(
     profiler.end(rec, scope)?;
     let [a, b] = accum;
     let (output, other) = if last_written == 0 { (a, b) } else { (b, a) };
-    Ok(RecordedFrame::counted(rec, output, vec![Box::new(other), Box::new(frame), Box::new(pipeline)]))
+    Ok(RecordedFrame::counted(rec, output, vec![Box::new(other), Box::new(frame), Box::new(cells), Box::new(pipeline)]))
 }

@@ -7,6 +7,7 @@
 //! transfer LUT and the lights are uploaded again, and the frame's images are
 //! kept ([`FrameImages`]).
 
+use super::empty_cells::EmptyCells;
 use super::error::RenderError;
 use super::frame_images::FrameImages;
 use super::frame_params::{gpu_lights, GpuLight};
@@ -18,7 +19,7 @@ use crate::vk::resources::{ImageDesc, Sampler};
 use crate::vk::{Buffer, Context, Image, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 pub struct GpuScene<'a> {
     pub ctx: &'a Context,
@@ -35,6 +36,9 @@ pub struct GpuScene<'a> {
     pub filter: VolumeFilter,
     /// Where the frames' images come from: each frame's own, or kept (the viewer).
     pub frame_images: Arc<FrameImages>,
+    /// The ground truth's empty cells, found at its first frame (no other
+    /// technique reads them).
+    pub empty_cells: OnceLock<EmptyCells>,
 }
 
 /// The volume on the GPU, to build scenes with the same volume on
@@ -107,6 +111,7 @@ impl<'a> GpuScene<'a> {
             lights,
             filter,
             frame_images,
+            empty_cells: OnceLock::new(),
         })
     }
 

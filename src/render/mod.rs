@@ -7,6 +7,7 @@
 
 pub mod device_fit;
 pub mod early_termination;
+pub mod empty_cells;
 pub mod error;
 pub mod frame_images;
 pub mod frame_params;
