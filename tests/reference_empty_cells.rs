@@ -3,8 +3,8 @@
 //! bit that of the march over every sample, on the examples with air around
 //! their medium (a spot light inside the Cornell box, a directional light, two
 //! point lights, the emissive model, a half-transparent medium), with both
-//! volume formats; and the cells
-//! matter: marked all empty, the shadow rays see no medium and the image changes.
+//! volume formats; and the cells matter: marked all empty, the shadow rays see
+//! no medium and the image changes.
 use crate::common;
 
 use common::*;
