@@ -242,7 +242,7 @@ fn sweep_without_line_barriers_is_reported_by_synchronization_validation() {
     let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     let s = IpsviSettings { cache_size: 32, ..IpsviSettings::default() };
-    assert_ipsvi_line_barrier_load_bearing(&ctx, &gpu, &s, &Default::default(), &mut profiler, "default settings");
+    assert_ipsvi_line_barrier_load_bearing(&ctx, &gpu, &s, &Default::default(), &mut profiler, 16, "default settings");
 }
 
 #[test]

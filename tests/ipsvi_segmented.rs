@@ -209,7 +209,7 @@ fn the_line_barrier_is_still_load_bearing() {
     for cache_update in CacheUpdate::ALL {
         let s = IpsviSettings { cache_size: 32, cache_update, ..settings(LineKernel::Segmented, 4, 4) };
         let what = format!("segmented, {}", cache_update.name());
-        assert_ipsvi_line_barrier_load_bearing(&ctx, &gpu, &s, &IpsviStudy::default(), &mut profiler, &what);
+        assert_ipsvi_line_barrier_load_bearing(&ctx, &gpu, &s, &IpsviStudy::default(), &mut profiler, 16, &what);
     }
 }
 

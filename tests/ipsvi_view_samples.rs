@@ -305,12 +305,14 @@ fn plain_early_termination_loses_the_hidden_feature_and_exit_points_recover_it()
 /// The barrier after each line block is load-bearing in both modes, with
 /// every write resolution, both write rules, both write values and both store
 /// layouts (`packed_store`): without it synchronization validation reports the
-/// hazard on the cache.
+/// hazard on the cache. At the bit-identity tests' size, cache and volume
+/// format (below), so that most of its variants are theirs: on a fresh
+/// machine (16x16, a 32-texel cache and an 8-bit volume) they compiled apart.
 #[test]
 fn line_barrier_is_reported_missing_in_both_modes() {
     let ctx = validated_context();
-    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
-    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let scene = ipsvi_slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)], IDENTITY_SIZE);
+    let gpu = GpuScene::upload_with(&ctx, &scene, VolumeTexels::Float32).unwrap();
     let mut profiler = Profiler::new(&ctx, 64).unwrap();
     let modes = [
         (CacheUpdate::LightRays, CacheWrite::Racy),
@@ -329,7 +331,7 @@ fn line_barrier_is_reported_missing_in_both_modes() {
                     continue;
                 }
                 let s = IpsviSettings {
-                    cache_size: 32,
+                    cache_size: IDENTITY_SIZE,
                     cache_update,
                     cache_write,
                     write_rule,
@@ -349,6 +351,7 @@ fn line_barrier_is_reported_missing_in_both_modes() {
                     &s,
                     &study,
                     &mut profiler,
+                    IDENTITY_SIZE,
                     &format!(
                         "{cache_update:?}/{cache_write:?}/{write_rule:?}/{write_value:?}/packed {packed_store}/{} pass",
                         write_pass.name()
@@ -564,6 +567,11 @@ fn claimed_writes_are_deterministic_and_racy_writes_are_reported() {
 /// texel advance) on is the frame. Both write rules. Per-texel fronts, as the
 /// command line's breakdown test reads at its 16 px (cli.rs): the same shader
 /// variants, which a fresh machine then compiles once, not twice.
+/// The breakdown test's image size and cache, the command line's breakdown
+/// test's (`--sizes 16`, `ipsvi.cache_size=16`, an 8-bit volume of a power of
+/// two): the same shader variants.
+const BREAKDOWN_SIZE: u32 = 16;
+
 #[test]
 fn breakdown_steps_end_in_the_ipsvi_frame() {
     use sweeplab::techniques::ipsvi::BreakdownStep;
@@ -584,14 +592,14 @@ fn breakdown_steps_end_in_the_ipsvi_frame() {
             write_rule,
             write_pass,
             read_fronts: ReadFronts::PerTexel,
-            ..view_samples(FED_CACHE, CacheWrite::Farthest)
+            ..view_samples(BREAKDOWN_SIZE, CacheWrite::Farthest)
         };
-        let frame = ipsvi(&ctx, &gpu, &s, SyncStrategy::BarrierGlobal);
+        let frame = render_at(&ctx, &gpu, &s, &IpsviStudy::default(), SyncStrategy::BarrierGlobal, BREAKDOWN_SIZE);
         let steps: Vec<LinearImage> = BreakdownStep::ALL
             .iter()
             .map(|&breakdown_step| {
                 let study = IpsviStudy { breakdown_step, ..IpsviStudy::default() };
-                render_at(&ctx, &gpu, &s, &study, SyncStrategy::BarrierGlobal, SIZE)
+                render_at(&ctx, &gpu, &s, &study, SyncStrategy::BarrierGlobal, BREAKDOWN_SIZE)
             })
             .collect();
         let what = format!("{cache_update:?}/{write_rule:?}/{write_pass:?}");

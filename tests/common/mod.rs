@@ -173,7 +173,9 @@ pub fn cornell_box_scene(n: u32, size: u32, ao: &str) -> Scene {
 
 /// IPSVI's line barrier, load-bearing: `s` renders validation-clean with the
 /// barrier between line blocks, and without it (`racy`) synchronization
-/// validation reports a hazard on the cache. `what` names the case in the
+/// validation reports a hazard on the cache, at `size` x `size` (llvmpipe
+/// compiles a shader per power-of-two-ness of its images: a caller picks the
+/// size its module renders at, docs/testing.md). `what` names the case in the
 /// failure message.
 pub fn assert_ipsvi_line_barrier_load_bearing(
     ctx: &Context,
@@ -181,14 +183,15 @@ pub fn assert_ipsvi_line_barrier_load_bearing(
     s: &sweeplab::techniques::ipsvi::IpsviSettings,
     study: &sweeplab::techniques::ipsvi::IpsviStudy,
     profiler: &mut sweeplab::vk::Profiler,
+    size: u32,
     what: &str,
 ) {
     use sweeplab::techniques::ipsvi::{render_study, SyncStrategy};
     profiler.reset();
-    render_study(gpu, s, study, 16, 16, profiler, SyncStrategy::BarrierGlobal).unwrap();
+    render_study(gpu, s, study, size, size, profiler, SyncStrategy::BarrierGlobal).unwrap();
     assert_validation_clean(ctx);
     profiler.reset();
-    render_study(gpu, s, study, 16, 16, profiler, SyncStrategy::Racy).unwrap();
+    render_study(gpu, s, study, size, size, profiler, SyncStrategy::Racy).unwrap();
     let messages = ctx.take_validation_messages();
     assert!(
         messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi cache")),
