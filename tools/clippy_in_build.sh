@@ -10,10 +10,6 @@ if ! clippy_driver="$(command -v clippy-driver)" || ! "$clippy_driver" -V >/dev/
   echo "clippy-driver is missing (rustup component add clippy)" >&2
   exit 1
 fi
-export SWEEPLAB_CLIPPY_DRIVER="$clippy_driver"
-# clippy-driver through tools/clippy_rustc.sh, which compiles test harnesses at
-# opt-level 1 (why: there).
-RUSTC_WORKSPACE_WRAPPER="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/clippy_rustc.sh"
-export RUSTC_WORKSPACE_WRAPPER
+export RUSTC_WORKSPACE_WRAPPER="$clippy_driver"
 # cargo clippy's own encoding of the arguments after `--`.
 export CLIPPY_ARGS="-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__"
