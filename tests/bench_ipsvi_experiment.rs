@@ -14,7 +14,7 @@ use sweeplab::render::VolumeTexels;
 use sweeplab::techniques::ipsvi::{IpsviSettings, LineKernel};
 
 fn scene() -> sweeplab::scene::Scene {
-    common::scene_with(sphere_volume(12, 0.4), vec![directional(Vec3::new(0.3, -1.0, 0.2), 1.0)], 8, 8)
+    common::scene_with(sphere_volume(16, 0.4), vec![directional(Vec3::new(0.3, -1.0, 0.2), 1.0)], 8, 8)
 }
 
 #[test]
