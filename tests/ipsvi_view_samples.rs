@@ -560,18 +560,19 @@ fn claimed_writes_are_deterministic_and_racy_writes_are_reported() {
     assert_validation_clean(&ctx);
 }
 
-/// The breakdown's steps (bench ipsvi --breakdown) run validation-clean; the
-/// last is the IPSVI frame bit for bit, and with view samples (farthest claims,
-/// texel-ray writes: every part on) each earlier step leaves a part out and
-/// renders another image; with light rays every step from the carry (their
-/// texel advance) on is the frame. Both write rules. Per-texel fronts, as the
-/// command line's breakdown test reads at its 16 px (cli.rs): the same shader
-/// variants, which a fresh machine then compiles once, not twice.
 /// The breakdown test's image size and cache, the command line's breakdown
 /// test's (`--sizes 16`, `ipsvi.cache_size=16`, an 8-bit volume of a power of
 /// two): the same shader variants.
 const BREAKDOWN_SIZE: u32 = 16;
 
+/// The breakdown's steps (bench ipsvi --breakdown) run validation-clean; the
+/// last is the IPSVI frame bit for bit, and with view samples (farthest claims,
+/// texel-ray writes: every part on) each earlier step leaves a part out and
+/// renders another image; with light rays every step from the carry (their
+/// texel advance) on is the frame. Both write rules. Per-texel fronts at
+/// BREAKDOWN_SIZE, as the command line's breakdown test reads at its 16 px
+/// (cli.rs): the same shader variants, which a fresh machine then compiles
+/// once, not twice.
 #[test]
 fn breakdown_steps_end_in_the_ipsvi_frame() {
     use sweeplab::techniques::ipsvi::BreakdownStep;
