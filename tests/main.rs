@@ -58,10 +58,12 @@ mod scene_fuzz;
 mod scene_warnings;
 mod shader_interface;
 mod stability;
+mod suite_processes;
 mod sync_records;
 mod sync_strategies;
 mod test_summary_line;
 mod toy_technique;
+mod validated_threads;
 mod viewer;
 mod wait_report;
 

@@ -49,7 +49,7 @@ phase() {
 phase fmt cargo fmt --all -- --check
 source tools/clippy_in_build.sh
 phase build+clippy cargo test --release --no-run
-phase tests env SWEEPLAB_VALIDATE=1 cargo test --release --no-fail-fast
+phase tests env SWEEPLAB_VALIDATE=1 bash tools/run_built_tests.sh
 
 summary=$(bash tools/test_summary.sh <"$dir/tests.log" | tail -n 1)
 mesa=$(vulkaninfo --summary 2>/dev/null | sed -nE 's/^[[:space:]]*driverInfo[[:space:]]*=[[:space:]]*//p' | head -n 1)

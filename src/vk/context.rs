@@ -9,6 +9,7 @@ use super::layer_extensions::{self, LeftOut};
 use super::memory::GpuMemory;
 use super::pipeline_cache::{CacheDevice, PipelineCache, PipelineCacheDir};
 use super::pipeline_store::PipelineStore;
+use super::validated_thread::ValidatedThreadClaim;
 use super::validation::{self, ValidationLog};
 use super::wait_report::WaitReporter;
 use ash::vk;
@@ -102,6 +103,9 @@ pub struct Context {
     pub descriptor_pools: Arc<PoolShelf>,
     /// What this context created so far ([`super::creation_counts`]).
     pub counters: CreationCounters,
+    /// Held while a validated context lives ([`super::validated_thread`]);
+    /// released after `drop` has destroyed the instance.
+    _validated_thread: Option<ValidatedThreadClaim>,
 }
 
 struct Candidate {
@@ -283,6 +287,9 @@ impl Context {
     }
 
     fn create(options: &ContextOptions, surface_extensions: &[&CStr]) -> Result<Context, VkError> {
+        // Before the lifecycle lock: a thread that waits here holds nothing the
+        // claiming thread needs to drop its contexts.
+        let validated_thread = options.validate.then(ValidatedThreadClaim::acquire);
         let _lifecycle = lifecycle_lock();
         let entry = load_entry()?;
         let layer = if options.validate { layer_version(&entry, VALIDATION_LAYER)? } else { None };
@@ -414,6 +421,7 @@ impl Context {
             pipeline_cache,
             pipelines: PipelineStore::default(),
             counters: CreationCounters::default(),
+            _validated_thread: validated_thread,
         })
     }
 

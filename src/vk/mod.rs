@@ -25,6 +25,7 @@ pub mod staging;
 pub mod subgroups;
 pub mod surface;
 pub mod swapchain;
+pub mod validated_thread;
 pub mod validation;
 pub mod validation_verdict;
 pub mod wait_report;
