@@ -1,6 +1,7 @@
 //! The integration tests, one binary (`cargo test --release --test suite`):
 //! every file of `tests/` is a module here, so the tests compile and link
-//! once (not once per file) and all of them share the test threads. A new
+//! once (not once per file); `tools/test.sh` runs it one module per process
+//! (tools/suite_processes.sh). A new
 //! test file is added as a `mod` line below (the last test checks that none
 //! is left out). One file's tests: `cargo test --release --test suite
 //! ipsvi_view_samples::`; one test: `... -- --exact MODULE::NAME`.

@@ -6,12 +6,11 @@
 //! "TODO: We probably should lock here"; Vulkan-ValidationLayers issue 4391).
 //! Creating or destroying a validated instance or device writes that map, and
 //! a call on another thread that reads it at that moment can corrupt the heap.
-//! Measured here: labelled submissions on validated contexts of two or three
-//! threads aborted the process within 0.5-1.9 s in five of five runs (glibc's
-//! `malloc_consolidate(): unaligned fastbin chunk detected`, `double free or
-//! corruption`), the suite's intermittent abort; one thread alone made about
-//! 260,000 of them in 30 s, twice, without one (docs/testing.md, "A crash once
-//! in a few runs").
+//! Measured here: labelled submissions in a loop on validated contexts of
+//! three threads aborted the process within 1.5-6.3 s in five of five runs
+//! (SIGSEGV, or glibc's `malloc(): unaligned fastbin chunk detected`: the
+//! suite's intermittent abort); one thread alone made 251,143 and 268,414 of
+//! them in 30 s without one (docs/testing.md, "The suite's heap abort").
 //!
 //! So a context with validation claims the process for its thread: a validated
 //! context created on another thread waits until every validated context of
