@@ -18,6 +18,9 @@ set -uo pipefail
 cd "$(dirname "$0")/.."
 # The tests of tests/main.rs itself, outside any module.
 TOP_LEVEL=main.rs
+# What cargo test gives the binary from .cargo/config.toml's [env]: the
+# driver's pipeline cache in target/, not in the user's ~/.cache.
+export SWEEPLAB_PIPELINE_CACHE="${SWEEPLAB_PIPELINE_CACHE:-$(pwd)/target/pipeline-cache}"
 
 run_module() {
     local bin=$1 module=$2 list=$3 log
@@ -27,7 +30,7 @@ run_module() {
     else
         mapfile -t tests < <(sed -n "s/^\(${module}::.*\): test\$/\1/p" "$list")
     fi
-    local status=0
+    local status=0 start=$EPOCHREALTIME
     "$bin" --test-threads=1 --exact "${tests[@]}" >"$log" 2>&1 || status=$?
     if [ "$status" -gt 128 ]; then
         local passed ignored
@@ -38,6 +41,7 @@ run_module() {
             echo "test result: FAILED. $passed passed; $((${#tests[@]} - passed - ignored)) failed; $ignored ignored (${module}: its process died)"
         } >>"$log"
     fi
+    echo "suite_processes: ${module} took $(awk -v a="$start" -v b="$EPOCHREALTIME" 'BEGIN{printf "%.1f", b - a}') s" >>"$log"
     # One module's output at a time on the terminal.
     flock "$list" cat "$log"
     rm -f "$log"
@@ -52,7 +56,10 @@ fi
 bin=${1:?usage: tools/suite_processes.sh SUITE_BINARY}
 list=$(mktemp)
 trap 'rm -f "$list"' EXIT
-"$bin" --list --format terse >"$list"
+if ! "$bin" --list --format terse >"$list" || ! grep -q ': test$' "$list"; then
+    echo "suite_processes: $bin lists no tests"
+    exit 1
+fi
 # Heaviest first (CPU seconds, docs/testing.md), so that no long module starts
 # last; modules not named here follow in name order.
 heavy="ipsvi ipsvi_view_samples stability bench_sync lightvolume_updates reference_convergence
