@@ -60,10 +60,13 @@ if ! "$bin" --list --format terse >"$list" || ! grep -q ': test$' "$list"; then
     echo "suite_processes: $bin lists no tests"
     exit 1
 fi
-# Heaviest first (CPU seconds, docs/testing.md), so that no long module starts
-# last; modules not named here follow in name order.
-heavy="ipsvi ipsvi_view_samples stability bench_sync lightvolume_updates reference_convergence
-clean_images viewer lightvolume_coarse_error cli ipsvi_segmented best_practices gpu_check readme_gallery"
+# Heaviest first, so that no long module starts last: their wall seconds in a
+# clean clone's tools/test.sh, cold shader cache (2026-12-06: 160 s for
+# ipsvi_view_samples down to 14 s for gpu_smoke; each module's time is printed
+# with its output). Modules not named here follow in name order.
+heavy="ipsvi_view_samples ipsvi_segmented ipsvi viewer stability bench_sync gpu_check cli
+lightvolume_updates reference_convergence lightvolume_coarse_error clean_images best_practices
+readme_gallery ipsvi_merged_sweeps gpu_smoke"
 all=$(sed -n 's/^\([a-z0-9_]*\)::.*: test$/\1/p' "$list" | sort -u)
 grep -q '^[^:]*: test$' "$list" && all+=$'\n'$TOP_LEVEL
 ordered=$( (for m in $heavy; do grep -qx "$m" <<<"$all" && echo "$m"; done; grep -vxF -f <(tr ' ' '\n' <<<"$heavy" | sed '/^$/d') <<<"$all") )
