@@ -439,6 +439,8 @@ fn the_backend_is_part_of_the_cache_key_and_gpu_needs_a_device() {
     let ctx = validated_context();
     let volume = test_volume(UVec3::new(8, 7, 6), Vec3::ONE, 9);
     let dir = std::env::temp_dir().join(format!("sweeplab-ao-gpu-cache-{}", std::process::id()));
+    // Empty: a failed earlier run whose process had the same id may have left entries.
+    let _ = std::fs::remove_dir_all(&dir);
     let settings = AoSettings {
         radius: 2,
         packed_dim: 8,

@@ -141,6 +141,8 @@ fn sweeplab_in(dir: &Path, args: &[&str], display: &str) -> Output {
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("sweeplab-viewer-{name}-{}", std::process::id()));
+    // Empty: a folder of an earlier run whose process had the same id may remain.
+    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
@@ -403,7 +405,7 @@ fn a_recorded_frame_goes_to_the_present_pass_on_the_gpu_in_one_submission() {
     // profile, no upload.
     // Cheap settings: where a frame goes does not depend on its steps or cache sizes.
     for technique in ["dvr", "reference", "lightvolume", "ipsvi"] {
-        for f in view_log(&x, technique, technique, "32x32", "3", cheap(technique)) {
+        for f in view_log(&x, &format!("one-submission-{technique}"), technique, "32x32", "3", cheap(technique)) {
             let p = passes(&f);
             assert!(p.iter().any(|s| s.starts_with(technique)), "{technique}: {p:?}");
             assert!(p.contains(&"present_blit".to_string()), "{technique}: {p:?}");
@@ -698,7 +700,7 @@ fn unchanged_frames_and_camera_moves_create_nothing_and_a_resize_only_what_has_t
         let mut args = vec!["--script", script.to_str().unwrap()];
         // What is created does not depend on the marches' steps or the caches' sizes.
         args.extend(cheap(technique));
-        let frames = view_log(&x, technique, technique, "32x32", "8", &args);
+        let frames = view_log(&x, &format!("created-{technique}"), technique, "32x32", "8", &args);
         assert_eq!(frames.len(), 8);
         let c: Vec<(u64, u64, u64)> = frames.iter().map(created).collect();
         assert!(c[0].0 > 0, "{technique}: the first frame compiles its pipelines: {c:?}");

@@ -15,6 +15,8 @@ pub fn sweeplab(args: &[&str]) -> Output {
 /// A fresh folder for one test's files.
 pub fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("sweeplab-cli-{name}-{}", std::process::id()));
+    // Empty: a folder of an earlier run whose process had the same id may remain.
+    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
