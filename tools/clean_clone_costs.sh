@@ -33,8 +33,12 @@ phase() {
   shift
   local log="$dir/$name.log"
   if ! /usr/bin/time -f "%e %U %S" -o "$dir/$name.time" "$@" >"$log" 2>&1; then
-    echo "clean_clone_costs: $name failed; the last lines of its log:" >&2
+    echo "clean_clone_costs: $name failed; its failures, then the last lines of its log ($log):" >&2
+    grep -E "\.\.\. FAILED|panicked at|process didn't exit|did not build|lists no tests" "$log" | head -n 30 >&2
     tail -n 30 "$log" >&2
+    # A failure keeps the clone and its logs, to be read.
+    trap - EXIT
+    echo "clean_clone_costs: kept $dir" >&2
     exit 1
   fi
   local wall user sys cpu
