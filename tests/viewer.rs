@@ -651,7 +651,7 @@ fn the_image_is_drawn_beside_the_panel_that_fits_the_window_and_the_panel_hides(
 #[test]
 fn a_slow_technique_previews_while_dragging_and_renders_full_quality_when_still() {
     let x = xvfb_or_skip!();
-    let dir = temp_dir("preview");
+    let dir = temp_dir("preview-inputs");
     let script = dir.join("script.txt");
     std::fs::write(&script, "2 orbit 10 0\n3 orbit 10 0\n4 orbit 10 0\n6 wait 600\n").unwrap();
     let shot = dir.join("view.png");
