@@ -19,11 +19,7 @@ use sweeplab::bench::Harness;
 const SIZE: u32 = 16;
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("sweeplab-{name}-{}", std::process::id()));
-    // Empty: a folder of an earlier run whose process had the same id may remain.
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::cli::temp_dir(name)
 }
 
 #[test]

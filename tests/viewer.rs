@@ -140,11 +140,7 @@ fn sweeplab_in(dir: &Path, args: &[&str], display: &str) -> Output {
 }
 
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("sweeplab-viewer-{name}-{}", std::process::id()));
-    // Empty: a folder of an earlier run whose process had the same id may remain.
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    crate::common::cli::temp_dir(&format!("viewer-{name}"))
 }
 
 fn stderr(o: &Output) -> String {
