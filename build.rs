@@ -25,8 +25,11 @@ use std::path::{Path, PathBuf};
 mod early_termination;
 #[path = "tools/spirv_reflect.rs"]
 mod spirv_reflect;
+#[path = "tools/spirv_strip.rs"]
+mod spirv_strip;
 
 use spirv_reflect::{merge, reflect, Interface};
+use spirv_strip::strip_source_debug;
 
 /// Static archives that Debian's `libshaderc_combined.a` leaves unresolved.
 const GLSLANG_SPIRV_ARCHIVES: &[&str] = &[
@@ -132,6 +135,7 @@ fn compile_shaders() {
     println!("cargo:rerun-if-changed={}", glsl_dir.display());
     println!("cargo:rerun-if-changed=src/render/early_termination.rs");
     println!("cargo:rerun-if-changed=tools/spirv_reflect.rs");
+    println!("cargo:rerun-if-changed=tools/spirv_strip.rs");
 
     let compiler = shaderc::Compiler::new().expect("shaderc compiler");
     let mut entries: Vec<PathBuf> =
@@ -183,8 +187,9 @@ fn compile_shaders() {
                 )
                 .unwrap_or_else(|e| panic!("shader {} failed to compile:\n{e}", path.display()));
             let spv_path = out_dir.join(format!("{name}.spv"));
-            fs::write(&spv_path, artifact.as_binary_u8()).expect("write spv");
-            builds.push((spv_path, reflect(&name, artifact.as_binary_u8())));
+            let spirv = strip_source_debug(&name, artifact.as_binary_u8());
+            fs::write(&spv_path, &spirv).expect("write spv");
+            builds.push((spv_path, reflect(&name, &spirv)));
         }
         let interfaces: Vec<Interface> = builds.iter().map(|(_, i)| i.clone()).collect();
         let paths: Vec<&Path> = builds.iter().map(|(p, _)| p.as_path()).collect();

@@ -132,3 +132,35 @@ fn ping_pong_pairs_are_a_set_1_of_separate_read_and_write_bindings() {
     drop(dvr);
     assert_validation_clean(&ctx);
 }
+
+/// build.rs drops the source text, file names and line numbers from every
+/// build (tools/spirv_strip.rs): each pipeline creation parses the whole
+/// module, in lavapipe and again in the validation layer. The names stay
+/// (reflection and validation messages use them), and the words still form
+/// whole instructions.
+#[test]
+fn shaders_keep_their_names_and_leave_out_source_text_and_lines() {
+    const OP_NAME: u32 = 5;
+    let source_debug = [2, 3, 4, 7, 8, 317, 330]; // OpSourceContinued .. OpModuleProcessed
+    let interfaces = [
+        &ipsvi_line::INTERFACE,
+        &raycast::INTERFACE,
+        &ipsvi_ert_sweep::INTERFACE,
+        &sweeplab::shaders::half_angle_slice::INTERFACE,
+    ];
+    for interface in interfaces {
+        for spirv in interface.builds {
+            let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+            assert_eq!(words[0], 0x0723_0203, "{}: not SPIR-V", interface.name);
+            let (mut at, mut names) = (5, 0);
+            while at < words.len() {
+                let (count, opcode) = ((words[at] >> 16) as usize, words[at] & 0xffff);
+                assert!(count > 0 && at + count <= words.len(), "{}: broken instruction at word {at}", interface.name);
+                assert!(!source_debug.contains(&opcode), "{}: opcode {opcode} at word {at}", interface.name);
+                names += (opcode == OP_NAME) as usize;
+                at += count;
+            }
+            assert!(names > 0, "{}: no OpName left", interface.name);
+        }
+    }
+}
