@@ -4,10 +4,11 @@
 //! OpModuleProcessed). The names (OpName, OpMemberName) stay: build.rs reflects
 //! bindings by them, and validation messages name objects by them.
 //!
-//! Why: every pipeline creation parses the whole module. The Khronos
-//! validation layer specializes and revalidates it (uncached) and lavapipe
-//! translates it to NIR; a third of the IPSVI line shader's words were this
-//! text (docs/testing.md, "Pipeline creation").
+//! Why: the modules then hold nothing of the clone's path, so two clones
+//! build the same SPIR-V and share Mesa's shader cache; and every pipeline
+//! creation parses the whole module (lavapipe's translation, the Khronos
+//! validation layer's uncached re-validation), of which this text was a third
+//! for IPSVI's line shader (docs/testing.md, "Where the time goes": Pipelines).
 
 const OP_SOURCE_CONTINUED: u32 = 2;
 const OP_SOURCE: u32 = 3;
