@@ -160,8 +160,6 @@ pub fn layout_bindings(bindings: &[Binding]) -> Vec<vk::DescriptorSetLayoutBindi
         .collect()
 }
 
-/// Compiles `spirv` with `key`'s constants into a pipeline and its layouts,
-/// through the context's pipeline cache.
 /// A compute pipeline of `spirv` on `layout` with `constants` (id, value)
 /// specialized; the shader module lives only for the call, and nothing leaks
 /// where the creation fails.
@@ -207,6 +205,8 @@ pub fn specialized_pipeline(
     }
 }
 
+/// Compiles `spirv` with `key`'s constants into a pipeline and its layouts,
+/// through the context's pipeline cache.
 fn create_objects(
     ctx: &Context,
     desc: &ComputePipelineDesc,
