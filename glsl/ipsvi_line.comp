@@ -127,7 +127,11 @@ void shade_pixel(uint index) {
         }
     }
     digest_stop(block_index, index, marched);
-    if (VIEW_SAMPLES && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index, run_empty);
+    // `sample_writes` is what sets `run`; named here, it leaves the store out of
+    // the variants whose samples never write (write_pass = "texel", early
+    // breakdown steps), which lavapipe's compiler kept behind `run.x >= 0`
+    // alone: a fifth of the default variant's LLVM work (docs/testing.md).
+    if (sample_writes && run.x >= 0) store_sample(run, run_p, run_depth, run_light, index, run_empty);
     finish_pixel(px, w, pixel, first_light);
 }
 
