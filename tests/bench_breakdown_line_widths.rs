@@ -8,21 +8,25 @@ use std::process::Command;
 #[test]
 fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
     let dir = temp_dir("breakdown-widths");
+    let scene = small_cornell_box(&dir.join("scene"));
     // Without validation: the breakdown's step b has no barriers by design.
     let o = Command::new(env!("CARGO_BIN_EXE_sweeplab"))
-        .args(["bench", "ipsvi", "--breakdown", "--sizes", "16", "--repeat", "1", "--line-widths", "1,4"])
-        // The segmented kernel's modes only (the serial kernel's: tests/bench_ipsvi_experiment.rs).
-        .args(["--kernels", "segmented"])
-        // A small light cache: the rows and their ratios do not depend on its size.
-        .args(["--set", "ipsvi.cache_size=16"])
-        .args(["--out-dir", dir.to_str().unwrap()])
+        .args(["bench", "ipsvi", "--breakdown", "--scene", scene.to_str().unwrap()])
+        // tools/gpu_check.sh's breakdown part as tests/gpu_check.rs runs it: the
+        // segmented kernel's modes at line widths 1 and 4 (the serial kernel's:
+        // tests/bench_ipsvi_experiment.rs), on the same scene and size, so that
+        // lavapipe compiles their pipelines once per run.
+        .args(["--sizes", GPU_CHECK_BENCH_SIZE])
+        .args(GPU_CHECK_IPSVI_ARGS.split_whitespace())
+        .args(["--out-dir", dir.join("bench").to_str().unwrap()])
         .env_remove("SWEEPLAB_VALIDATE")
         .output()
         .expect("run sweeplab");
     assert!(o.status.success(), "{}", stderr(&o));
-    let rows = bench_rows(&dir.join("ipsvi_line_widths.json"));
-    assert_names_its_run(&dir.join("ipsvi_line_widths.csv"), &dir.join("ipsvi_line_widths.md"));
-    assert_every_output_names_its_run(&dir);
+    let out = dir.join("bench");
+    let rows = bench_rows(&out.join("ipsvi_line_widths.json"));
+    assert_names_its_run(&out.join("ipsvi_line_widths.csv"), &out.join("ipsvi_line_widths.md"));
+    assert_every_output_names_its_run(&out);
     for mode in ["view-samples", "light-rays"] {
         let row = |lw: u32| {
             rows.iter()

@@ -3,36 +3,31 @@
 //! report (JSON and Markdown) lists each with its exit status and time, and a
 //! failing part is recorded while the parts after it still run.
 
+use crate::common;
+
+use common::cli::{small_cornell_box, GPU_CHECK_BENCH_SIZE, GPU_CHECK_IPSVI_ARGS};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// The Cornell box of `tests/scenes/` at a 16-voxel volume and a 16-texel
-/// IPSVI cache: every part runs the same code as on the full scene, in a
-/// fraction of the time (the benches' IPSVI frame at 32x32 takes 1.3 s on
-/// lavapipe with the scene's own volume and cache, 20 ms with these).
-fn small_scene(dir: &Path) -> PathBuf {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(root.join("tests/scenes/cornell-box.toml")).unwrap();
-    assert!(text.contains("\nsize = 64\n") && !text.contains("[ipsvi]"), "the scene this test shrinks changed");
-    let small = text.replace("\nsize = 64\n", "\nsize = 16\n") + "\n[ipsvi]\ncache_size = 16\n";
-    std::fs::create_dir_all(dir).unwrap();
-    let path = dir.join("small-cornell-box.toml");
-    std::fs::write(&path, small).unwrap();
-    path
-}
-
-/// Mesa's shader cache where the suite's own processes keep it, if that can be told.
-fn mesa_shader_cache() -> Option<(&'static str, PathBuf)> {
-    let cache = std::env::var_os("XDG_CACHE_HOME")
+/// The folder the suite's own processes keep Mesa's shader cache in (as
+/// `mesa_shader_cache/` under it), if that can be told.
+fn suite_cache_home() -> Option<PathBuf> {
+    std::env::var_os("XDG_CACHE_HOME")
         .filter(|v| !v.is_empty())
         .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").filter(|v| !v.is_empty()).map(|h| PathBuf::from(h).join(".cache")))?;
-    Some(("MESA_SHADER_CACHE_DIR", cache.join("mesa_shader_cache")))
+        .or_else(|| std::env::var_os("HOME").filter(|v| !v.is_empty()).map(|h| PathBuf::from(h).join(".cache")))
+}
+
+/// Mesa's shader cache where the suite's own processes keep it. Mesa puts its
+/// `mesa_shader_cache/` folder into MESA_SHADER_CACHE_DIR as it does into
+/// XDG_CACHE_HOME, so the variable names the cache's parent.
+fn mesa_shader_cache() -> Option<(&'static str, PathBuf)> {
+    suite_cache_home().map(|home| ("MESA_SHADER_CACHE_DIR", home))
 }
 
 fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::Value) {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let scene = small_scene(&out.with_extension("scene"));
+    let scene = small_cornell_box(&out.with_extension("scene"));
     let status = Command::new("bash")
         .arg(root.join("tools/gpu_check.sh"))
         .arg(out)
@@ -42,12 +37,11 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
         // compiled shaders stay with the rest of the suite's, as a rerun would find them.
         .envs(mesa_shader_cache())
         .env("GPU_CHECK_SIZE", "16")
-        .env("GPU_CHECK_BENCH_SIZE", "32")
+        .env("GPU_CHECK_BENCH_SIZE", GPU_CHECK_BENCH_SIZE)
         .env("GPU_CHECK_TECHNIQUES", techniques)
         .env("GPU_CHECK_AO_SET", "ao.clusters=16")
         .env("GPU_CHECK_SYNC_ARGS", "--quick --repeat 6 --max-rounds 6 --max-minutes 0.2 --line-widths 1,4")
-        // One kernel per IPSVI part: each kernel's modes are pipelines lavapipe compiles.
-        .env("GPU_CHECK_IPSVI_ARGS", "--line-widths 1,4 --repeat 1 --kernels segmented")
+        .env("GPU_CHECK_IPSVI_ARGS", GPU_CHECK_IPSVI_ARGS)
         .env(
             "GPU_CHECK_MODES_ARGS",
             "--one-at-a-time --line-widths 1 --cache-sizes 16 --half-angle-slices --repeat 1 --kernels serial",
@@ -69,6 +63,13 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
     (status.success(), report)
 }
 
+/// How many files a folder and its subfolders hold (0 where it does not exist).
+fn files_in(dir: &Path) -> usize {
+    std::fs::read_dir(dir)
+        .map(|entries| entries.flatten().map(|e| if e.path().is_dir() { files_in(&e.path()) } else { 1 }).sum())
+        .unwrap_or(0)
+}
+
 fn parts_of(report: &serde_json::Value) -> Vec<(String, i64, String)> {
     report["parts"]
         .as_array()
@@ -86,6 +87,10 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     let out = std::env::temp_dir().join(format!("sweeplab-gpu-check-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
     let all = "dvr,phong,reference,ipsvi,half-angle,lightvolume,ao";
+    // Where Mesa would put a cache of the parts' own (MESA_SHADER_CACHE_DIR
+    // naming the cache itself instead of its parent).
+    let nested_cache = suite_cache_home().unwrap_or_default().join("mesa_shader_cache/mesa_shader_cache");
+    let nested_before = files_in(&nested_cache);
     let (ok, report) = run_check(&out, all, true);
     let parts = parts_of(&report);
     let names: Vec<&str> = parts.iter().map(|p| p.0.as_str()).collect();
@@ -103,6 +108,9 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     }
     assert!(ok, "the script exits 0 when every part passed");
     assert_eq!(report["failed_parts"], 0);
+    // The parts' compiled shaders went where the suite's own are, not into a
+    // cache of their own inside it.
+    assert_eq!(files_in(&nested_cache), nested_before, "the parts kept a shader cache of their own");
     // The layer's version beside the driver's API version, for every reader of the report.
     let layer = report["validation_layer"].as_str().unwrap_or_default();
     assert!(layer.starts_with("VK_LAYER_KHRONOS_validation 1."), "{report:#}");

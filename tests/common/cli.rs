@@ -1,6 +1,6 @@
 //! Running the `sweeplab` binary as a user does, for the command-line tests.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// `sweeplab ARGS` with validation and synchronization validation on.
@@ -11,6 +11,32 @@ pub fn sweeplab(args: &[&str]) -> Output {
         .output()
         .expect("run sweeplab")
 }
+
+/// The Cornell box of `tests/scenes/` at a 16-voxel volume and a 16-texel
+/// IPSVI cache, written into `dir`: the benches run the same code as on the
+/// full scene, in a fraction of the time (the benches' IPSVI frame at 32x32
+/// takes 1.3 s on lavapipe with the scene's own volume and cache, 20 ms with
+/// these).
+pub fn small_cornell_box(dir: &Path) -> PathBuf {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("tests/scenes/cornell-box.toml")).unwrap();
+    assert!(text.contains("\nsize = 64\n") && !text.contains("[ipsvi]"), "the scene this test shrinks changed");
+    let small = text.replace("\nsize = 64\n", "\nsize = 16\n") + "\n[ipsvi]\ncache_size = 16\n";
+    std::fs::create_dir_all(dir).unwrap();
+    let path = dir.join("small-cornell-box.toml");
+    std::fs::write(&path, small).unwrap();
+    path
+}
+
+/// The image side and the arguments of `bench ipsvi --breakdown` as
+/// tests/gpu_check.rs runs tools/gpu_check.sh's breakdown part on
+/// [`small_cornell_box`]. tests/bench_breakdown_line_widths.rs runs the same
+/// bench on the same scene: its pipelines (the segmented kernel's modes and
+/// breakdown steps, which lavapipe compiles in about 10 s) are then compiled
+/// once per run and found in Mesa's shader cache by the other test.
+pub const GPU_CHECK_BENCH_SIZE: &str = "32";
+/// One kernel per IPSVI part: each kernel's modes are pipelines lavapipe compiles.
+pub const GPU_CHECK_IPSVI_ARGS: &str = "--line-widths 1,4 --repeat 1 --kernels segmented";
 
 /// A fresh folder for one test's files.
 pub fn temp_dir(name: &str) -> PathBuf {
