@@ -29,6 +29,7 @@ mod cli_flags;
 mod data_render;
 mod device_limits;
 mod far_lights;
+mod finished_frames;
 mod gpu_check;
 mod gpu_smoke;
 mod gpu_vs_cpu;

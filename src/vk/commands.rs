@@ -4,6 +4,7 @@
 use super::barriers::{Access, Barrier};
 use super::context::Context;
 use super::error::{VkError, VkResultExt};
+use super::finished_frame::FinishedFrame;
 use super::limits::{Limit, LimitExceeded, Need};
 use super::pipeline::ComputePipeline;
 use super::resources::{color_layers, Buffer, Image};
@@ -494,11 +495,15 @@ pub fn submit_and_wait_or<R, E: From<VkError>>(
     // SAFETY: we wait on the fence before the pool (and its command buffers) is destroyed.
     let report =
         WaitReport { name, elapsed: Duration::ZERO, dispatches: rec.dispatch_count, barriers: rec.barrier_count };
-    let waited = submitted.and_then(|_| wait_for_fence(ctx, fence, report));
-    // SAFETY: the fence is signalled or the submission failed; either way it is unused now.
-    unsafe { device.destroy_fence(fence, None) };
-    waited?;
-    drop(guard);
+    if let Err(e) = submitted.and_then(|_| wait_for_fence(ctx, fence, report)) {
+        // SAFETY: the submission failed or its wait did (the device is lost):
+        // the fence is unused now. The guard destroys the pool.
+        unsafe { device.destroy_fence(fence, None) };
+        return Err(e.into());
+    }
+    // Not destroyed yet: the validation layer may still hold the frame's
+    // command buffer (vk/finished_frame.rs).
+    ctx.finished_frame.keep(guard.finish(fence));
     Ok(result)
 }
 
@@ -547,6 +552,17 @@ struct PoolGuard<'a> {
     device: &'a ash::Device,
     pool: vk::CommandPool,
     timeline: Option<vk::Semaphore>,
+}
+
+impl PoolGuard<'_> {
+    /// The frame's objects once `fence` has signalled, handed on undestroyed.
+    fn finish(self, fence: vk::Fence) -> FinishedFrame {
+        let frame = FinishedFrame { pool: self.pool, fence, timeline: self.timeline };
+        // The guard owns nothing but these handles: forgetting it skips only
+        // its destruction of them.
+        std::mem::forget(self);
+        frame
+    }
 }
 
 impl Drop for PoolGuard<'_> {

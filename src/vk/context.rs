@@ -5,6 +5,7 @@ use super::creation_counts::{CreationCounters, CreationCounts};
 use super::descriptor_pool_shelf::PoolShelf;
 use super::device_info::{self, DeviceInfo};
 use super::error::{VkError, VkResultExt};
+use super::finished_frame::FinishedFrameKeeper;
 use super::layer_extensions::{self, LeftOut};
 use super::memory::GpuMemory;
 use super::pipeline_cache::{CacheDevice, PipelineCache, PipelineCacheDir};
@@ -101,6 +102,9 @@ pub struct Context {
     pub pipelines: PipelineStore,
     /// Descriptor pools handed on ([`super::descriptor_pool_shelf`]).
     pub descriptor_pools: Arc<PoolShelf>,
+    /// The last `submit_and_wait` frame's command pool, kept until the next
+    /// one has finished ([`super::finished_frame`]).
+    pub finished_frame: FinishedFrameKeeper,
     /// What this context created so far ([`super::creation_counts`]).
     pub counters: CreationCounters,
     /// Held while a validated context lives ([`super::validated_thread`]);
@@ -394,6 +398,7 @@ impl Context {
         let debug_utils = debug_instance.as_ref().map(|_| ash::ext::debug_utils::Device::new(&instance, &device));
         let calibrator = calibration_ext.map(|name| Arc::new(Calibrator::new(&instance, &device, name)));
         let descriptor_pools = Arc::new(PoolShelf::new(&device));
+        let finished_frame = FinishedFrameKeeper::new(&device);
         let push_descriptor = push_descriptor.then(|| ash::khr::push_descriptor::Device::new(&instance, &device));
         Ok(Context {
             entry,
@@ -418,6 +423,7 @@ impl Context {
             device_extensions: enabled.iter().map(|n| n.to_string_lossy().into_owned()).collect(),
             extensions_left_out: left_out.iter().map(|l| l.describe()).collect(),
             descriptor_pools,
+            finished_frame,
             pipeline_cache,
             pipelines: PipelineStore::default(),
             counters: CreationCounters::default(),
@@ -642,6 +648,7 @@ impl Drop for Context {
         // device, messenger and instance in reverse order of creation.
         unsafe {
             let _ = self.device.device_wait_idle();
+            self.finished_frame.clear();
             // After the wait: another thread's context need not wait for this GPU.
             let _lifecycle = lifecycle_lock();
             if Arc::strong_count(&self.memory) > 1 {

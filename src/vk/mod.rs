@@ -12,6 +12,7 @@ pub mod descriptors;
 pub mod device_info;
 pub mod error;
 pub mod events;
+pub mod finished_frame;
 pub mod interface;
 pub mod layer_extensions;
 pub mod limits;
