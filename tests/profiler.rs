@@ -52,6 +52,13 @@ fn detail_scopes_nest_and_sum_to_at_most_the_parent() {
         out.profile.scopes.iter().all(|s| s.name != "reference_chunk"),
         "detail scopes recorded while detail is off"
     );
+    // A long frame after a short one: the profiler resets only the queries the
+    // last frame wrote (the whole pool before its first frame), so the ones
+    // past the short frame must still be in their reset state; validation
+    // says where a query is written unreset.
+    profiler.set_detail(true);
+    let again = render(&gpu, Technique::Reference, 16, 16, &mut profiler).unwrap();
+    assert_eq!(again.profile.scopes.len(), scopes.len(), "the detail frame again");
     drop(gpu);
     assert_validation_clean(&ctx);
 }
