@@ -42,7 +42,10 @@ fn the_last_frames_pool_is_kept_until_the_next_frame_has_finished() {
 #[test]
 #[ignore]
 fn label_frames_stress() {
-    let secs: u64 = std::env::var("STRESS_SECS").ok().and_then(|s| s.parse().ok()).unwrap_or(10);
+    let secs: u64 = match std::env::var("STRESS_SECS") {
+        Ok(s) => s.parse().unwrap_or_else(|e| panic!("STRESS_SECS={s:?}: whole seconds expected ({e})")),
+        Err(_) => 10,
+    };
     let ctx = validated_context();
     let start = Instant::now();
     let mut frames = 0u64;
