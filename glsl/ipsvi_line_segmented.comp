@@ -15,11 +15,13 @@
 // The per-line dispatch and its barrier are the serial kernel's.
 //
 // Early ray termination stops where the serial kernel stops: the ray is
-// marched in at most SEGMENT_ROUNDS rounds of SEGMENTS segments; each round
-// first fetches only the opacity of its samples, scans the optical depth
-// (integer, so the sum does not depend on the split), and then marches in
-// full only the samples up to the stop; no round starts after it. The claim
-// march of the texel pass is segmented the same way: a run of samples in one
+// marched in at most SEGMENT_ROUNDS rounds of SEGMENTS segments, and the
+// optical depth is scanned (integer, so the sum does not depend on the
+// split); no round starts after the stop. Shading only reads, so a round
+// marches its segments in full and then drops what lies past the stop, the
+// segment holding it marching again up to it. The claim march writes, so
+// each of its rounds first fetches only the opacity of its samples, scans,
+// and then marches only the samples up to the stop: a run of samples in one
 // texel may cross segments, and the run state is scanned so that each run is
 // claimed once, at its end, with its writer's depth: the same keys as the
 // serial march, whatever the split. Used only where the pixel's march only
@@ -166,6 +168,32 @@ void claim_pixel(BlockParams next, uint index) {
     }
 }
 
+// Marches samples [lo, hi) of this segment and composites them, moving `tau`
+// (the optical depth before lo) past them. With `to_stop` it ends at the
+// ray's stop and digests it; without, the stop is not known yet (the scan
+// after the march finds it): a sample's shading does not depend on it.
+Composite march_samples(ViewMarch v, int lo, int hi, Light light, bool first_light, inout uint tau, bool to_stop,
+                        float keep_going, uint index) {
+    Composite mine = no_samples();
+    for (int i = lo; i < hi; ++i) {
+        vec3 p = sample_point(v, i);
+        vec4 m = medium(p);
+        float alpha = 1.0 - exp(-m.a * v.hv);
+        chain += 1u;
+        if (alpha > 0.0) composite_sample(mine, alpha, sample_radiance(light, p, m, read_light(p), first_light));
+        tau = tau_add(tau, tau_units(m.a * v.hv));
+        if (to_stop && ray_stops(tau, v, i, keep_going)) {
+            digest_stop(block_index, index, i + 1);
+            break;
+        }
+    }
+    return mine;
+}
+
+// Shading only reads, so each round marches its segments speculatively: the
+// optical depths are scanned after the march, a segment past the stop drops
+// its composite, and the one segment holding the stop marches again up to
+// it. A round's chain is one segment's march; the stop adds one segment's.
 void shade_pixel(uint index) {
     uvec2 px;
     float w;
@@ -182,21 +210,18 @@ void shade_pixel(uint index) {
     for (int base = 0; base < v.samples; base += round_samples) {
         int lo = base + int(segment) * len;
         int hi = min(lo + len, v.samples);
-        uint tau = optical_depth_before(v, lo, hi, tau_round);
-        hi = segment_end(v, lo, hi, tau, keep_going);
-        Composite mine = no_samples();
+        uint tau_mine = 0u;
+        Composite mine = march_samples(v, lo, hi, light, first_light, tau_mine, false, keep_going, index);
         bool stops = false;
-        for (int i = lo; i < hi; ++i) {
-            vec3 p = sample_point(v, i);
-            vec4 m = medium(p);
-            float alpha = 1.0 - exp(-m.a * v.hv);
-            chain += 1u;
-            if (alpha > 0.0) composite_sample(mine, alpha, sample_radiance(light, p, m, read_light(p), first_light));
-            tau = tau_add(tau, tau_units(m.a * v.hv));
-            if (ray_stops(tau, v, i, keep_going)) {
-                stops = true;
-                digest_stop(block_index, index, i + 1);
-                break;
+        if (may_stop()) {
+            uint total;
+            uint tau = tau_add(tau_round, cluster_tau_before(tau_mine, total));
+            tau_round = tau_add(tau_round, total);
+            if (lo > 0 && ray_stops(tau, v, lo - 1, keep_going)) {
+                mine = no_samples(); // the ray stopped in an earlier segment
+            } else if (hi > lo && ray_stops(tau_add(tau, tau_mine), v, hi - 1, keep_going)) {
+                stops = true; // the stop is monotone in depth: it lies in [lo, hi)
+                mine = march_samples(v, lo, hi, light, first_light, tau, true, keep_going, index);
             }
         }
         pixel = over(pixel, cluster_over(mine));

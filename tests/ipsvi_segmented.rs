@@ -18,6 +18,7 @@ use sweeplab::techniques::ipsvi::{
     SyncStrategy, WritePass, WriteRule,
 };
 use sweeplab::techniques::{render, Technique};
+use sweeplab::vk::subgroups::SubgroupSupport;
 use sweeplab::vk::{Context, Profiler};
 
 const SIZE: u32 = 48;
@@ -89,6 +90,10 @@ const SPLITS: [(u32, u32); 3] = [(8, 4), (4, 1), (2, 64)];
 /// split, the image within the compositing-order tolerance, and no farther
 /// from the ground truth.
 fn matches_serial(modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
+    matches_serial_in(&SPLITS, modes, scenes);
+}
+
+fn matches_serial_in(splits: &[(u32, u32)], modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
     let ctx = validated_context();
     for (what, scene) in scenes {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
@@ -99,7 +104,7 @@ fn matches_serial(modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
             assert_eq!(shape(&serial).kernel, "serial");
             let peak = serial.image.max_value() as f64;
             let serial_rmse = compare(&serial.image, &truth).unwrap().rmse;
-            for (segments, segment_rounds) in SPLITS {
+            for &(segments, segment_rounds) in splits {
                 let s = IpsviSettings { line_kernel: LineKernel::Segmented, segments, segment_rounds, ..base.clone() };
                 let seg = frame(&ctx, &gpu, &s);
                 let case = format!("{what}, {mode}, {segments} segments, {segment_rounds} rounds");
@@ -154,6 +159,10 @@ fn segmented_matches_serial_in_the_other_modes() {
 /// differs from a frame that never stops).
 #[test]
 fn early_termination_stops_where_the_serial_kernel_stops() {
+    stops_where_the_serial_kernel_stops(&[SPLITS[0], SPLITS[2]]);
+}
+
+fn stops_where_the_serial_kernel_stops(splits: &[(u32, u32)]) {
     let ctx = validated_context();
     let mut scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
     for p in &mut scene.transfer.points {
@@ -169,13 +178,17 @@ fn early_termination_stops_where_the_serial_kernel_stops() {
             let base = IpsviSettings { early_termination, write_rule, ..settings(LineKernel::Serial, 0, 4) };
             let serial = frame(&ctx, &gpu, &base);
             assert_ne!(shape(&serial).stop_digest, shape(&never).stop_digest, "{early_termination:?}: no ray stopped");
-            for (segments, segment_rounds) in [SPLITS[0], SPLITS[2]] {
+            let peak = serial.image.max_value() as f64;
+            for &(segments, segment_rounds) in splits {
                 let s = IpsviSettings { line_kernel: LineKernel::Segmented, segments, segment_rounds, ..base.clone() };
                 let seg = frame(&ctx, &gpu, &s);
                 let case =
                     format!("{early_termination:?}, {write_rule:?}, {segments} segments, {segment_rounds} rounds");
                 assert_eq!(shape(&seg).stop_digest, shape(&serial).stop_digest, "{case}: stops differ");
                 assert_eq!(shape(&seg).claim_digest, shape(&serial).claim_digest, "{case}: claims differ");
+                // Segments past the stop drop their samples; the one holding it composites up to it.
+                let d = compare(&seg.image, &serial.image).unwrap();
+                assert!(d.max_abs <= COMPOSITING_ORDER_TOLERANCE * peak, "{case}: {d:?}");
             }
         }
     }
@@ -213,6 +226,63 @@ fn the_line_barrier_is_still_load_bearing() {
     }
 }
 
+/// lavapipe's subgroups are as wide as its vectors: 8 lanes at its default
+/// 256 bits, 16 with `LP_NATIVE_VECTOR_WIDTH=512`, the widest it compiles (a
+/// GPU's default is 32 segments). This suite binary again, in a child process
+/// with that setting (it must be set before the driver loads).
+fn in_wider_lavapipe(vector_bits: &str, test: &str) -> String {
+    let out = std::process::Command::new(std::env::current_exe().unwrap())
+        .args([test, "--exact", "--ignored", "--nocapture", "--test-threads=1"])
+        .env("LP_NATIVE_VECTOR_WIDTH", vector_bits)
+        .output()
+        .expect("run the suite in a child process");
+    let all = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success() && all.contains("1 passed"), "{test} at {vector_bits}-bit vectors:\n{all}");
+    all
+}
+
+/// 16 segments per pixel in 16-lane subgroups: one more level of every scan
+/// than lavapipe's default subgroup allows, on every light placement and in
+/// a medium where most rays stop.
+#[test]
+fn segmented_matches_serial_at_16_segments_in_16_lane_subgroups() {
+    in_wider_lavapipe("512", "ipsvi_segmented::at_16_segments");
+}
+
+#[test]
+#[ignore = "run by segmented_matches_serial_at_16_segments_in_16_lane_subgroups with LP_NATIVE_VECTOR_WIDTH=512"]
+fn at_16_segments() {
+    let ctx = validated_context();
+    assert_eq!(SubgroupSupport::of(&ctx).size, 16, "needs LP_NATIVE_VECTOR_WIDTH=512");
+    drop(ctx);
+    let modes = [("every-sample", settings(LineKernel::Auto, 0, 4))];
+    matches_serial_in(&[(16, 4), (16, 1)], &modes, &light_placements());
+    stops_where_the_serial_kernel_stops(&[(16, 4)]);
+}
+
+/// With `LP_NATIVE_VECTOR_WIDTH=1024` lavapipe reports 32-lane subgroups but
+/// compiles 16-lane ones: the kernel finds its workgroups in subgroups it
+/// cannot cluster 32 segments in, and the frame is refused by name instead
+/// of composited from partial clusters.
+#[test]
+fn subgroups_narrower_than_reported_are_refused_by_name() {
+    in_wider_lavapipe("1024", "ipsvi_segmented::at_32_segments_in_16_lane_subgroups");
+}
+
+#[test]
+#[ignore = "run by subgroups_narrower_than_reported_are_refused_by_name with LP_NATIVE_VECTOR_WIDTH=1024"]
+fn at_32_segments_in_16_lane_subgroups() {
+    let ctx = validated_context();
+    assert_eq!(SubgroupSupport::of(&ctx).size, 32, "needs LP_NATIVE_VECTOR_WIDTH=1024");
+    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    let s = settings(LineKernel::Segmented, 32, 4);
+    let e = render_with(&gpu, &s, SIZE, SIZE, &mut profiler, SyncStrategy::BarrierGlobal).err().unwrap();
+    assert!(e.to_string().contains("partial subgroups") && e.to_string().contains("ipsvi.line_kernel"), "{e}");
+    assert_validation_clean(&ctx);
+}
+
 /// Modes the segmented kernel cannot run are refused with the setting named;
 /// `auto` takes the serial kernel on lavapipe (a CPU device).
 #[test]
@@ -236,22 +306,25 @@ fn what_cannot_be_segmented_is_refused_by_name_and_auto_is_serial_on_a_cpu() {
 /// A uniform, nearly transparent cube seen head-on by an orthographic camera:
 /// every ray that hits it has the same samples, so the shape report's chain
 /// is known exactly. Ray casting only (breakdown step `lines`: no cache reads
-/// or writes), light rays, plain termination that never stops: the serial
-/// chain is a ray's n samples; the segmented one, in every round, an opacity
-/// pass and the full march of the first segment, ceil(n / (S R)) samples each
-/// (fewer in the last round).
+/// or writes), light rays, plain termination. A medium that never stops the
+/// ray: the serial chain is a ray's n samples; the segmented one, the first
+/// segment's march in every round, ceil(n / (S R)) samples (fewer in the last
+/// round). A denser one that stops it after sample s: the serial chain is
+/// s + 1; the segmented one, the rounds up to the stop's, and then the march
+/// of the segment holding s again, up to s.
 #[test]
 fn the_shape_report_counts_invocations_and_the_longest_chain_exactly() {
     let ctx = validated_context();
     let volume = seeded_volume("uniform", glam::UVec3::splat(16), Vec3::ONE, 1, |_, _| 200);
     let mut scene = scene_with(volume, vec![directional(Vec3::new(0.0, -1.0, 0.3), 1.0)], SIZE, SIZE);
     scene.camera = Camera::orbit(Vec3::ZERO, 3.0, 0.0, 0.0, Projection::Orthographic { height: 0.6 });
-    for p in &mut scene.transfer.points {
-        p.rgba[3] = 1e-3;
-    }
-    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
     let study = IpsviStudy { breakdown_step: BreakdownStep::Lines, ..IpsviStudy::default() };
-    let shape_of = |line_kernel, segments, segment_rounds| {
+    let shape_of = |opacity: f32, line_kernel, segments, segment_rounds| {
+        let mut scene = scene.clone();
+        for p in &mut scene.transfer.points {
+            p.rgba[3] = opacity;
+        }
+        let gpu = GpuScene::upload(&ctx, &scene).unwrap();
         let s = IpsviSettings {
             cache_update: CacheUpdate::LightRays,
             cache_size: 32,
@@ -263,21 +336,36 @@ fn the_shape_report_counts_invocations_and_the_longest_chain_exactly() {
         let mut renderer = IpsviRenderer::build(&gpu, &s, &study, SIZE, SIZE, None).unwrap();
         let mut profiler = Profiler::new(&ctx, 64).unwrap();
         let shape = renderer.frame(&mut profiler, SyncStrategy::BarrierGlobal).unwrap().shape.unwrap();
-        println!("{} ({segment_rounds} rounds): {}", shape.kernel, shape.summary());
+        println!("opacity {opacity}, {} ({segment_rounds} rounds): {}", shape.kernel, shape.summary());
         (shape, renderer.line_group())
     };
-    let (serial, group) = shape_of(LineKernel::Serial, 0, 4);
+    // Opacities of the transfer function: one that never stops the ray, one
+    // that stops it after sample 20 of 32 (checked below).
+    const CLEAR: f32 = 1e-3;
+    const STOPPING: f32 = 0.6;
+    let (serial, group) = shape_of(CLEAR, LineKernel::Serial, 0, 4);
     let n = serial.chain_max;
     assert!(n >= 32, "the cube's 16 voxels at step 0.5: {n} samples");
     // The whole line's pixels in whole workgroups, one dispatch per line.
     assert_eq!(serial.invocations_max, SIZE.next_multiple_of(group));
     assert_eq!((serial.line_dispatches, serial.chain_median), (SIZE, n), "every ray hits the cube");
+    let stop = shape_of(STOPPING, LineKernel::Serial, 0, 4).0.chain_max - 1;
+    assert!(stop > n / 4 && stop < n - 1, "the denser cube stops the ray in its middle: after sample {stop} of {n}");
     for (segments, rounds) in [(2, 1), (8, 1), (8, 4), (4, 64)] {
-        let (shape, group) = shape_of(LineKernel::Segmented, segments, rounds);
         let len = n.div_ceil(segments * rounds);
-        let chain: u32 = (0..n).step_by((len * segments) as usize).map(|base| 2 * len.min(n - base)).sum();
+        let round_samples = len * segments;
+        let marched = |lo: u32| len.min(n - lo);
+        let (shape, group) = shape_of(CLEAR, LineKernel::Segmented, segments, rounds);
+        let chain: u32 = (0..n).step_by(round_samples as usize).map(marched).sum();
         assert_eq!(shape.chain_max, chain, "{segments} segments, {rounds} rounds");
         assert_eq!(shape.invocations_max, (SIZE * segments).next_multiple_of(group), "{segments} segments");
+        // The segment holding the stop: every round up to its own, then again up to the stop.
+        let stop_round = stop / round_samples;
+        let lo = stop_round * round_samples + (stop % round_samples) / len * len;
+        let rounds_before: u32 = (0..stop_round).map(|r| marched(r * round_samples)).sum();
+        let chain = rounds_before + marched(lo) + (stop - lo + 1);
+        let stopping = shape_of(STOPPING, LineKernel::Segmented, segments, rounds).0;
+        assert_eq!(stopping.chain_max, chain, "{segments} segments, {rounds} rounds, stop after sample {stop}");
     }
     assert_validation_clean(&ctx);
 }
