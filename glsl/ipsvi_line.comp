@@ -38,7 +38,7 @@ uint line_local_index() { return gl_LocalInvocationID.x; }
 bool line_kernel_ready() { return true; }
 // One atomic per invocation that ran a chain, into one of the block's slots.
 void report_chain() {
-    if (chain > 0u) atomicMax(chains[block_index * CHAIN_SLOTS + gl_LocalInvocationIndex % CHAIN_SLOTS], chain);
+    if (chain > 0u) atomicMax(chains[chain_slot(block_index, chain_role, gl_LocalInvocationIndex)], chain);
 }
 
 // cache_write = "farthest"/"nearest", one dispatch ahead: marches pixel `index`

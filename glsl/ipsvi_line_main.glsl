@@ -27,6 +27,7 @@ void line_invocation(uint id) {
         return;
     }
     if (STEP < STEP_CARRY) return;
+    chain_role = CHAIN_TEXELS;
     if (id < pixel_invocations + texels) {
         uint texel = id - pixel_invocations;
         if (VIEW_SAMPLES) {
@@ -37,6 +38,7 @@ void line_invocation(uint id) {
         }
         return;
     }
+    chain_role = CHAIN_CLAIMS;
     uint first = claims_first(pixel_invocations + texels);
     if (CLAIMS && STEP >= STEP_CLAIM_PASS && id >= first) {
         uint claim = (id - first) / SEGMENTS;

@@ -60,13 +60,15 @@ bool line_kernel_ready() {
 
 #include "ipsvi_segment_scan.glsl"
 
-// The subgroup's longest chain (a butterfly over all its lanes, active again
-// after line_invocation), one atomic per subgroup.
+// The subgroup's longest chain of each role (butterflies over all its lanes,
+// active again after line_invocation), one atomic per role that ran.
 void report_chain() {
-    uint longest = chain;
-    for (uint d = 1u; d < gl_SubgroupSize; d <<= 1) longest = max(longest, subgroupShuffleXor(longest, d));
-    if (gl_SubgroupInvocationID == 0u && longest > 0u)
-        atomicMax(chains[block_index * CHAIN_SLOTS + gl_SubgroupID % CHAIN_SLOTS], longest);
+    for (uint role = 0u; role < CHAIN_ROLES; ++role) {
+        uint longest = chain_role == role ? chain : 0u;
+        for (uint d = 1u; d < gl_SubgroupSize; d <<= 1) longest = max(longest, subgroupShuffleXor(longest, d));
+        if (gl_SubgroupInvocationID == 0u && longest > 0u)
+            atomicMax(chains[chain_slot(block_index, role, gl_SubgroupID)], longest);
+    }
 }
 
 // Samples per segment and round for a ray of n samples.

@@ -9,7 +9,7 @@ use common::cli::{sweeplab, temp_dir};
 use common::*;
 use glam::Vec3;
 use sweeplab::metrics::compare;
-use sweeplab::render::{FrameResult, GpuScene, LineShape, VolumeTexels};
+use sweeplab::render::{ChainsByRole, FrameResult, GpuScene, LineShape, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{Camera, Light, Projection, Scene};
 use sweeplab::techniques::ipsvi::renderer::IpsviRenderer;
@@ -229,11 +229,16 @@ fn the_line_barrier_is_still_load_bearing() {
 /// lavapipe's subgroups are as wide as its vectors: 8 lanes at its default
 /// 256 bits, 16 with `LP_NATIVE_VECTOR_WIDTH=512`, the widest it compiles (a
 /// GPU's default is 32 segments). This suite binary again, in a child process
-/// with that setting (it must be set before the driver loads).
+/// with that setting (it must be set before the driver loads), and with a
+/// shader cache of its own: Mesa 22.3's does not key on the vector width, and
+/// a shader compiled at 512 bits, loaded by a 256-bit process, runs silently
+/// wrong (docs/testing.md, "Tests in a wider lavapipe").
 fn in_wider_lavapipe(vector_bits: &str, test: &str) -> String {
+    let cache = std::env::temp_dir().join(format!("sweeplab-mesa-shader-cache-lp{vector_bits}"));
     let out = std::process::Command::new(std::env::current_exe().unwrap())
         .args([test, "--exact", "--ignored", "--nocapture", "--test-threads=1"])
         .env("LP_NATIVE_VECTOR_WIDTH", vector_bits)
+        .env("MESA_SHADER_CACHE_DIR", cache)
         .output()
         .expect("run the suite in a child process");
     let all = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
@@ -303,6 +308,54 @@ fn what_cannot_be_segmented_is_refused_by_name_and_auto_is_serial_on_a_cpu() {
     assert_validation_clean(&ctx);
 }
 
+/// A uniform cube (16 voxels) seen head-on by an orthographic camera: every
+/// ray that hits it has the same samples.
+fn uniform_cube() -> Scene {
+    let volume = seeded_volume("uniform", glam::UVec3::splat(16), Vec3::ONE, 1, |_, _| 200);
+    let mut scene = scene_with(volume, vec![directional(Vec3::new(0.0, -1.0, 0.3), 1.0)], SIZE, SIZE);
+    scene.camera = Camera::orbit(Vec3::ZERO, 3.0, 0.0, 0.0, Projection::Orthographic { height: 0.6 });
+    scene
+}
+
+/// The chain of each role of a line's invocations, in the uniform cube with
+/// view samples (whole frames: pixels, texels and claims all run): the claim
+/// march never reads the light, so its chain is known exactly: a ray's n
+/// samples serial, and segmented each round's opacity pass and claim march,
+/// 2 ceil(n / (S R)) samples a round. A pixel marches the same samples plus
+/// its reads' marches toward the light; a texel's chain is its own light
+/// march. The line's chain is the longest role's.
+#[test]
+fn the_shape_report_names_the_role_of_each_chain() {
+    let ctx = validated_context();
+    let mut scene = uniform_cube();
+    for p in &mut scene.transfer.points {
+        p.rgba[3] = 1e-3;
+    }
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let shape_of = |line_kernel, segments| {
+        let s = IpsviSettings { cache_size: 32, line_kernel, segments, segment_rounds: 4, ..IpsviSettings::default() };
+        let shape = frame(&ctx, &gpu, &s).shape.unwrap();
+        println!("{}", shape.summary());
+        shape
+    };
+    let serial = shape_of(LineKernel::Serial, 0);
+    let roles = serial.chain_median_by_role;
+    let n = roles.claims;
+    assert!(n >= 32, "the cube's 16 voxels at step 0.5: {n} samples");
+    assert!(roles.pixels > n && roles.texels > 0, "{roles:?}");
+    let segmented = shape_of(LineKernel::Segmented, 8);
+    let len = n.div_ceil(8 * 4);
+    let rounds: u32 = (0..n).step_by((len * 8) as usize).map(|lo| len.min(n - lo)).sum();
+    let seg_roles = segmented.chain_median_by_role;
+    assert_eq!(seg_roles.claims, 2 * rounds, "{seg_roles:?}");
+    assert!(seg_roles.pixels > rounds && seg_roles.pixels < roles.pixels, "{seg_roles:?}");
+    for s in [&serial, &segmented] {
+        let r = s.chain_median_by_role;
+        assert!(s.chain_median >= r.pixels.max(r.texels).max(r.claims), "{}", s.summary());
+    }
+    assert_validation_clean(&ctx);
+}
+
 /// A uniform, nearly transparent cube seen head-on by an orthographic camera:
 /// every ray that hits it has the same samples, so the shape report's chain
 /// is known exactly. Ray casting only (breakdown step `lines`: no cache reads
@@ -315,9 +368,7 @@ fn what_cannot_be_segmented_is_refused_by_name_and_auto_is_serial_on_a_cpu() {
 #[test]
 fn the_shape_report_counts_invocations_and_the_longest_chain_exactly() {
     let ctx = validated_context();
-    let volume = seeded_volume("uniform", glam::UVec3::splat(16), Vec3::ONE, 1, |_, _| 200);
-    let mut scene = scene_with(volume, vec![directional(Vec3::new(0.0, -1.0, 0.3), 1.0)], SIZE, SIZE);
-    scene.camera = Camera::orbit(Vec3::ZERO, 3.0, 0.0, 0.0, Projection::Orthographic { height: 0.6 });
+    let scene = uniform_cube();
     let study = IpsviStudy { breakdown_step: BreakdownStep::Lines, ..IpsviStudy::default() };
     let shape_of = |opacity: f32, line_kernel, segments, segment_rounds| {
         let mut scene = scene.clone();
@@ -345,6 +396,8 @@ fn the_shape_report_counts_invocations_and_the_longest_chain_exactly() {
     const STOPPING: f32 = 0.6;
     let (serial, group) = shape_of(CLEAR, LineKernel::Serial, 0, 4);
     let n = serial.chain_max;
+    let only_pixels = ChainsByRole { pixels: n, texels: 0, claims: 0 };
+    assert_eq!(serial.chain_median_by_role, only_pixels, "ray casting only: every chain a pixel's");
     assert!(n >= 32, "the cube's 16 voxels at step 0.5: {n} samples");
     // The whole line's pixels in whole workgroups, one dispatch per line.
     assert_eq!(serial.invocations_max, SIZE.next_multiple_of(group));

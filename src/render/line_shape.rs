@@ -22,6 +22,9 @@ pub struct LineShape {
     /// dispatches.
     pub chain_median: u32,
     pub chain_max: u32,
+    /// The same chain for each role of a line's invocations alone, median
+    /// over the line dispatches: which part of a line it waits for.
+    pub chain_median_by_role: ChainsByRole,
     /// Tests only: order-free digests of every claim and of where every view
     /// ray stopped (glsl/ipsvi_line_interface.glsl `DIGESTS`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -30,15 +33,33 @@ pub struct LineShape {
     pub stop_digest: Option<u64>,
 }
 
+/// What a line's invocations do, each with its own longest chain: march a
+/// pixel's view ray (or a segment of it), carry or write a cache texel, or
+/// march a pixel of the next block to claim its texels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct ChainsByRole {
+    pub pixels: u32,
+    pub texels: u32,
+    pub claims: u32,
+}
+
+impl ChainsByRole {
+    pub fn longest(&self) -> u32 {
+        self.pixels.max(self.texels).max(self.claims)
+    }
+}
+
 impl LineShape {
-    /// From each line dispatch's (invocations, longest chain).
-    pub fn from_dispatches(kernel: String, dispatches: &[(u32, u32)]) -> LineShape {
+    /// From each line dispatch's (invocations, longest chain of each role).
+    pub fn from_dispatches(kernel: String, dispatches: &[(u32, ChainsByRole)]) -> LineShape {
         let median_max = |mut v: Vec<u32>| -> (u32, u32) {
             v.sort_unstable();
             (v.get(v.len() / 2).copied().unwrap_or(0), v.last().copied().unwrap_or(0))
         };
         let (invocations_median, invocations_max) = median_max(dispatches.iter().map(|d| d.0).collect());
-        let (chain_median, chain_max) = median_max(dispatches.iter().map(|d| d.1).collect());
+        let (chain_median, chain_max) = median_max(dispatches.iter().map(|d| d.1.longest()).collect());
+        let role_median =
+            |role: fn(&ChainsByRole) -> u32| median_max(dispatches.iter().map(|d| role(&d.1)).collect()).0;
         LineShape {
             kernel,
             line_dispatches: dispatches.len() as u32,
@@ -46,6 +67,11 @@ impl LineShape {
             invocations_max,
             chain_median,
             chain_max,
+            chain_median_by_role: ChainsByRole {
+                pixels: role_median(|c| c.pixels),
+                texels: role_median(|c| c.texels),
+                claims: role_median(|c| c.claims),
+            },
             claim_digest: None,
             stop_digest: None,
         }
@@ -55,13 +81,16 @@ impl LineShape {
     pub fn summary(&self) -> String {
         format!(
             "line shape ({}): {} line dispatches, invocations per dispatch median {} max {}, longest serial \
-             chain per invocation median {} max {}",
+             chain per invocation median {} max {} (medians of pixels {}, texels {}, claims {})",
             self.kernel,
             self.line_dispatches,
             self.invocations_median,
             self.invocations_max,
             self.chain_median,
-            self.chain_max
+            self.chain_max,
+            self.chain_median_by_role.pixels,
+            self.chain_median_by_role.texels,
+            self.chain_median_by_role.claims
         )
     }
 }
@@ -72,10 +101,15 @@ mod tests {
 
     #[test]
     fn medians_and_maxima_over_dispatches() {
-        let s = LineShape::from_dispatches("serial".into(), &[(64, 10), (512, 300), (128, 20)]);
+        let roles = |pixels, texels, claims| ChainsByRole { pixels, texels, claims };
+        let dispatches = [(64, roles(10, 2, 4)), (512, roles(30, 2, 300)), (128, roles(20, 3, 1))];
+        let s = LineShape::from_dispatches("serial".into(), &dispatches);
         assert_eq!((s.line_dispatches, s.invocations_median, s.invocations_max), (3, 128, 512));
+        // Each dispatch's chain is its longest role's: 10, 300, 20.
         assert_eq!((s.chain_median, s.chain_max), (20, 300));
+        assert_eq!(s.chain_median_by_role, roles(20, 2, 4));
         assert!(s.summary().contains("median 128 max 512"), "{}", s.summary());
+        assert!(s.summary().contains("(medians of pixels 20, texels 2, claims 4)"), "{}", s.summary());
         let none = LineShape::from_dispatches("serial".into(), &[]);
         assert_eq!((none.line_dispatches, none.chain_max), (0, 0));
     }

@@ -17,7 +17,9 @@ for a in "$@"; do
   for size in 256 512; do
     for cfg in "256 serial 0" "256 segmented 2" "256 segmented 4" "256 segmented 8" "512 segmented 16"; do
       set -- $cfg
-      shape=$(LP_NATIVE_VECTOR_WIDTH=$1 "$path" render --volume "$vol" --size ${size}x${size} --technique ipsvi \
+      # A shader cache per vector width: Mesa 22.3's does not key on it, and a
+      # shader compiled at one width runs silently wrong at another.
+      shape=$(LP_NATIVE_VECTOR_WIDTH=$1 MESA_SHADER_CACHE_DIR="${TMPDIR:-/tmp}/sweeplab-mesa-shader-cache-lp$1" "$path" render --volume "$vol" --size ${size}x${size} --technique ipsvi \
         --set "ipsvi.line_kernel=\"$2\"" --set "ipsvi.segments=$3" --out /tmp/segment_chains.png 2>&1 |
         grep -E '^line shape|^error')
       echo "$name $size $2 x$3 ($1-bit vectors): $shape"

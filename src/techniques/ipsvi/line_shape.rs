@@ -1,11 +1,12 @@
 //! The counters behind an IPSVI frame's [`LineShape`]: a small buffer the line
 //! kernels add to (glsl/ipsvi_line_interface.glsl `Shape`: flags, and per block
-//! record [`CHAIN_SLOTS`] maxima of its invocations' serial chains), cleared at
-//! the start of every frame and copied back at its end.
+//! record [`CHAIN_SLOTS`] maxima of its invocations' serial chains, a run of
+//! [`CHAIN_ROLE_SLOTS`] for each role), cleared at the start of every frame and
+//! copied back at its end.
 
 use super::gpu_params::BlockParams;
 use super::merged_steps::LineDispatch;
-use crate::render::{LineShape, RenderError};
+use crate::render::{ChainsByRole, LineShape, RenderError};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::{Buffer, Context, Recorder, VkError};
 use ash::vk;
@@ -17,8 +18,11 @@ const HEADER_BYTES: u64 = 20;
 /// glsl/ipsvi_line_interface.glsl SHAPE_PARTIAL_SUBGROUPS.
 const PARTIAL_SUBGROUPS: u32 = 1;
 
-/// glsl/ipsvi_line_interface.glsl CHAIN_SLOTS: maxima per block record.
-const CHAIN_SLOTS: usize = 32;
+/// glsl/ipsvi_line_interface.glsl CHAIN_ROLE_SLOTS: maxima per role and block
+/// record, the roles in [`ChainsByRole`]'s order (CHAIN_PIXELS, CHAIN_TEXELS,
+/// CHAIN_CLAIMS).
+const CHAIN_ROLE_SLOTS: usize = 16;
+const CHAIN_SLOTS: usize = 3 * CHAIN_ROLE_SLOTS;
 
 pub struct ShapeCounters {
     /// Written by the line dispatches (device-local: every workgroup adds to it).
@@ -68,7 +72,7 @@ impl ShapeCounters {
     }
 
     /// The frame's shape, once its submission finished: per line dispatch
-    /// its invocations and the longest chain of the blocks it ran.
+    /// its invocations and the longest chain of each role in the blocks it ran.
     pub fn read(
         &self,
         kernel: String,
@@ -87,14 +91,18 @@ impl ShapeCounters {
             ));
         }
         let slots = &words[HEADER_BYTES as usize / 4..];
-        let chain_of = |b: u32| slots[b as usize * CHAIN_SLOTS..][..CHAIN_SLOTS].iter().copied().max().unwrap_or(0);
-        let per_dispatch: Vec<(u32, u32)> = dispatches
+        let role_of = |b: u32, role: usize| {
+            let first = b as usize * CHAIN_SLOTS + role * CHAIN_ROLE_SLOTS;
+            slots[first..][..CHAIN_ROLE_SLOTS].iter().copied().max().unwrap_or(0)
+        };
+        let per_dispatch: Vec<(u32, ChainsByRole)> = dispatches
             .iter()
             .filter_map(|d| {
                 let blocks = blocks_of(d);
                 let shades = blocks.iter().any(|&b| records[b as usize].pixel_count > 0);
-                let chain = blocks.iter().map(|&b| chain_of(b)).max().unwrap_or(0);
-                shades.then_some((d.groups * group, chain))
+                let longest = |role| blocks.iter().map(|&b| role_of(b, role)).max().unwrap_or(0);
+                let chains = ChainsByRole { pixels: longest(0), texels: longest(1), claims: longest(2) };
+                shades.then_some((d.groups * group, chains))
             })
             .collect();
         let mut shape = LineShape::from_dispatches(kernel, &per_dispatch);

@@ -435,11 +435,15 @@ fn size_row(technique: &str, size: u32) -> BenchRow {
 }
 
 /// A frame's line shape (device-independent): invocations per line dispatch
-/// and the longest serial chain of an invocation, medians and maxima.
+/// and the longest serial chain of an invocation, medians and maxima, and the
+/// median of each role's.
 pub fn set_shape(row: &mut BenchRow, shape: &crate::render::LineShape) {
     row.set("invocations_per_dispatch", shape.invocations_median);
     row.set("invocations_per_dispatch_max", shape.invocations_max);
     row.set("longest_chain", shape.chain_median).set("longest_chain_max", shape.chain_max);
+    let roles = &shape.chain_median_by_role;
+    row.set("longest_chain_pixels", roles.pixels);
+    row.set("longest_chain_texels", roles.texels).set("longest_chain_claims", roles.claims);
 }
 
 fn set_errors<'r>(row: &'r mut BenchRow, stats: &crate::metrics::ErrorStats) -> &'r mut BenchRow {
