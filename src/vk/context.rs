@@ -483,7 +483,8 @@ impl Context {
     /// The `device:` line the commands print: name, driver, API version, and
     /// with validation the layer's version beside it (a layer older than the
     /// driver's extensions is what this line lets a reader see), with what
-    /// was left out for it.
+    /// was left out for it, and lavapipe at a SIMD width on Mesa's shared
+    /// shader cache (vk/lavapipe_shader_cache.rs).
     pub fn summary(&self) -> String {
         let validation = match &self.validation_layer {
             Some(layer) if self.validation_enabled() => format!(", validation on (layer {layer})"),
@@ -491,8 +492,11 @@ impl Context {
             _ => String::new(),
         };
         let left_out: String = self.extensions_left_out.iter().map(|l| format!("; {l}")).collect();
+        let cache = super::lavapipe_shader_cache::shared_cache_warning_here(&self.info.name)
+            .map(|w| format!("; {w}"))
+            .unwrap_or_default();
         format!(
-            "device: {} ({}, Vulkan {}){validation}{left_out}",
+            "device: {} ({}, Vulkan {}){validation}{left_out}{cache}",
             self.info.name, self.info.driver_info, self.info.api_version
         )
     }

@@ -14,6 +14,7 @@ pub mod error;
 pub mod events;
 pub mod finished_frame;
 pub mod interface;
+pub mod lavapipe_shader_cache;
 pub mod layer_extensions;
 pub mod limits;
 pub mod memory;
