@@ -138,15 +138,15 @@ layout(set = 0, binding = 16, r32f) readonly uniform image2D lmax;
 // (inverted for "nearest") | 17 bits pixel; the largest key wins.
 layout(std430, set = 0, binding = 25) buffer Keys { uint64_t keys[]; };
 
-// The frame's shape (src/techniques/ipsvi/line_shape.rs), cleared every frame: flags
-// (SHAPE_*), then per block record CHAIN_SLOTS maxima of the serial chains its
-// invocations ran (view samples marched, in every pass, plus the steps of
-// every march toward the light), CHAIN_ROLE_SLOTS for each role (CHAIN_*:
-// which part of a block the invocation did); the host takes the largest of
-// each role's. Spread over slots so that a GPU does not serialize a
-// dispatch's atomics on one address. With DIGESTS (tests only) also order-free sums of a hash of
-// every claim and of where every view ray stopped, which two kernels, or two
-// splits of the rays, must give alike.
+// The frame's shape (src/techniques/ipsvi/line_shape.rs), cleared every frame:
+// flags (SHAPE_*), then per block record CHAIN_SLOTS maxima of the serial
+// chains its invocations ran (view samples marched, in every pass, plus the
+// steps of every march toward the light), CHAIN_ROLE_SLOTS for each role
+// (CHAIN_*: which part of a block the invocation did); the host takes the
+// largest of each role's. Spread over slots so that a GPU does not serialize a
+// dispatch's atomics on one address. With DIGESTS (tests only) also order-free
+// sums of a hash of every claim and of where every view ray stopped, which two
+// kernels, or two splits of the rays, must give alike.
 layout(constant_id = 18) const bool DIGESTS = false;
 layout(std430, set = 0, binding = 27) buffer Shape {
     uint64_t claim_digest;
