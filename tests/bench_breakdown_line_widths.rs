@@ -39,7 +39,7 @@ fn breakdown_times_the_frame_at_every_line_width_against_line_width_1() {
         assert!((four["speedup_over_lw1"].as_f64().unwrap() - expected).abs() < 1e-9 * expected, "{four}");
         // Four lines per dispatch: fewer dispatches for the same frame.
         assert!(four["dispatches"].as_u64() < one["dispatches"].as_u64(), "{one} {four}");
-        assert_eq!(one["line_kernel"], "segmented", "{one}");
+        assert_eq!(one["line_kernel"], "segmented x8", "the kernel as it ran, its segments named: {one}");
         assert!(one["longest_chain"].as_u64().is_some_and(|c| c > 0), "the frame's shape: {one}");
     }
 }

@@ -58,17 +58,28 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
 fn stability_rates_each_cell_and_each_convergence_row() {
     let ctx = validated_context();
     let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
-    let plan =
-        StabilityPlan::choose(8, &names(&["baseline"]), &names(&["dvr"]), Harness::new(1, 1).unwrap(), out("cases"))
-            .unwrap();
+    let plan = StabilityPlan::choose(
+        8,
+        &names(&["baseline"]),
+        &names(&["dvr", "ipsvi"]),
+        Harness::new(1, 1).unwrap(),
+        out("cases"),
+    )
+    .unwrap();
     let folder = OutFolder::prepare(OutTarget::Named { folder: &out("stability"), force: true }).unwrap();
     let report = stability_bench::run(&ctx, &plan, RunInfo::collect(&ctx), &folder).unwrap();
-    assert_eq!((report.table.rows.len(), report.orders.rows.len(), report.failed), (1, 1, 0));
-    let cell = &report.table.rows[0];
-    assert_eq!(cell.text("status"), "ok", "{cell:?}");
-    assert!(cell.get_f64("gpu_ms").is_some() && cell.get("gpu_ms_lo").is_none(), "{cell:?}");
-    assert!(report.orders.rows[0].get_f64("overall_order").is_some_and(|o| o > 1.5));
-    assert_eq!(report.map.cells, [[report.map.cells[0][0].clone()]]);
+    // DVR, and IPSVI in both cache updates.
+    assert_eq!((report.table.rows.len(), report.orders.rows.len(), report.failed), (3, 3, 0));
+    for cell in &report.table.rows {
+        assert_eq!(cell.text("status"), "ok", "{cell:?}");
+        assert!(cell.get_f64("gpu_ms").is_some() && cell.get("gpu_ms_lo").is_none(), "{cell:?}");
+        // IPSVI's rows name the line kernel its frames ran (`auto`: serial on lavapipe).
+        let kernel = if cell.text("technique").starts_with("ipsvi") { "serial" } else { "" };
+        assert_eq!(cell.text("line_kernel"), kernel, "{cell:?}");
+    }
+    assert!(report.orders.rows.iter().all(|r| r.get_f64("overall_order").is_some_and(|o| o > 1.5)));
+    assert_eq!(report.map.cells.len(), 1, "one case");
+    assert_eq!(report.map.cells[0].len(), 3, "three techniques");
     report.write(folder.path()).unwrap();
     assert!(folder.path().join("stability.png").is_file() && folder.path().join("stability.md").is_file());
     common::cli::assert_every_output_names_its_run(folder.path());

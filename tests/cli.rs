@@ -102,6 +102,29 @@ fn compare_reports_error_and_time_as_json() {
     assert_eq!(itself["psnr"], "inf");
 }
 
+/// `compare` of an IPSVI frame prints its line shape and writes it in the
+/// JSON, naming the kernel as it ran: here 8 segments per pixel, so each of
+/// the 16 pixels of a line is 8 invocations (the rest are the texel pass's).
+#[test]
+fn compare_reports_the_ipsvi_line_shape() {
+    let dir = temp_dir("compare-shape");
+    let json = dir.join("ipsvi.json");
+    let kernel = r#"ipsvi.line_kernel="segmented""#;
+    let args = ["compare", "--technique", "ipsvi", "--size", "16x16", "--set", kernel, "--set", "ipsvi.segments=8"];
+    let o = sweeplab(&[&args[..], &["--json", json.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let line =
+        stdout.lines().find(|l| l.starts_with("line shape (segmented x8): ")).unwrap_or_else(|| panic!("{stdout}"));
+    let c: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let shape = &c["line_shape"];
+    assert_eq!(shape["kernel"], "segmented x8", "{c}");
+    let median = shape["invocations_median"].as_u64().unwrap();
+    assert!(median >= 16 * 8, "16 pixels x 8 segments at least: {shape}");
+    assert!(line.contains(&format!("invocations per dispatch median {median} ")), "{line}");
+    assert!(shape["chain_median"].as_u64().is_some_and(|c| c > 0), "{shape}");
+}
+
 #[test]
 fn devices_lists_timestamp_properties() {
     let o = sweeplab(&["devices", "--json"]);

@@ -21,9 +21,9 @@ use sweeplab::techniques::{render, Technique};
 use sweeplab::vk::subgroups::SubgroupSupport;
 use sweeplab::vk::{Context, Profiler};
 
-const SIZE: u32 = 48;
+pub(crate) const SIZE: u32 = 48;
 
-fn slab_scene(lights: Vec<Light>) -> Scene {
+pub(crate) fn slab_scene(lights: Vec<Light>) -> Scene {
     ipsvi_slab_scene(lights, SIZE)
 }
 
@@ -31,7 +31,7 @@ fn slab_scene(lights: Vec<Light>) -> Scene {
 /// the four zones), behind it (a directional light toward the camera, a point
 /// light on the far side) and inside it, and a spot light with an
 /// orthographic camera.
-fn light_placements() -> Vec<(&'static str, Scene)> {
+pub(crate) fn light_placements() -> Vec<(&'static str, Scene)> {
     let camera = scene_with(slab_under_sphere(8), vec![], SIZE, SIZE).camera;
     let basis = camera.basis(SIZE, SIZE);
     let (r, u, f) = (basis.right.normalize(), basis.up.normalize(), camera.forward());
@@ -50,7 +50,7 @@ fn light_placements() -> Vec<(&'static str, Scene)> {
     ]
 }
 
-fn settings(line_kernel: LineKernel, segments: u32, segment_rounds: u32) -> IpsviSettings {
+pub(crate) fn settings(line_kernel: LineKernel, segments: u32, segment_rounds: u32) -> IpsviSettings {
     IpsviSettings { cache_size: 64, line_kernel, segments, segment_rounds, ..IpsviSettings::default() }
 }
 
@@ -93,7 +93,7 @@ fn matches_serial(modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
     matches_serial_in(&SPLITS, modes, scenes);
 }
 
-fn matches_serial_in(splits: &[(u32, u32)], modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
+pub(crate) fn matches_serial_in(splits: &[(u32, u32)], modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
     let ctx = validated_context();
     for (what, scene) in scenes {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();

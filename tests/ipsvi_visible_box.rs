@@ -15,7 +15,7 @@ use sweeplab::techniques::ipsvi::cache_plane::{auto_cache_size, texel_pixels, AU
 use sweeplab::techniques::ipsvi::{CacheUpdate, CacheWrite, IpsviSettings, ReadFronts, SyncStrategy, WriteRule};
 /// A sphere of radius 7 voxels in a 32^3 box, only its inside visible (the
 /// values below 0.3 have no extinction), under `light`, side x side pixels.
-fn visible_sphere(light: Light, side: u32) -> Scene {
+pub(crate) fn visible_sphere(light: Light, side: u32) -> Scene {
     let mut scene = scene_with(sphere_volume(32, 7.0), vec![light], side, side);
     reference_settings(&mut scene);
     scene.transfer = TransferFunction {

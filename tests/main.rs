@@ -38,6 +38,7 @@ mod ipsvi;
 mod ipsvi_line_group;
 mod ipsvi_merged_sweeps;
 mod ipsvi_segmented;
+mod ipsvi_segmented_modes;
 mod ipsvi_view_samples;
 mod ipsvi_visible_box;
 mod layers;

@@ -1,5 +1,6 @@
 //! Every synchronization strategy of the IPSVI sweep gives the image of
-//! `barrier-global` bit for bit and is clean under synchronization validation;
+//! `barrier-global` bit for bit, with either line kernel, and is clean under
+//! synchronization validation;
 //! `racy` is reported by it.
 use crate::common;
 
@@ -8,7 +9,7 @@ use glam::Vec3;
 use sweeplab::render::GpuScene;
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{presets, Falloff, Light, LightKind};
-use sweeplab::techniques::ipsvi::{render_with, IpsviSettings, SyncStrategy};
+use sweeplab::techniques::ipsvi::{render_with, IpsviSettings, LineKernel, SyncStrategy};
 use sweeplab::vk::Profiler;
 
 #[test]
@@ -25,10 +26,14 @@ fn every_strategy_gives_the_same_image_and_racy_is_reported() {
         let ctx = validated_context();
         let gpu = GpuScene::upload(&ctx, &scene).unwrap();
         let mut profiler = Profiler::new(&ctx, 256).unwrap();
-        for line_width in [1, 3] {
-            let s = IpsviSettings { cache_size: 32, line_width, ..IpsviSettings::default() };
+        // Both line kernels: the strategies record the same dispatches around either.
+        let kernels = [(LineKernel::Serial, 0), (LineKernel::Segmented, 4)];
+        for (line_width, (line_kernel, segments)) in [1, 3].into_iter().flat_map(|w| kernels.map(|k| (w, k))) {
+            let s = IpsviSettings { cache_size: 32, line_width, line_kernel, segments, ..IpsviSettings::default() };
             profiler.reset();
             let expected = render_with(&gpu, &s, 24, 24, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
+            let kernel = expected.shape.as_ref().map(|shape| shape.kernel.as_str());
+            assert_eq!(kernel, Some(if segments == 0 { "serial" } else { "segmented x4" }));
             assert_validation_clean(&ctx);
             for strategy in
                 [SyncStrategy::BarrierImage, SyncStrategy::Events, SyncStrategy::Submits, SyncStrategy::Secondary]
@@ -37,7 +42,7 @@ fn every_strategy_gives_the_same_image_and_racy_is_reported() {
                 let frame = render_with(&gpu, &s, 24, 24, &mut profiler, strategy).unwrap();
                 assert_eq!(
                     frame.image, expected.image,
-                    "{strategy} differs from barrier-global (line width {line_width})"
+                    "{strategy} differs from barrier-global (line width {line_width}, {line_kernel:?})"
                 );
                 assert_eq!(frame.dispatches, expected.dispatches);
                 let messages = ctx.take_validation_messages();
@@ -48,7 +53,7 @@ fn every_strategy_gives_the_same_image_and_racy_is_reported() {
             let messages = ctx.take_validation_messages();
             assert!(
                 messages.iter().any(|m| m.contains("SYNC-HAZARD")),
-                "racy sweep not reported (line width {line_width})"
+                "racy sweep not reported (line width {line_width}, {line_kernel:?})"
             );
         }
     }

@@ -201,6 +201,18 @@ mod tests {
         let racy = IpsviSettings { cache_write: super::super::CacheWrite::Racy, ..asked.clone() };
         let e = choose(&racy, "CPU", &device(8)).unwrap_err();
         assert!(e.contains("cache_write"), "{e}");
+        // Each of the texel pass's other needs, named where it is missing.
+        let sample_value = IpsviSettings { write_value: super::super::WriteValue::Sample, ..asked.clone() };
+        let no_piecewise = IpsviSettings { piecewise: false, ..asked.clone() };
+        let moved = IpsviSettings { empty_runs_move_depth: true, ..asked.clone() };
+        for (s, named) in [
+            (sample_value, "write_value = \"texel-ray\""),
+            (no_piecewise, "piecewise = true"),
+            (moved, "empty_runs_move_depth = false"),
+        ] {
+            let e = choose(&s, "CPU", &device(8)).unwrap_err();
+            assert!(e.contains(named) && e.contains("line_kernel = \"serial\""), "{e}");
+        }
         // Light rays never write from the march.
         let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..racy.clone() };
         assert!(choose(&rays, "CPU", &device(8)).is_ok());

@@ -29,8 +29,8 @@ pub struct IpsviSettings {
     pub piecewise: bool,
     /// Piecewise integration: the march back to the cache from the blended
     /// depth of the four texels read (the paper's) or per group of them on
-    /// one cache plane; `auto` (default): per texel on texels finer than half
-    /// a pixel.
+    /// one cache plane; `auto` (default): per texel on texels finer than a
+    /// pixel ([`super::read_fronts::PER_TEXEL_BELOW_PX`]).
     #[serde(deserialize_with = "from_name")]
     pub read_fronts: ReadFronts,
     /// When view rays stop (section 5.1).
@@ -96,8 +96,10 @@ pub struct IpsviSettings {
     /// a GPU, capped by the subgroup; 8 on a CPU device).
     pub segments: u32,
     /// Segmented kernel with early termination: a ray's samples are marched
-    /// in up to this many rounds of `segments` segments, each round's opacity
-    /// pass telling where the ray stops before the next round starts.
+    /// in up to this many rounds of `segments` segments; after each round the
+    /// scan of its optical depth tells where the ray stops, and the next round
+    /// runs only if it has not (the claim march scans an opacity pass first,
+    /// since it writes).
     pub segment_rounds: u32,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]

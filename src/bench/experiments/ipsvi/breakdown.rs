@@ -126,12 +126,13 @@ pub fn configurations(base: &IpsviSettings, kernels: &[LineKernel]) -> Vec<Ipsvi
 }
 
 /// A row's `write_rule` and `write_pass`, for view samples only (light rays
-/// have neither), and its line kernel.
-fn set_view_sample_writes(row: &mut BenchRow, s: &IpsviSettings) {
+/// have neither), and the line kernel as it ran (`serial`, `segmented x8`:
+/// `auto` resolved for the device).
+fn set_view_sample_writes(row: &mut BenchRow, s: &IpsviSettings, kernel: &str) {
     if let Some(pass) = s.write_pass_run() {
         row.set("write_rule", s.write_rule.name()).set("write_pass", pass.name());
     }
-    row.set("line_kernel", s.line_kernel.name()).set("cache_size", s.cache_size);
+    row.set("line_kernel", kernel).set("cache_size", s.cache_size);
 }
 
 /// The steps of one mode, in the order they stack: the DVR, then [`STEPS`].
@@ -244,10 +245,11 @@ pub fn run(
             let lines: u32 = plans(&gpu, s, size, size).iter().map(|p| p.lines()).sum();
             // The rows name the cache as it ran (cache_size = 0 resolved for the size).
             let s = &s.sized_for(scene, size, size);
-            report.step_rows(size, s, lines, &steps);
+            let kernel = of_mode().next().map(|(r, _)| r.renderer.kernel().label()).unwrap_or_default();
+            report.step_rows(size, s, &kernel, lines, &steps);
             let widths: Vec<(u32, &Timings<Counts>)> =
                 of_mode().filter_map(|(r, t)| r.line_width.map(|lw| (lw, t))).collect();
-            report.width_rows(size, s, &widths);
+            report.width_rows(size, s, &kernel, &widths);
         }
         out_folder.save_rows("ipsvi_breakdown", &report.table)?;
         out_folder.save_rows("ipsvi_line_widths", &report.widths_table)?;
@@ -275,7 +277,14 @@ fn step_cost(this: &Timings<Counts>, previous: Option<&Timings<Counts>>) -> (Opt
 
 impl BreakdownReport {
     /// The rows and the bar of one mode's steps (the DVR first).
-    fn step_rows(&mut self, size: u32, s: &IpsviSettings, lines: u32, steps: &[(&str, &Timings<Counts>)]) {
+    fn step_rows(
+        &mut self,
+        size: u32,
+        s: &IpsviSettings,
+        kernel: &str,
+        lines: u32,
+        steps: &[(&str, &Timings<Counts>)],
+    ) {
         let total = steps.last().map_or(f64::NAN, |(_, t)| t.median());
         let mut bar = StackedBar { label: String::new(), segments: Vec::new() };
         let (mut as_zero, mut below) = (Vec::new(), Vec::new());
@@ -284,7 +293,7 @@ impl BreakdownReport {
             let (estimate, cost) = step_cost(t, k.checked_sub(1).map(|p| steps[p].1));
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name()).set("step", *label);
-            set_view_sample_writes(&mut row, s);
+            set_view_sample_writes(&mut row, s, kernel);
             row.set_timing("gpu_ms", t);
             match estimate {
                 Some(_) => {
@@ -331,13 +340,13 @@ impl BreakdownReport {
     }
 
     /// The whole frame at each line width, with its speed-up over line width 1.
-    fn width_rows(&mut self, size: u32, s: &IpsviSettings, widths: &[(u32, &Timings<Counts>)]) {
+    fn width_rows(&mut self, size: u32, s: &IpsviSettings, kernel: &str, widths: &[(u32, &Timings<Counts>)]) {
         let lw1 = widths.iter().find(|w| w.0 == 1).map(|w| w.1);
         for &(line_width, t) in widths {
             let mut row = BenchRow::new();
             row.set("width", size).set("height", size).set("cache_update", s.cache_update.name());
             row.set("line_width", line_width);
-            set_view_sample_writes(&mut row, s);
+            set_view_sample_writes(&mut row, s, kernel);
             row.set_timing("gpu_ms", t).set("dispatches", t.last.dispatches);
             if let Some(shape) = &t.last.shape {
                 super::set_shape(&mut row, shape);
@@ -438,7 +447,7 @@ mod tests {
         let slow = timings(&[9.0, 9.5, 8.5, 9.0, 9.8, 9.1]);
         let fast = timings(&[5.0, 5.2, 4.8, 5.0, 5.4, 5.1]);
         let steps = [("a: x", &dvr), ("b: y", &noise), ("c: z", &slow), ("d: w", &fast)];
-        report.step_rows(16, &IpsviSettings::default(), 16, &steps);
+        report.step_rows(16, &IpsviSettings::default(), "serial", 16, &steps);
         let label = &report.bars[0].label;
         assert!(label.contains("(b within noise: 0)"), "{label}");
         assert!(label.contains("(d below the step before: 0; frame 5 ms)"), "{label}");

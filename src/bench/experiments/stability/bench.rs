@@ -101,6 +101,9 @@ fn heat_cell(cell: &Cell) -> HeatCell {
 fn cell_row(case: &StabilityCase, cell: &Cell, wall_s: f64) -> BenchRow {
     let mut row = BenchRow::new();
     row.set("case", case.id).set("technique", cell.variant.label()).set("status", cell.verdict.name());
+    if let Some(kernel) = &cell.line_kernel {
+        row.set("line_kernel", kernel.as_str());
+    }
     if let Some(db) = cell.psnr_db {
         row.set("psnr_db", db);
     }

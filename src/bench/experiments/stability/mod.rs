@@ -141,13 +141,24 @@ pub struct Cell {
     pub gpu_ms: Option<f64>,
     /// That median with its 95 % interval (6 or more timed frames).
     pub gpu_ms_interval: Option<Estimate>,
+    /// IPSVI: the line kernel the frames ran (`serial`, `segmented x32`).
+    pub line_kernel: Option<String>,
 }
 
 impl Cell {
     /// A cell with `verdict` and no measurement (yet).
     pub fn unmeasured(case: &StabilityCase, variant: Variant, verdict: Verdict) -> Cell {
         let bound_db = bound_db(variant.technique);
-        Cell { case: case.name, variant, verdict, psnr_db: None, bound_db, gpu_ms: None, gpu_ms_interval: None }
+        Cell {
+            case: case.name,
+            variant,
+            verdict,
+            psnr_db: None,
+            bound_db,
+            gpu_ms: None,
+            gpu_ms_interval: None,
+            line_kernel: None,
+        }
     }
 }
 
@@ -171,26 +182,31 @@ fn check_warnings(case: &StabilityCase, warnings: &[SceneWarning]) -> Result<Opt
     }
 }
 
+/// What the timed frames of a cell gave: the last image, the median GPU time
+/// with its interval, and (IPSVI) the line kernel they ran.
+struct TimedFrame {
+    image: LinearImage,
+    ms: f64,
+    interval: Option<Estimate>,
+    line_kernel: Option<String>,
+}
+
 /// A GPU frame of `t` on `scene`, timed by `harness`: its check first, as
 /// the command line does.
-fn gpu_frame(
-    ctx: &Context,
-    scene: &Scene,
-    t: Technique,
-    size: u32,
-    harness: Harness,
-) -> Result<(LinearImage, f64, Option<Estimate>), String> {
+fn gpu_frame(ctx: &Context, scene: &Scene, t: Technique, size: u32, harness: Harness) -> Result<TimedFrame, String> {
     t.check(scene).map_err(|e| e.to_string())?;
     let gpu = GpuScene::upload_with(ctx, scene, VolumeTexels::Float32).map_err(|e| e.to_string())?;
     let mut profiler = Profiler::new(ctx, Profiler::FRAME_CAPACITY).map_err(|e| e.to_string())?;
     let measured = harness
         .measure(|| {
             let out = render(&gpu, t, size, size, &mut profiler)?;
-            Ok::<_, RenderError>(Sample::timed(out.profile.gpu_ms_total, out.image))
+            let line_kernel = out.shape.map(|shape| shape.kernel);
+            Ok::<_, RenderError>(Sample::timed(out.profile.gpu_ms_total, (out.image, line_kernel)))
         })
         .map_err(|e| e.to_string())?;
     let (ms, interval) = (measured.median(), measured.estimate());
-    Ok((measured.last, ms, interval))
+    let (image, line_kernel) = measured.last;
+    Ok(TimedFrame { image, ms, interval, line_kernel })
 }
 
 /// One cell: `variant` on the case's `scene` at `size` x `size`.
@@ -237,16 +253,16 @@ pub fn run_cell(
         (Err(e), Some((_, word))) => Verdict::Failed(format!("refusal does not name {word:?} and {t}: {e}")),
         (Err(e), None) => Verdict::Failed(e),
         (Ok(_), Some(_)) => Verdict::Failed("should be refused, rendered".into()),
-        (Ok((image, ms, interval)), None) if !image.all_finite() => {
-            (cell.gpu_ms, cell.gpu_ms_interval) = (Some(ms), interval);
+        (Ok(f), None) if !f.image.all_finite() => {
+            (cell.gpu_ms, cell.gpu_ms_interval, cell.line_kernel) = (Some(f.ms), f.interval, f.line_kernel);
             Verdict::Failed("render let a non-finite frame through".into())
         }
-        (Ok((image, ms, interval)), None) => {
-            (cell.gpu_ms, cell.gpu_ms_interval) = (Some(ms), interval);
+        (Ok(f), None) => {
+            (cell.gpu_ms, cell.gpu_ms_interval, cell.line_kernel) = (Some(f.ms), f.interval, f.line_kernel);
             match render_cpu(&scene, model_kind(t, &scene), size, size) {
                 Err(e) => Verdict::Failed(format!("CPU reference: {e}")),
                 Ok(reference) => {
-                    let db = compare(&image, &reference).map(|s| s.psnr).unwrap_or(f64::NAN);
+                    let db = compare(&f.image, &reference).map(|s| s.psnr).unwrap_or(f64::NAN);
                     cell.psnr_db = Some(db);
                     if let Some(w) = technique_warning {
                         // Beyond the bound by the technique's own account.
@@ -302,7 +318,7 @@ pub fn convergence(ctx: &Context, base: &Scene, variant: Variant, size: u32) -> 
     for &h in &CONVERGENCE_STEPS {
         scene.render.step_voxels = h;
         scene.reference.step_voxels = h;
-        let (image, _, _) = gpu_frame(ctx, &scene, t, size, Harness::once_after(0))?;
+        let image = gpu_frame(ctx, &scene, t, size, Harness::once_after(0))?.image;
         errors.push(compare(&image, &limit).map_err(|e| e.to_string())?.rmse / peak);
     }
     let orders: Vec<f64> = errors.windows(2).map(|e| (e[0] / e[1]).log2()).collect();

@@ -54,6 +54,7 @@ pub fn side_by_side(reports: &[SyncReport]) -> BenchTable {
             row.set("device", report.run.device.as_str()).set("driver", report.run.driver_version.as_str());
             row.set("commit", report.run.git_commit.as_str()).set("date", report.run.date.as_str());
             row.set("size", format!("{}x{}", report.width, report.height)).set("strategy", arm.as_str());
+            row.set("line_kernel", report.line_kernel().unwrap_or("serial (not recorded)"));
             if arm == BASELINE {
                 // The dispatch alone, and the frame without barriers.
                 row.set_estimate("fixed_us", empty.and_then(|r| r.boundary_us));

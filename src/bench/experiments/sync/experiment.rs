@@ -7,7 +7,9 @@ use super::{files, plan, SyncPlan, SyncReport};
 use crate::bench::{Experiment, ExperimentError, OutFolder, RunInfo};
 use crate::render::{GpuScene, VolumeTexels};
 use crate::scene::Scene;
+use crate::techniques::ipsvi::line_kernel;
 use crate::techniques::ipsvi::IpsviSettings;
+use crate::vk::subgroups::SubgroupSupport;
 use crate::vk::Context;
 
 /// The study of `plan` on `scene` ([`super::run`]).
@@ -36,8 +38,13 @@ impl Experiment for SyncExperiment {
             .input("line_widths", format!("{:?}", plan.line_widths))
             .input("workloads", plan.workloads.iter().map(|w| w.name()).collect::<Vec<_>>().join(","))
             .input("validation", ctx.validation_enabled());
-        let mut round_files = RoundFiles::new(out.path());
         let settings = self.scene.settings.get::<IpsviSettings>();
+        // The kernel the sweep's lines run (`auto` resolved for the device): a
+        // line's latency, and so what a barrier serializes, depends on it.
+        let kernel = line_kernel::choose(&settings, &ctx.info.device_type, &SubgroupSupport::of(ctx))
+            .map_err(ExperimentError::Invalid)?;
+        let run = run.input(super::LINE_KERNEL_INPUT, kernel.label());
+        let mut round_files = RoundFiles::new(out.path());
         let report = super::run(ctx, &gpu, &settings, plan, run, &mut round_files)?;
         files::write(&report, out.path())?;
         files::write_charts(&report, out.path())?;

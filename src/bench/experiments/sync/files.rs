@@ -44,7 +44,20 @@ fn table<T>(report: &SyncReport, named: bool, items: &[T], row: fn(&T) -> BenchR
 
 /// One row per strategy and workload.
 pub fn strategy_table(report: &SyncReport) -> BenchTable {
-    table(report, true, &report.strategies, strategy_row)
+    let mut table = table(report, true, &report.strategies, strategy_row);
+    set_line_kernel(report, &mut table, report.strategies.iter().map(|r| r.workload));
+    table
+}
+
+/// The line kernel beside each row of the workloads that run IPSVI lines
+/// (the chain's lines are its own shader), where the record names it.
+fn set_line_kernel(report: &SyncReport, table: &mut BenchTable, workloads: impl Iterator<Item = Workload>) {
+    let Some(kernel) = report.line_kernel() else { return };
+    for (row, workload) in table.rows.iter_mut().zip(workloads) {
+        if workload != Workload::Chain {
+            row.set("line_kernel", kernel);
+        }
+    }
 }
 
 fn strategy_row(r: &StrategyRow) -> BenchRow {
@@ -151,6 +164,7 @@ pub fn configuration_table(report: &SyncReport) -> BenchTable {
             .map_or(0, |b| b.barriers);
         table.push(configuration_row(c, setup));
     }
+    set_line_kernel(report, &mut table, report.configurations.iter().map(|c| c.workload));
     table
 }
 

@@ -117,6 +117,10 @@ pub const BASELINE: &str = "no-barriers";
 pub const CONTROL: &str = "no-barriers-again";
 /// The chain workload's frames of one line.
 pub const ALONE: &str = "alone";
+/// The run input naming the IPSVI line kernel of the sweep's and the empty
+/// workload's lines as it ran (`serial`, `segmented x32`); absent from
+/// older records, every one of which ran the serial kernel.
+pub const LINE_KERNEL_INPUT: &str = "line_kernel";
 
 impl Arm {
     pub fn name(self) -> &'static str {

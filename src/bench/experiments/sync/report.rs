@@ -45,7 +45,8 @@ pub struct ConfigRow {
     /// Synchronization hazards validation reported (racy arms, validation on).
     pub hazards_ignored: usize,
     /// RMSE of the last frame against barrier-global's at the same line width
-    /// and workload (racy arms: undefined images, only their cost counts).
+    /// and workload: 0 for every strategy; for a racy arm what the missing
+    /// barrier did to the image (0 where the device ran the lines in order).
     pub rmse_vs_barrier_global: Option<f64>,
 }
 
@@ -117,6 +118,12 @@ pub struct SyncReport {
 }
 
 impl SyncReport {
+    /// The line kernel the IPSVI workloads ran ([`super::LINE_KERNEL_INPUT`]);
+    /// None for a record from before it was recorded.
+    pub fn line_kernel(&self) -> Option<&str> {
+        self.run.inputs.iter().find(|(k, _)| k == super::LINE_KERNEL_INPUT).map(|(_, v)| v.as_str())
+    }
+
     /// What a time budget left out, workload by workload ("sweep workload:
     /// line width(s) 2, 4"); `None` where the run measured all it planned.
     pub fn left_out_summary(&self) -> Option<String> {

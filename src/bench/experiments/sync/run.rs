@@ -612,7 +612,7 @@ fn summarize(study: &Study, configs: &[Configuration], measured: &Measured, comp
         let cpu = measured.series(i, |r| r.cpu_ms);
         let wall = measured.series(i, |r| r.wall_ms);
         let rmse = match (c.last_image.as_ref(), reference(&c.key).and_then(|r| r.last_image.as_ref())) {
-            (Some(a), Some(b)) if !c.key.racy() => compare(a, b).ok().map(|s| s.rmse),
+            (Some(a), Some(b)) => compare(a, b).ok().map(|s| s.rmse),
             _ => None,
         };
         configurations.push(ConfigRow {

@@ -134,6 +134,24 @@ impl SyncReport {
         Some(format!("  {CONTROL} (A/A control): {} {per}", e.describe("us")))
     }
 
+    /// What leaving the line barrier out did to the sweep's image: nothing
+    /// where the device ran the lines in order (lavapipe), a different image
+    /// where they overlapped. Validation reports the hazard either way.
+    fn racy_image_line(&self, line_width: u32) -> Option<String> {
+        let racy = self.configurations.iter().find(|c| {
+            c.workload == Workload::Sweep && c.arm == BASELINE && c.line_width == line_width && !c.line_timestamps
+        })?;
+        let rmse = racy.rmse_vs_barrier_global?;
+        Some(if rmse == 0.0 {
+            "  its image (no barriers: racy): barrier-global's bit for bit; this device ran the lines in order".into()
+        } else {
+            format!(
+                "  its image (no barriers: racy): RMSE {rmse:.3e} against barrier-global's; the lines overlapped, the \
+                 barrier is load-bearing"
+            )
+        })
+    }
+
     /// (a): the empty workload.
     fn fixed_cost_lines(&self) -> Vec<String> {
         let w = Workload::Empty;
@@ -170,8 +188,9 @@ impl SyncReport {
         let w = Workload::Sweep;
         let Some(base) = self.row(w, BASELINE) else { return Vec::new() };
         let mut out = vec![format!(
-            "(b) what each strategy costs the sweep, frames without per-line timestamps (sweep workload, line \
+            "(b) what each strategy costs the sweep, frames without per-line timestamps (sweep workload, {}, line \
              width {}: {} line boundaries per frame; {}):",
+            self.line_kernel().map_or("line kernel not recorded: serial".to_string(), |k| format!("line kernel {k}")),
             base.line_width,
             base.boundaries,
             self.precision_text(w)
@@ -181,6 +200,7 @@ impl SyncReport {
             let ci = format!("{}-{}", frame_time(f.lo), frame_time(f.hi));
             out.push(format!("  the frame without barriers: {} ({ci})", frame_time(f.value)));
         }
+        out.extend(self.racy_image_line(base.line_width));
         out.extend(self.control_line(w, "per line"));
         for r in self.compared(w).filter(|r| r.strategy != CONTROL) {
             let own = self.row(Workload::Empty, &r.strategy).and_then(StrategyRow::fixed_cost);
