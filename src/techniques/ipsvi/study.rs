@@ -1,7 +1,11 @@
 //! What studies and tests set in code, never a scene file: baselines and cost
 //! breakdown steps that are not illumination results, and the digests the
 //! kernel tests compare. Kept out of [`super::IpsviSettings`], the
-//! `[ipsvi]` table users set.
+//! `[ipsvi]` table users set. `ipsvi.sync` stays there, `racy` included:
+//! which synchronization separates the lines is what this project's users
+//! study, in the viewer as in `bench sync`, and `racy` is the control they
+//! hold a strategy against (validation reports its hazard). So does
+//! `merge_sweeps`, a choice of how a frame is dispatched, not a measurement.
 
 use super::breakdown::BreakdownStep;
 
