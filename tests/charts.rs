@@ -8,9 +8,10 @@ use std::path::{Path, PathBuf};
 
 use image::RgbImage;
 use sweeplab::bench::{
-    plot_error_map, plot_error_vs_time, plot_heat_map, plot_histogram, plot_lines, plot_stacked_bars, render_error_map,
-    render_error_vs_time, render_heat_map, render_histogram, render_lines, render_stacked_bars, AxisScale, Chart,
-    Distribution, ErrorMap, HeatCell, HeatLevel, HeatMap, Point, Series, StackedBar,
+    plot_error_map, plot_error_vs_time, plot_heat_map, plot_histogram, plot_lines, plot_point_panels,
+    plot_stacked_bars, render_error_map, render_error_vs_time, render_heat_map, render_histogram, render_lines,
+    render_point_panels, render_stacked_bars, AxisScale, Chart, Distribution, ErrorMap, HeatCell, HeatLevel, HeatMap,
+    Panel, Point, Series, StackedBar,
 };
 
 fn scratch_dir(test: &str) -> PathBuf {
@@ -210,6 +211,50 @@ fn the_golden_comparison_sees_a_shifted_layout() {
     }
     assert!(changed_share(&image, &shifted) > CHANGED_SHARE * 5.0, "{}", changed_share(&image, &shifted));
     assert_eq!(changed_share(&image, &image), 0.0);
+}
+
+/// Two panels of one quantity on devices a thousand times apart.
+fn panels_data(color: [u8; 3]) -> Vec<Panel> {
+    let panel = |title: &str, v: f64| Panel {
+        chart: Chart::new(title, "strategy", "us per line").categories(["one", "two"]).y_from_zero().size(480, 260),
+        series: vec![Series::with_points(
+            "run",
+            vec![
+                Point::new(0.0, v).with_interval(0.9 * v, 1.1 * v),
+                Point::new(1.0, 0.5 * v).with_interval(-0.1 * v, v),
+            ],
+        )
+        .with_color(color)],
+    };
+    vec![panel("a GPU", 1.0), panel("a CPU driver", 1000.0)]
+}
+
+#[test]
+fn panels_are_written_and_match_the_golden_image() {
+    let dir = scratch_dir("panels");
+    let panels = panels_data([0, 114, 178]);
+    plot_point_panels(dir.join("panels.png"), "Panels, each on its own axis", &panels).expect("plot");
+    // Under the title strip (40 px), the panels one under the other.
+    check_files(&dir.join("panels.png"), Some((480, 40 + 2 * 260)));
+    check_golden("panels", &render_point_panels("Panels, each on its own axis", &panels).unwrap());
+    assert!(render_point_panels("none", &[]).is_err(), "a figure of no panels is refused");
+}
+
+/// Each panel on its own y axis: the series near 1 is drawn as high in its
+/// panel as the one near 1000 in its own, not flattened onto the zero line of
+/// a shared axis.
+#[test]
+fn each_panel_has_its_own_y_axis() {
+    let color = [200, 30, 30];
+    let image = render_point_panels("t", &panels_data(color)).unwrap();
+    let top_row = |band: std::ops::Range<u32>| {
+        band.clone()
+            .find(|&y| (0..image.width()).any(|x| image.get_pixel(x, y).0 == color))
+            .unwrap_or_else(|| panic!("no marker in rows {band:?}"))
+    };
+    let (gpu, cpu) = (top_row(40..300) - 40, top_row(300..560) - 300);
+    assert!(gpu < 130 && cpu < 130, "both panels' highest point in their upper half: {gpu} {cpu} of 260");
+    assert!(gpu.abs_diff(cpu) <= 3, "the same shape at both scales: {gpu} {cpu}");
 }
 
 fn count_color(image: &RgbImage, color: [u8; 3]) -> usize {

@@ -136,5 +136,15 @@ fn report_puts_lavapipe_and_the_h200_side_by_side() {
     }
     let svg = std::fs::read_to_string(out.join("report_sweep.svg")).unwrap();
     assert!(svg.contains("barrier-global") && svg.contains("submits"), "strategies named on the axis");
+    // A panel per device, each with its own axis from 0: the H200's 135 us per
+    // line on a scale of its own (a tick at 140), not on lavapipe's thousands.
+    let texts: Vec<&str> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| t.split_once('>').and_then(|(_, rest)| rest.split_once("</text>")).map(|(text, _)| text.trim()))
+        .collect();
+    assert_eq!(texts.iter().filter(|t| **t == "strategy").count(), 2, "two panels: {texts:?}");
+    assert!(texts.contains(&"NVIDIA H200 (NVIDIA 580.159.4.0), cornell-box 512x512"), "{texts:?}");
+    assert!(texts.contains(&"140") && texts.contains(&"1000"), "each panel's ticks: {texts:?}");
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -26,10 +26,10 @@ pub mod shift;
 pub mod stats;
 
 pub use charts::{
-    palette_color, plot_error_map, plot_error_vs_time, plot_heat_map, plot_histogram, plot_lines, plot_points,
-    plot_stacked_bars, render_error_map, render_error_vs_time, render_heat_map, render_histogram, render_lines,
-    render_stacked_bars, AxisScale, Chart, Distribution, ErrorMap, HeatCell, HeatLevel, HeatMap, Point, Series,
-    StackedBar,
+    palette_color, plot_error_map, plot_error_vs_time, plot_heat_map, plot_histogram, plot_lines, plot_point_panels,
+    plot_points, plot_stacked_bars, render_error_map, render_error_vs_time, render_heat_map, render_histogram,
+    render_lines, render_point_panels, render_stacked_bars, AxisScale, Chart, Distribution, ErrorMap, HeatCell,
+    HeatLevel, HeatMap, Panel, Point, Series, StackedBar,
 };
 pub use error::BenchError;
 pub use estimate::{Estimate, Verdict};

@@ -23,6 +23,9 @@ pub struct Chart {
     /// Names of a categorical x axis: category i is drawn at x = i and its
     /// name stands under it (empty: a numeric axis).
     pub categories: Vec<String>,
+    /// A linear y axis reaches 0 (costs read against nothing, their sizes
+    /// to scale), not only the range of the data.
+    pub y_from_zero: bool,
 }
 
 impl Chart {
@@ -38,6 +41,7 @@ impl Chart {
             height: 600,
             caption: None,
             categories: Vec::new(),
+            y_from_zero: false,
         }
     }
 
@@ -55,6 +59,12 @@ impl Chart {
 
     pub fn y_scale(mut self, scale: AxisScale) -> Self {
         self.y_scale = scale;
+        self
+    }
+
+    /// A linear y axis from 0 (or below, where the data go there).
+    pub fn y_from_zero(mut self) -> Self {
+        self.y_from_zero = true;
         self
     }
 

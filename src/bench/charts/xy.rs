@@ -31,7 +31,7 @@ enum Kind {
     ErrorVsTime,
 }
 
-struct XyFigure<'a> {
+pub(super) struct XyFigure<'a> {
     chart: &'a Chart,
     series: &'a [Series],
     kind: Kind,
@@ -72,8 +72,13 @@ pub fn render_error_vs_time(chart: &Chart, series: &[Series]) -> Result<RgbImage
     render(&XyFigure { chart, series, kind: Kind::ErrorVsTime })
 }
 
-impl XyFigure<'_> {
-    fn points(&self) -> impl Iterator<Item = &Point> {
+impl<'a> XyFigure<'a> {
+    /// Markers with their intervals, unjoined (a panel of [`super::panels`]).
+    pub(super) fn points(chart: &'a Chart, series: &'a [Series]) -> Self {
+        XyFigure { chart, series, kind: Kind::Points }
+    }
+
+    fn all_points(&self) -> impl Iterator<Item = &Point> {
         self.series.iter().flat_map(|s| s.points.iter())
     }
 
@@ -94,7 +99,7 @@ impl XyFigure<'_> {
         if self.kind == Kind::ErrorVsTime {
             entries.push(Entry { name: "Pareto front".into(), sample: Sample::Front });
         }
-        if self.points().any(Point::interval_holds_zero) {
+        if self.all_points().any(Point::interval_holds_zero) {
             entries.push(Entry { name: "hollow: interval holds 0 (within noise)".into(), sample: Sample::Hollow });
         }
         if hidden > 0 {
@@ -156,17 +161,20 @@ impl Figure for XyFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>, _: Target) -> Result<(), BenchError> {
         let (x_scale, y_scale) = (self.chart.x_scale, self.chart.y_scale);
         let shows = |p: &Point| x_scale.transform(p.x).is_some() && y_scale.transform(p.y).is_some();
-        let hidden = self.points().filter(|p| !shows(p)).count();
-        let shown = || self.points().filter(|p| shows(p));
+        let hidden = self.all_points().filter(|p| !shows(p)).count();
+        let shown = || self.all_points().filter(|p| shows(p));
         let x_axis = if self.chart.categories.is_empty() {
             ScaledAxis::fitting(x_scale, shown().map(|p| p.x))
         } else {
             ScaledAxis::between(AxisScale::Linear, -0.5, self.chart.categories.len() as f64 - 0.5)
         };
-        let y_values = shown().flat_map(|p| {
-            let (low, high) = p.interval.unwrap_or((p.y, p.y));
-            [p.y, low, high]
-        });
+        let zero = (self.chart.y_from_zero && y_scale == AxisScale::Linear).then_some(0.0);
+        let y_values = shown()
+            .flat_map(|p| {
+                let (low, high) = p.interval.unwrap_or((p.y, p.y));
+                [p.y, low, high]
+            })
+            .chain(zero);
         let y_axis = ScaledAxis::fitting(y_scale, y_values);
         let legend = self.legend(hidden);
         let (context, plot_area) = xy_frame(root, self.chart, x_axis, y_axis, &legend)?;

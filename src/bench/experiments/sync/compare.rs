@@ -2,14 +2,18 @@
 //! row per device and strategy, each quantity in its own columns ((a) the
 //! fixed cost, (b) the cost per sweep line and its share of the frame, the
 //! calibration's fitted pair), and one chart per quantity, strategies named
-//! on the axis, one series per device, every point with its interval.
+//! on the axis, every point with its interval: (a) and (b) in one panel per
+//! device and setup, each on its own y axis (a GPU's microsecond would sit on
+//! the zero line of a CPU driver's milliseconds of noise), the runs of one
+//! setup side by side in its panel; the calibration's fraction, comparable
+//! across devices, on one axis.
 
 use super::files::{verdict_word, y_scale};
 use super::report::SyncReport;
 use super::{Workload, BASELINE, CONTROL};
 use crate::bench::estimate::Estimate;
 use crate::bench::rows::{BenchRow, BenchTable};
-use crate::bench::{plot_points, BenchError, Chart, Point, Series};
+use crate::bench::{plot_point_panels, plot_points, BenchError, Chart, Panel, Point, Series};
 use std::path::Path;
 
 /// The strategies any report measured, in first-seen order, the baseline and
@@ -114,75 +118,136 @@ pub fn markdown(inputs: &[(String, SyncReport)]) -> String {
     md
 }
 
-/// One chart of one quantity: per device a series over the strategies.
-fn quantity_chart(
+/// What a record measured on, its panel's title: the device and driver, the
+/// scene and the size. Runs of one setup share a panel.
+fn setup_label(r: &SyncReport) -> String {
+    let scene = r.run.inputs.iter().find(|(k, _)| k == "scene").map(|(_, v)| v.as_str()).unwrap_or("");
+    let scene = std::path::Path::new(scene).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    format!("{} ({} {}), {scene} {}x{}", r.run.device, r.run.driver_name, r.run.driver_version, r.width, r.height)
+}
+
+/// A run within its setup's panel: when, and which build.
+fn run_label(r: &SyncReport) -> String {
+    format!("{}, {}", r.run.date.get(..16).unwrap_or(&r.run.date).replace('T', " "), r.run.git_commit)
+}
+
+/// Each series a little apart at its strategy, so that intervals do not hide each other.
+fn spread(series: usize, count: usize) -> f64 {
+    (series as f64 - (count as f64 - 1.0) / 2.0) * 0.12
+}
+
+/// One series of `r` over the strategies `names`, points `apart` from the category.
+fn quantity_series(
+    r: &SyncReport,
+    label: String,
+    names: &[String],
+    apart: f64,
+    pick: &dyn Fn(&SyncReport, &str) -> Option<Estimate>,
+) -> Series {
+    let points = names
+        .iter()
+        .enumerate()
+        .filter_map(|(i, name)| {
+            let e = pick(r, name)?;
+            Some(Point::new(i as f64 + apart, e.value).with_interval(e.lo, e.hi))
+        })
+        .collect();
+    Series::with_points(label, points)
+}
+
+/// One quantity charted over the strategies: its file, title and axis
+/// label, and how to read it from a report.
+struct Quantity<'a> {
+    file: &'a str,
+    title: &'a str,
+    y_label: &'a str,
+    pick: &'a dyn Fn(&SyncReport, &str) -> Option<Estimate>,
+}
+
+/// One figure of `q`: a panel per setup (its own y axis, linear from 0: a
+/// cost beside what it is a cost over), in it a series per run over the
+/// strategies. Setups without the quantity are left out; None (nothing
+/// written) where none has it.
+fn quantity_panels(
     reports: &[SyncReport],
     names: &[String],
-    path: &Path,
-    title: &str,
-    y_label: &str,
-    pick: &dyn Fn(&SyncReport, &str) -> Option<Estimate>,
-) -> Result<(), BenchError> {
-    // Each device a little apart at its strategy, so that intervals do not hide each other.
-    let spread = |d: usize| (d as f64 - (reports.len() as f64 - 1.0) / 2.0) * 0.12;
+    folder: &Path,
+    q: &Quantity,
+) -> Result<Option<String>, BenchError> {
+    let mut setups: Vec<(String, Vec<&SyncReport>)> = Vec::new();
+    for r in reports {
+        let setup = setup_label(r);
+        match setups.iter_mut().find(|(s, _)| *s == setup) {
+            Some((_, runs)) => runs.push(r),
+            None => setups.push((setup, vec![r])),
+        }
+    }
+    let panels: Vec<Panel> = setups
+        .into_iter()
+        .map(|(setup, runs)| {
+            let series: Vec<Series> = runs
+                .iter()
+                .enumerate()
+                .map(|(k, r)| quantity_series(r, run_label(r), names, spread(k, runs.len()), q.pick))
+                .collect();
+            let chart = Chart::new(setup, "strategy", q.y_label).categories(names.iter().cloned()).y_from_zero();
+            Panel { chart: chart.size(900, 420), series }
+        })
+        .filter(|p| p.series.iter().any(|s| !s.points.is_empty()))
+        .collect();
+    if panels.is_empty() {
+        return Ok(None);
+    }
+    plot_point_panels(folder.join(q.file), q.title, &panels)?;
+    Ok(Some(q.file.to_string()))
+}
+
+/// One chart of `q` on one axis: per device a series over the strategies.
+fn quantity_chart(reports: &[SyncReport], names: &[String], folder: &Path, q: &Quantity) -> Result<String, BenchError> {
     let series: Vec<Series> = reports
         .iter()
         .enumerate()
-        .map(|(d, r)| {
-            let points = names
-                .iter()
-                .enumerate()
-                .filter_map(|(i, name)| {
-                    let e = pick(r, name)?;
-                    Some(Point::new(i as f64 + spread(d), e.value).with_interval(e.lo, e.hi))
-                })
-                .collect();
-            Series::with_points(device_label(r), points)
-        })
+        .map(|(d, r)| quantity_series(r, device_label(r), names, spread(d, reports.len()), q.pick))
         .collect();
-    let chart = Chart::new(title, "strategy", y_label).categories(names.iter().cloned()).y_scale(y_scale(&series));
-    plot_points(path, &chart, &series)
+    let chart = Chart::new(q.title, "strategy", q.y_label).categories(names.iter().cloned()).y_scale(y_scale(&series));
+    plot_points(folder.join(q.file), &chart, &series)?;
+    Ok(q.file.to_string())
 }
 
-/// `report_fixed_cost.png` (a), `report_sweep.png` (b) and, where a report
-/// has the chain workload, `report_calibration.png` (the serialized fraction):
-/// the quantities apart, each with its intervals.
+/// `report_fixed_cost.png` (a) and `report_sweep.png` (b), a panel per
+/// setup, and, where a report has the chain workload,
+/// `report_calibration.png` (the serialized fraction): the quantities apart,
+/// each with its intervals.
 pub fn plot_side_by_side(reports: &[SyncReport], folder: &Path) -> Result<Vec<String>, BenchError> {
     let mut written = Vec::new();
     let names = strategies(reports);
     if reports.iter().any(|r| r.rounds_of(Workload::Empty) > 0) {
-        quantity_chart(
-            reports,
-            &names,
-            &folder.join("report_fixed_cost.png"),
-            "(a) fixed cost of a line boundary over no barriers (empty workload), 95 % CI",
-            "us per boundary",
-            &|r, s| r.row(Workload::Empty, s).and_then(|r| r.fixed_cost()),
-        )?;
-        written.push("report_fixed_cost.png".into());
+        let fixed = Quantity {
+            file: "report_fixed_cost.png",
+            title: "(a) fixed cost of a line boundary over no barriers (empty workload), 95 % CI",
+            y_label: "us per boundary",
+            pick: &|r, s| r.row(Workload::Empty, s).and_then(|r| r.fixed_cost()),
+        };
+        written.extend(quantity_panels(reports, &names, folder, &fixed)?);
     }
     if reports.iter().any(|r| r.rounds_of(Workload::Sweep) > 0) {
-        quantity_chart(
-            reports,
-            &names,
-            &folder.join("report_sweep.png"),
-            "(b) cost per line of the sweep over no barriers (frames without per-line timestamps), 95 % CI",
-            "us per line",
-            &|r, s| r.row(Workload::Sweep, s).and_then(|r| r.serialization()),
-        )?;
-        written.push("report_sweep.png".into());
+        let sweep = Quantity {
+            file: "report_sweep.png",
+            title: "(b) cost per line of the sweep over no barriers (frames without per-line timestamps), 95 % CI",
+            y_label: "us per line",
+            pick: &|r, s| r.row(Workload::Sweep, s).and_then(|r| r.serialization()),
+        };
+        written.extend(quantity_panels(reports, &names, folder, &sweep)?);
     }
     if reports.iter().any(|r| !r.calibration.is_empty()) {
         let with_baseline: Vec<String> = std::iter::once(BASELINE.to_string()).chain(names.iter().cloned()).collect();
-        quantity_chart(
-            reports,
-            &with_baseline,
-            &folder.join("report_calibration.png"),
-            "calibration: the share of a line's chain latency a boundary exposes, 95 % CI",
-            "serialized fraction",
-            &|r, s| r.calibration.iter().find(|f| f.strategy == s).and_then(|f| f.fraction),
-        )?;
-        written.push("report_calibration.png".into());
+        let fraction = Quantity {
+            file: "report_calibration.png",
+            title: "calibration: the share of a line's chain latency a boundary exposes, 95 % CI",
+            y_label: "serialized fraction",
+            pick: &|r, s| r.calibration.iter().find(|f| f.strategy == s).and_then(|f| f.fraction),
+        };
+        written.push(quantity_chart(reports, &with_baseline, folder, &fraction)?);
     }
     Ok(written)
 }
