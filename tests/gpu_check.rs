@@ -25,14 +25,30 @@ fn mesa_shader_cache() -> Option<(&'static str, PathBuf)> {
     suite_cache_home().map(|home| ("MESA_SHADER_CACHE_DIR", home))
 }
 
+/// The script in a bundle's layout (`tools/gpu_check_prepare.sh`): `tools/`
+/// with `data/engine.vti` beside it, away from the checkout, so that the
+/// data sets it reads are the ones beside it.
+fn bundle(out: &Path) -> PathBuf {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let bundle = out.with_extension("bundle");
+    let _ = std::fs::remove_dir_all(&bundle);
+    std::fs::create_dir_all(bundle.join("tools")).unwrap();
+    std::fs::create_dir_all(bundle.join("data")).unwrap();
+    std::fs::copy(root.join("tools/gpu_check.sh"), bundle.join("tools/gpu_check.sh")).unwrap();
+    std::os::unix::fs::symlink(root.join("data/engine.vti"), bundle.join("data/engine.vti")).unwrap();
+    bundle
+}
+
 fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::Value) {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let scene = small_cornell_box(&out.with_extension("scene"));
+    let bundle = bundle(out);
     let status = Command::new("bash")
-        .arg(root.join("tools/gpu_check.sh"))
+        .arg(bundle.join("tools/gpu_check.sh"))
         .arg(out)
         .env("GPU_CHECK_BIN", env!("CARGO_BIN_EXE_sweeplab"))
         .env("GPU_CHECK_SCENE", &scene)
+        .env("GPU_CHECK_HALF_ANGLE_SCENE", root.join("tests/scenes/slab-under-sphere.toml"))
         // The script keeps its caches with its report (XDG_CACHE_HOME); lavapipe's
         // compiled shaders stay with the rest of the suite's, as a rerun would find them.
         .envs(mesa_shader_cache())
@@ -54,12 +70,16 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
         )
         .env("GPU_CHECK_BENCHES", if benches { "1" } else { "0" })
         .env_remove("SWEEPLAB_VALIDATE")
+        .env_remove("SWEEPLAB_DATA")
         .status()
         .expect("run tools/gpu_check.sh");
     let report = std::fs::read_to_string(out.join("report.json")).expect("report.json written");
     let report: serde_json::Value =
         serde_json::from_str(&report).unwrap_or_else(|e| panic!("report.json: {e}\n{report}"));
-    assert!(out.join("report.md").exists(), "report.md written");
+    let md = std::fs::read_to_string(out.join("report.md")).expect("report.md written");
+    let data = format!("data sets from {}/data;", bundle.display());
+    assert!(md.contains(&data), "the data sets beside the script: {md}");
+    let _ = std::fs::remove_dir_all(&bundle);
     (status.success(), report)
 }
 

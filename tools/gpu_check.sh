@@ -28,7 +28,9 @@
 #                          rounds within a minute)
 #   GPU_CHECK_TABLE1_ARGS  arguments of bench table1 (default: the CT engine at 256 and 512,
 #                          line widths 1, 2, 4, the serial and the segmented line kernel,
-#                          6 rounds; needs engine.vti in the data folder, $SWEEPLAB_DATA)
+#                          6 rounds; needs engine.vti in the data folder)
+#   SWEEPLAB_DATA          the data folder (default: data/ beside tools/, the bundle's copy or
+#                          the checkout's: the binary's own default is the folder it was built in)
 #   GPU_CHECK_LIGHTS_ARGS  arguments of bench lights (default: a short run)
 #   GPU_CHECK_AO_SET       --set value for the ao comparison (default: none)
 #   GPU_CHECK_BENCHES      0: the comparisons only (default 1)
@@ -51,6 +53,9 @@ if [ -d "$carried/usr/lib/x86_64-linux-gnu" ]; then
 else
     vulkan_from="system"
 fi
+
+# The data sets (Table 1's engine.vti) beside the script, wherever the bundle was unpacked.
+export SWEEPLAB_DATA=${SWEEPLAB_DATA:-$root/data}
 
 bin=${GPU_CHECK_BIN:-}
 if [ -z "$bin" ]; then
@@ -161,7 +166,7 @@ failed=$(grep -c '"rc": [1-9]' "$parts_json")
     echo "- device: ${device:-unknown} (Vulkan loader and layer: $vulkan_from)"
     echo "- validation layer: ${layer:-unknown}; validated runs: ${validated:-none}"
     echo "- host: $(uname -srm); $(date -u +%Y-%m-%dT%H:%M:%SZ)"
-    echo "- comparisons at ${size}x${size}, benches at ${bench_size}; total ${total} s; failed parts: $failed"
+    echo "- comparisons at ${size}x${size}, benches at ${bench_size}; data sets from $SWEEPLAB_DATA; total ${total} s; failed parts: $failed"
     echo
     echo "| part | exit | seconds | validation | log |"
     echo "|---|---|---|---|---|"
