@@ -73,6 +73,41 @@ fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
 
 /// Without half-angle runs (`--half-angle-slices` with no value) the run
 /// renders no model (i) truth and still writes every mode's rows.
+/// A light inside the volume: half-angle slicing cannot light it, so its
+/// rows are left out, and the run says why (the summary, the run's inputs);
+/// a `compare` of half-angle refuses it before any GPU work.
+#[test]
+fn half_angle_rows_are_left_out_by_name_where_the_light_is_inside_the_volume() {
+    let dir = temp_dir("ipsvi-light-inside");
+    let plan = IpsviPlan {
+        sizes: vec![8],
+        line_widths: vec![1],
+        cache_sizes: vec![16],
+        one_at_a_time: true,
+        half_angle_slices: vec![1.0],
+        interleaved: Interleaved::fixed(1, 1).unwrap(),
+        volume_texels: VolumeTexels::Native,
+        group_bytes: DEFAULT_GROUP_BYTES,
+        kernels: vec![LineKernel::Serial],
+    };
+    let mut scene = scene();
+    scene.lights = vec![common::point(Vec3::ZERO)];
+    scene.settings.get_mut::<IpsviSettings>().cache_size = 16;
+    let refused = sweeplab::techniques::Technique::HalfAngle.check(&scene).unwrap_err().to_string();
+    assert!(refused.contains("outside the volume's bounding sphere"), "{refused}");
+    let ctx = common::validated_context();
+    let out = OutFolder::prepare(OutTarget::Named { folder: &dir, force: true }).unwrap();
+    let report = ipsvi_bench::run(&ctx, &scene, &plan, RunInfo::collect(&ctx), &out, 64).unwrap();
+    common::assert_validation_clean(&ctx);
+    out.finish().unwrap();
+    let why = report.half_angle_left_out.expect("the reason the half-angle rows are left out");
+    assert!(why.contains("outside the volume's bounding sphere"), "{why}");
+    let rows = bench_rows(&dir.join("ipsvi.json"));
+    assert!(!rows.is_empty() && rows.iter().all(|r| r["technique"] != "half-angle"), "{rows:?}");
+    let json = std::fs::read_to_string(dir.join("ipsvi.json")).unwrap();
+    assert!(json.contains("left out: half-angle slicing needs the light outside"), "the run's inputs say why");
+}
+
 #[test]
 fn bench_ipsvi_without_half_angle_runs_measures_every_mode() {
     let dir = temp_dir("ipsvi-no-half-angle");

@@ -92,12 +92,38 @@ pub struct Slicing {
     pub count: u32,
 }
 
-/// Checks the slice step before any GPU work.
+/// Checks the slice step and the light's place before any GPU work.
 pub fn check(scene: &Scene) -> Result<(), RenderError> {
     if scene.lights.len() == 1 {
-        slicing(scene, &scene.settings.get::<HalfAngleSettings>())?;
+        let settings = scene.settings.get::<HalfAngleSettings>();
+        slicing(scene, &settings)?;
+        light_outside(scene, &settings)?;
     }
     Ok(())
+}
+
+/// Why half-angle slicing cannot light `scene` (None: it can): it takes one
+/// light, outside the volume's bounding sphere. For benches that run it
+/// beside another technique and leave it out, saying why.
+pub fn unavailable(scene: &Scene) -> Option<String> {
+    match scene.lights.len() {
+        1 => light_outside(scene, &scene.settings.get::<HalfAngleSettings>()).err().map(|e| e.to_string()),
+        n => Some(format!("half-angle slicing takes one light; the scene has {n}")),
+    }
+}
+
+/// The light buffer is a plane the slices sweep away from the light: a light
+/// inside the volume's bounding sphere has none (it would need the octahedral
+/// map IPSVI uses there), so half-angle slicing refuses it.
+fn light_outside(scene: &Scene, settings: &HalfAngleSettings) -> Result<LightSpacePlane, RenderError> {
+    let geometry =
+        LightSpacePlane::fit(&scene.rendered_lights()[0].kind, &scene.volume_box(), settings.light_buffer_size);
+    if geometry.projection == LightProjection::Octahedral {
+        return Err(RenderError::Invalid(
+            "half-angle slicing needs the light outside the volume's bounding sphere".into(),
+        ));
+    }
+    Ok(geometry)
 }
 
 pub fn slicing(scene: &Scene, settings: &HalfAngleSettings) -> Result<Slicing, RenderError> {
@@ -207,12 +233,7 @@ fn record_with(
     }
     let ctx = gpu.ctx;
     let bx = scene.volume_box();
-    let geometry = LightSpacePlane::fit(&scene.rendered_lights()[0].kind, &bx, settings.light_buffer_size);
-    if geometry.projection == LightProjection::Octahedral {
-        return Err(RenderError::Invalid(
-            "half-angle slicing needs the light outside the volume's bounding sphere".into(),
-        ));
-    }
+    let geometry = light_outside(scene, settings)?;
     let sl = slicing(scene, settings)?;
     let space = ImageSpace { basis: scene.camera.basis(width, height), width, height };
     let rect = space.projected_box(&bx);

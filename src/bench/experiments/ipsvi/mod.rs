@@ -209,6 +209,8 @@ impl IpsviPlan {
 /// What a run measured: per size the ground truth, DVR, IPSVI and half-angle rows.
 pub struct IpsviReport {
     pub table: BenchTable,
+    /// Why the half-angle rows asked for were left out (the scene's lights).
+    pub half_angle_left_out: Option<String>,
 }
 
 /// What one frame of any configuration leaves to compare and count.
@@ -248,7 +250,15 @@ pub fn run(
     };
     let configs = plan.configurations(&base)?;
     let groups = groups(&scene, &configs, plan);
-    let half_angle = if scene.lights.len() == 1 { plan.half_angle_slices.clone() } else { Vec::new() };
+    // Half-angle slicing runs beside IPSVI where the scene's light allows it;
+    // where not, the rows are left out and the run says why.
+    let half_angle_left_out =
+        if plan.half_angle_slices.is_empty() { None } else { crate::techniques::half_angle::unavailable(&scene) };
+    let half_angle = if half_angle_left_out.is_none() { plan.half_angle_slices.clone() } else { Vec::new() };
+    let run = match &half_angle_left_out {
+        Some(why) => run.input("half_angle", format!("left out: {why}")),
+        None => run,
+    };
     let gpu = GpuScene::upload_with(ctx, &scene, plan.volume_texels)?;
     let mut profiler = Profiler::new(ctx, profiler_capacity)?;
     let mut progress = Progress::weighted(step_weights(plan, &groups, half_angle.len()));
@@ -420,7 +430,7 @@ pub fn run(
     progress.finish();
     drop(gpu);
     mark_pareto(&mut table, &plan.sizes);
-    let report = IpsviReport { table };
+    let report = IpsviReport { table, half_angle_left_out };
     report.write(out_folder.path(), plan, &base)?;
     Ok(report)
 }
@@ -610,6 +620,9 @@ impl IpsviReport {
     /// What the terminal shows: per size the fastest and the most accurate
     /// IPSVI run and the unshaded baseline; the full table is in the files.
     pub fn print_summary(&self) {
+        if let Some(why) = &self.half_angle_left_out {
+            println!("half-angle rows left out: {why} (--half-angle-slices with no value asks for none)");
+        }
         let table = &self.table;
         let mut sizes: Vec<u64> = table.rows.iter().filter_map(|r| r.get_f64("width")).map(|w| w as u64).collect();
         sizes.dedup();
