@@ -384,14 +384,24 @@ impl BenchTable {
         self.rows.iter().filter(|r| keep(r)).filter_map(|r| Some((r.get_f64(x)?, r.get_f64(y)?))).collect()
     }
 
-    /// Union of all rows' keys, in the order they were first seen.
+    /// Union of all rows' keys in the order the rows give them: a key first
+    /// seen in a later row stands right after the key before it in that row
+    /// (a verdict beside its estimate even where the first row has neither),
+    /// at the end where it leads its row.
     pub fn columns(&self) -> Vec<String> {
         let mut columns: Vec<String> = Vec::new();
         for row in &self.rows {
+            let mut after: Option<usize> = None;
             for key in row.keys() {
-                if !columns.iter().any(|c| c == key) {
-                    columns.push(key.to_owned());
-                }
+                let at = match columns.iter().position(|c| c == key) {
+                    Some(i) => i,
+                    None => {
+                        let at = after.map_or(columns.len(), |i| i + 1);
+                        columns.insert(at, key.to_owned());
+                        at
+                    }
+                };
+                after = Some(at);
             }
         }
         columns
@@ -619,6 +629,16 @@ fn markdown_cell(text: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_column_first_seen_in_a_later_row_stands_where_that_row_puts_it() {
+        let mut table = BenchTable::new();
+        table.push(BenchRow::new().with("strategy", "base").with("fixed", 1.0).with("chain", 2.0));
+        let full = BenchRow::new().with("strategy", "b").with("fixed", 1.0).with("fixed_verdict", "cost");
+        table.push(full.with("chain", 2.0).with("note", "x"));
+        table.push(BenchRow::new().with("lead", 0.0).with("strategy", "c"));
+        assert_eq!(table.columns(), ["strategy", "fixed", "fixed_verdict", "chain", "note", "lead"]);
+    }
 
     #[test]
     fn a_timing_has_its_interval_only_from_six_runs_and_a_cost_within_noise_has_no_value() {
