@@ -40,10 +40,15 @@ impl Experiment for SyncExperiment {
             .input("validation", ctx.validation_enabled());
         let settings = self.scene.settings.get::<IpsviSettings>();
         // The kernel the sweep's lines run (`auto` resolved for the device): a
-        // line's latency, and so what a barrier serializes, depends on it.
-        let kernel = line_kernel::choose(&settings, &ctx.info.device_type, &SubgroupSupport::of(ctx))
-            .map_err(ExperimentError::Invalid)?;
-        let run = run.input(super::LINE_KERNEL_INPUT, kernel.label());
+        // line's latency, and so what a barrier serializes, depends on it. The
+        // chain workload's lines are its own shader.
+        let run = if plan.workloads.iter().any(|&w| w != super::Workload::Chain) {
+            let kernel = line_kernel::choose(&settings, &ctx.info.device_type, &SubgroupSupport::of(ctx))
+                .map_err(ExperimentError::Invalid)?;
+            run.input(super::LINE_KERNEL_INPUT, kernel.label())
+        } else {
+            run
+        };
         let mut round_files = RoundFiles::new(out.path());
         let report = super::run(ctx, &gpu, &settings, plan, run, &mut round_files)?;
         files::write(&report, out.path())?;
