@@ -71,8 +71,6 @@ fn bench_ipsvi_at_8x8_with_six_rounds_writes_intervals_and_paired_ratios() {
     assert!(text.contains("- seed: `11`") && text.contains("- rounds: `6`"), "{text}");
 }
 
-/// Without half-angle runs (`--half-angle-slices` with no value) the run
-/// renders no model (i) truth and still writes every mode's rows.
 /// A light inside the volume: half-angle slicing cannot light it, so its
 /// rows are left out, and the run says why (the summary, the run's inputs);
 /// a `compare` of half-angle refuses it before any GPU work.
@@ -108,6 +106,8 @@ fn half_angle_rows_are_left_out_by_name_where_the_light_is_inside_the_volume() {
     assert!(json.contains("left out: half-angle slicing needs the light outside"), "the run's inputs say why");
 }
 
+/// Without half-angle runs (`--half-angle-slices` with no value) the run
+/// renders no model (i) truth and still writes every mode's rows.
 #[test]
 fn bench_ipsvi_without_half_angle_runs_measures_every_mode() {
     let dir = temp_dir("ipsvi-no-half-angle");

@@ -32,13 +32,21 @@ fn strategies(reports: &[SyncReport]) -> Vec<String> {
     names
 }
 
+/// The scene file's stem the record ran ("" where it names none).
+fn scene_stem(r: &SyncReport) -> String {
+    let scene = r.run.inputs.iter().find(|(k, _)| k == "scene").map(|(_, v)| v.as_str()).unwrap_or("");
+    std::path::Path::new(scene).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default()
+}
+
+/// When the record ran, to the minute.
+fn minute(r: &SyncReport) -> String {
+    r.run.date.get(..16).unwrap_or(&r.run.date).replace('T', " ")
+}
+
 /// A record's label: the device, what ran (scene, size) and when (to the
 /// minute), so that two runs of one device stay apart.
 pub fn device_label(r: &SyncReport) -> String {
-    let scene = r.run.inputs.iter().find(|(k, _)| k == "scene").map(|(_, v)| v.as_str()).unwrap_or("");
-    let scene = std::path::Path::new(scene).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    let when = r.run.date.get(..16).unwrap_or(&r.run.date).replace('T', " ");
-    format!("{}, {scene} {}x{}, {when}", r.run.device, r.width, r.height)
+    format!("{}, {} {}x{}, {}", r.run.device, scene_stem(r), r.width, r.height, minute(r))
 }
 
 /// One row per device and arm (the baseline, the control, each strategy).
@@ -121,14 +129,13 @@ pub fn markdown(inputs: &[(String, SyncReport)]) -> String {
 /// What a record measured on, its panel's title: the device and driver, the
 /// scene and the size. Runs of one setup share a panel.
 fn setup_label(r: &SyncReport) -> String {
-    let scene = r.run.inputs.iter().find(|(k, _)| k == "scene").map(|(_, v)| v.as_str()).unwrap_or("");
-    let scene = std::path::Path::new(scene).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    format!("{} ({} {}), {scene} {}x{}", r.run.device, r.run.driver_name, r.run.driver_version, r.width, r.height)
+    let (device, driver, version) = (&r.run.device, &r.run.driver_name, &r.run.driver_version);
+    format!("{device} ({driver} {version}), {} {}x{}", scene_stem(r), r.width, r.height)
 }
 
 /// A run within its setup's panel: when, and which build.
 fn run_label(r: &SyncReport) -> String {
-    format!("{}, {}", r.run.date.get(..16).unwrap_or(&r.run.date).replace('T', " "), r.run.git_commit)
+    format!("{}, {}", minute(r), r.run.git_commit)
 }
 
 /// Each series a little apart at its strategy, so that intervals do not hide each other.
