@@ -7,8 +7,8 @@
 #extension GL_KHR_shader_subgroup_shuffle_relative : require
 // One IPSVI line block (one dispatch; src/techniques/ipsvi/), the segmented kernel: the
 // same block as glsl/ipsvi_line.comp, but SEGMENTS invocations per pixel (a
-// cluster of consecutive lanes of one subgroup), each marching one depth
-// segment of the pixel's view ray. A sample's light read depends only on the
+// cluster of consecutive lanes of one subgroup, or a workgroup of several),
+// each marching one depth segment of the pixel's view ray. A sample's light read depends only on the
 // previous block's images, never on another sample of its line, so the only
 // dependency along the ray is compositing, which is associative: the
 // segments' composites are combined in depth order (ipsvi_segment_scan.glsl).
@@ -33,6 +33,12 @@ layout(local_size_x_id = 8) in;
 layout(constant_id = 16) const uint SEGMENTS = 4u;
 // Rounds a ray's samples are split into when it may stop early (else one).
 layout(constant_id = 17) const uint SEGMENT_ROUNDS = 4u;
+// A pixel's segments span the workgroup's subgroups (SEGMENTS above the
+// smallest subgroup): the workgroup is one cluster, combined through shared
+// memory between workgroup barriers (glsl/ipsvi_segment_scan.glsl). Off, the
+// shader has no barrier (on lavapipe one makes the whole shader run as
+// coroutines: see glsl/ipsvi_line_main.glsl).
+layout(constant_id = 19) const bool CROSS_SUBGROUPS = false;
 
 #include "ipsvi_line_interface.glsl"
 #include "ipsvi_cache_io.glsl"
@@ -42,23 +48,26 @@ layout(constant_id = 17) const uint SEGMENT_ROUNDS = 4u;
 #include "ipsvi_march.glsl"
 #include "ipsvi_compositing.glsl"
 
+#include "ipsvi_segment_scan.glsl"
+
 // This invocation's index among its pixel's SEGMENTS (its segment of the ray).
 uint segment = 0u;
 
 // Invocations are numbered by subgroup and lane, so that a pixel's cluster is
-// always SEGMENTS aligned lanes of one subgroup; that needs full subgroups,
-// checked once per workgroup (a workgroup that finds none flags the frame,
-// and the host refuses it: src/techniques/ipsvi/line_shape.rs).
+// always SEGMENTS aligned lanes of one subgroup, or with CROSS_SUBGROUPS the
+// whole workgroup's; that needs full subgroups, checked once per workgroup (a
+// workgroup that finds none flags the frame, and the host refuses it:
+// src/techniques/ipsvi/line_shape.rs).
 uint line_local_index() { return gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; }
 
 bool line_kernel_ready() {
-    bool full = gl_NumSubgroups * gl_SubgroupSize == gl_WorkGroupSize.x && gl_SubgroupSize % SEGMENTS == 0u;
+    bool clusters_fit = CROSS_SUBGROUPS ? gl_WorkGroupSize.x == SEGMENTS && gl_NumSubgroups <= MAX_CLUSTER_SUBGROUPS
+                                        : gl_SubgroupSize % SEGMENTS == 0u;
+    bool full = gl_NumSubgroups * gl_SubgroupSize == gl_WorkGroupSize.x && clusters_fit;
     if (!full && gl_LocalInvocationIndex == 0u) atomicOr(shape_flags, SHAPE_PARTIAL_SUBGROUPS);
-    segment = gl_SubgroupInvocationID % SEGMENTS;
+    segment = line_local_index() % SEGMENTS;
     return full;
 }
-
-#include "ipsvi_segment_scan.glsl"
 
 // The subgroup's longest chain of each role (butterflies over all its lanes,
 // active again after line_invocation), one atomic per role that ran.

@@ -1,20 +1,56 @@
 // The segmented line kernel's combines (glsl/ipsvi_line_segmented.comp): the
-// SEGMENTS invocations of one pixel (a cluster: consecutive lanes of one
-// subgroup, aligned to SEGMENTS) each march one depth segment of the ray, and
-// their results are combined in depth order with subgroup shuffles: a
-// Hillis-Steele scan for what a segment needs from the segments before (or
-// after) it, a butterfly for what the whole ray needs. Only shuffles within
-// the cluster: the other lanes of the subgroup may be elsewhere in the code.
-// The including file defines SEGMENTS and `segment`.
+// SEGMENTS invocations of one pixel (a cluster) each march one depth segment
+// of the ray, and their results are combined in depth order: a Hillis-Steele
+// scan for what a segment needs from the segments before (or after) it, a
+// butterfly for what the whole ray needs. Within a subgroup by shuffles (the
+// cluster's lanes there are consecutive and aligned; only shuffles within
+// them: the other lanes may be elsewhere in the code). With CROSS_SUBGROUPS
+// the cluster is the whole workgroup, over several subgroups: each subgroup's
+// part is combined by shuffles, and the parts through shared memory, between
+// two workgroup barriers (every invocation of the workgroup is then the same
+// pixel's, so each reaches the same barriers). The including file defines
+// SEGMENTS and CROSS_SUBGROUPS.
 #ifndef IPSVI_SEGMENT_SCAN_GLSL
 #define IPSVI_SEGMENT_SCAN_GLSL
 
-// The cluster's last lane.
-uint cluster_last_lane() { return gl_SubgroupInvocationID | (SEGMENTS - 1u); }
+// Subgroups a cluster may span (src/techniques/ipsvi/line_kernel.rs keeps
+// SEGMENTS / the smallest subgroup within it).
+const uint MAX_CLUSTER_SUBGROUPS = 32u;
+// One value of each subgroup of the cluster, up to five words.
+shared uint cluster_parts[5][MAX_CLUSTER_SUBGROUPS];
+
+// The cluster's lanes in this subgroup (sizes are powers of two).
+uint cluster_lanes() { return min(SEGMENTS, gl_SubgroupSize); }
+// This invocation's lane among them, and their first and last lane.
+uint cluster_lane() { return gl_SubgroupInvocationID & (cluster_lanes() - 1u); }
+uint cluster_first_lane() { return gl_SubgroupInvocationID & ~(cluster_lanes() - 1u); }
+uint cluster_last_lane() { return gl_SubgroupInvocationID | (cluster_lanes() - 1u); }
+
+// CROSS_SUBGROUPS: each subgroup's lane 0 publishes its part's words; after
+// this every invocation may read all parts (cluster_parts[w][0..gl_NumSubgroups)),
+// until it calls parts_read().
+void publish_part(uint w0, uint w1, uint w2, uint w3, uint w4) {
+    if (gl_SubgroupInvocationID == 0u) {
+        cluster_parts[0][gl_SubgroupID] = w0;
+        cluster_parts[1][gl_SubgroupID] = w1;
+        cluster_parts[2][gl_SubgroupID] = w2;
+        cluster_parts[3][gl_SubgroupID] = w3;
+        cluster_parts[4][gl_SubgroupID] = w4;
+    }
+    barrier();
+}
+
+// Every invocation has read the parts: the next combine may publish.
+void parts_read() { barrier(); }
 
 bool cluster_any(bool x) {
     uint v = x ? 1u : 0u;
-    for (uint d = 1u; d < SEGMENTS; d <<= 1) v |= subgroupShuffleXor(v, d);
+    for (uint d = 1u; d < cluster_lanes(); d <<= 1) v |= subgroupShuffleXor(v, d);
+    if (CROSS_SUBGROUPS) {
+        publish_part(v, 0u, 0u, 0u, 0u);
+        for (uint s = 0u; s < gl_NumSubgroups; ++s) v |= cluster_parts[0][s];
+        parts_read();
+    }
     return v != 0u;
 }
 
@@ -23,9 +59,19 @@ bool cluster_any(bool x) {
 // segments, and both put the nearer one in front, so every lane ends with
 // the same total.
 Composite cluster_over(Composite x) {
-    for (uint d = 1u; d < SEGMENTS; d <<= 1) {
+    for (uint d = 1u; d < cluster_lanes(); d <<= 1) {
         Composite y = Composite(subgroupShuffleXor(x.C, d), subgroupShuffleXor(x.T, d));
-        x = (segment & d) == 0u ? over(x, y) : over(y, x);
+        x = (cluster_lane() & d) == 0u ? over(x, y) : over(y, x);
+    }
+    if (CROSS_SUBGROUPS) {
+        // Every invocation folds the subgroups' parts in the same order: one total.
+        publish_part(floatBitsToUint(x.C.r), floatBitsToUint(x.C.g), floatBitsToUint(x.C.b), floatBitsToUint(x.T), 0u);
+        x = no_samples();
+        for (uint s = 0u; s < gl_NumSubgroups; ++s) {
+            vec3 C = uintBitsToFloat(uvec3(cluster_parts[0][s], cluster_parts[1][s], cluster_parts[2][s]));
+            x = over(x, Composite(C, uintBitsToFloat(cluster_parts[3][s])));
+        }
+        parts_read();
     }
     return x;
 }
@@ -34,13 +80,25 @@ Composite cluster_over(Composite x) {
 // this one, and in `total` of all of them.
 uint cluster_tau_before(uint x, out uint total) {
     uint inclusive = x;
-    for (uint d = 1u; d < SEGMENTS; d <<= 1) {
+    for (uint d = 1u; d < cluster_lanes(); d <<= 1) {
         uint y = subgroupShuffleUp(inclusive, d);
-        if (segment >= d) inclusive = tau_add(y, inclusive);
+        if (cluster_lane() >= d) inclusive = tau_add(y, inclusive);
     }
     total = subgroupShuffle(inclusive, cluster_last_lane());
-    uint before = subgroupShuffleUp(inclusive, 1u);
-    return segment == 0u ? 0u : before;
+    uint up = subgroupShuffleUp(inclusive, 1u);
+    uint before = cluster_lane() == 0u ? 0u : up;
+    if (CROSS_SUBGROUPS) {
+        publish_part(total, 0u, 0u, 0u, 0u);
+        uint earlier = 0u;
+        total = 0u;
+        for (uint s = 0u; s < gl_NumSubgroups; ++s) {
+            if (s == gl_SubgroupID) earlier = total;
+            total = tau_add(total, cluster_parts[0][s]);
+        }
+        parts_read();
+        before = tau_add(earlier, before);
+    }
+    return before;
 }
 
 // ---- claims: runs of samples in one texel across segments --------------------
@@ -96,27 +154,54 @@ Runs shuffle_up_runs(Runs r, uint d) {
 // The runs of the segments before this one, and in `total` of all of them.
 Runs cluster_runs_before(Runs x, out Runs total) {
     Runs inclusive = x;
-    for (uint d = 1u; d < SEGMENTS; d <<= 1) {
+    for (uint d = 1u; d < cluster_lanes(); d <<= 1) {
         Runs y = shuffle_up_runs(inclusive, d);
-        if (segment >= d) inclusive = runs_then(y, inclusive);
+        if (cluster_lane() >= d) inclusive = runs_then(y, inclusive);
     }
     uint last = cluster_last_lane();
     total = Runs(subgroupShuffle(inclusive.flags, last), subgroupShuffle(inclusive.lead_k, last),
                  subgroupShuffle(inclusive.lead_d, last), subgroupShuffle(inclusive.trail_k, last),
                  subgroupShuffle(inclusive.trail_d, last));
-    Runs before = shuffle_up_runs(inclusive, 1u);
-    return segment == 0u ? no_runs() : before;
+    Runs up = shuffle_up_runs(inclusive, 1u);
+    Runs before = cluster_lane() == 0u ? no_runs() : up;
+    if (CROSS_SUBGROUPS) {
+        publish_part(total.flags, total.lead_k, floatBitsToUint(total.lead_d), total.trail_k,
+                     floatBitsToUint(total.trail_d));
+        Runs earlier = no_runs();
+        total = no_runs();
+        for (uint s = 0u; s < gl_NumSubgroups; ++s) {
+            if (s == gl_SubgroupID) earlier = total;
+            Runs part = Runs(cluster_parts[0][s], cluster_parts[1][s], uintBitsToFloat(cluster_parts[2][s]),
+                             cluster_parts[3][s], uintBitsToFloat(cluster_parts[4][s]));
+            total = runs_then(total, part);
+        }
+        parts_read();
+        before = runs_then(earlier, before);
+    }
+    return before;
 }
 
 // The texel of the first sample taking part after this segment (NO_TEXEL: none).
 uint cluster_next_texel(Runs x) {
     uint inclusive = has_runs(x) ? x.lead_k : NO_TEXEL;
-    for (uint d = 1u; d < SEGMENTS; d <<= 1) {
+    for (uint d = 1u; d < cluster_lanes(); d <<= 1) {
         uint y = subgroupShuffleDown(inclusive, d);
-        if (segment + d < SEGMENTS && inclusive == NO_TEXEL) inclusive = y;
+        if (cluster_lane() + d < cluster_lanes() && inclusive == NO_TEXEL) inclusive = y;
     }
-    uint after = subgroupShuffleDown(inclusive, 1u);
-    return segment + 1u < SEGMENTS ? after : NO_TEXEL;
+    uint down = subgroupShuffleDown(inclusive, 1u);
+    uint after = cluster_lane() + 1u < cluster_lanes() ? down : NO_TEXEL;
+    if (CROSS_SUBGROUPS) {
+        // The first texel of the subgroups after this one's, where its own have none.
+        publish_part(subgroupShuffle(inclusive, cluster_first_lane()), 0u, 0u, 0u, 0u);
+        uint later = NO_TEXEL;
+        for (uint s = gl_NumSubgroups; s > gl_SubgroupID + 1u; --s) {
+            uint k = cluster_parts[0][s - 1u];
+            if (k != NO_TEXEL) later = k; // downward: the nearest one stays
+        }
+        parts_read();
+        if (after == NO_TEXEL) after = later;
+    }
+    return after;
 }
 
 #endif

@@ -7,14 +7,15 @@
 // (glsl/ipsvi_segment_scan.glsl) on fabricated segments, one cluster of
 // SEGMENTS invocations per fabricated ray, numbered as the kernel numbers them.
 
-layout(local_size_x = 64) in;
+// 64, or SEGMENTS with CROSS_SUBGROUPS (a cluster over the workgroup's subgroups).
+layout(local_size_x_id = 2) in;
 layout(constant_id = 0) const uint SEGMENTS = 4u;
 layout(constant_id = 1) const bool NEAREST_RUNS = true;
+layout(constant_id = 3) const bool CROSS_SUBGROUPS = false;
 
 #include "ipsvi_over.glsl"
 #include "ipsvi_optical_depth.glsl"
 
-uint segment;
 bool run_keeps_nearest() { return NEAREST_RUNS; }
 
 #include "ipsvi_segment_scan.glsl"
@@ -55,8 +56,8 @@ layout(push_constant) uniform Push { uint count; } push;
 
 void main() {
     uint id = gl_WorkGroupID.x * gl_WorkGroupSize.x + gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
-    segment = gl_SubgroupInvocationID % SEGMENTS;
-    // Whole clusters only (count is a multiple of SEGMENTS).
+    // Whole clusters only (count is a multiple of SEGMENTS): with
+    // CROSS_SUBGROUPS a workgroup returns whole, before its barriers.
     if (id >= push.count) return;
     ProbeSegment s = segments[id];
     Composite total = cluster_over(Composite(s.composite.rgb, s.composite.a));

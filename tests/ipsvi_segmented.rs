@@ -195,6 +195,23 @@ fn stops_where_the_serial_kernel_stops(splits: &[(u32, u32)]) {
     assert_validation_clean(&ctx);
 }
 
+/// More segments than lavapipe's 8-lane subgroup: a pixel's segments span 2
+/// to 16 subgroups of its workgroup, their parts combined through shared
+/// memory (32 is a GPU's default count, in one subgroup there). Claims, stops
+/// and image are the serial kernel's as in one subgroup.
+#[test]
+fn segmented_matches_serial_with_segments_across_subgroups() {
+    let ctx = validated_context();
+    assert_eq!(SubgroupSupport::of(&ctx).min_size, 8, "lavapipe's default subgroup");
+    drop(ctx);
+    let scenes = light_placements();
+    matches_serial_in(&[(32, 4), (16, 1), (128, 1)], &[("every-sample", settings(LineKernel::Auto, 0, 4))], &scenes);
+    let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..settings(LineKernel::Auto, 0, 4) };
+    let some = [scenes[0].clone(), scenes[7].clone()];
+    matches_serial_in(&[(32, 4)], &[("light rays", rays)], &some);
+    stops_where_the_serial_kernel_stops(&[(32, 4), (64, 2)]);
+}
+
 /// One segment per pixel in one round is the serial march in the segmented
 /// kernel: the same samples, reads and compositing in the same order.
 /// Measured on lavapipe: the same image bit for bit.
@@ -300,9 +317,9 @@ fn what_cannot_be_segmented_is_refused_by_name_and_auto_is_serial_on_a_cpu() {
     let sample_pass = IpsviSettings { write_pass: WritePass::Sample, ..segmented.clone() };
     let e = render_with(&gpu, &sample_pass, 16, 16, &mut profiler, SyncStrategy::BarrierGlobal).err().unwrap();
     assert!(e.to_string().contains("write_pass = \"sample\""), "{e}");
-    let too_many = IpsviSettings { segments: 64, ..segmented };
+    let too_many = IpsviSettings { segments: 512, ..segmented };
     let e = render_with(&gpu, &too_many, 16, 16, &mut profiler, SyncStrategy::BarrierGlobal).err().unwrap();
-    assert!(e.to_string().contains("ipsvi.segments = 64"), "{e}");
+    assert!(e.to_string().contains("ipsvi.segments = 512"), "{e}");
     let auto = render_with(&gpu, &settings(LineKernel::Auto, 0, 4), 16, 16, &mut profiler, SyncStrategy::BarrierGlobal);
     assert_eq!(shape(&auto.unwrap()).kernel, "serial", "auto on lavapipe");
     assert_validation_clean(&ctx);
@@ -507,7 +524,10 @@ fn probe(ctx: &Context, segments: u32, nearest: bool, input: &[Segment]) -> Vec<
     let segments_buffer = Buffer::with_data(ctx, "probe segments", &words, usage).unwrap();
     let bytes = (input.len() * 80) as u64;
     let results = Buffer::new(ctx, "probe results", bytes, usage, gpu_allocator::MemoryLocation::GpuToCpu).unwrap();
-    let specialization = [(0, segments), (1, nearest as u32)];
+    // More segments than a subgroup: one cluster per workgroup, as the kernel runs them.
+    let cross = segments > sweeplab::vk::subgroups::SubgroupSupport::of(ctx).min_size;
+    let group = if cross { segments } else { 64 };
+    let specialization = [(0, segments), (1, nearest as u32), (2, group), (3, cross as u32)];
     let desc = ComputePipelineDesc {
         name: "ipsvi_segment_scan_probe",
         shader: &probe::INTERFACE,
@@ -524,7 +544,7 @@ fn probe(ctx: &Context, segments: u32, nearest: bool, input: &[Segment]) -> Vec<
     sweeplab::vk::commands::submit_and_wait(ctx, "probe", |rec| {
         rec.bind(&pipeline, set);
         rec.push(&pipeline, &(input.len() as u32));
-        rec.dispatch((input.len() as u32).div_ceil(64), 1, 1);
+        rec.dispatch((input.len() as u32).div_ceil(group), 1, 1);
         rec.barrier(&sweeplab::vk::Barrier::memory(
             "probe_write_to_host_read",
             sweeplab::vk::barriers::Access::COMPUTE_WRITE,
@@ -561,7 +581,8 @@ fn over_in_order(segments: &[Segment]) -> ([f64; 3], f64) {
 fn the_scan_combines_fabricated_segments_exactly_and_in_depth_order() {
     let ctx = validated_context();
     let mut rng = Lcg(42);
-    for segments in [1u32, 2, 4, 8] {
+    // 16 to 128 span lavapipe's 8-lane subgroups (2 to 16 of them).
+    for segments in [1u32, 2, 4, 8, 16, 32, 128] {
         for nearest in [true, false] {
             let rays = 48usize;
             let mut input = Vec::new();

@@ -119,7 +119,7 @@ impl DeclaredSettings for IpsviSettings {
             ),
             control(
                 "segments",
-                "segmented: invocations per pixel, up to the smallest subgroup; 0: the device's choice",
+                "segmented: invocations per pixel (beyond a subgroup: one workgroup per pixel); 0: the device's choice",
                 Numbers(&[0, 1, 2, 4, 8, 16, 32, 64, 128]),
                 |s| Number(s.segments as f64),
             ),

@@ -2,7 +2,8 @@
 //! serial kernel (glsl/ipsvi_line.comp, one invocation per pixel, its whole
 //! view ray) or the segmented kernel (glsl/ipsvi_line_segmented.comp, a
 //! cluster of `segments` invocations per pixel, one depth segment each,
-//! combined by subgroup shuffles). Both run the same dispatch and barrier per
+//! combined by subgroup shuffles, and through shared memory where the
+//! cluster spans subgroups). Both run the same dispatch and barrier per
 //! line block; docs/ipsvi.md "The segmented line kernel" compares them.
 
 use super::cache_update::{parse_name, CacheUpdate, WritePass};
@@ -51,6 +52,10 @@ pub const CPU_SEGMENTS: u32 = 8;
 /// Rounds of segments a ray that may stop early is marched in (`segment_rounds`).
 pub const DEFAULT_ROUNDS: u32 = 4;
 
+/// Subgroups one pixel's segments may span (glsl/ipsvi_segment_scan.glsl's
+/// MAX_CLUSTER_SUBGROUPS).
+pub const MAX_CLUSTER_SUBGROUPS: u32 = 32;
+
 /// The kernel a renderer runs: `segments` invocations per pixel (1: the serial kernel).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct KernelChoice {
@@ -60,10 +65,15 @@ pub struct KernelChoice {
     pub segments: u32,
     /// Rounds of the segmented kernel (unused by the serial one).
     pub rounds: u32,
+    /// A pixel's segments span several subgroups (more segments than the
+    /// smallest subgroup): its workgroup is the pixel's `segments`
+    /// invocations, their parts combined through shared memory between
+    /// workgroup barriers.
+    pub cross_subgroups: bool,
 }
 
 impl KernelChoice {
-    pub const SERIAL: KernelChoice = KernelChoice { segmented: false, segments: 1, rounds: 1 };
+    pub const SERIAL: KernelChoice = KernelChoice { segmented: false, segments: 1, rounds: 1, cross_subgroups: false };
 
     /// How `render` and bench rows name it: `serial`, `segmented x32`.
     pub fn label(&self) -> String {
@@ -99,7 +109,12 @@ pub fn segmented_refusal(s: &IpsviSettings) -> Option<String> {
 /// The kernel for `s` on a device of type `device_type` (DeviceInfo) with
 /// `subgroups`: an error naming the setting where it asks for what cannot run.
 pub fn choose(s: &IpsviSettings, device_type: &str, subgroups: &SubgroupSupport) -> Result<KernelChoice, String> {
-    let segmented = |segments: u32| KernelChoice { segmented: true, segments, rounds: s.segment_rounds };
+    let segmented = |segments: u32| KernelChoice {
+        segmented: true,
+        segments,
+        rounds: s.segment_rounds,
+        cross_subgroups: segments > subgroups.min_size,
+    };
     match s.line_kernel {
         LineKernel::Serial => Ok(KernelChoice::SERIAL),
         LineKernel::Segmented => {
@@ -113,10 +128,10 @@ pub fn choose(s: &IpsviSettings, device_type: &str, subgroups: &SubgroupSupport)
                 ));
             }
             let segments = if s.segments == 0 { default_segments(device_type, subgroups) } else { s.segments };
-            if segments > subgroups.min_size {
+            if segments > subgroups.min_size.max(1) * MAX_CLUSTER_SUBGROUPS {
                 return Err(format!(
-                    "ipsvi.segments = {segments}: a pixel's segments must lie in one subgroup, and this device's \
-                     subgroups may be as small as {}",
+                    "ipsvi.segments = {segments}: a pixel's segments may span at most {MAX_CLUSTER_SUBGROUPS} \
+                     subgroups, and this device's subgroups may be as small as {}",
                     subgroups.min_size
                 ));
             }
@@ -216,8 +231,11 @@ mod tests {
         // Light rays never write from the march.
         let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..racy.clone() };
         assert!(choose(&rays, "CPU", &device(8)).is_ok());
-        let e = choose(&IpsviSettings { segments: 16, ..asked.clone() }, "CPU", &device(8)).unwrap_err();
-        assert!(e.contains("ipsvi.segments = 16") && e.contains("as small as 8"), "{e}");
+        // More segments than a subgroup: the workgroup is the pixel's, up to 32 subgroups.
+        let wide = choose(&IpsviSettings { segments: 16, ..asked.clone() }, "CPU", &device(8)).unwrap();
+        assert!(wide.cross_subgroups && !choose(&asked, "CPU", &device(8)).unwrap().cross_subgroups);
+        let e = choose(&IpsviSettings { segments: 128, ..asked.clone() }, "CPU", &device(2)).unwrap_err();
+        assert!(e.contains("ipsvi.segments = 128") && e.contains("as small as 2"), "{e}");
         let e = choose(&asked, "CPU", &SubgroupSupport { shuffle: false, ..device(8) }).unwrap_err();
         assert!(e.contains("subgroup shuffles"), "{e}");
         // Auto falls back to serial for such modes instead.

@@ -305,14 +305,29 @@ impl<'a> IpsviRenderer<'a> {
             EarlyTermination::ExitPoints => 2,
         };
         let segments = kernel.segments;
+        // Segments over several subgroups: the workgroup is one pixel's, so
+        // that every invocation reaching its barriers is that pixel's.
+        if kernel.cross_subgroups && line_group.is_some_and(|g| g != segments) {
+            return Err(RenderError::Invalid(format!(
+                "ipsvi.segments = {segments} spans subgroups: the line workgroup must be one pixel's {segments} \
+                 invocations, not {}",
+                line_group.unwrap_or(0)
+            )));
+        }
         let line_group = line_group.unwrap_or_else(|| {
+            if kernel.cross_subgroups {
+                return segments;
+            }
             line_group_size(
                 &ctx.info.device_type,
                 lavapipe_threads(),
                 median_pixels(block_records.iter().map(|r| r.pixel_count)) * segments,
             )
         });
-        if kernel.segmented && !line_group.is_multiple_of(SubgroupSupport::of(ctx).size.max(segments)) {
+        if kernel.segmented
+            && !kernel.cross_subgroups
+            && !line_group.is_multiple_of(SubgroupSupport::of(ctx).size.max(segments))
+        {
             return Err(RenderError::Invalid(format!(
                 "the segmented line kernel needs whole subgroups per workgroup; {line_group} invocations is not a \
                  multiple of this device's subgroup of {}",
@@ -336,10 +351,11 @@ impl<'a> IpsviRenderer<'a> {
             (13, settings.packed_store as u32),
             (14, settings.texel_pass() as u32),
             (15, settings.per_texel_fronts(gpu.scene, width, height) as u32),
-            // The segmented kernel's (the serial one has no constants 16 and 17).
+            // The segmented kernel's (the serial one has no constants 16, 17 and 19).
             (16, segments),
             (17, kernel.rounds),
             (18, study.digests as u32),
+            (19, kernel.cross_subgroups as u32),
         ];
         // Both kernels declare the same bindings (glsl/ipsvi_line_interface.glsl):
         // the sets below serve either.

@@ -91,9 +91,11 @@ pub struct IpsviSettings {
     /// on a CPU device, segmented on a GPU where the modes allow it.
     #[serde(deserialize_with = "from_name")]
     pub line_kernel: LineKernel,
-    /// Segmented kernel: invocations per pixel, a power of two no larger than
-    /// the device's smallest subgroup; 0 (default): the device's choice (32 on
-    /// a GPU, capped by the subgroup; 8 on a CPU device).
+    /// Segmented kernel: invocations per pixel, a power of two up to 128; more
+    /// than the device's smallest subgroup makes a workgroup of one pixel's
+    /// segments, combined across its subgroups through shared memory; 0
+    /// (default): the device's choice (32 on a GPU, 8 on a CPU device, never
+    /// more than the smallest subgroup).
     pub segments: u32,
     /// Segmented kernel with early termination: a ray's samples are marched
     /// in up to this many rounds of `segments` segments; after each round the
