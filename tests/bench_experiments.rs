@@ -30,22 +30,23 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
         // rows and what they record do not depend on it.
         set: vec!["ipsvi.cache_size=16".into()],
         data_sets: vec![(data_dir().join("engine.vti"), &CT_ENGINE)],
-        kernels: vec![LineKernel::Serial, LineKernel::Segmented],
+        // The segmented kernel at the device's count (8) and at 16 (across subgroups).
+        kernels: Table1Plan::kernels_at(&[LineKernel::Serial, LineKernel::Segmented], &[0, 16]),
     };
     let folder = OutFolder::prepare(OutTarget::Named { folder: &out("table1"), force: true }).unwrap();
     let table = table1_bench::run(&ctx, &plan, RunInfo::collect(&ctx), &folder, 4096).unwrap();
-    assert_eq!(table.rows.len(), 2 * 2 * LINE_WIDTHS.len());
+    assert_eq!(table.rows.len(), 2 * 3 * LINE_WIDTHS.len());
     for (i, r) in table.rows.iter().enumerate() {
         assert!(r.get_f64("fps").is_some_and(|f| f.is_finite() && f > 0.0), "{r:?}");
         assert_eq!(r.get("fps_lo"), None, "one round gives no interval");
         assert_eq!(r.get_f64("line_width") == Some(1.0), r.get("fps_over_lw1").is_none(), "{r:?}");
         // Per size: the serial kernel's line widths, then the segmented one's beside them.
-        let segmented = i % 6 >= 3;
-        assert_eq!(r.text("line_kernel"), if segmented { "segmented x8" } else { "serial" }, "{r:?}");
-        assert_eq!(r.get("fps_over_first_kernel").is_some(), segmented, "{r:?}");
+        let kernel = ["serial", "segmented x8", "segmented x16"][i % 9 / 3];
+        assert_eq!(r.text("line_kernel"), kernel, "{r:?}");
+        assert_eq!(r.get("fps_over_first_kernel").is_some(), kernel != "serial", "{r:?}");
         assert!(r.get_f64("longest_chain").is_some_and(|c| c > 0.0), "{r:?}");
     }
-    assert!(table.rows[6..].iter().all(|r| r.get_f64("fps_over_half_size").is_some()), "16 is twice 8");
+    assert!(table.rows[9..].iter().all(|r| r.get_f64("fps_over_half_size").is_some()), "16 is twice 8");
     let inputs = &table.run.as_ref().unwrap().inputs;
     assert!(inputs.iter().any(|(k, v)| k == "seed" && v == "5"), "{inputs:?}");
     assert!(folder.path().join("table1.json").is_file(), "saved as measured");

@@ -239,6 +239,10 @@ pub struct BenchTable1Args {
     /// each row names the kernel as it ran.
     #[arg(long, value_delimiter = ',', default_value = "auto", value_parser = line_kernel)]
     pub kernels: Vec<LineKernel>,
+    /// Segments per pixel the segmented kernel runs at, each beside the
+    /// others (0: the device's choice). Comma-separated.
+    #[arg(long, value_delimiter = ',', default_value = "0")]
+    pub segments: Vec<u32>,
 }
 
 #[derive(Args, Debug)]

@@ -9,6 +9,6 @@ use sweeplab::bench::experiments::table1::{Table1Experiment, Table1Plan};
 pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     let interleaved = session::interleaved(args.repeat, &args.rounds)?;
     let mut plan = Table1Plan::paper(args.sizes.clone(), interleaved, args.set.clone()).only(&args.data_sets)?;
-    plan.kernels = args.kernels.clone();
+    plan.kernels = Table1Plan::kernels_at(&args.kernels, &args.segments);
     experiment_runner::run(&Table1Experiment { plan }, &args.out, &args.gpu)
 }

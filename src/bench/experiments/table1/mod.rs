@@ -40,15 +40,29 @@ pub struct Table1Plan {
     pub set: Vec<String>,
     /// The volume files and the paper columns they stand beside.
     pub data_sets: Vec<(PathBuf, &'static PaperColumn)>,
-    /// The line kernels measured (`auto`: the device's).
-    pub kernels: Vec<LineKernel>,
+    /// The line kernels measured (`auto`: the device's), each with its
+    /// segments per pixel (0: the device's; the segmented kernel's only).
+    pub kernels: Vec<(LineKernel, u32)>,
 }
 
 impl Table1Plan {
     /// The paper's three data sets, from the data folder.
     pub fn paper(sizes: Vec<u32>, interleaved: Interleaved, set: Vec<String>) -> Table1Plan {
         let data_sets = PAPER_PAIRS.iter().map(|(file, paper)| (data_dir().join(file), *paper)).collect();
-        Table1Plan { sizes, interleaved, set, data_sets, kernels: vec![LineKernel::Auto] }
+        Table1Plan { sizes, interleaved, set, data_sets, kernels: vec![(LineKernel::Auto, 0)] }
+    }
+
+    /// `kernels`, the segmented one at each of `segments` (the others once).
+    pub fn kernels_at(kernels: &[LineKernel], segments: &[u32]) -> Vec<(LineKernel, u32)> {
+        let counts = if segments.is_empty() { &[0][..] } else { segments };
+        let mut out = Vec::new();
+        for &k in kernels {
+            match k {
+                LineKernel::Segmented => out.extend(counts.iter().map(|&s| (k, s))),
+                _ => out.push((k, 0)),
+            }
+        }
+        out
     }
 
     /// Only the data sets whose file names are in `files` (of [`PAPER_PAIRS`]);
@@ -69,8 +83,16 @@ impl Table1Plan {
 }
 
 /// A kernel as the rows name it before it is resolved.
-fn kernel_settings(base: &IpsviSettings, line_kernel: LineKernel, line_width: u32) -> IpsviSettings {
-    IpsviSettings { line_width, line_kernel, segments: 0, ..base.clone() }
+fn kernel_settings(base: &IpsviSettings, (line_kernel, segments): (LineKernel, u32), line_width: u32) -> IpsviSettings {
+    IpsviSettings { line_width, line_kernel, segments, ..base.clone() }
+}
+
+/// How the progress line names a kernel before it is resolved.
+fn kernel_name((line_kernel, segments): (LineKernel, u32)) -> String {
+    match segments {
+        0 => line_kernel.name().to_string(),
+        s => format!("{} x{s}", line_kernel.name()),
+    }
 }
 
 /// Frames per second from a frame's GPU ms, its interval turned over with it.
@@ -125,7 +147,7 @@ pub fn run(
                 .flat_map(|&k| LINE_WIDTHS.iter().map(move |&lw| (k, lw)))
                 .map(|(k, lw)| IpsviRenderer::new(&gpu, &kernel_settings(&base, k, lw), size, size))
                 .collect::<Result<Vec<_>, _>>()?;
-            let kernels: Vec<&str> = plan.kernels.iter().map(|k| k.name()).collect();
+            let kernels: Vec<String> = plan.kernels.iter().map(|&k| kernel_name(k)).collect();
             let label = format!(
                 "{file} {size}x{size} lw={} kernels={}",
                 LINE_WIDTHS.map(|w| w.to_string()).join(","),
@@ -248,6 +270,15 @@ mod tests {
     fn a_frame_rate_interval_is_the_frame_time_interval_turned_over() {
         let fps = fps_of(&Estimate { value: 20.0, lo: 16.0, hi: 25.0, n: 8 });
         assert_eq!((fps.value, fps.lo, fps.hi, fps.n), (50.0, 40.0, 62.5, 8));
+    }
+
+    #[test]
+    fn the_segmented_kernel_runs_at_each_count_and_the_others_once() {
+        let k = Table1Plan::kernels_at(&[LineKernel::Serial, LineKernel::Segmented], &[32, 128]);
+        assert_eq!(k, [(LineKernel::Serial, 0), (LineKernel::Segmented, 32), (LineKernel::Segmented, 128)]);
+        assert_eq!(Table1Plan::kernels_at(&[LineKernel::Auto], &[32]), [(LineKernel::Auto, 0)]);
+        assert_eq!(kernel_name((LineKernel::Segmented, 64)), "segmented x64");
+        assert_eq!(kernel_name((LineKernel::Segmented, 0)), "segmented");
     }
 
     #[test]
