@@ -34,6 +34,7 @@ layout(local_size_x_id = 8) in;
 
 // One invocation per pixel.
 const uint SEGMENTS = 1u;
+const uint TEXEL_LANES = 1u;
 uint line_local_index() { return gl_LocalInvocationID.x; }
 bool line_kernel_ready() { return true; }
 // One atomic per invocation that ran a chain, into one of the block's slots.

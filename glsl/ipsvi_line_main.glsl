@@ -1,11 +1,12 @@
 // IPSVI line kernels: which invocation of a block's dispatch does what, and the
 // shape report. A block's invocations (ids within its share of the dispatch):
 //   [0, P * SEGMENTS)        its P pixels, SEGMENTS invocations each (shade_pixel)
-//   [.., + T)                the T texels of its cache region (carry or advance;
-//                            texel pass: the stores its claims name)
+//   [.., + T * TEXEL_LANES)  the T texels of its cache region, TEXEL_LANES each
+//                            (carry or advance; texel pass: the stores its claims
+//                            name), their marches toward the light split over them
 //   [aligned up to SEGMENTS, + C * SEGMENTS)
 //                            the C pixels of the next block, claimed for (claim_pixel)
-// The including kernel defines SEGMENTS, `segment` (this invocation's index
+// The including kernel defines SEGMENTS, TEXEL_LANES, `segment` (this invocation's index
 // among its pixel's), line_local_index(), line_kernel_ready(), shade_pixel,
 // claim_pixel and report_chain (this invocation's chain into Shape), then
 // includes this file for main(). No workgroup barrier: on lavapipe a shader
@@ -28,8 +29,10 @@ void line_invocation(uint id) {
     }
     if (STEP < STEP_CARRY) return;
     chain_role = CHAIN_TEXELS;
-    if (id < pixel_invocations + texels) {
-        uint texel = id - pixel_invocations;
+    if (id < pixel_invocations + texels * TEXEL_LANES) {
+        uint texel = (id - pixel_invocations) / TEXEL_LANES;
+        march_lanes = TEXEL_LANES;
+        march_lane = (id - pixel_invocations) % TEXEL_LANES;
         if (VIEW_SAMPLES) {
             carry_texel(texel);
             if (TEXEL_PASS && STEP >= STEP_STORES) write_claimed_texel(region_texel(texel));
@@ -39,7 +42,7 @@ void line_invocation(uint id) {
         return;
     }
     chain_role = CHAIN_CLAIMS;
-    uint first = claims_first(pixel_invocations + texels);
+    uint first = claims_first(pixel_invocations + texels * TEXEL_LANES);
     if (CLAIMS && STEP >= STEP_CLAIM_PASS && id >= first) {
         uint claim = (id - first) / SEGMENTS;
         if (claim < block.claim_count) claim_pixel(blocks[block_index + 1u], claim);

@@ -39,6 +39,10 @@ layout(constant_id = 17) const uint SEGMENT_ROUNDS = 4u;
 // shader has no barrier (on lavapipe one makes the whole shader run as
 // coroutines: see glsl/ipsvi_line_main.glsl).
 layout(constant_id = 19) const bool CROSS_SUBGROUPS = false;
+// Invocations per cache texel (a power of two, no more than SEGMENTS and the
+// smallest subgroup): a texel's marches toward the light split over them.
+layout(constant_id = 20) const uint TEXEL_LANES = 1u;
+#define SPLIT_TEXEL_MARCHES
 
 #include "ipsvi_line_interface.glsl"
 #include "ipsvi_cache_io.glsl"

@@ -4,11 +4,45 @@
 #ifndef IPSVI_PIECEWISE_GLSL
 #define IPSVI_PIECEWISE_GLSL
 
+// A texel invocation's share of its texel's marches toward the light: the
+// segmented kernel gives a texel TEXEL_LANES consecutive lanes of a subgroup
+// (march_lanes, while they march together), each marching a part of the
+// steps; one lane marches them all otherwise. Lane 0 stores the texel.
+uint march_lanes = 1u;
+uint march_lane = 0u;
+
+#ifdef SPLIT_TEXEL_MARCHES
+// Parts (E, optical depth) of one march combined in order, the part nearer
+// its start in front (as light_path.glsl's parts do): every lane ends with
+// the whole march's.
+vec4 march_parts_combined(vec4 part) {
+    for (uint d = 1u; d < march_lanes; d <<= 1) {
+        vec4 other = subgroupShuffleXor(part, d);
+        vec4 a = (march_lane & d) == 0u ? part : other;
+        vec4 b = (march_lane & d) == 0u ? other : part;
+        part = vec4(a.rgb + exp(-a.a) * b.rgb, a.a + b.a);
+    }
+    return part;
+}
+#endif
+
 // light_segment (glsl/ipsvi_common.glsl), its steps counted: the same step
-// count as integrate_light_path takes.
+// count as integrate_light_path takes (this lane's part of them where the
+// march is split; a texel's lanes arrive together, its state deciding for all).
 vec4 march_to_light(vec3 x, vec3 dir, float len, uint max_steps) {
-    if (len > 0.0)
-        chain += uint(clamp(ceil(len / (frame.shadow_step * frame.voxel_length)), 1.0, float(max_steps)));
+#ifdef SPLIT_TEXEL_MARCHES
+    if (march_lanes > 1u) {
+        if (len <= 0.0) return vec4(0.0);
+        int m = light_path_steps(len, float(max_steps));
+        int per = (m + int(march_lanes) - 1) / int(march_lanes);
+        int first = min(int(march_lane) * per, m);
+        int last = min(first + per, m);
+        chain += uint(last - first);
+        vec4 path = march_parts_combined(integrate_light_path_part(x, dir, len, m, first, last, EMISSIVE));
+        return vec4(path.rgb * (frame.emission / sweep.light_scale), path.a);
+    }
+#endif
+    if (len > 0.0) chain += uint(light_path_steps(len, float(max_steps)));
     return light_segment(x, dir, len, max_steps, EMISSIVE);
 }
 

@@ -107,7 +107,7 @@ void store_sample(ivec2 k, vec3 p, float depth, vec4 l, uint pixel, bool empty) 
     vec3 back = to_light(p);
     if (STEP >= STEP_OWN_SEGMENT) l = through_segment(l, march_to_light(p - back * s, back, s, 4u));
     uint code = io.x <= io.y ? depth_code(depth + s, io) : FRONT_ENTRY;
-    sample_store(k, l, (block.stamp << 16) | code);
+    if (march_lane == 0u) sample_store(k, l, (block.stamp << 16) | code);
 }
 
 // write_pass = "texel": texel k stores here if one of this block's runs ends in
@@ -128,6 +128,7 @@ ivec2 region_texel(uint index) { return ivec2(block.region.xy + uvec2(index % bl
 
 void carry_texel(uint index) {
     ivec2 k = region_texel(index);
+    if (march_lane != 0u) return;
     uint code;
     vec4 v = state_load(k, code);
     cache_store(k, v, code);
@@ -169,7 +170,7 @@ void advance_texel(uint index) {
             code = new_front >= io.y ? FRONT_EXIT : block.plane;
         }
     }
-    cache_store(ivec2(k), cached, code);
+    if (march_lane == 0u) cache_store(ivec2(k), cached, code);
 }
 
 #endif

@@ -100,7 +100,8 @@ pub(crate) fn matches_serial_in(splits: &[(u32, u32)], modes: &[(&str, IpsviSett
         let mut profiler = Profiler::new(&ctx, 64).unwrap();
         let truth = render(&gpu, Technique::Reference, SIZE, SIZE, &mut profiler).unwrap().image;
         for (mode, base) in modes {
-            let serial = frame(&ctx, &gpu, &IpsviSettings { line_kernel: LineKernel::Serial, ..base.clone() });
+            let serial_settings = IpsviSettings { line_kernel: LineKernel::Serial, texel_segments: 0, ..base.clone() };
+            let serial = frame(&ctx, &gpu, &serial_settings);
             assert_eq!(shape(&serial).kernel, "serial");
             let peak = serial.image.max_value() as f64;
             let serial_rmse = compare(&serial.image, &truth).unwrap().rmse;
@@ -108,7 +109,13 @@ pub(crate) fn matches_serial_in(splits: &[(u32, u32)], modes: &[(&str, IpsviSett
                 let s = IpsviSettings { line_kernel: LineKernel::Segmented, segments, segment_rounds, ..base.clone() };
                 let seg = frame(&ctx, &gpu, &s);
                 let case = format!("{what}, {mode}, {segments} segments, {segment_rounds} rounds");
-                assert_eq!(shape(&seg).kernel, format!("segmented x{segments}"), "{case}");
+                let lanes = sweeplab::techniques::ipsvi::line_kernel::auto_texel_lanes(segments);
+                let texels = if base.texel_segments != 0 { base.texel_segments } else { lanes };
+                let label = match texels {
+                    1 => format!("segmented x{segments}"),
+                    t => format!("segmented x{segments}, texels x{t}"),
+                };
+                assert_eq!(shape(&seg).kernel, label, "{case}");
                 assert_eq!(shape(&seg).claim_digest, shape(&serial).claim_digest, "{case}: claims differ");
                 assert_eq!(shape(&seg).stop_digest, shape(&serial).stop_digest, "{case}: stops differ");
                 let d = compare(&seg.image, &serial.image).unwrap();
@@ -197,8 +204,9 @@ fn stops_where_the_serial_kernel_stops(splits: &[(u32, u32)]) {
 
 /// More segments than lavapipe's 8-lane subgroup: a pixel's segments span 2
 /// to 16 subgroups of its workgroup, their parts combined through shared
-/// memory (32 is a GPU's default count, in one subgroup there). Claims, stops
-/// and image are the serial kernel's as in one subgroup.
+/// memory (32 is a GPU's default count, in one subgroup there), and a
+/// texel's marches split over 2 to 8 lanes (a sixteenth of the segments).
+/// Claims, stops and image are the serial kernel's as in one subgroup.
 #[test]
 fn segmented_matches_serial_with_segments_across_subgroups() {
     let ctx = validated_context();
@@ -210,6 +218,21 @@ fn segmented_matches_serial_with_segments_across_subgroups() {
     let some = [scenes[0].clone(), scenes[7].clone()];
     matches_serial_in(&[(32, 4)], &[("light rays", rays)], &some);
     stops_where_the_serial_kernel_stops(&[(32, 4), (64, 2)]);
+}
+
+/// A texel's marches toward the light split over its lanes (texel-ray
+/// writes, and light rays' advances), within lavapipe's subgroup: the same
+/// claims and stops as the serial kernel, the image up to the order of
+/// compositing, on every light placement.
+#[test]
+fn split_texel_marches_match_the_serial_kernel() {
+    let texels = |s: IpsviSettings| IpsviSettings { texel_segments: 4, ..s };
+    let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..settings(LineKernel::Auto, 0, 4) };
+    let modes = [
+        ("every-sample, texels x4", texels(settings(LineKernel::Auto, 0, 4))),
+        ("light rays, texels x4", texels(rays)),
+    ];
+    matches_serial_in(&[(8, 4), (4, 1)], &modes, &light_placements());
 }
 
 /// One segment per pixel in one round is the serial march in the segmented

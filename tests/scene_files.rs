@@ -518,7 +518,7 @@ fn technique_tables_are_read_into_typed_settings() {
          albedo = 0.5\ncone_angle = 30\nzone_blend = 4.5\nlight_step = 0.125\nert_scale = 2\nsync = \"events\"\n\
          cache_update = \"light-rays\"\ncache_write = \"racy\"\nwrite_value = \"sample\"\nmerge_sweeps = true\n\
          write_rule = \"every-sample\"\nempty_runs_move_depth = true\npacked_store = true\nfit_to_visible = true\nwrite_pass = \"texel\"\n\
-         line_kernel = \"segmented\"\nsegments = 4\nsegment_rounds = 2\n\
+         line_kernel = \"segmented\"\nsegments = 4\ntexel_segments = 2\nsegment_rounds = 2\n\
          [lightvolume]\nscale = 4\ncoherent = false\ncompensated = false\ncost_estimate = \"selective\"\n\
          max_passes_per_frame = 3\npass_lights = 8\nrebase_tolerance = 1e-3\nsubstep = 0.5\nshared_medium = false\n\
          chromatic = false\nracy = true\n[half_angle]\nslice_step = 0.25\nlight_buffer_size = 64\n[ao]\nradius = 4\nclusters = 64\n",
@@ -547,6 +547,7 @@ fn technique_tables_are_read_into_typed_settings() {
         merge_sweeps: true,
         line_kernel: sweeplab::techniques::ipsvi::LineKernel::Segmented,
         segments: 4,
+        texel_segments: 2,
         segment_rounds: 2,
     };
     let lightvolume = LightVolumeSettings {

@@ -1,29 +1,34 @@
 #!/bin/bash
 # The line shape (invocations per line dispatch, longest serial chain) of the
-# CT engine's IPSVI frame, scene defaults, for the serial kernel and the
-# segmented one at 8 segments (lavapipe's own 8-lane subgroup) and at 16 to
-# 128 (a pixel's segments across 2 to 16 subgroups of its workgroup), in the
-# default 4 rounds and in 1 round, at 256 and 512, for each build given as
-# name=path:
+# CT engine's IPSVI frame for the serial kernel and the segmented one at 8
+# segments (lavapipe's own 8-lane subgroup) and at 16 to 128 (a pixel's
+# segments across 2 to 16 subgroups of its workgroup), in the default 4
+# rounds and in 1 round, at 256 and 512 (SIZES), for each build given as name=path:
 #   docs/bench/lavapipe-engine/ipsvi_segment_chains.sh now=target/release/sweeplab
+# The scene defaults of `render --volume data/engine.vti` (one light), or with
+# SCENE a scene file, and SET extra settings, e.g. the paper's Table 1 scene:
+#   SCENE=tests/scenes/engine.toml SET=ipsvi.cache_size=256 \
+#     CONFIGS="serial-0-4 segmented-32-4 segmented-64-4 segmented-128-4" ... now=...
 # Output: one "build size kernel: line shape ..." line per frame
-# (ipsvi_segment_chains.txt). The chain counts samples, not time: it is the
+# (ipsvi_segment_chains*.txt). The chain counts samples, not time: it is the
 # same on any device that runs the same settings.
 set -eu
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
-vol=${VOLUME:-data/engine.vti}
-echo "# $(date -u +%FT%TZ), volume $vol, builds: $*"
+if [ -n "${SCENE:-}" ]; then input=(--scene "$SCENE"); else input=(--volume "${VOLUME:-data/engine.vti}"); fi
+extra=()
+for s in ${SET:-}; do extra+=(--set "$s"); done
+configs=${CONFIGS:-serial-0-4 segmented-8-4 segmented-16-4 segmented-32-4 segmented-64-4 segmented-128-4 segmented-32-1 segmented-128-1}
+echo "# $(date -u +%FT%TZ), ${input[*]} ${extra[*]}, builds: $*"
 for a in "$@"; do
   name=${a%%=*}; path=${a#*=}
-  for size in 256 512; do
-    for cfg in "serial 0 4" "segmented 8 4" "segmented 16 4" "segmented 32 4" "segmented 64 4" "segmented 128 4" \
-               "segmented 32 1" "segmented 128 1"; do
-      set -- $cfg
-      kernel=(--set "ipsvi.line_kernel=\"$1\"")
-      [ "$1" = serial ] || kernel+=(--set "ipsvi.segments=$2" --set "ipsvi.segment_rounds=$3")
-      shape=$("$path" render --volume "$vol" --size ${size}x${size} --technique ipsvi "${kernel[@]}" \
+  for size in ${SIZES:-256 512}; do
+    for cfg in $configs; do
+      IFS=- read -r kernel segments rounds <<<"$cfg"
+      k=(--set "ipsvi.line_kernel=\"$kernel\"")
+      [ "$kernel" = serial ] || k+=(--set "ipsvi.segments=$segments" --set "ipsvi.segment_rounds=$rounds")
+      shape=$("$path" render "${input[@]}" --size ${size}x${size} --technique ipsvi "${extra[@]}" "${k[@]}" \
         --out /tmp/segment_chains.png 2>&1 | grep -E '^line shape|^error')
-      echo "$name $size $1 x$2 rounds $3: $shape"
+      echo "$name $size $kernel x$segments rounds $rounds: $shape"
     done
   done
 done

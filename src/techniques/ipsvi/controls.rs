@@ -119,9 +119,15 @@ impl DeclaredSettings for IpsviSettings {
             ),
             control(
                 "segments",
-                "segmented: invocations per pixel (beyond a subgroup: one workgroup per pixel); 0: the device's choice",
+                "segmented: invocations per pixel (past a subgroup: a workgroup each); 0: the device's choice",
                 Numbers(&[0, 1, 2, 4, 8, 16, 32, 64, 128]),
                 |s| Number(s.segments as f64),
+            ),
+            control(
+                "texel_segments",
+                "segmented: invocations per cache texel, its marches split over them; 0: segments / 16",
+                Numbers(&[0, 1, 2, 4, 8]),
+                |s| Number(s.texel_segments as f64),
             ),
             control(
                 "segment_rounds",

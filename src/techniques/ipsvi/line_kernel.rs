@@ -7,6 +7,7 @@
 //! line block; docs/ipsvi.md "The segmented line kernel" compares them.
 
 use super::cache_update::{parse_name, CacheUpdate, WritePass};
+use super::merged_steps::Lanes;
 use super::settings::IpsviSettings;
 use crate::vk::subgroups::SubgroupSupport;
 use std::str::FromStr;
@@ -70,19 +71,39 @@ pub struct KernelChoice {
     /// invocations, their parts combined through shared memory between
     /// workgroup barriers.
     pub cross_subgroups: bool,
+    /// Invocations per cache texel, its marches toward the light split over
+    /// them (1: one invocation marches them whole).
+    pub texel_lanes: u32,
 }
 
 impl KernelChoice {
-    pub const SERIAL: KernelChoice = KernelChoice { segmented: false, segments: 1, rounds: 1, cross_subgroups: false };
+    pub const SERIAL: KernelChoice =
+        KernelChoice { segmented: false, segments: 1, rounds: 1, cross_subgroups: false, texel_lanes: 1 };
 
-    /// How `render` and bench rows name it: `serial`, `segmented x32`.
+    /// How `render` and bench rows name it: `serial`, `segmented x32`,
+    /// `segmented x32, texels x2`.
     pub fn label(&self) -> String {
-        if self.segmented {
-            format!("segmented x{}", self.segments)
-        } else {
-            "serial".to_string()
+        match (self.segmented, self.texel_lanes) {
+            (false, _) => "serial".to_string(),
+            (true, 1) => format!("segmented x{}", self.segments),
+            (true, t) => format!("segmented x{}, texels x{t}", self.segments),
         }
     }
+
+    /// Invocations per pixel and per texel of its line dispatches.
+    pub fn lanes(&self) -> Lanes {
+        Lanes { segments: self.segments, texels: self.texel_lanes }
+    }
+}
+
+/// `texel_segments = 0`: a texel's lanes for `segments` per pixel. A texel's
+/// march carries the light from where the texel was last written, one plane
+/// spacing or more along the light: on the paper's Table 1 scene its chain
+/// was 1/16 to 1/28 of a pixel's in the serial kernel
+/// (docs/ipsvi.md, "The line shape"), so a sixteenth of the segments keeps
+/// it near a segment's; none below 32 segments, at most 8.
+pub fn auto_texel_lanes(segments: u32) -> u32 {
+    (segments / 16).clamp(1, 8)
 }
 
 /// Why the segmented kernel cannot run `s`'s modes (None: it can). It runs
@@ -109,11 +130,18 @@ pub fn segmented_refusal(s: &IpsviSettings) -> Option<String> {
 /// The kernel for `s` on a device of type `device_type` (DeviceInfo) with
 /// `subgroups`: an error naming the setting where it asks for what cannot run.
 pub fn choose(s: &IpsviSettings, device_type: &str, subgroups: &SubgroupSupport) -> Result<KernelChoice, String> {
-    let segmented = |segments: u32| KernelChoice {
-        segmented: true,
-        segments,
-        rounds: s.segment_rounds,
-        cross_subgroups: segments > subgroups.min_size,
+    let segmented = |segments: u32| {
+        let texel_lanes = match s.texel_segments {
+            0 => auto_texel_lanes(segments).min(subgroups.min_size.max(1)),
+            t => t,
+        };
+        KernelChoice {
+            segmented: true,
+            segments,
+            rounds: s.segment_rounds,
+            cross_subgroups: segments > subgroups.min_size,
+            texel_lanes,
+        }
     };
     match s.line_kernel {
         LineKernel::Serial => Ok(KernelChoice::SERIAL),
@@ -132,6 +160,15 @@ pub fn choose(s: &IpsviSettings, device_type: &str, subgroups: &SubgroupSupport)
                 return Err(format!(
                     "ipsvi.segments = {segments}: a pixel's segments may span at most {MAX_CLUSTER_SUBGROUPS} \
                      subgroups, and this device's subgroups may be as small as {}",
+                    subgroups.min_size
+                ));
+            }
+            let texels = s.texel_segments;
+            if texels > segments || texels > subgroups.min_size {
+                return Err(format!(
+                    "ipsvi.texel_segments = {texels}: a texel's lanes lie in one subgroup among a pixel's \
+                     segments, so no more than ipsvi.segments ({segments}) nor this device's smallest \
+                     subgroup ({})",
                     subgroups.min_size
                 ));
             }
@@ -199,7 +236,8 @@ mod tests {
         let s = IpsviSettings::default();
         assert_eq!(choose(&s, "CPU", &device(8)), Ok(KernelChoice::SERIAL));
         let gpu = choose(&s, "discrete GPU", &device(32)).unwrap();
-        assert_eq!((gpu.segments, gpu.rounds, gpu.label()), (32, DEFAULT_ROUNDS, "segmented x32".to_string()));
+        let label = "segmented x32, texels x2".to_string();
+        assert_eq!((gpu.segments, gpu.rounds, gpu.label()), (32, DEFAULT_ROUNDS, label));
         assert_eq!(choose(&s, "integrated GPU", &device(8)).unwrap().segments, 8, "capped by the subgroup");
         let no_shuffles = SubgroupSupport { shuffle_relative: false, ..device(32) };
         assert_eq!(choose(&s, "discrete GPU", &no_shuffles), Ok(KernelChoice::SERIAL));
@@ -234,6 +272,15 @@ mod tests {
         // More segments than a subgroup: the workgroup is the pixel's, up to 32 subgroups.
         let wide = choose(&IpsviSettings { segments: 16, ..asked.clone() }, "CPU", &device(8)).unwrap();
         assert!(wide.cross_subgroups && !choose(&asked, "CPU", &device(8)).unwrap().cross_subgroups);
+        // A texel's lanes: a sixteenth of the segments by default, or as asked within them.
+        let lanes = |segments, texel_segments| {
+            choose(&IpsviSettings { segments, texel_segments, ..asked.clone() }, "CPU", &device(8))
+                .map(|k| k.texel_lanes)
+        };
+        assert_eq!((lanes(8, 0), lanes(32, 0), lanes(128, 0), lanes(8, 4)), (Ok(1), Ok(2), Ok(8), Ok(4)));
+        let e = lanes(4, 8).unwrap_err();
+        assert!(e.contains("ipsvi.texel_segments = 8") && e.contains("(4)"), "{e}");
+        assert!(lanes(32, 16).unwrap_err().contains("smallest subgroup (8)"));
         let e = choose(&IpsviSettings { segments: 128, ..asked.clone() }, "CPU", &device(2)).unwrap_err();
         assert!(e.contains("ipsvi.segments = 128") && e.contains("as small as 2"), "{e}");
         let e = choose(&asked, "CPU", &SubgroupSupport { shuffle: false, ..device(8) }).unwrap_err();

@@ -351,11 +351,12 @@ impl<'a> IpsviRenderer<'a> {
             (13, settings.packed_store as u32),
             (14, settings.texel_pass() as u32),
             (15, settings.per_texel_fronts(gpu.scene, width, height) as u32),
-            // The segmented kernel's (the serial one has no constants 16, 17 and 19).
+            // The segmented kernel's (the serial one has no constants 16, 17, 19 and 20).
             (16, segments),
             (17, kernel.rounds),
             (18, study.digests as u32),
             (19, kernel.cross_subgroups as u32),
+            (20, kernel.texel_lanes),
         ];
         // Both kernels declare the same bindings (glsl/ipsvi_line_interface.glsl):
         // the sets below serve either.
@@ -368,12 +369,12 @@ impl<'a> IpsviRenderer<'a> {
         // One pipeline: set 0 bound once per sweep, a block's parity picks its set 1.
         let mut line = ComputePipeline::new(ctx, &line_desc)?;
         let (dispatches, sweep_dispatches, step_table) = if slots > 1 {
-            let merged = merged_steps::merge(&sweep_records, &block_records, line_group, segments);
+            let merged = merged_steps::merge(&sweep_records, &block_records, line_group, kernel.lanes());
             let all = vec![(0, merged.dispatches.len())];
             (merged.dispatches, all, merged.table)
         } else {
             // Read only by the merged shader; a storage buffer is never empty.
-            (merged_steps::per_block(&block_records, line_group, segments), sweep_records, vec![0; 4])
+            (merged_steps::per_block(&block_records, line_group, kernel.lanes()), sweep_records, vec![0; 4])
         };
         let steps = Buffer::with_data(ctx, "ipsvi steps", &step_table, vk::BufferUsageFlags::STORAGE_BUFFER)?;
         let shape = ShapeCounters::new(ctx, block_records.len())?;

@@ -97,6 +97,11 @@ pub struct IpsviSettings {
     /// (default): the device's choice (32 on a GPU, 8 on a CPU device, never
     /// more than the smallest subgroup).
     pub segments: u32,
+    /// Segmented kernel: invocations per cache texel, its marches toward the
+    /// light (from where it was last written) split over them; a power of two
+    /// up to `segments` and the smallest subgroup; 0 (default): a sixteenth of
+    /// the segments, 1 to 8.
+    pub texel_segments: u32,
     /// Segmented kernel with early termination: a ray's samples are marched
     /// in up to this many rounds of `segments` segments; after each round the
     /// scan of its optical depth tells where the ray stops, and the next round
@@ -162,6 +167,7 @@ impl Default for IpsviSettings {
             fit_to_visible: false,
             line_kernel: LineKernel::Auto,
             segments: 0,
+            texel_segments: 0,
             segment_rounds: DEFAULT_ROUNDS,
             sync: SyncStrategy::BarrierGlobal,
             merge_sweeps: false,
@@ -260,12 +266,13 @@ impl SettingsTable for IpsviSettings {
     fn validate(&self) -> Result<(), SettingsError> {
         let t = Self::TABLE;
         check_declared_ranges(self)?;
-        if self.segments != 0 && self.line_kernel != LineKernel::Segmented {
-            return Err(SettingsError::Technique(format!(
-                "{t}.segments = {} needs {t}.line_kernel = \"segmented\" (it is \"{}\")",
-                self.segments,
-                self.line_kernel.name()
-            )));
+        for (name, value) in [("segments", self.segments), ("texel_segments", self.texel_segments)] {
+            if value != 0 && self.line_kernel != LineKernel::Segmented {
+                return Err(SettingsError::Technique(format!(
+                    "{t}.{name} = {value} needs {t}.line_kernel = \"segmented\" (it is \"{}\")",
+                    self.line_kernel.name()
+                )));
+            }
         }
         if self.line_kernel == LineKernel::Segmented {
             if let Some(why) = segmented_refusal(self) {
