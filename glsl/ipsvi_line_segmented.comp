@@ -29,7 +29,7 @@
 // src/techniques/ipsvi/line_kernel.rs refuses the sample write pass.
 
 layout(local_size_x_id = 8) in;
-// Invocations per pixel: a power of two no larger than the subgroup.
+// Invocations per pixel: a power of two up to 128 (32 subgroups at most).
 layout(constant_id = 16) const uint SEGMENTS = 4u;
 // Rounds a ray's samples are split into when it may stop early (else one).
 layout(constant_id = 17) const uint SEGMENT_ROUNDS = 4u;

@@ -62,7 +62,10 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
             "GPU_CHECK_MODES_ARGS",
             "--one-at-a-time --line-widths 1 --cache-sizes 16 --half-angle-slices --repeat 1 --kernels serial",
         )
-        .env("GPU_CHECK_TABLE1_ARGS", "--data-sets engine.vti --sizes 8 --kernels serial,segmented --repeat 1")
+        .env(
+            "GPU_CHECK_TABLE1_ARGS",
+            "--data-sets engine.vti --sizes 8 --kernels serial,segmented --segments 0,16 --repeat 1",
+        )
         .env(
             "GPU_CHECK_LIGHTS_ARGS",
             "--size 16x16 --scales 4 --light-counts 2 --scaling-counts 1 --error-scales 4 --incremental-passes 1 \
@@ -153,9 +156,11 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     assert_eq!(compared("reference")["rmse"], 0.0, "{}", compared("reference"));
     let markdown = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(markdown.contains("| compare-ao | 0 |"), "{markdown}");
-    // Table 1 beside the paper's figures, both kernels.
+    // Table 1 beside the paper's figures, both kernels, the segmented one at each count asked.
     assert!(
-        markdown.contains("engine.vti 8x8 lw=4 segmented x8:") && markdown.contains("paper, CT Engine"),
+        markdown.contains("engine.vti 8x8 lw=4 segmented x8:")
+            && markdown.contains("engine.vti 8x8 lw=4 segmented x16:")
+            && markdown.contains("paper, CT Engine"),
         "{markdown}"
     );
 
