@@ -88,11 +88,14 @@ vec2 ray_in_box(Ray r) {
     return t;
 }
 
+// A light path's integral (light_path.glsl) as a cache holds it: (emission
+// arriving at x / light scale: rgb, optical depth).
+vec4 cached_light_path(vec4 path) { return vec4(path.rgb * (frame.emission / sweep.light_scale), path.a); }
+
 // Integrates `len` world units from x toward the light with at most `max_steps`
 // midpoint samples: (emission arriving at x / light scale: rgb, optical depth).
 vec4 light_segment(vec3 x, vec3 dir, float len, uint max_steps, bool gather_emission) {
-    vec4 path = integrate_light_path(x, dir, len, float(max_steps), gather_emission);
-    return vec4(path.rgb * (frame.emission / sweep.light_scale), path.a);
+    return cached_light_path(integrate_light_path(x, dir, len, float(max_steps), gather_emission));
 }
 
 // `light` (emission / scale: rgb, transmittance: a) after it crossed a

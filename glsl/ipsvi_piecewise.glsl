@@ -38,8 +38,7 @@ vec4 march_to_light(vec3 x, vec3 dir, float len, uint max_steps) {
         int first = min(int(march_lane) * per, m);
         int last = min(first + per, m);
         chain += uint(last - first);
-        vec4 path = march_parts_combined(integrate_light_path_part(x, dir, len, m, first, last, EMISSIVE));
-        return vec4(path.rgb * (frame.emission / sweep.light_scale), path.a);
+        return cached_light_path(march_parts_combined(integrate_light_path_part(x, dir, len, m, first, last, EMISSIVE)));
     }
 #endif
     if (len > 0.0) chain += uint(light_path_steps(len, float(max_steps)));
