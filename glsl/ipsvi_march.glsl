@@ -28,19 +28,9 @@ bool pixel_in_block(BlockParams b, uint index, out uvec2 px, out float w) {
     return w > 0.0;
 }
 
+#include "ipsvi_view_stop.glsl"
+
 // Where the exit-point sweep lets a ray stop (0: wherever it is opaque).
-float stop_distance(uvec2 px) {
-    return TERMINATION == TERMINATION_EXIT_POINTS ? imageLoad(lmax, ivec2(vec2(px) / sweep.ert_scale)).r : 0.0;
-}
-
-bool may_stop() { return TERMINATION != TERMINATION_OFF; }
-
-#include "ipsvi_optical_depth.glsl"
-
-// Whether the ray stops after sample i, with `tau` the optical depth up to
-// and including it: opaque, and (exit points) past where the sweep needs it.
-bool ray_stops(uint tau, ViewMarch v, int i, float keep_going) {
-    return may_stop() && tau >= TAU_STOP && v.t_enter + (float(i) + 1.0) * v.h >= keep_going;
-}
+float stop_distance(uvec2 px) { return exit_point_distance(px, sweep.ert_scale); }
 
 #endif

@@ -36,7 +36,7 @@ struct ProbeResult {
     uint tau_before;      // optical depth of the segments before
     uint tau_total;
     uint next_texel;      // cluster_next_texel
-    uint any_opaque;      // cluster_any(tau >= TAU_STOP) over the segments
+    uint unused;
     uint before_flags;    // runs of the segments before
     uint before_lead_k;
     float before_lead_d;
@@ -71,7 +71,7 @@ void main() {
     r.tau_before = tau_before;
     r.tau_total = tau_total;
     r.next_texel = cluster_next_texel(mine);
-    r.any_opaque = cluster_any(s.tau >= TAU_STOP) ? 1u : 0u;
+    r.unused = 0u;
     r.before_flags = before.flags;
     r.before_lead_k = before.lead_k;
     r.before_lead_d = before.lead_d;

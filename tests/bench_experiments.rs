@@ -41,7 +41,7 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
         assert_eq!(r.get("fps_lo"), None, "one round gives no interval");
         assert_eq!(r.get_f64("line_width") == Some(1.0), r.get("fps_over_lw1").is_none(), "{r:?}");
         // Per size: the serial kernel's line widths, then the segmented one's beside them.
-        let kernel = ["serial", "segmented x8", "segmented x16"][i % 9 / 3];
+        let kernel = ["serial", "segmented x8", "segmented x16, texels x2"][i % 9 / 3];
         assert_eq!(r.text("line_kernel"), kernel, "{r:?}");
         assert_eq!(r.get("fps_over_first_kernel").is_some(), kernel != "serial", "{r:?}");
         assert!(r.get_f64("longest_chain").is_some_and(|c| c > 0.0), "{r:?}");

@@ -159,7 +159,7 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     // Table 1 beside the paper's figures, both kernels, the segmented one at each count asked.
     assert!(
         markdown.contains("engine.vti 8x8 lw=4 segmented x8:")
-            && markdown.contains("engine.vti 8x8 lw=4 segmented x16:")
+            && markdown.contains("engine.vti 8x8 lw=4 segmented x16, texels x2:")
             && markdown.contains("paper, CT Engine"),
         "{markdown}"
     );

@@ -9,7 +9,7 @@ use common::cli::{sweeplab, temp_dir};
 use common::*;
 use glam::Vec3;
 use sweeplab::metrics::compare;
-use sweeplab::render::{ChainsByRole, FrameResult, GpuScene, LineShape, VolumeTexels};
+use sweeplab::render::{ChainsByRole, FrameResult, GpuScene, LineShape, StopsPassShape, VolumeTexels};
 use sweeplab::scene::synthetic::slab_under_sphere;
 use sweeplab::scene::{Camera, Light, Projection, Scene};
 use sweeplab::techniques::ipsvi::renderer::IpsviRenderer;
@@ -59,6 +59,7 @@ const DIGESTS: IpsviStudy = IpsviStudy {
     breakdown_step: BreakdownStep::Full,
     keep_redundant_claims: false,
     digests: true,
+    omit_view_stops_barrier: false,
 };
 
 fn frame(ctx: &Context, gpu: &GpuScene, s: &IpsviSettings) -> FrameResult {
@@ -84,8 +85,9 @@ const COMPOSITING_ORDER_TOLERANCE: f64 = 1e-5;
 
 /// (segments, rounds) the tests split rays into: lavapipe's whole subgroup
 /// in the default rounds, one round, and more rounds than a ray has segments
-/// of samples (runs then cross rounds as well as segments). Each split of
-/// each mode is a pipeline lavapipe compiles, most of these tests' time.
+/// of samples (shading then composites one sample per segment and round).
+/// Each split of each mode is a pipeline lavapipe compiles, most of these
+/// tests' time.
 const SPLITS: [(u32, u32); 3] = [(8, 4), (4, 1), (2, 64)];
 
 /// Against the serial kernel on every light placement, under both write rules
@@ -196,7 +198,7 @@ fn stops_where_the_serial_kernel_stops(splits: &[(u32, u32)]) {
                     format!("{early_termination:?}, {write_rule:?}, {segments} segments, {segment_rounds} rounds");
                 assert_eq!(shape(&seg).stop_digest, shape(&serial).stop_digest, "{case}: stops differ");
                 assert_eq!(shape(&seg).claim_digest, shape(&serial).claim_digest, "{case}: claims differ");
-                // Segments past the stop drop their samples; the one holding it composites up to it.
+                // The segments share only the samples up to the stop.
                 let d = compare(&seg.image, &serial.image).unwrap();
                 assert!(d.max_abs <= COMPOSITING_ORDER_TOLERANCE * peak, "{case}: {d:?}");
             }
@@ -208,7 +210,7 @@ fn stops_where_the_serial_kernel_stops(splits: &[(u32, u32)]) {
 /// More segments than lavapipe's 8-lane subgroup: a pixel's segments span 2
 /// to 16 subgroups of its workgroup, their parts combined through shared
 /// memory (32 is a GPU's default count, in one subgroup there), and a
-/// texel's marches split over 2 to 8 lanes (a sixteenth of the segments).
+/// texel's marches split over 2 to 8 lanes (an eighth of the segments).
 /// Claims, stops and image are the serial kernel's as in one subgroup.
 #[test]
 fn segmented_matches_serial_with_segments_across_subgroups() {
@@ -269,6 +271,31 @@ fn the_line_barrier_is_still_load_bearing() {
         let s = IpsviSettings { cache_size: 32, cache_update, ..settings(LineKernel::Segmented, 4, 4) };
         let what = format!("segmented, {}", cache_update.name());
         assert_ipsvi_line_barrier_load_bearing(&ctx, &gpu, &s, &IpsviStudy::default(), &mut profiler, 16, &what);
+    }
+}
+
+/// The barrier after the first sweep's cache initialisation also hands the
+/// view-stops pass's stops to the line dispatches: without it
+/// synchronization validation reports the line kernel's read of the stops
+/// the pass wrote. With it the same frame is clean.
+#[test]
+fn the_view_stops_barrier_is_load_bearing() {
+    use sweeplab::techniques::ipsvi::{render_study, SyncStrategy};
+    let ctx = validated_context();
+    let scene = slab_scene(vec![directional(Vec3::new(0.3, -1.0, 0.2), 2.0)]);
+    let gpu = GpuScene::upload(&ctx, &scene).unwrap();
+    let mut profiler = Profiler::new(&ctx, 64).unwrap();
+    let s = IpsviSettings { cache_size: 32, ..settings(LineKernel::Segmented, 4, 4) };
+    for omit_view_stops_barrier in [false, true] {
+        let study = IpsviStudy { omit_view_stops_barrier, ..IpsviStudy::default() };
+        profiler.reset();
+        render_study(&gpu, &s, &study, 16, 16, &mut profiler, SyncStrategy::BarrierGlobal).unwrap();
+        let messages = ctx.take_validation_messages();
+        let reported = messages.iter().any(|m| m.contains("SYNC-HAZARD") && m.contains("ipsvi view stops"));
+        assert_eq!(reported, omit_view_stops_barrier, "barrier omitted: {omit_view_stops_barrier}: {messages:?}");
+        if !omit_view_stops_barrier {
+            assert!(messages.is_empty(), "{messages:?}");
+        }
     }
 }
 
@@ -366,10 +393,10 @@ fn uniform_cube() -> Scene {
 /// The chain of each role of a line's invocations, in the uniform cube with
 /// view samples (whole frames: pixels, texels and claims all run): the claim
 /// march never reads the light, so its chain is known exactly: a ray's n
-/// samples serial, and segmented each round's opacity pass and claim march,
-/// 2 ceil(n / (S R)) samples a round. A pixel marches the same samples plus
-/// its reads' marches toward the light; a texel's chain is its own light
-/// march. The line's chain is the longest role's.
+/// samples serial, and segmented its first segment's, ceil(n / S) (the
+/// claims are dealt in one round). A pixel marches the same samples plus its
+/// reads' marches toward the light; a texel's chain is its own light march.
+/// The line's chain is the longest role's.
 #[test]
 fn the_shape_report_names_the_role_of_each_chain() {
     let ctx = validated_context();
@@ -390,11 +417,10 @@ fn the_shape_report_names_the_role_of_each_chain() {
     assert!(n >= 32, "the cube's 16 voxels at step 0.5: {n} samples");
     assert!(roles.pixels > n && roles.texels > 0, "{roles:?}");
     let segmented = shape_of(LineKernel::Segmented, 8);
-    let len = n.div_ceil(8 * 4);
-    let rounds: u32 = (0..n).step_by((len * 8) as usize).map(|lo| len.min(n - lo)).sum();
+    let len = n.div_ceil(8);
     let seg_roles = segmented.chain_median_by_role;
-    assert_eq!(seg_roles.claims, 2 * rounds, "{seg_roles:?}");
-    assert!(seg_roles.pixels > rounds && seg_roles.pixels < roles.pixels, "{seg_roles:?}");
+    assert_eq!(seg_roles.claims, len, "{seg_roles:?}");
+    assert!(seg_roles.pixels > len && seg_roles.pixels < roles.pixels, "{seg_roles:?}");
     for s in [&serial, &segmented] {
         let r = s.chain_median_by_role;
         assert!(s.chain_median >= r.pixels.max(r.texels).max(r.claims), "{}", s.summary());
@@ -407,10 +433,12 @@ fn the_shape_report_names_the_role_of_each_chain() {
 /// is known exactly. Ray casting only (breakdown step `lines`: no cache reads
 /// or writes), light rays, plain termination. A medium that never stops the
 /// ray: the serial chain is a ray's n samples; the segmented one, the first
-/// segment's march in every round, ceil(n / (S R)) samples (fewer in the last
-/// round). A denser one that stops it after sample s: the serial chain is
-/// s + 1; the segmented one, the rounds up to the stop's, and then the march
-/// of the segment holding s again, up to s.
+/// segment's stretch in every round, ceil(n / (S R)) samples (fewer in the
+/// last round). A denser one that stops it after sample s: the serial chain
+/// is s + 1; the segmented one the same sum over the s + 1 samples up to the
+/// stop. The view-stops pass (segmented only): every segment's opacity,
+/// ceil(n / S), and the segment holding the stop once more up to it; S
+/// invocations per pixel of the image.
 #[test]
 fn the_shape_report_counts_invocations_and_the_longest_chain_exactly() {
     let ctx = validated_context();
@@ -445,26 +473,31 @@ fn the_shape_report_counts_invocations_and_the_longest_chain_exactly() {
     let only_pixels = ChainsByRole { pixels: n, texels: 0, claims: 0 };
     assert_eq!(serial.chain_median_by_role, only_pixels, "ray casting only: every chain a pixel's");
     assert!(n >= 32, "the cube's 16 voxels at step 0.5: {n} samples");
+    assert_eq!(serial.stops_pass, None, "the serial kernel stops as it marches");
     // The whole line's pixels in whole workgroups, one dispatch per line.
     assert_eq!(serial.invocations_max, SIZE.next_multiple_of(group));
     assert_eq!((serial.line_dispatches, serial.chain_median), (SIZE, n), "every ray hits the cube");
     let stop = shape_of(STOPPING, LineKernel::Serial, 0, 4).0.chain_max - 1;
     assert!(stop > n / 4 && stop < n - 1, "the denser cube stops the ray in its middle: after sample {stop} of {n}");
+    // Segment 0's samples of a ray of m dealt in rounds.
+    let dealt = |m: u32, segments: u32, rounds: u32| {
+        let len = m.div_ceil(segments * rounds);
+        (0..m).step_by((len * segments) as usize).map(|lo| len.min(m - lo)).sum::<u32>()
+    };
     for (segments, rounds) in [(2, 1), (8, 1), (8, 4), (4, 64)] {
-        let len = n.div_ceil(segments * rounds);
-        let round_samples = len * segments;
-        let marched = |lo: u32| len.min(n - lo);
+        let case = format!("{segments} segments, {rounds} rounds");
         let (shape, group) = shape_of(CLEAR, LineKernel::Segmented, segments, rounds);
-        let chain: u32 = (0..n).step_by(round_samples as usize).map(marched).sum();
-        assert_eq!(shape.chain_max, chain, "{segments} segments, {rounds} rounds");
-        assert_eq!(shape.invocations_max, (SIZE * segments).next_multiple_of(group), "{segments} segments");
-        // The segment holding the stop: every round up to its own, then again up to the stop.
-        let stop_round = stop / round_samples;
-        let lo = stop_round * round_samples + (stop % round_samples) / len * len;
-        let rounds_before: u32 = (0..stop_round).map(|r| marched(r * round_samples)).sum();
-        let chain = rounds_before + marched(lo) + (stop - lo + 1);
+        assert_eq!(shape.chain_max, dealt(n, segments, rounds), "{case}");
+        assert_eq!(shape.invocations_max, (SIZE * segments).next_multiple_of(group), "{case}");
+        let len = n.div_ceil(segments);
+        let invocations = u64::from((SIZE * SIZE * segments).next_multiple_of(group));
+        assert_eq!(shape.stops_pass, Some(StopsPassShape { invocations, chain: len }), "{case}, no stop");
         let stopping = shape_of(STOPPING, LineKernel::Segmented, segments, rounds).0;
-        assert_eq!(stopping.chain_max, chain, "{segments} segments, {rounds} rounds, stop after sample {stop}");
+        let case = format!("{case}, stop after sample {stop}");
+        assert_eq!(stopping.chain_max, dealt(stop + 1, segments, rounds), "{case}");
+        // The pass's segment holding the stop: its whole segment, then again up to the stop.
+        let chain = len + (stop - stop / len * len + 1);
+        assert_eq!(stopping.stops_pass, Some(StopsPassShape { invocations, chain }), "{case}");
     }
     assert_validation_clean(&ctx);
 }
@@ -534,7 +567,7 @@ fn runs_of(samples: &[(u32, f32)], nearest: bool) -> [u32; 5] {
 }
 
 /// Runs the probe on `rays` rays of `segments` segments each: per segment
-/// (total composite rgb + T, tau before, tau total, next texel, any opaque,
+/// (total composite rgb + T, tau before, tau total, next texel, unused,
 /// runs before [5], runs total [5]).
 fn probe(ctx: &Context, segments: u32, nearest: bool, input: &[Segment]) -> Vec<[u32; 20]> {
     use ash::vk;
@@ -662,8 +695,6 @@ fn the_scan_combines_fabricated_segments_exactly_and_in_depth_order() {
                     assert_eq!(r[4] as u64, before, "{case}: optical depth before");
                     assert_eq!(r[5] as u64, total_tau, "{case}: optical depth in all");
                     before = (before + s.tau as u64).min(cap);
-                    let stop = (-(1e-4f64).ln() * 65536.0).ceil() as u32;
-                    assert_eq!(r[7] != 0, seg.iter().any(|s| s.tau >= stop), "{case}: any");
                     // Runs: of the samples before this segment, and of all.
                     let earlier: Vec<(u32, f32)> = seg[..i].iter().flat_map(|s| s.samples.clone()).collect();
                     let all: Vec<(u32, f32)> = seg.iter().flat_map(|s| s.samples.clone()).collect();

@@ -475,7 +475,7 @@ fn technique_defaults_are_the_documented_ones() {
     assert_eq!(ipsvi.sync, SyncStrategy::BarrierGlobal);
     assert_eq!(
         (ipsvi.line_kernel, ipsvi.segments, ipsvi.segment_rounds),
-        (sweeplab::techniques::ipsvi::LineKernel::Auto, 0, 4)
+        (sweeplab::techniques::ipsvi::LineKernel::Auto, 0, 16)
     );
     assert_eq!((ipsvi.cache_update, ipsvi.cache_write), (CacheUpdate::ViewSamples, CacheWrite::Farthest));
     let lv = LightVolumeSettings::default();

@@ -31,6 +31,19 @@ pub struct LineShape {
     pub claim_digest: Option<u64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stop_digest: Option<u64>,
+    /// The segmented kernel's view-stops pass (one dispatch a frame, before
+    /// the sweeps; none where rays never stop or the kernel is serial).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stops_pass: Option<StopsPassShape>,
+}
+
+/// A frame's view-stops pass: its invocations and the longest serial chain
+/// of samples any of them marched (the opacity of its segment, and of the
+/// segment holding the stop once more).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct StopsPassShape {
+    pub invocations: u64,
+    pub chain: u32,
 }
 
 /// What a line's invocations do, each with its own longest chain: march a
@@ -74,14 +87,18 @@ impl LineShape {
             },
             claim_digest: None,
             stop_digest: None,
+            stops_pass: None,
         }
     }
 
     /// One line for `render`, `compare` and the viewer's log.
     pub fn summary(&self) -> String {
+        let stops = self.stops_pass.map_or(String::new(), |p| {
+            format!("; view-stops pass: {} invocations, longest chain {}", p.invocations, p.chain)
+        });
         format!(
             "line shape ({}): {} line dispatches, invocations per dispatch median {} max {}, longest serial \
-             chain per invocation median {} max {} (medians of pixels {}, texels {}, claims {})",
+             chain per invocation median {} max {} (medians of pixels {}, texels {}, claims {}){stops}",
             self.kernel,
             self.line_dispatches,
             self.invocations_median,
@@ -110,6 +127,13 @@ mod tests {
         assert_eq!(s.chain_median_by_role, roles(20, 2, 4));
         assert!(s.summary().contains("median 128 max 512"), "{}", s.summary());
         assert!(s.summary().contains("(medians of pixels 20, texels 2, claims 4)"), "{}", s.summary());
+        assert!(!s.summary().contains("view-stops"), "{}", s.summary());
+        let stops = LineShape { stops_pass: Some(StopsPassShape { invocations: 4096, chain: 17 }), ..s };
+        assert!(
+            stops.summary().ends_with("; view-stops pass: 4096 invocations, longest chain 17"),
+            "{}",
+            stops.summary()
+        );
         let none = LineShape::from_dispatches("serial".into(), &[]);
         assert_eq!((none.line_dispatches, none.chain_max), (0, 0));
     }

@@ -29,7 +29,7 @@ pub use error::RenderError;
 pub use frame_images::FrameImages;
 pub use frame_result::FrameResult;
 pub use gpu_scene::{GpuScene, UploadedVolume, VolumeTexels};
-pub use line_shape::{ChainsByRole, LineShape};
+pub use line_shape::{ChainsByRole, LineShape, StopsPassShape};
 pub use output::OutputImage;
 pub use recorded_frame::{render_recorded, RecordedFrame};
 pub use session::FrameSession;

@@ -4,7 +4,8 @@
 # alternating rounds: the build before the segmented kernel (BEFORE, default
 # the main checkout's release binary), this build's default (auto: serial on
 # a CPU device), and the segmented kernel at 8 segments (lavapipe's subgroup)
-# and 4, with 4 rounds and with 1. Per render: process CPU seconds (user,
+# and 4 (segmented-S; segmented-S-R sets ipsvi.segment_rounds = R too, which
+# only builds before the view-stops pass know). Per render: process CPU seconds (user,
 # sys), wall seconds, the line dispatches' GPU ms, and the frame's line shape.
 # Output: ipsvi_line_kernels_256_alternating.txt. Run from the repository root
 # after `cargo build --release`.
@@ -17,15 +18,16 @@ rounds=${ROUNDS:-6}
 echo "commit $(git rev-parse --short HEAD), before: $before ($(git -C "$(dirname "$before")/../.." rev-parse --short HEAD 2>/dev/null || echo ?)), $(date -u +%FT%TZ), volume $vol, load $(cut -d' ' -f1-3 /proc/loadavg)"
 ./target/release/sweeplab render --volume "$vol" --size 8x8 --technique dvr --out /tmp/line_kernels_device.png 2>&1 | grep -m1 '^device:' || true
 for r in $(seq 1 "$rounds"); do
-  for cfg in ${CONFIGS:-before auto segmented-8-4 segmented-4-4 segmented-8-1}; do
+  for cfg in ${CONFIGS:-before auto segmented-8 segmented-4}; do
     bin=./target/release/sweeplab
     extra=()
     case $cfg in
       before) bin=$before ;;
       auto) ;;
-      segmented-*-*)
-        s=$(echo "$cfg" | cut -d- -f2); n=$(echo "$cfg" | cut -d- -f3)
-        extra=(--set 'ipsvi.line_kernel="segmented"' --set "ipsvi.segments=$s" --set "ipsvi.segment_rounds=$n") ;;
+      segmented-*)
+        s=$(echo "$cfg" | cut -d- -f2); n=$(echo "$cfg" | cut -s -d- -f3)
+        extra=(--set 'ipsvi.line_kernel="segmented"' --set "ipsvi.segments=$s")
+        [ -z "$n" ] || extra+=(--set "ipsvi.segment_rounds=$n") ;;
     esac
     log=$(mktemp)
     /usr/bin/time -f "%U %S %e" -o "$log.time" "$bin" render --volume "$vol" --size 256x256 \

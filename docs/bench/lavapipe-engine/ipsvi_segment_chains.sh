@@ -2,13 +2,15 @@
 # The line shape (invocations per line dispatch, longest serial chain) of the
 # CT engine's IPSVI frame for the serial kernel and the segmented one at 8
 # segments (lavapipe's own 8-lane subgroup) and at 16 to 128 (a pixel's
-# segments across 2 to 16 subgroups of its workgroup), in the default 4
-# rounds and in 1 round, at 256 and 512 (SIZES), for each build given as name=path:
+# segments across 2 to 16 subgroups of its workgroup), at 256 and 512 (SIZES),
+# for each build given as name=path:
 #   docs/bench/lavapipe-engine/ipsvi_segment_chains.sh now=target/release/sweeplab
 # The scene defaults of `render --volume data/engine.vti` (one light), or with
 # SCENE a scene file, and SET extra settings, e.g. the paper's Table 1 scene:
 #   SCENE=tests/scenes/engine.toml SET=ipsvi.cache_size=256 \
-#     CONFIGS="serial-0-4 segmented-32-4 segmented-64-4 segmented-128-4" ... now=...
+#     CONFIGS="serial-0 segmented-32 segmented-64 segmented-128" ... now=...
+# A config kernel-segments-rounds sets ipsvi.segment_rounds as well, which
+# only builds before the view-stops pass know (they marched in rounds).
 # Output: one "build size kernel: line shape ..." line per frame
 # (ipsvi_segment_chains*.txt). The chain counts samples, not time: it is the
 # same on any device that runs the same settings.
@@ -17,7 +19,7 @@ export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-/tmp}
 if [ -n "${SCENE:-}" ]; then input=(--scene "$SCENE"); else input=(--volume "${VOLUME:-data/engine.vti}"); fi
 extra=()
 for s in ${SET:-}; do extra+=(--set "$s"); done
-configs=${CONFIGS:-serial-0-4 segmented-8-4 segmented-16-4 segmented-32-4 segmented-64-4 segmented-128-4 segmented-32-1 segmented-128-1}
+configs=${CONFIGS:-serial-0 segmented-8 segmented-16 segmented-32 segmented-64 segmented-128}
 echo "# $(date -u +%FT%TZ), ${input[*]} ${extra[*]}, builds: $*"
 for a in "$@"; do
   name=${a%%=*}; path=${a#*=}
@@ -25,10 +27,11 @@ for a in "$@"; do
     for cfg in $configs; do
       IFS=- read -r kernel segments rounds <<<"$cfg"
       k=(--set "ipsvi.line_kernel=\"$kernel\"")
-      [ "$kernel" = serial ] || k+=(--set "ipsvi.segments=$segments" --set "ipsvi.segment_rounds=$rounds")
+      [ "$kernel" = serial ] || k+=(--set "ipsvi.segments=$segments")
+      [ -z "$rounds" ] || k+=(--set "ipsvi.segment_rounds=$rounds")
       shape=$("$path" render "${input[@]}" --size ${size}x${size} --technique ipsvi "${extra[@]}" "${k[@]}" \
         --out /tmp/segment_chains.png 2>&1 | grep -E '^line shape|^error')
-      echo "$name $size $kernel x$segments rounds $rounds: $shape"
+      echo "$name $size $kernel x$segments${rounds:+ rounds $rounds}: $shape"
     done
   done
 done

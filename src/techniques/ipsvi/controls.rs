@@ -125,13 +125,13 @@ impl DeclaredSettings for IpsviSettings {
             ),
             control(
                 "texel_segments",
-                "segmented: invocations per cache texel, its marches split over them; 0: segments / 16",
+                "segmented: invocations per cache texel, its marches split over them; 0: segments / 8",
                 Numbers(&[0, 1, 2, 4, 8]),
                 |s| Number(s.texel_segments as f64),
             ),
             control(
                 "segment_rounds",
-                "segmented with early termination: rounds a ray is marched in",
+                "segmented: rounds a ray's samples are dealt to its segments in",
                 Whole { lo: 1, hi: 64 },
                 |s| Number(s.segment_rounds as f64),
             ),

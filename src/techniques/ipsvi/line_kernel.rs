@@ -50,8 +50,8 @@ pub const GPU_SEGMENTS: u32 = 32;
 /// without a count: lavapipe's subgroup (its SIMD width, 8 lanes).
 pub const CPU_SEGMENTS: u32 = 8;
 
-/// Rounds of segments a ray that may stop early is marched in (`segment_rounds`).
-pub const DEFAULT_ROUNDS: u32 = 4;
+/// Rounds a ray's samples are dealt to its segments in (`segment_rounds`).
+pub const DEFAULT_ROUNDS: u32 = 16;
 
 /// Subgroups one pixel's segments may span (glsl/ipsvi_segment_scan.glsl's
 /// MAX_CLUSTER_SUBGROUPS).
@@ -81,7 +81,7 @@ impl KernelChoice {
         KernelChoice { segmented: false, segments: 1, rounds: 1, cross_subgroups: false, texel_lanes: 1 };
 
     /// How `render` and bench rows name it: `serial`, `segmented x32`,
-    /// `segmented x32, texels x2`.
+    /// `segmented x32, texels x4`.
     pub fn label(&self) -> String {
         match (self.segmented, self.texel_lanes) {
             (false, _) => "serial".to_string(),
@@ -99,11 +99,12 @@ impl KernelChoice {
 /// `texel_segments = 0`: a texel's lanes for `segments` per pixel. A texel's
 /// march carries the light from where the texel was last written, one plane
 /// spacing or more along the light: on the paper's Table 1 scene its chain
-/// was 1/16 to 1/28 of a pixel's in the serial kernel
-/// (docs/ipsvi.md, "The line shape"), so a sixteenth of the segments keeps
-/// it near a segment's; none below 32 segments, at most 8.
+/// was 1/16 to 1/28 of a pixel's in the serial kernel, and at 32 segments
+/// with 2 lanes it still bounded many lines (a line's median chain 23, 15
+/// with 4: docs/ipsvi.md, "The line shape"), so an eighth of the segments;
+/// none below 16 segments, at most 8.
 pub fn auto_texel_lanes(segments: u32) -> u32 {
-    (segments / 16).clamp(1, 8)
+    (segments / 8).clamp(1, 8)
 }
 
 /// Why the segmented kernel cannot run `s`'s modes (None: it can). It runs
@@ -236,7 +237,7 @@ mod tests {
         let s = IpsviSettings::default();
         assert_eq!(choose(&s, "CPU", &device(8)), Ok(KernelChoice::SERIAL));
         let gpu = choose(&s, "discrete GPU", &device(32)).unwrap();
-        let label = "segmented x32, texels x2".to_string();
+        let label = "segmented x32, texels x4".to_string();
         assert_eq!((gpu.segments, gpu.rounds, gpu.label()), (32, DEFAULT_ROUNDS, label));
         assert_eq!(choose(&s, "integrated GPU", &device(8)).unwrap().segments, 8, "capped by the subgroup");
         let no_shuffles = SubgroupSupport { shuffle_relative: false, ..device(32) };
@@ -272,12 +273,13 @@ mod tests {
         // More segments than a subgroup: the workgroup is the pixel's, up to 32 subgroups.
         let wide = choose(&IpsviSettings { segments: 16, ..asked.clone() }, "CPU", &device(8)).unwrap();
         assert!(wide.cross_subgroups && !choose(&asked, "CPU", &device(8)).unwrap().cross_subgroups);
-        // A texel's lanes: a sixteenth of the segments by default, or as asked within them.
+        // A texel's lanes: an eighth of the segments by default, or as asked within them.
         let lanes = |segments, texel_segments| {
             choose(&IpsviSettings { segments, texel_segments, ..asked.clone() }, "CPU", &device(8))
                 .map(|k| k.texel_lanes)
         };
-        assert_eq!((lanes(8, 0), lanes(32, 0), lanes(128, 0), lanes(8, 4)), (Ok(1), Ok(2), Ok(8), Ok(4)));
+        assert_eq!((lanes(8, 0), lanes(16, 0), lanes(32, 0), lanes(8, 4)), (Ok(1), Ok(2), Ok(4), Ok(4)));
+        assert_eq!(lanes(128, 0), Ok(8), "capped by the smallest subgroup");
         let e = lanes(4, 8).unwrap_err();
         assert!(e.contains("ipsvi.texel_segments = 8") && e.contains("(4)"), "{e}");
         assert!(lanes(32, 16).unwrap_err().contains("smallest subgroup (8)"));

@@ -1,24 +1,28 @@
 //! The counters behind an IPSVI frame's [`LineShape`]: a small buffer the line
-//! kernels add to (glsl/ipsvi_line_interface.glsl `Shape`: flags, and per block
+//! kernels add to (glsl/ipsvi_shape.glsl `Shape`: flags, the view-stops pass's
+//! chain maxima, and per block
 //! record [`CHAIN_SLOTS`] maxima of its invocations' serial chains, a run of
 //! [`CHAIN_ROLE_SLOTS`] for each role), cleared at the start of every frame and
 //! copied back at its end.
 
 use super::gpu_params::BlockParams;
 use super::merged_steps::LineDispatch;
-use crate::render::{ChainsByRole, LineShape, RenderError};
+use crate::render::{ChainsByRole, LineShape, RenderError, StopsPassShape};
 use crate::vk::barriers::{Access, Barrier};
 use crate::vk::{Buffer, Context, Recorder, VkError};
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
-/// Bytes before the chains: the two 64-bit digests and the flags word.
-const HEADER_BYTES: u64 = 20;
+/// Bytes before the chains: the two 64-bit digests, the flags word and the
+/// view-stops pass's CHAIN_ROLE_SLOTS maxima.
+const HEADER_BYTES: u64 = 20 + 4 * CHAIN_ROLE_SLOTS as u64;
+/// The first word of the view-stops pass's maxima.
+const STOPS_CHAIN_WORD: usize = 5;
 
-/// glsl/ipsvi_line_interface.glsl SHAPE_PARTIAL_SUBGROUPS.
+/// glsl/ipsvi_shape.glsl SHAPE_PARTIAL_SUBGROUPS.
 const PARTIAL_SUBGROUPS: u32 = 1;
 
-/// glsl/ipsvi_line_interface.glsl CHAIN_ROLE_SLOTS: maxima per role and block
+/// glsl/ipsvi_shape.glsl CHAIN_ROLE_SLOTS: maxima per role and block
 /// record, the roles in [`ChainsByRole`]'s order (CHAIN_PIXELS, CHAIN_TEXELS,
 /// CHAIN_CLAIMS).
 const CHAIN_ROLE_SLOTS: usize = 16;
@@ -72,7 +76,9 @@ impl ShapeCounters {
     }
 
     /// The frame's shape, once its submission finished: per line dispatch
-    /// its invocations and the longest chain of each role in the blocks it ran.
+    /// its invocations and the longest chain of each role in the blocks it
+    /// ran, and the view-stops pass's where it ran `stops_invocations`.
+    #[allow(clippy::too_many_arguments)]
     pub fn read(
         &self,
         kernel: String,
@@ -81,6 +87,7 @@ impl ShapeCounters {
         records: &[BlockParams],
         group: u32,
         digests: bool,
+        stops_invocations: Option<u64>,
     ) -> Result<LineShape, RenderError> {
         let words: Vec<u32> = self.readback.read(HEADER_BYTES as usize / 4 + self.records * CHAIN_SLOTS)?;
         if words[4] & PARTIAL_SUBGROUPS != 0 {
@@ -106,6 +113,10 @@ impl ShapeCounters {
             })
             .collect();
         let mut shape = LineShape::from_dispatches(kernel, &per_dispatch);
+        shape.stops_pass = stops_invocations.map(|invocations| StopsPassShape {
+            invocations,
+            chain: words[STOPS_CHAIN_WORD..][..CHAIN_ROLE_SLOTS].iter().copied().max().unwrap_or(0),
+        });
         if digests {
             let digest = |w: usize| u64::from(words[w]) | (u64::from(words[w + 1]) << 32);
             shape.claim_digest = Some(digest(0));

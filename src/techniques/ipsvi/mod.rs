@@ -33,6 +33,7 @@ pub mod sync;
 pub mod sync_strategy;
 pub mod technique;
 pub mod view_budget;
+pub mod view_stops;
 
 pub use breakdown::BreakdownStep;
 pub use cache_update::{CacheUpdate, CacheWrite, WritePass, WriteRule, WriteValue};

@@ -6,6 +6,7 @@
 //! (`super::merged_steps`), then their colour accumulations summed.
 
 use super::block_records::{block_params, SweepRecords};
+use super::breakdown::BreakdownStep;
 use super::cache_images::Cache;
 use super::cache_plane::{cache_planes, CachePlanes};
 use super::cache_update::{CacheUpdate, CacheWrite, WriteRule, WriteValue};
@@ -24,6 +25,7 @@ use super::sync::{
     SubmissionPerBlock, Unsynchronized,
 };
 use super::sync_strategy::SyncStrategy;
+use super::view_stops::{ViewStops, ViewStopsInputs};
 use crate::render::frame_params::{frame_params, MarchSteps};
 use crate::render::frame_result::FrameResult;
 use crate::render::image_space::ImageSpace;
@@ -151,6 +153,8 @@ pub struct IpsviRenderer<'a> {
     cache: Cache,
     exit_points: Option<ExitPoints>,
     placeholder: Option<Arc<Image>>,
+    /// The segmented kernel's stops (the serial one finds its own as it marches).
+    view_stops: Option<ViewStops>,
     init: ComputePipeline,
     init_set: vk::DescriptorSet,
     line: ComputePipeline,
@@ -394,7 +398,26 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_cache_init::PACKED_SAMPLES_A, Resource::StorageImage(&cache.packed_samples[0])),
             (ipsvi_cache_init::PACKED_SAMPLES_B, Resource::StorageImage(&cache.packed_samples[1])),
         ])?;
-        let line_set = line.create_set(&[
+        let view_stops = match kernel.segmented {
+            true => Some(ViewStops::new(
+                gpu,
+                &ViewStopsInputs {
+                    frame: &frame,
+                    lmax,
+                    shape: &shape.counters,
+                    width,
+                    height,
+                    // The empty workload marches nothing: no stops to find.
+                    termination: if study.breakdown_step == BreakdownStep::Empty { 0 } else { termination },
+                    segments,
+                    cross_subgroups: kernel.cross_subgroups,
+                    line_group,
+                    ert_scale: settings.ert_scale,
+                },
+            )?),
+            false => None,
+        };
+        let mut line_bindings = vec![
             (ipsvi_line::FRAME_BUFFER, Resource::StorageBuffer(&frame)),
             (ipsvi_line::VOLUME_TEX, Resource::SampledImage(&gpu.volume, &gpu.sampler)),
             (ipsvi_line::TRANSFER_LUT, Resource::StorageBuffer(&gpu.lut)),
@@ -403,11 +426,17 @@ impl<'a> IpsviRenderer<'a> {
             (ipsvi_line::PLANES, Resource::StorageBuffer(&planes)),
             (ipsvi_line::OUT_IMAGE, Resource::StorageImage(merged.as_ref().map_or(&output.image, |m| &m.accumulation))),
             (ipsvi_line::BLOCKS, Resource::StorageBuffer(&blocks)),
-            (ipsvi_line::LMAX, Resource::StorageImage(lmax)),
             (ipsvi_line::KEYS, Resource::StorageBuffer(&cache.claim_keys)),
             (ipsvi_line::STEPS, Resource::StorageBuffer(&steps)),
             (ipsvi_line::SHAPE, Resource::StorageBuffer(&shape.counters)),
-        ])?;
+        ];
+        // The serial kernel stops as it marches (reading l_max), the segmented
+        // one where the view-stops pass found.
+        match &view_stops {
+            Some(v) => line_bindings.push((ipsvi_line_segmented::VIEW_STOPS, Resource::StorageBuffer(&v.stops))),
+            None => line_bindings.push((ipsvi_line::LMAX, Resource::StorageImage(lmax))),
+        }
+        let line_set = line.create_set(&line_bindings)?;
         let mut side = |from: usize, to: usize| {
             line.create_set1(&[
                 (ipsvi_line::CACHE_IN, Resource::StorageImage(&cache.light[from])),
@@ -449,6 +478,7 @@ impl<'a> IpsviRenderer<'a> {
             cache,
             exit_points,
             placeholder,
+            view_stops,
             init,
             init_set,
             line,
@@ -482,7 +512,8 @@ impl<'a> IpsviRenderer<'a> {
         };
         let records = &self.block_records;
         let digests = self.study.digests;
-        self.shape.read(self.kernel.label(), &self.dispatches, blocks_of, records, self.line_group, digests)
+        let stops = self.view_stops.as_ref().and_then(ViewStops::invocations);
+        self.shape.read(self.kernel.label(), &self.dispatches, blocks_of, records, self.line_group, digests, stops)
     }
 
     /// Every pipeline a frame dispatches (shared with other renderers of the
@@ -494,6 +525,7 @@ impl<'a> IpsviRenderer<'a> {
         if let Some(e) = &self.exit_points {
             all.extend(e.pipelines());
         }
+        all.extend(self.view_stops.as_ref().and_then(ViewStops::pipeline));
         all
     }
 
@@ -593,6 +625,7 @@ impl<'a> IpsviRenderer<'a> {
             cache,
             exit_points,
             placeholder,
+            view_stops,
             merged,
             init,
             init_set,
@@ -637,18 +670,26 @@ impl<'a> IpsviRenderer<'a> {
             }
             record_blocks(rec, line_sync)
         };
-        let init_caches = |rec: &mut Recorder, profiler: &mut Profiler, light: u32, slots: u32| {
+        // The first sweep's initialisation shares its barrier with the
+        // view-stops pass, recorded just before it (neither reads the other).
+        let init_caches = |rec: &mut Recorder, profiler: &mut Profiler, light: u32, slots: u32, first: bool| {
+            let stops = match (first, view_stops) {
+                (true, Some(v)) => v.record(rec, profiler)?,
+                _ => false,
+            };
             let init_scope = profiler.begin(rec, "ipsvi_cache_init")?;
             rec.bind(init, init_set);
             let n = settings.cache_size.div_ceil(8);
             rec.push(init, &[light, slots]);
             rec.dispatch(n, (settings.cache_size * slots).div_ceil(8), 1);
             profiler.end(rec, init_scope)?;
-            rec.barrier(&Barrier::memory(
-                "cache_init_write_to_first_line_read",
-                Access::COMPUTE_WRITE,
-                Access::COMPUTE_READ_WRITE,
-            ));
+            let name = match stops {
+                // Read-write: the line dispatches add to the shape counters the pass adds its chain to.
+                true if self.study.omit_view_stops_barrier => return Ok(()),
+                true => "cache_init_and_view_stops_write_to_first_line_read",
+                false => "cache_init_write_to_first_line_read",
+            };
+            rec.barrier(&Barrier::memory(name, Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE));
             Ok::<(), VkError>(())
         };
         rec.clear_for_compute(
@@ -683,9 +724,10 @@ impl<'a> IpsviRenderer<'a> {
         if let Some(e) = &exit_points {
             e.record(rec, profiler)?;
         }
+
         if let Some(m) = merged {
             line_sync.before_sweep(rec);
-            init_caches(rec, profiler, 0, m.slots)?;
+            init_caches(rec, profiler, 0, m.slots, true)?;
             let sweeps_scope = profiler.begin(rec, "ipsvi_sweeps_merged")?;
             record_lines(rec, profiler, &mut *line_sync, 0)?;
             profiler.end(rec, sweeps_scope)?;
@@ -705,7 +747,7 @@ impl<'a> IpsviRenderer<'a> {
             for (li, plan) in plans.iter().enumerate() {
                 for sweep in &plan.sweeps {
                     line_sync.before_sweep(rec);
-                    init_caches(rec, profiler, li as u32, 1)?;
+                    init_caches(rec, profiler, li as u32, 1, next_sweep == 0)?;
                     let sweep_scope = profiler.begin(rec, &format!("ipsvi_sweep_{}", sweep.zone.name()))?;
                     record_lines(rec, profiler, &mut *line_sync, next_sweep)?;
                     next_sweep += 1;

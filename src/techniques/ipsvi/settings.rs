@@ -99,14 +99,14 @@ pub struct IpsviSettings {
     pub segments: u32,
     /// Segmented kernel: invocations per cache texel, its marches toward the
     /// light (from where it was last written) split over them; a power of two
-    /// up to `segments` and the smallest subgroup; 0 (default): a sixteenth of
+    /// up to `segments` and the smallest subgroup; 0 (default): an eighth of
     /// the segments, 1 to 8.
     pub texel_segments: u32,
-    /// Segmented kernel with early termination: a ray's samples are marched
-    /// in up to this many rounds of `segments` segments; after each round the
-    /// scan of its optical depth tells where the ray stops, and the next round
-    /// runs only if it has not (the claim march scans an opacity pass first,
-    /// since it writes).
+    /// Segmented kernel: a ray's samples up to its stop are dealt to its
+    /// segments in this many rounds of consecutive stretches, so that each
+    /// invocation's share spreads along the ray (a dense stretch, whose
+    /// samples march far toward the light, is shared out); the rounds'
+    /// composites combine in depth order.
     pub segment_rounds: u32,
     /// How consecutive line blocks are synchronized (`racy` only for cost studies).
     #[serde(deserialize_with = "from_name")]

@@ -24,4 +24,7 @@ pub struct IpsviStudy {
     /// The line kernels sum a hash of every claim and of where every view
     /// ray stopped ([`crate::render::LineShape`]'s digests).
     pub digests: bool,
+    /// Leaves out the barrier between the view-stops pass and the first line
+    /// dispatch (tests only: synchronization validation must report it).
+    pub omit_view_stops_barrier: bool,
 }

@@ -3,6 +3,7 @@
 
 use super::cache_update::CacheUpdate;
 use super::gpu_params::{BlockParams, SweepParams};
+use super::line_kernel::LineKernel;
 use super::renderer::{render_with, scene_plans};
 use super::settings::EarlyTermination;
 use crate::render::frame_params::FrameParams;
@@ -86,6 +87,13 @@ impl RenderTechnique for Ipsvi {
         ];
         if slots > 1 {
             needs.push(ResourceNeed::image("ipsvi sweep accumulation", [width, height * slots, 1], 16));
+        }
+        // The segmented kernel's stops: listed where a scene asks for that
+        // kernel; `auto` picks it only on a GPU, where the list is a lower
+        // bound (the frame holds these bytes more).
+        if s.line_kernel == LineKernel::Segmented {
+            let words = if s.early_termination == EarlyTermination::Off { 1 } else { width as usize * height as usize };
+            needs.push(ResourceNeed::of::<u32>("ipsvi view stops", words));
         }
         if s.early_termination == EarlyTermination::ExitPoints {
             // The pre-pass resolution: RG32F depths, R32F l_max.
