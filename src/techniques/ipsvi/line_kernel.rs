@@ -41,9 +41,11 @@ impl FromStr for LineKernel {
 
 /// Segments per pixel a GPU gets by default: at 512 pixels per line 16,384
 /// invocations per line dispatch (the H200 keeps about 270,000 in flight,
-/// `../shared/records/nvidia-h200-2026-12-04/`), and a longest serial chain
-/// about a sixteenth of the serial kernel's; capped by the device's smallest
-/// subgroup.
+/// `../shared/records/nvidia-h200-2026-12-04/`), and a line's longest serial
+/// chain 1/22.5 and 1/30.3 of the serial kernel's on the paper's Table 1
+/// scene at 256 and 512 (counted on lavapipe: docs/ipsvi.md, "The line
+/// shape"); one subgroup of a 32-lane GPU, so no workgroup barrier. Capped by
+/// the device's smallest subgroup; not yet chosen by a GPU measurement.
 pub const GPU_SEGMENTS: u32 = 32;
 
 /// Segments per pixel on a CPU device when the segmented kernel is asked for
