@@ -45,6 +45,8 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
         assert_eq!(r.text("line_kernel"), kernel, "{r:?}");
         assert_eq!(r.get("fps_over_first_kernel").is_some(), kernel != "serial", "{r:?}");
         assert!(r.get_f64("longest_chain").is_some_and(|c| c > 0.0), "{r:?}");
+        // The segmented kernel's view-stops pass, once a frame: its chain beside the line's.
+        assert_eq!(r.get_f64("view_stops_chain").is_some_and(|c| c > 0.0), kernel != "serial", "{r:?}");
     }
     assert!(table.rows[9..].iter().all(|r| r.get_f64("fps_over_half_size").is_some()), "16 is twice 8");
     let inputs = &table.run.as_ref().unwrap().inputs;

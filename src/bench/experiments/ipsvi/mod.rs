@@ -441,7 +441,8 @@ fn size_row(technique: &str, size: u32) -> BenchRow {
 
 /// A frame's line shape (device-independent): invocations per line dispatch
 /// and the longest serial chain of an invocation, medians and maxima, and the
-/// median of each role's.
+/// median of each role's; the segmented kernel's view-stops pass (once a
+/// frame) where it ran.
 pub fn set_shape(row: &mut BenchRow, shape: &crate::render::LineShape) {
     row.set("invocations_per_dispatch", shape.invocations_median);
     row.set("invocations_per_dispatch_max", shape.invocations_max);
@@ -449,6 +450,9 @@ pub fn set_shape(row: &mut BenchRow, shape: &crate::render::LineShape) {
     let roles = &shape.chain_median_by_role;
     row.set("longest_chain_pixels", roles.pixels);
     row.set("longest_chain_texels", roles.texels).set("longest_chain_claims", roles.claims);
+    if let Some(pass) = shape.stops_pass {
+        row.set("view_stops_invocations", pass.invocations).set("view_stops_chain", pass.chain);
+    }
 }
 
 fn set_errors<'r>(row: &'r mut BenchRow, stats: &crate::metrics::ErrorStats) -> &'r mut BenchRow {
