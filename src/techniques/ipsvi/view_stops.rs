@@ -4,7 +4,8 @@
 //! its stop waits for no line: found once per frame, with the serial march's
 //! rule and integer sums (the same sample), it lets each line's segments split
 //! only the samples up to it. The serial kernel finds its stop as it marches,
-//! as the paper does, and records no such pass.
+//! as the paper does, and records no such pass. Recorded in every frame, as
+//! the exit-point pre-pass is: a frame stands for a view just moved to.
 
 use crate::render::{GpuScene, RenderError};
 use crate::shaders::ipsvi_view_stops;
