@@ -684,11 +684,11 @@ impl<'a> IpsviRenderer<'a> {
             rec.dispatch(n, (settings.cache_size * slots).div_ceil(8), 1);
             profiler.end(rec, init_scope)?;
             let name = match stops {
-                // Read-write: the line dispatches add to the shape counters the pass adds its chain to.
                 true if self.study.omit_view_stops_barrier => return Ok(()),
                 true => "cache_init_and_view_stops_write_to_first_line_read",
                 false => "cache_init_write_to_first_line_read",
             };
+            // Read-write: the lines write the caches, and add to the shape counters the pass adds to.
             rec.barrier(&Barrier::memory(name, Access::COMPUTE_WRITE, Access::COMPUTE_READ_WRITE));
             Ok::<(), VkError>(())
         };
@@ -724,7 +724,6 @@ impl<'a> IpsviRenderer<'a> {
         if let Some(e) = &exit_points {
             e.record(rec, profiler)?;
         }
-
         if let Some(m) = merged {
             line_sync.before_sweep(rec);
             init_caches(rec, profiler, 0, m.slots, true)?;
