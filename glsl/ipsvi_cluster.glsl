@@ -42,7 +42,7 @@ void publish_part(uint w0, uint w1, uint w2, uint w3, uint w4) {
 // Every invocation has read the parts: the next combine may publish.
 void parts_read() { barrier(); }
 
-// The optical depth (tau_add, glsl/ipsvi_march.glsl) of the segments before
+// The optical depth (tau_add, glsl/ipsvi_optical_depth.glsl) of the segments before
 // this one, and in `total` of all of them.
 uint cluster_tau_before(uint x, out uint total) {
     uint inclusive = x;

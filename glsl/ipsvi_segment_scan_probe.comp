@@ -36,7 +36,6 @@ struct ProbeResult {
     uint tau_before;      // optical depth of the segments before
     uint tau_total;
     uint next_texel;      // cluster_next_texel
-    uint unused;
     uint before_flags;    // runs of the segments before
     uint before_lead_k;
     float before_lead_d;
@@ -47,7 +46,7 @@ struct ProbeResult {
     float total_lead_d;
     uint total_trail_k;
     float total_trail_d;
-    uvec2 pad;
+    uint pad[3];          // to 20 words, a multiple of the vec4 (a uvec3 would align to 16)
 };
 
 layout(std430, set = 0, binding = 0) readonly buffer Segments { ProbeSegment segments[]; };
@@ -71,7 +70,6 @@ void main() {
     r.tau_before = tau_before;
     r.tau_total = tau_total;
     r.next_texel = cluster_next_texel(mine);
-    r.unused = 0u;
     r.before_flags = before.flags;
     r.before_lead_k = before.lead_k;
     r.before_lead_d = before.lead_d;
@@ -82,6 +80,6 @@ void main() {
     r.total_lead_d = all.lead_d;
     r.total_trail_k = all.trail_k;
     r.total_trail_d = all.trail_d;
-    r.pad = uvec2(0u);
+    r.pad = uint[3](0u, 0u, 0u);
     results[id] = r;
 }

@@ -567,7 +567,7 @@ fn runs_of(samples: &[(u32, f32)], nearest: bool) -> [u32; 5] {
 }
 
 /// Runs the probe on `rays` rays of `segments` segments each: per segment
-/// (total composite rgb + T, tau before, tau total, next texel, unused,
+/// (total composite rgb + T, tau before, tau total, next texel,
 /// runs before [5], runs total [5]).
 fn probe(ctx: &Context, segments: u32, nearest: bool, input: &[Segment]) -> Vec<[u32; 20]> {
     use ash::vk;
@@ -698,8 +698,8 @@ fn the_scan_combines_fabricated_segments_exactly_and_in_depth_order() {
                     // Runs: of the samples before this segment, and of all.
                     let earlier: Vec<(u32, f32)> = seg[..i].iter().flat_map(|s| s.samples.clone()).collect();
                     let all: Vec<(u32, f32)> = seg.iter().flat_map(|s| s.samples.clone()).collect();
-                    assert_eq!(r[8..13], runs_of(&earlier, nearest), "{case}: runs before");
-                    assert_eq!(r[13..18], runs_of(&all, nearest), "{case}: runs in all");
+                    assert_eq!(r[7..12], runs_of(&earlier, nearest), "{case}: runs before");
+                    assert_eq!(r[12..17], runs_of(&all, nearest), "{case}: runs in all");
                     let next = seg[i + 1..].iter().find_map(|s| s.samples.first().map(|x| x.0)).unwrap_or(u32::MAX);
                     assert_eq!(r[6], next, "{case}: next texel");
                 }
