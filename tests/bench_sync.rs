@@ -221,13 +221,16 @@ fn the_chain_workload_fits_a_fraction_near_one_for_every_arm_on_lavapipe() {
     }
     let fits = report["calibration"].as_array().unwrap();
     assert_eq!(fits.len(), 6, "{fits:?}");
+    // The run header's load: above the cores the fractions rise past 1
+    // (docs/sync-study.md, the calibration), so a failure says what it was.
+    let load = &report["run"]["host_load"];
+    assert_eq!(load.as_array().map(Vec::len), Some(3), "{load}");
     for f in fits {
         // Each interval reaches the whole chain: no arm can be told to overlap
-        // its lines here (on a loaded 2-core host the medians move, the
-        // intervals hold).
+        // its lines here.
         let fraction = &f["fraction"];
-        assert!(fraction["hi"].as_f64().unwrap() >= 0.8, "lavapipe exposes every line's chain: {f}");
-        assert!(fraction["lo"].as_f64().unwrap() <= 1.2, "{f}");
+        assert!(fraction["hi"].as_f64().unwrap() >= 0.8, "lavapipe exposes every line's chain: {f}; host load {load}");
+        assert!(fraction["lo"].as_f64().unwrap() <= 1.2, "{f}; host load {load}");
         assert!(!f["latencies_us"].as_array().unwrap().is_empty());
         let strategy = f["strategy"].as_str().unwrap();
         let trace = json(&dir.join(format!("trace_chain_{strategy}.json")));

@@ -29,6 +29,10 @@ pub struct RunInfo {
     pub validation_layer: String,
     pub host_cpu: String,
     pub host_cores: usize,
+    /// The host's load averages over 1, 5 and 15 minutes as the run began
+    /// (empty where /proc/loadavg is not there).
+    #[serde(default)]
+    pub host_load: Vec<f64>,
     pub sweeplab_version: String,
     pub git_commit: String,
     /// UTC, ISO 8601.
@@ -69,6 +73,7 @@ impl RunInfo {
         RunInfo {
             host_cpu: host_cpu_model(),
             host_cores: std::thread::available_parallelism().map(|n| n.get()).unwrap_or(0),
+            host_load: std::fs::read_to_string("/proc/loadavg").map(|t| load_averages(&t)).unwrap_or_default(),
             sweeplab_version: env!("CARGO_PKG_VERSION").to_string(),
             git_commit: GIT_COMMIT.to_string(),
             date: utc_now_iso8601(),
@@ -101,6 +106,7 @@ impl RunInfo {
                 if self.validation_layer.is_empty() { "off".into() } else { self.validation_layer.clone() },
             ),
             ("host_cpu", format!("{} ({} cores)", self.host_cpu, self.host_cores)),
+            ("host_load", self.host_load_text()),
             ("sweeplab", format!("{} at {}", self.sweeplab_version, self.git_commit)),
             ("date", self.date.clone()),
             ("command", self.command.clone()),
@@ -113,6 +119,30 @@ impl RunInfo {
         }
         out.extend(self.inputs.iter().cloned());
         out
+    }
+
+    /// The load averages as `1 min, 5 min, 15 min`, or `unknown`.
+    pub fn host_load_text(&self) -> String {
+        match self.host_load.as_slice() {
+            [one, five, fifteen] => format!("{one:.2}, {five:.2}, {fifteen:.2} (1, 5, 15 min, at the start)"),
+            _ => "unknown".to_string(),
+        }
+    }
+
+    /// A note where a CPU device (lavapipe) ran on a host whose last minute's
+    /// load exceeds its cores: there a frame's time includes waiting for a
+    /// core, and frames of different lengths wait differently (a burst shorter
+    /// than the scheduler's slice runs at full speed, a longer one shares the
+    /// cores), so ratios between them move too (docs/sync-study.md, the calibration).
+    pub fn load_note(&self) -> Option<String> {
+        let one = *self.host_load.first()?;
+        (self.device_type == "CPU" && self.host_cores > 0 && one > self.host_cores as f64).then(|| {
+            format!(
+                "note: the host's load average over the last minute is {one:.2} on {} cores: on a CPU device \
+                 these times include waiting for a core, and frames of different lengths wait differently",
+                self.host_cores
+            )
+        })
     }
 
     /// One line for a chart caption: device, driver, commit, date.
@@ -138,6 +168,12 @@ impl RunInfo {
         out.push('\n');
         out
     }
+}
+
+/// The three load averages of /proc/loadavg's text (empty if it does not parse).
+fn load_averages(text: &str) -> Vec<f64> {
+    let loads: Option<Vec<f64>> = text.split_whitespace().take(3).map(|w| w.parse().ok()).collect();
+    loads.filter(|l| l.len() == 3).unwrap_or_default()
 }
 
 /// The first `model name` of /proc/cpuinfo; `unknown` elsewhere.
@@ -199,5 +235,23 @@ mod tests {
         }
         assert!(csv.contains("# volume: engine.vti") && csv.contains("# device: fake GPU"));
         assert!(!info.git_commit.is_empty() && info.host_cores > 0);
+    }
+
+    #[test]
+    fn the_load_is_read_and_a_loaded_host_noted_for_a_cpu_device_only() {
+        assert_eq!(load_averages("3.10 2.05 1.00 4/321 12345\n"), vec![3.10, 2.05, 1.00]);
+        assert!(load_averages("").is_empty() && load_averages("1.0 x 2.0").is_empty());
+        let info = |device_type: &str, load: f64| RunInfo {
+            device_type: device_type.into(),
+            host_cores: 2,
+            host_load: vec![load, 1.0, 1.0],
+            ..RunInfo::default()
+        };
+        let note = info("CPU", 3.1).load_note().expect("a loaded host is noted");
+        assert!(note.contains("3.10 on 2 cores"), "{note}");
+        assert!(info("CPU", 1.9).load_note().is_none() && info("discrete GPU", 9.0).load_note().is_none());
+        assert!(RunInfo::default().load_note().is_none());
+        assert!(info("CPU", 3.1).lines().iter().any(|(k, v)| k == "host_load" && v.starts_with("3.10, 1.00, 1.00")));
+        assert_eq!(RunInfo::default().host_load_text(), "unknown");
     }
 }

@@ -66,7 +66,11 @@ pub fn finish(ctx: &Context) -> ExitCode {
 /// What produced a bench's results: the device of `ctx`, this host and
 /// build, now, and the command line (which holds every input flag).
 pub fn run_info(ctx: &Context) -> RunInfo {
-    RunInfo::collect(ctx)
+    let info = RunInfo::collect(ctx);
+    if let Some(note) = info.load_note() {
+        eprintln!("{note}");
+    }
+    info
 }
 
 pub fn volume_texels(gpu: &GpuArgs) -> VolumeTexels {

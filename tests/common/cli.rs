@@ -95,7 +95,7 @@ pub fn assert_names_its_run(csv: &std::path::Path, md: &std::path::Path) {
 }
 
 /// What every bench output names (`RunInfo::lines`).
-pub const RUN_KEYS: [&str; 13] = [
+pub const RUN_KEYS: [&str; 14] = [
     "device",
     "device_type",
     "vendor_id",
@@ -106,6 +106,7 @@ pub const RUN_KEYS: [&str; 13] = [
     "timestamp_period_ns",
     "timestamp_valid_bits",
     "host_cpu",
+    "host_load",
     "sweeplab",
     "date",
     "command",
