@@ -191,7 +191,8 @@ fn row(
     lw: u32,
 ) -> BenchRow {
     let fps = |size: u32, i: usize| 1000.0 / measured[&size].gpu_ms[i].0;
-    let paper_fps = |size: u32, lw: u32| paper.fps_at(size, lw).unwrap_or(f64::NAN);
+    // The paper measured 64 to 1024 pixels a side: elsewhere its columns stay empty.
+    let paper_fps = |size: u32, lw: u32| paper.fps_at(size, lw);
     let m = &measured[&size];
     let (ms, ms_estimate) = m.gpu_ms[i];
     let ours = fps(size, i);
@@ -203,11 +204,15 @@ fn row(
     if let Some(e) = ms_estimate {
         row.set("fps_lo", fps_of(&e).lo).set("fps_hi", fps_of(&e).hi);
     }
-    row.set("paper_fps", paper_fps(size, lw));
+    if let Some(fps) = paper_fps(size, lw) {
+        row.set("paper_fps", fps);
+    }
     row.set("gpu_ms", ms).set_estimate("gpu_ms", ms_estimate);
     if lw != 1 {
         row.set("fps_over_lw1", ours / fps(size, lw1)).set_estimate("fps_over_lw1", m.over_lw1[i]);
-        row.set("paper_fps_over_lw1", paper_fps(size, lw) / paper_fps(size, 1));
+        if let (Some(at), Some(lw1)) = (paper_fps(size, lw), paper_fps(size, 1)) {
+            row.set("paper_fps_over_lw1", at / lw1);
+        }
     }
     if i >= LINE_WIDTHS.len() {
         let first = i % LINE_WIDTHS.len();
@@ -216,7 +221,9 @@ fn row(
     }
     if let Some(&half) = plan.sizes.iter().find(|&&h| h * 2 == size) {
         row.set("fps_over_half_size", ours / fps(half, i));
-        row.set("paper_fps_over_half_size", paper_fps(size, lw) / paper_fps(half, lw));
+        if let (Some(at), Some(at_half)) = (paper_fps(size, lw), paper_fps(half, lw)) {
+            row.set("paper_fps_over_half_size", at / at_half);
+        }
     }
     if let Some(shape) = &m.kernels[i].1 {
         super::ipsvi::set_shape(&mut row, shape);
@@ -244,22 +251,30 @@ fn step_weights(plan: &Table1Plan) -> Vec<f64> {
 /// column is in the files.
 pub fn print_summary(table: &BenchTable) {
     for r in &table.rows {
-        let interval = match (r.get_f64("fps_lo"), r.get_f64("fps_hi")) {
-            (Some(lo), Some(hi)) => format!(" (95 % CI {lo:.2}-{hi:.2})"),
-            _ => String::new(),
-        };
-        println!(
-            "{} {}x{} lw={} {}: {:.2} fps{interval} (paper, {}: {:.1} fps)",
-            r.text("data_set"),
-            r.text("width"),
-            r.text("width"),
-            r.text("line_width"),
-            r.text("line_kernel"),
-            r.get_f64("fps").unwrap_or(f64::NAN),
-            r.text("paper_data_set"),
-            r.get_f64("paper_fps").unwrap_or(f64::NAN)
-        );
+        println!("{}", summary_line(r));
     }
+}
+
+/// One row's line: our frame rate with its interval, then the paper's where
+/// it measured this size and line width.
+fn summary_line(r: &BenchRow) -> String {
+    let interval = match (r.get_f64("fps_lo"), r.get_f64("fps_hi")) {
+        (Some(lo), Some(hi)) => format!(" (95 % CI {lo:.2}-{hi:.2})"),
+        _ => String::new(),
+    };
+    let paper = match r.get_f64("paper_fps") {
+        Some(fps) => format!("paper, {}: {fps:.1} fps", r.text("paper_data_set")),
+        None => format!("the paper has no figure at this size and line width for {}", r.text("paper_data_set")),
+    };
+    format!(
+        "{} {}x{} lw={} {}: {:.2} fps{interval} ({paper})",
+        r.text("data_set"),
+        r.text("width"),
+        r.text("width"),
+        r.text("line_width"),
+        r.text("line_kernel"),
+        r.get_f64("fps").unwrap_or(f64::NAN),
+    )
 }
 
 #[cfg(test)]
@@ -279,6 +294,26 @@ mod tests {
         assert_eq!(Table1Plan::kernels_at(&[LineKernel::Auto], &[32]), [(LineKernel::Auto, 0)]);
         assert_eq!(kernel_name((LineKernel::Segmented, 64)), "segmented x64");
         assert_eq!(kernel_name((LineKernel::Segmented, 0)), "segmented");
+    }
+
+    #[test]
+    fn the_paper_stands_beside_a_row_only_where_it_measured_that_size() {
+        let line = |size: u32| {
+            let mut row = BenchRow::new();
+            row.set("data_set", "engine.vti").set("paper_data_set", CT_ENGINE.data_set).set("width", size);
+            row.set("line_width", 2).set("line_kernel", "serial").set("fps", 4.0);
+            if let Some(fps) = CT_ENGINE.fps_at(size, 2) {
+                row.set("paper_fps", fps);
+            }
+            summary_line(&row)
+        };
+        assert_eq!(line(256), "engine.vti 256x256 lw=2 serial: 4.00 fps (paper, CT Engine 256x256x256: 15.4 fps)");
+        let small = line(16);
+        assert!(
+            small.ends_with("(the paper has no figure at this size and line width for CT Engine 256x256x256)"),
+            "{small}"
+        );
+        assert!(!small.contains("NaN"), "{small}");
     }
 
     #[test]
