@@ -424,7 +424,13 @@ fn the_shape_report_names_the_role_of_each_chain() {
     for s in [&serial, &segmented] {
         let r = s.chain_median_by_role;
         assert!(s.chain_median >= r.pixels.max(r.texels).max(r.claims), "{}", s.summary());
+        // Every line shades, so some role is the longest in each.
+        let b = s.lines_bound_by;
+        assert!(b.pixels.max(b.texels).max(b.claims) > 0, "{}", s.summary());
+        assert!(b.pixels + b.texels + b.claims >= s.line_dispatches, "{}", s.summary());
     }
+    // Serial: a pixel's march holds the whole ray, longer than any texel's.
+    assert_eq!(serial.lines_bound_by.pixels, serial.line_dispatches, "{}", serial.summary());
     assert_validation_clean(&ctx);
 }
 
@@ -472,6 +478,8 @@ fn the_shape_report_counts_invocations_and_the_longest_chain_exactly() {
     let n = serial.chain_max;
     let only_pixels = ChainsByRole { pixels: n, texels: 0, claims: 0 };
     assert_eq!(serial.chain_median_by_role, only_pixels, "ray casting only: every chain a pixel's");
+    let every_line = ChainsByRole { pixels: SIZE, texels: 0, claims: 0 };
+    assert_eq!(serial.lines_bound_by, every_line, "the pixels are every line's longest");
     assert!(n >= 32, "the cube's 16 voxels at step 0.5: {n} samples");
     assert_eq!(serial.stops_pass, None, "the serial kernel stops as it marches");
     // The whole line's pixels in whole workgroups, one dispatch per line.

@@ -25,6 +25,10 @@ pub struct LineShape {
     /// The same chain for each role of a line's invocations alone, median
     /// over the line dispatches: which part of a line it waits for.
     pub chain_median_by_role: ChainsByRole,
+    /// Per role, the line dispatches whose longest chain is that role's (a
+    /// tie counts for each role in it; a dispatch with no chain for none): a
+    /// role whose median is short can still bind the long lines.
+    pub lines_bound_by: ChainsByRole,
     /// Tests only: order-free digests of every claim and of where every view
     /// ray stopped (glsl/ipsvi_line_interface.glsl `DIGESTS`).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -73,6 +77,9 @@ impl LineShape {
         let (chain_median, chain_max) = median_max(dispatches.iter().map(|d| d.1.longest()).collect());
         let role_median =
             |role: fn(&ChainsByRole) -> u32| median_max(dispatches.iter().map(|d| role(&d.1)).collect()).0;
+        let bound_by = |role: fn(&ChainsByRole) -> u32| {
+            dispatches.iter().filter(|d| d.1.longest() > 0 && role(&d.1) == d.1.longest()).count() as u32
+        };
         LineShape {
             kernel,
             line_dispatches: dispatches.len() as u32,
@@ -84,6 +91,11 @@ impl LineShape {
                 pixels: role_median(|c| c.pixels),
                 texels: role_median(|c| c.texels),
                 claims: role_median(|c| c.claims),
+            },
+            lines_bound_by: ChainsByRole {
+                pixels: bound_by(|c| c.pixels),
+                texels: bound_by(|c| c.texels),
+                claims: bound_by(|c| c.claims),
             },
             claim_digest: None,
             stop_digest: None,
@@ -98,7 +110,8 @@ impl LineShape {
         });
         format!(
             "line shape ({}): {} line dispatches, invocations per dispatch median {} max {}, longest serial \
-             chain per invocation median {} max {} (medians of pixels {}, texels {}, claims {}){stops}",
+             chain per invocation median {} max {} (medians of pixels {}, texels {}, claims {}; the longest in \
+             {}, {} and {} lines){stops}",
             self.kernel,
             self.line_dispatches,
             self.invocations_median,
@@ -107,7 +120,10 @@ impl LineShape {
             self.chain_max,
             self.chain_median_by_role.pixels,
             self.chain_median_by_role.texels,
-            self.chain_median_by_role.claims
+            self.chain_median_by_role.claims,
+            self.lines_bound_by.pixels,
+            self.lines_bound_by.texels,
+            self.lines_bound_by.claims
         )
     }
 }
@@ -126,7 +142,13 @@ mod tests {
         assert_eq!((s.chain_median, s.chain_max), (20, 300));
         assert_eq!(s.chain_median_by_role, roles(20, 2, 4));
         assert!(s.summary().contains("median 128 max 512"), "{}", s.summary());
-        assert!(s.summary().contains("(medians of pixels 20, texels 2, claims 4)"), "{}", s.summary());
+        // The pixels are the longest in two lines, the claims in one.
+        assert_eq!(s.lines_bound_by, roles(2, 0, 1));
+        assert!(
+            s.summary().contains("(medians of pixels 20, texels 2, claims 4; the longest in 2, 0 and 1 lines)"),
+            "{}",
+            s.summary()
+        );
         assert!(!s.summary().contains("view-stops"), "{}", s.summary());
         let stops = LineShape { stops_pass: Some(StopsPassShape { invocations: 4096, chain: 17 }), ..s };
         assert!(
@@ -136,5 +158,13 @@ mod tests {
         );
         let none = LineShape::from_dispatches("serial".into(), &[]);
         assert_eq!((none.line_dispatches, none.chain_max), (0, 0));
+    }
+
+    #[test]
+    fn a_tie_binds_each_role_in_it_and_an_empty_line_none() {
+        let roles = |pixels, texels, claims| ChainsByRole { pixels, texels, claims };
+        let dispatches = [(64, roles(5, 5, 1)), (64, roles(0, 0, 0)), (64, roles(1, 7, 7)), (64, roles(2, 1, 0))];
+        let s = LineShape::from_dispatches("segmented x32".into(), &dispatches);
+        assert_eq!(s.lines_bound_by, roles(2, 2, 1));
     }
 }

@@ -440,8 +440,8 @@ fn size_row(technique: &str, size: u32) -> BenchRow {
 }
 
 /// A frame's line shape (device-independent): invocations per line dispatch
-/// and the longest serial chain of an invocation, medians and maxima, and the
-/// median of each role's; the segmented kernel's view-stops pass (once a
+/// and the longest serial chain of an invocation, medians and maxima, the
+/// median of each role's and the lines each role is the longest in; the segmented kernel's view-stops pass (once a
 /// frame) where it ran.
 pub fn set_shape(row: &mut BenchRow, shape: &crate::render::LineShape) {
     row.set("invocations_per_dispatch", shape.invocations_median);
@@ -450,6 +450,9 @@ pub fn set_shape(row: &mut BenchRow, shape: &crate::render::LineShape) {
     let roles = &shape.chain_median_by_role;
     row.set("longest_chain_pixels", roles.pixels);
     row.set("longest_chain_texels", roles.texels).set("longest_chain_claims", roles.claims);
+    let bound = &shape.lines_bound_by;
+    row.set("lines_bound_by_pixels", bound.pixels);
+    row.set("lines_bound_by_texels", bound.texels).set("lines_bound_by_claims", bound.claims);
     if let Some(pass) = shape.stops_pass {
         row.set("view_stops_invocations", pass.invocations).set("view_stops_chain", pass.chain);
     }
