@@ -45,6 +45,12 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
         assert_eq!(r.text("line_kernel"), kernel, "{r:?}");
         assert_eq!(r.get("fps_over_first_kernel").is_some(), kernel != "serial", "{r:?}");
         assert!(r.get_f64("longest_chain").is_some_and(|c| c > 0.0), "{r:?}");
+        // The frame over its shading lines (a line of width w holds w image lines).
+        let lines = r.get_f64("line_dispatches").unwrap();
+        let width = r.get_f64("width").unwrap() / r.get_f64("line_width").unwrap();
+        assert!(lines >= width && lines <= 4.0 * width, "{r:?}");
+        let per_line = r.get_f64("frame_us_per_line").unwrap();
+        assert!((per_line - r.get_f64("gpu_ms").unwrap() * 1e3 / lines).abs() <= 1e-9 * per_line, "{r:?}");
         // The segmented kernel's view-stops pass, once a frame: its chain beside the line's.
         assert_eq!(r.get_f64("view_stops_chain").is_some_and(|c| c > 0.0), kernel != "serial", "{r:?}");
     }

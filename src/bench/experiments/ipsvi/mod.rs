@@ -439,11 +439,13 @@ fn size_row(technique: &str, size: u32) -> BenchRow {
     BenchRow::new().with("technique", technique).with("width", size).with("height", size)
 }
 
-/// A frame's line shape (device-independent): invocations per line dispatch
-/// and the longest serial chain of an invocation, medians and maxima, the
-/// median of each role's and the lines each role is the longest in; the segmented kernel's view-stops pass (once a
-/// frame) where it ran.
+/// A frame's line shape (device-independent): its shading line dispatches,
+/// the invocations per line dispatch and the longest serial chain of an
+/// invocation, medians and maxima, the median of each role's and the lines
+/// each role is the longest in; the segmented kernel's view-stops pass (once
+/// a frame) where it ran.
 pub fn set_shape(row: &mut BenchRow, shape: &crate::render::LineShape) {
+    row.set("line_dispatches", shape.line_dispatches);
     row.set("invocations_per_dispatch", shape.invocations_median);
     row.set("invocations_per_dispatch_max", shape.invocations_max);
     row.set("longest_chain", shape.chain_median).set("longest_chain_max", shape.chain_max);

@@ -227,6 +227,9 @@ fn row(
     }
     if let Some(shape) = &m.kernels[i].1 {
         super::ipsvi::set_shape(&mut row, shape);
+        // The frame spread over its lines: on a GPU, where a line is its longest
+        // chain's latency, this over the chain is that latency per sample.
+        row.set("frame_us_per_line", ms * 1e3 / f64::from(shape.line_dispatches.max(1)));
     }
     row
 }
