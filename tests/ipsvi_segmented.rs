@@ -100,6 +100,7 @@ fn matches_serial(modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
 
 pub(crate) fn matches_serial_in(splits: &[(u32, u32)], modes: &[(&str, IpsviSettings)], scenes: &[(&str, Scene)]) {
     let ctx = validated_context();
+    let smallest_subgroup = SubgroupSupport::of(&ctx).min_size;
     for (what, scene) in scenes {
         let gpu = GpuScene::upload_with(&ctx, scene, VolumeTexels::Float32).unwrap();
         let mut profiler = Profiler::new(&ctx, 64).unwrap();
@@ -114,7 +115,7 @@ pub(crate) fn matches_serial_in(splits: &[(u32, u32)], modes: &[(&str, IpsviSett
                 let s = IpsviSettings { line_kernel: LineKernel::Segmented, segments, segment_rounds, ..base.clone() };
                 let seg = frame(&ctx, &gpu, &s);
                 let case = format!("{what}, {mode}, {segments} segments, {segment_rounds} rounds");
-                let lanes = sweeplab::techniques::ipsvi::line_kernel::auto_texel_lanes(segments);
+                let lanes = sweeplab::techniques::ipsvi::line_kernel::auto_texel_lanes(segments).min(smallest_subgroup);
                 let texels = if base.texel_segments != 0 { base.texel_segments } else { lanes };
                 let label = match texels {
                     1 => format!("segmented x{segments}"),
@@ -321,7 +322,9 @@ fn in_wider_lavapipe(vector_bits: &str, test: &str) -> String {
 
 /// 16 segments per pixel in 16-lane subgroups: one more level of every scan
 /// than lavapipe's default subgroup allows, on every light placement and in
-/// a medium where most rays stop.
+/// a medium where most rays stop; and a texel's marches split over 16 lanes
+/// (texel-ray writes and light rays' advances), more than the default
+/// subgroup holds.
 #[test]
 fn segmented_matches_serial_at_16_segments_in_16_lane_subgroups() {
     in_wider_lavapipe("512", "ipsvi_segmented::at_16_segments");
@@ -333,7 +336,13 @@ fn at_16_segments() {
     let ctx = validated_context();
     assert_eq!(SubgroupSupport::of(&ctx).size, 16, "needs LP_NATIVE_VECTOR_WIDTH=512");
     drop(ctx);
-    let modes = [("every-sample", settings(LineKernel::Auto, 0, 4))];
+    let texels = |s: IpsviSettings| IpsviSettings { texel_segments: 16, ..s };
+    let rays = IpsviSettings { cache_update: CacheUpdate::LightRays, ..settings(LineKernel::Auto, 0, 4) };
+    let modes = [
+        ("every-sample", settings(LineKernel::Auto, 0, 4)),
+        ("every-sample, texels x16", texels(settings(LineKernel::Auto, 0, 4))),
+        ("light rays, texels x16", texels(rays)),
+    ];
     matches_serial_in(&[(16, 4)], &modes, &light_placements());
     stops_where_the_serial_kernel_stops(&[(16, 4)]);
 }

@@ -125,8 +125,8 @@ impl DeclaredSettings for IpsviSettings {
             ),
             control(
                 "texel_segments",
-                "segmented: invocations per cache texel, its marches split over them; 0: segments / 8",
-                Numbers(&[0, 1, 2, 4, 8]),
+                "segmented: invocations per cache texel, its marches split over them; 0: segments / 8, at most 16",
+                Numbers(&[0, 1, 2, 4, 8, 16]),
                 |s| Number(s.texel_segments as f64),
             ),
             control(
