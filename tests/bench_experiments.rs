@@ -54,6 +54,23 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
         // The segmented kernel's view-stops pass, once a frame: its chain beside the line's.
         assert_eq!(r.get_f64("view_stops_chain").is_some_and(|c| c > 0.0), kernel != "serial", "{r:?}");
     }
+    // Each row against the fastest kernel at its size and line width: one of
+    // the three, named alike in its rows, its own ratio 1, the others' above.
+    for size in table.rows.chunks(9) {
+        for lw in 0..LINE_WIDTHS.len() {
+            let rows: Vec<_> = size.iter().skip(lw).step_by(LINE_WIDTHS.len()).collect();
+            let fastest = rows[0].text("fastest_kernel");
+            assert!(rows.iter().all(|r| r.text("fastest_kernel") == fastest), "{rows:?}");
+            let by_time =
+                rows.iter().min_by(|a, b| a.get_f64("gpu_ms").unwrap().total_cmp(&b.get_f64("gpu_ms").unwrap()));
+            assert_eq!(by_time.unwrap().text("line_kernel"), fastest, "{rows:?}");
+            for r in &rows {
+                let ratio = r.get_f64("gpu_ms_over_fastest").unwrap();
+                assert_eq!(ratio == 1.0, r.text("line_kernel") == fastest, "{r:?}");
+                assert!(ratio >= 1.0, "{r:?}");
+            }
+        }
+    }
     assert!(table.rows[9..].iter().all(|r| r.get_f64("fps_over_half_size").is_some()), "16 is twice 8");
     let inputs = &table.run.as_ref().unwrap().inputs;
     assert!(inputs.iter().any(|(k, v)| k == "seed" && v == "5"), "{inputs:?}");

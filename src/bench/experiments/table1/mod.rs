@@ -95,6 +95,12 @@ fn kernel_name((line_kernel, segments): (LineKernel, u32)) -> String {
     }
 }
 
+/// The configuration (kernel `k`, line width index `i`: `k * n + i`) with the
+/// lowest median frame time among the kernels at line width index `i`.
+fn fastest_at_line_width(medians: &[f64], n: usize, i: usize) -> usize {
+    (i..medians.len()).step_by(n).min_by(|&a, &b| medians[a].total_cmp(&medians[b])).unwrap_or(i)
+}
+
 /// Frames per second from a frame's GPU ms, its interval turned over with it.
 fn fps_of(ms: &Estimate) -> Estimate {
     Estimate { value: 1000.0 / ms.value, lo: 1000.0 / ms.hi, hi: 1000.0 / ms.lo, n: ms.n }
@@ -110,6 +116,10 @@ struct SizeMeasurement {
     over_lw1: Vec<Option<Estimate>>,
     /// The first kernel's time over this time, paired.
     over_first_kernel: Vec<Option<Estimate>>,
+    /// The configuration of the fastest kernel (lowest median) at this one's
+    /// line width, and this time over its, paired.
+    fastest: Vec<usize>,
+    over_fastest: Vec<Option<Estimate>>,
     /// The kernel's label (`serial`, `segmented x32`) and its frame's shape.
     kernels: Vec<(String, Option<crate::render::LineShape>)>,
 }
@@ -161,8 +171,12 @@ pub fn run(
             let gpu_ms = timings.iter().map(|t| (t.median(), t.estimate())).collect();
             let over_lw1 = timings.iter().enumerate().map(|(c, t)| timings[c / n * n].paired_ratio(t)).collect();
             let over_first_kernel = timings.iter().enumerate().map(|(c, t)| timings[c % n].paired_ratio(t)).collect();
+            let medians: Vec<f64> = timings.iter().map(|t| t.median()).collect();
+            let fastest: Vec<usize> = (0..timings.len()).map(|c| fastest_at_line_width(&medians, n, c % n)).collect();
+            let over_fastest = timings.iter().enumerate().map(|(c, t)| t.paired_ratio(&timings[fastest[c]])).collect();
             let kernels = renderers.iter().zip(&timings).map(|(r, t)| (r.kernel().label(), t.last.clone())).collect();
-            measured.insert(size, SizeMeasurement { gpu_ms, over_lw1, over_first_kernel, kernels });
+            measured
+                .insert(size, SizeMeasurement { gpu_ms, over_lw1, over_first_kernel, fastest, over_fastest, kernels });
         }
         for &size in &plan.sizes {
             for k in 0..plan.kernels.len() {
@@ -219,6 +233,14 @@ fn row(
         row.set("fps_over_first_kernel", ours / fps(size, first));
         row.set_estimate("fps_over_first_kernel", m.over_first_kernel[i]);
     }
+    if plan.kernels.len() > 1 {
+        // Which kernel (and count) to default to: each against the fastest at
+        // this line width, paired round by round.
+        let fastest = m.fastest[i];
+        row.set("fastest_kernel", m.kernels[fastest].0.as_str());
+        row.set("gpu_ms_over_fastest", ms / m.gpu_ms[fastest].0);
+        row.set_estimate("gpu_ms_over_fastest", m.over_fastest[i]);
+    }
     if let Some(&half) = plan.sizes.iter().find(|&&h| h * 2 == size) {
         row.set("fps_over_half_size", ours / fps(half, i));
         if let (Some(at), Some(at_half)) = (paper_fps(size, lw), paper_fps(half, lw)) {
@@ -269,8 +291,23 @@ fn summary_line(r: &BenchRow) -> String {
         Some(fps) => format!("paper, {}: {fps:.1} fps", r.text("paper_data_set")),
         None => format!("the paper has no figure at this size and line width for {}", r.text("paper_data_set")),
     };
+    let against_fastest = match (r.get("fastest_kernel"), r.get_f64("gpu_ms_over_fastest")) {
+        (Some(_), _) if r.text("fastest_kernel") == r.text("line_kernel") => {
+            "; the fastest kernel here (lowest median)".to_string()
+        }
+        (Some(_), Some(ratio)) => {
+            // One paired estimate of one ratio: within noise only where it holds 1.
+            let interval = match (r.get_f64("gpu_ms_over_fastest_lo"), r.get_f64("gpu_ms_over_fastest_hi")) {
+                (Some(lo), Some(hi)) if lo <= 1.0 => format!(" (95 % CI {lo:.2}-{hi:.2}, paired: within noise)"),
+                (Some(lo), Some(hi)) => format!(" (95 % CI {lo:.2}-{hi:.2}, paired)"),
+                _ => String::new(),
+            };
+            format!("; {ratio:.2}x the time of {}{interval}", r.text("fastest_kernel"))
+        }
+        _ => String::new(),
+    };
     format!(
-        "{} {}x{} lw={} {}: {:.2} fps{interval} ({paper})",
+        "{} {}x{} lw={} {}: {:.2} fps{interval} ({paper}){against_fastest}",
         r.text("data_set"),
         r.text("width"),
         r.text("width"),
@@ -317,6 +354,31 @@ mod tests {
             "{small}"
         );
         assert!(!small.contains("NaN"), "{small}");
+    }
+
+    #[test]
+    fn each_row_stands_against_the_fastest_kernel_at_its_line_width() {
+        // Three kernels at three line widths: kernel k's line width i is k * 3 + i.
+        let medians = [9.0, 5.0, 3.0, 4.0, 6.0, 2.0, 7.0, 4.5, 2.5];
+        let fastest: Vec<usize> = (0..3).map(|i| fastest_at_line_width(&medians, 3, i)).collect();
+        assert_eq!(fastest, [3, 7, 5]);
+        let line = |kernel: &str, ratio: f64, interval: Option<(f64, f64)>| {
+            let mut row = BenchRow::new();
+            row.set("data_set", "engine.vti").set("paper_data_set", CT_ENGINE.data_set).set("width", 16);
+            row.set("line_width", 1).set("line_kernel", kernel).set("fps", 4.0);
+            row.set("fastest_kernel", "segmented x128, texels x16").set("gpu_ms_over_fastest", ratio);
+            if let Some((lo, hi)) = interval {
+                row.set("gpu_ms_over_fastest_lo", lo).set("gpu_ms_over_fastest_hi", hi);
+            }
+            summary_line(&row)
+        };
+        assert!(line("segmented x128, texels x16", 1.0, None).ends_with("; the fastest kernel here (lowest median)"));
+        let slower = line("segmented x32, texels x4", 1.5, Some((1.25, 1.75)));
+        let said = "; 1.50x the time of segmented x128, texels x16 (95 % CI 1.25-1.75, paired)";
+        assert!(slower.ends_with(said), "{slower}");
+        assert!(line("serial", 30.0, None).ends_with("; 30.00x the time of segmented x128, texels x16"));
+        let close = line("segmented x64, texels x8", 1.05, Some((0.97, 1.12)));
+        assert!(close.ends_with(" (95 % CI 0.97-1.12, paired: within noise)"), "{close}");
     }
 
     #[test]
