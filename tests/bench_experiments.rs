@@ -10,7 +10,7 @@ use common::{assert_validation_clean, validated_context};
 use sweeplab::bench::experiments::lights::{self as lights_bench, LightsPlan};
 use sweeplab::bench::experiments::stability::bench::{self as stability_bench, StabilityPlan};
 use sweeplab::bench::experiments::table1::paper::{CT_ENGINE, LINE_WIDTHS};
-use sweeplab::bench::experiments::table1::{self as table1_bench, Table1Plan};
+use sweeplab::bench::experiments::table1::{self as table1_bench, SegmentCount, Table1Plan};
 use sweeplab::bench::out_folder::OutTarget;
 use sweeplab::bench::{BenchRow, Harness, Interleaved, OutFolder, RunInfo};
 use sweeplab::scene::loaders::data_dir;
@@ -31,7 +31,10 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
         set: vec!["ipsvi.cache_size=16".into()],
         data_sets: vec![(data_dir().join("engine.vti"), &CT_ENGINE)],
         // The segmented kernel at the device's count (8) and at 16 (across subgroups).
-        kernels: Table1Plan::kernels_at(&[LineKernel::Serial, LineKernel::Segmented], &[0, 16]),
+        kernels: Table1Plan::kernels_at(
+            &[LineKernel::Serial, LineKernel::Segmented],
+            &[SegmentCount::DEVICE, "16".parse().unwrap()],
+        ),
     };
     let folder = OutFolder::prepare(OutTarget::Named { folder: &out("table1"), force: true }).unwrap();
     let table = table1_bench::run(&ctx, &plan, RunInfo::collect(&ctx), &folder, 4096).unwrap();

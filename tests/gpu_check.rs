@@ -64,7 +64,7 @@ fn run_check(out: &Path, techniques: &str, benches: bool) -> (bool, serde_json::
         )
         .env(
             "GPU_CHECK_TABLE1_ARGS",
-            "--data-sets engine.vti --sizes 8 --kernels serial,segmented --segments 0,16 --repeat 1",
+            "--data-sets engine.vti --sizes 8 --kernels serial,segmented --segments 0,16,16/4 --repeat 1",
         )
         .env(
             "GPU_CHECK_LIGHTS_ARGS",
@@ -157,10 +157,11 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     let markdown = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(markdown.contains("| compare-ao | 0 |"), "{markdown}");
     // Table 1 beside the paper's figures (none at 8x8), both kernels, the segmented one at each
-    // count asked, each against the fastest at its line width.
+    // count asked (16/4: 16 segments, 4 texel lanes), each against the fastest at its line width.
     assert!(
         markdown.contains("engine.vti 8x8 lw=4 segmented x8:")
             && markdown.contains("engine.vti 8x8 lw=4 segmented x16, texels x2:")
+            && markdown.contains("engine.vti 8x8 lw=4 segmented x16, texels x4:")
             && markdown.contains("(the paper has no figure at this size and line width for CT Engine")
             && markdown.contains("; the fastest kernel here (lowest median)")
             && markdown.contains("x the time of "),

@@ -28,8 +28,8 @@
 #                          rounds within a minute)
 #   GPU_CHECK_TABLE1_ARGS  arguments of bench table1 (default: the CT engine at 256 and 512,
 #                          line widths 1, 2, 4, the serial line kernel and the segmented one
-#                          at 32, 64 and 128 segments, 6 rounds; needs engine.vti in the data
-#                          folder)
+#                          at 32, 64 and 128 segments with their default texel lanes and at 128
+#                          with 8 texel lanes, 6 rounds; needs engine.vti in the data folder)
 #   SWEEPLAB_DATA          the data folder (default: data/ beside tools/, the bundle's copy or
 #                          the checkout's: the binary's own default is the folder it was built in)
 #   GPU_CHECK_LIGHTS_ARGS  arguments of bench lights (default: a short run)
@@ -70,7 +70,7 @@ bench_size=${GPU_CHECK_BENCH_SIZE:-512}
 techniques=${GPU_CHECK_TECHNIQUES:-dvr,phong,reference,ipsvi,half-angle,lightvolume,ao}
 sync_args=${GPU_CHECK_SYNC_ARGS:---line-widths 1,4,16,32 --max-rounds 12 --max-minutes 2}
 modes_args=${GPU_CHECK_MODES_ARGS:---one-at-a-time --line-widths 1 --cache-sizes 256,512 --half-angle-slices --repeat 6 --max-rounds 12 --max-minutes 1}
-table1_args=${GPU_CHECK_TABLE1_ARGS:---data-sets engine.vti --sizes 256,512 --kernels serial,segmented --segments 32,64,128 --repeat 6}
+table1_args=${GPU_CHECK_TABLE1_ARGS:---data-sets engine.vti --sizes 256,512 --kernels serial,segmented --segments 32,64,128,128/8 --repeat 6}
 lights_args=${GPU_CHECK_LIGHTS_ARGS:---scales 4 --light-counts 2 --scaling-counts 1,4 --error-scales 4 --incremental-passes 1 --repeat 1}
 device_args=()
 [ -n "${GPU_CHECK_DEVICE:-}" ] && device_args=(--device "$GPU_CHECK_DEVICE")

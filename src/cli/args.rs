@@ -3,6 +3,7 @@
 use ash::vk::PresentModeKHR;
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
+use sweeplab::bench::experiments::table1::SegmentCount;
 use sweeplab::scene::suggest::nearest;
 use sweeplab::techniques::ipsvi::LineKernel;
 use sweeplab::techniques::Technique;
@@ -240,9 +241,10 @@ pub struct BenchTable1Args {
     #[arg(long, value_delimiter = ',', default_value = "auto", value_parser = line_kernel)]
     pub kernels: Vec<LineKernel>,
     /// Segments per pixel the segmented kernel runs at, each beside the
-    /// others (0: the device's choice). Comma-separated.
+    /// others (0: the device's choice), as S or S/T with T lanes per cache
+    /// texel (default: an eighth of S), e.g. 32,128,128/8. Comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "0")]
-    pub segments: Vec<u32>,
+    pub segments: Vec<SegmentCount>,
 }
 
 #[derive(Args, Debug)]

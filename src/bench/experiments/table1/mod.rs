@@ -24,6 +24,7 @@ use crate::techniques::scene_for_volume_file;
 use crate::vk::{Context, Profiler};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::str::FromStr;
 
 /// Our data sets and the paper column each stands beside.
 pub const PAPER_PAIRS: [(&str, &PaperColumn); 3] =
@@ -41,25 +42,54 @@ pub struct Table1Plan {
     /// The volume files and the paper columns they stand beside.
     pub data_sets: Vec<(PathBuf, &'static PaperColumn)>,
     /// The line kernels measured (`auto`: the device's), each with its
-    /// segments per pixel (0: the device's; the segmented kernel's only).
-    pub kernels: Vec<(LineKernel, u32)>,
+    /// segments per pixel and texel lanes (the segmented kernel's only).
+    pub kernels: Vec<(LineKernel, SegmentCount)>,
+}
+
+/// The segmented kernel's split as `--segments` names it: `S` (segments per
+/// pixel, 0: the device's) or `S/T` (and `T` lanes per cache texel; without
+/// it, or 0, the default for `S`), so that one run sets texel lanes side by
+/// side as well as segment counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SegmentCount {
+    pub segments: u32,
+    pub texel_segments: u32,
+}
+
+impl SegmentCount {
+    pub const DEVICE: SegmentCount = SegmentCount { segments: 0, texel_segments: 0 };
+}
+
+impl FromStr for SegmentCount {
+    type Err = String;
+    fn from_str(text: &str) -> Result<Self, String> {
+        let number = |part: &str| {
+            part.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("{text:?} is not S or S/T (segments, texel lanes: whole numbers)"))
+        };
+        match text.split_once('/') {
+            None => Ok(SegmentCount { segments: number(text)?, texel_segments: 0 }),
+            Some((s, t)) => Ok(SegmentCount { segments: number(s)?, texel_segments: number(t)? }),
+        }
+    }
 }
 
 impl Table1Plan {
     /// The paper's three data sets, from the data folder.
     pub fn paper(sizes: Vec<u32>, interleaved: Interleaved, set: Vec<String>) -> Table1Plan {
         let data_sets = PAPER_PAIRS.iter().map(|(file, paper)| (data_dir().join(file), *paper)).collect();
-        Table1Plan { sizes, interleaved, set, data_sets, kernels: vec![(LineKernel::Auto, 0)] }
+        Table1Plan { sizes, interleaved, set, data_sets, kernels: vec![(LineKernel::Auto, SegmentCount::DEVICE)] }
     }
 
     /// `kernels`, the segmented one at each of `segments` (the others once).
-    pub fn kernels_at(kernels: &[LineKernel], segments: &[u32]) -> Vec<(LineKernel, u32)> {
-        let counts = if segments.is_empty() { &[0][..] } else { segments };
+    pub fn kernels_at(kernels: &[LineKernel], segments: &[SegmentCount]) -> Vec<(LineKernel, SegmentCount)> {
+        let counts = if segments.is_empty() { &[SegmentCount::DEVICE][..] } else { segments };
         let mut out = Vec::new();
         for &k in kernels {
             match k {
                 LineKernel::Segmented => out.extend(counts.iter().map(|&s| (k, s))),
-                _ => out.push((k, 0)),
+                _ => out.push((k, SegmentCount::DEVICE)),
             }
         }
         out
@@ -83,15 +113,21 @@ impl Table1Plan {
 }
 
 /// A kernel as the rows name it before it is resolved.
-fn kernel_settings(base: &IpsviSettings, (line_kernel, segments): (LineKernel, u32), line_width: u32) -> IpsviSettings {
-    IpsviSettings { line_width, line_kernel, segments, ..base.clone() }
+fn kernel_settings(
+    base: &IpsviSettings,
+    (line_kernel, count): (LineKernel, SegmentCount),
+    line_width: u32,
+) -> IpsviSettings {
+    let SegmentCount { segments, texel_segments } = count;
+    IpsviSettings { line_width, line_kernel, segments, texel_segments, ..base.clone() }
 }
 
 /// How the progress line names a kernel before it is resolved.
-fn kernel_name((line_kernel, segments): (LineKernel, u32)) -> String {
-    match segments {
-        0 => line_kernel.name().to_string(),
-        s => format!("{} x{s}", line_kernel.name()),
+fn kernel_name((line_kernel, count): (LineKernel, SegmentCount)) -> String {
+    match (count.segments, count.texel_segments) {
+        (0, 0) => line_kernel.name().to_string(),
+        (s, 0) => format!("{} x{s}", line_kernel.name()),
+        (s, t) => format!("{} x{s}, texels x{t}", line_kernel.name()),
     }
 }
 
@@ -329,11 +365,21 @@ mod tests {
 
     #[test]
     fn the_segmented_kernel_runs_at_each_count_and_the_others_once() {
-        let k = Table1Plan::kernels_at(&[LineKernel::Serial, LineKernel::Segmented], &[32, 128]);
-        assert_eq!(k, [(LineKernel::Serial, 0), (LineKernel::Segmented, 32), (LineKernel::Segmented, 128)]);
-        assert_eq!(Table1Plan::kernels_at(&[LineKernel::Auto], &[32]), [(LineKernel::Auto, 0)]);
-        assert_eq!(kernel_name((LineKernel::Segmented, 64)), "segmented x64");
-        assert_eq!(kernel_name((LineKernel::Segmented, 0)), "segmented");
+        let at = |text: &str| text.parse::<SegmentCount>().unwrap();
+        let (device, x32, x128, x128_8) = (SegmentCount::DEVICE, at("32"), at("128"), at("128/8"));
+        assert_eq!((x128.segments, x128.texel_segments, x128_8.texel_segments), (128, 0, 8));
+        let k = Table1Plan::kernels_at(&[LineKernel::Serial, LineKernel::Segmented], &[x32, x128, x128_8]);
+        let segmented = LineKernel::Segmented;
+        assert_eq!(k, [(LineKernel::Serial, device), (segmented, x32), (segmented, x128), (segmented, x128_8)]);
+        assert_eq!(Table1Plan::kernels_at(&[LineKernel::Auto], &[x32]), [(LineKernel::Auto, device)]);
+        assert_eq!(kernel_name((segmented, at("64"))), "segmented x64");
+        assert_eq!(kernel_name((segmented, x128_8)), "segmented x128, texels x8");
+        assert_eq!(kernel_name((segmented, device)), "segmented");
+        let s = kernel_settings(&IpsviSettings::default(), (segmented, x128_8), 2);
+        assert_eq!((s.segments, s.texel_segments, s.line_width), (128, 8, 2));
+        for bad in ["x", "128/", "/8", "128/8/2", "-1"] {
+            assert!(bad.parse::<SegmentCount>().unwrap_err().contains("S/T"), "{bad}");
+        }
     }
 
     #[test]
