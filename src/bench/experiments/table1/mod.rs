@@ -50,7 +50,7 @@ pub struct Table1Plan {
 /// pixel, 0: the device's) or `S/T` (and `T` lanes per cache texel; without
 /// it, or 0, the default for `S`), so that one run sets texel lanes side by
 /// side as well as segment counts.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SegmentCount {
     pub segments: u32,
     pub texel_segments: u32,
