@@ -120,7 +120,7 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     let mut expected = vec!["devices".to_string()];
     expected.extend(all.split(',').map(|t| format!("compare-{t}")));
     expected.extend(
-        ["bench-sync", "bench-ipsvi-breakdown", "bench-ipsvi-modes", "bench-table1", "bench-lights"].map(String::from),
+        ["bench-table1", "bench-sync", "bench-ipsvi-breakdown", "bench-ipsvi-modes", "bench-lights"].map(String::from),
     );
     assert_eq!(names, expected);
     for (name, rc, validation) in &parts {
@@ -180,4 +180,99 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     std::fs::remove_dir_all(&out).ok();
     std::fs::remove_dir_all(out.with_extension("scene")).ok();
     std::fs::remove_dir_all(failing.with_extension("scene")).ok();
+}
+
+/// A bundle whose `sweeplab` answers at once, except `bench`, which sleeps past any limit the
+/// test sets: what a lent machine's call does when the check outlasts its time.
+fn slow_bench_bundle(stage: &Path) {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let bundle = stage.join("gpu-check");
+    for dir in ["tools", "bin", "data"] {
+        std::fs::create_dir_all(bundle.join(dir)).unwrap();
+    }
+    std::fs::copy(root.join("tools/gpu_check.sh"), bundle.join("tools/gpu_check.sh")).unwrap();
+    // `devices` prints no device line: the report still has to be JSON.
+    let fake = "#!/bin/sh\n[ \"$1\" = bench ] && exec sleep 60\nexit 0\n";
+    std::fs::write(bundle.join("bin/sweeplab"), fake).unwrap();
+    let status = Command::new("chmod").arg("+x").arg(bundle.join("bin/sweeplab")).status().unwrap();
+    assert!(status.success());
+    let status = Command::new("tar")
+        .arg("-czf")
+        .arg(stage.join("gpu-check.tar.gz"))
+        .arg("-C")
+        .arg(stage)
+        .arg("gpu-check")
+        .status();
+    assert!(status.unwrap().success());
+}
+
+#[test]
+fn a_lent_machine_gets_back_the_parts_before_the_time_limit_and_the_report() {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let base = std::env::temp_dir().join(format!("sweeplab-gpu-check-limit-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&base);
+    let (stage, results, unpacked) = (base.join("stage"), base.join("results"), base.join("unpacked"));
+    slow_bench_bundle(&stage);
+    let limit = 5;
+    let started = std::time::Instant::now();
+    let run = Command::new("bash")
+        .arg(root.join("tools/gpu_check_on_device.sh"))
+        .arg(&results)
+        .current_dir(&root)
+        .env("GPU_CHECK_STAGE", &stage)
+        .env("GPU_CHECK_MAX_SECONDS", limit.to_string())
+        .env("GPU_CHECK_TECHNIQUES", "dvr,ipsvi")
+        .output()
+        .expect("run tools/gpu_check_on_device.sh");
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(!run.status.success(), "a part cut at the limit fails the check: {stdout}");
+    // `bench` sleeps 60 s: the limit ended it (TERM, KILL 10 s later at the latest).
+    assert!(started.elapsed().as_secs() < 40, "the limit did not hold: {:?}", started.elapsed());
+    std::fs::create_dir_all(&unpacked).unwrap();
+    let status =
+        Command::new("tar").arg("-xzf").arg(results.join("gpu-check-out.tar.gz")).arg("-C").arg(&unpacked).status();
+    assert!(status.unwrap().success(), "the results came back packed: {stdout}");
+    let out = unpacked.join("gpu-check-out");
+    let report = std::fs::read_to_string(out.join("report.json")).expect("the report, written after the cut");
+    let report: serde_json::Value =
+        serde_json::from_str(&report).unwrap_or_else(|e| panic!("report.json: {e}\n{report}"));
+    assert_eq!(report["max_seconds"], limit, "{report:#}");
+    let outcomes: Vec<(String, String)> = report["parts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p["name"].as_str().unwrap().to_string(), p["outcome"].as_str().unwrap().to_string()))
+        .collect();
+    let names: Vec<&str> = outcomes.iter().map(|o| o.0.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "devices",
+            "compare-dvr",
+            "compare-ipsvi",
+            "bench-table1",
+            "bench-sync",
+            "bench-ipsvi-breakdown",
+            "bench-ipsvi-modes",
+            "bench-lights"
+        ],
+        "Table 1 first among the benches"
+    );
+    // Everything before the first bench passed, that bench was cut, the rest skipped.
+    let expected = |name: &str| match name {
+        "bench-table1" => "cut at the time limit",
+        n if n.starts_with("bench-") => "skipped",
+        _ => "passed",
+    };
+    for (name, outcome) in &outcomes {
+        assert_eq!(outcome, expected(name), "{name}: {report:#}");
+    }
+    assert_eq!(report["failed_parts"], 5);
+    assert_eq!(report["cut_or_skipped_parts"], 5);
+    let log = std::fs::read_to_string(out.join("logs/bench-table1.log")).unwrap();
+    assert!(log.contains("GPU_CHECK_MAX_SECONDS=5) ended it"), "{log}");
+    // The summary on standard output names the cut part.
+    assert!(stdout.contains("| bench-table1 | 124 | cut at the time limit |"), "{stdout}");
+    assert!(out.join("machine.txt").exists());
+    std::fs::remove_dir_all(&base).ok();
 }

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # One command for a machine with a GPU driver and nothing else (no compiler,
 # no network): lists the devices, renders every technique against its ground
-# truth with validation on, runs `bench sync`, `bench ipsvi --breakdown`, IPSVI's
-# error against time per mode (`bench ipsvi`), the IPSVI paper's Table 1 on the CT
-# engine with both line kernels (`bench table1`) and a short `bench lights`, and writes one report (report.json + report.md) into
-# OUT. A part that fails is recorded (exit status, time, log tail) and the
-# next one runs. See docs/bench-on-your-gpu.md.
+# truth with validation on, runs the IPSVI paper's Table 1 on the CT engine with
+# both line kernels (`bench table1`), `bench sync`, `bench ipsvi --breakdown`,
+# IPSVI's error against time per mode (`bench ipsvi`) and a short `bench lights`,
+# and writes one report (report.json + report.md) into OUT. A part that fails is
+# recorded (exit status, time, log tail) and the next one runs. See
+# docs/bench-on-your-gpu.md.
 #
 #   tools/gpu_check.sh OUT            (from a bundle made by tools/gpu_check_prepare.sh,
 #                                      or from a checkout with a release build)
@@ -35,6 +36,10 @@
 #   GPU_CHECK_LIGHTS_ARGS  arguments of bench lights (default: a short run)
 #   GPU_CHECK_AO_SET       --set value for the ao comparison (default: none)
 #   GPU_CHECK_BENCHES      0: the comparisons only (default 1)
+#   GPU_CHECK_MAX_SECONDS  the whole check's time limit (default: none): each part runs
+#                          under `timeout` with the time left, a part cut there is recorded
+#                          as cut, the parts after it as skipped, and the report is written
+#                          (tools/gpu_check_on_device.sh sets it for a lent machine)
 set -u
 
 out=${1:?usage: tools/gpu_check.sh OUT_DIR}
@@ -83,31 +88,63 @@ started_all=$(date +%s.%N)
 
 json_string() {
     # A JSON string literal of $1 (backslash, quote, control characters).
+    # (Empty: sed and awk below would print no line at all.)
+    [ -z "$1" ] && { printf '""'; return; }
     printf '%s' "$1" | sed -e 's/\\/\\\\/g' -e 's/"/\\"/g' -e 's/\t/\\t/g' -e 's/\r//g' | awk 'BEGIN{ORS="\\n"} {print}' |
         sed -e 's/\\n$//' -e 's/^/"/' -e 's/$/"/'
 }
 
 # part NAME COMMAND...: runs it with its log in logs/NAME.log, records the result.
+# Under GPU_CHECK_MAX_SECONDS it runs with the time left, or not at all.
+max_seconds=${GPU_CHECK_MAX_SECONDS:-}
+if [ -n "$max_seconds" ] && ! [[ "$max_seconds" =~ ^[0-9]+$ ]]; then
+    echo "GPU_CHECK_MAX_SECONDS=$max_seconds is not a whole number of seconds" >&2
+    exit 2
+fi
 part() {
     local name=$1
     shift
     local log="$out/logs/$name.log"
-    local t0 t1 rc
+    local t0 t1 rc outcome limit=()
     t0=$(date +%s.%N)
+    if [ -n "$max_seconds" ]; then
+        local left
+        left=$(awk -v a="$started_all" -v b="$t0" -v m="$max_seconds" 'BEGIN{printf "%d", m - (b - a)}')
+        if [ "$left" -le 0 ]; then
+            echo "== $name: skipped (the check's time limit, ${max_seconds} s, was reached)" >&2
+            echo "skipped: the check's time limit (GPU_CHECK_MAX_SECONDS=$max_seconds) was reached before it began" > "$log"
+            record_part "$name" "$*" 124 "skipped" 0.0 "$log"
+            return
+        fi
+        # TERM first (a bench writes nothing more), KILL 10 s later.
+        limit=(timeout --kill-after=10 "$left")
+    fi
     echo "== $name: $*" >&2
-    "$@" > "$log" 2>&1
+    "${limit[@]}" "$@" > "$log" 2>&1
     rc=$?
     t1=$(date +%s.%N)
     local seconds
     seconds=$(awk -v a="$t0" -v b="$t1" 'BEGIN{printf "%.1f", b - a}')
+    outcome=passed
+    [ "$rc" -ne 0 ] && outcome=failed
+    if [ ${#limit[@]} -gt 0 ] && { [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; }; then
+        outcome="cut at the time limit"
+        echo "cut: the check's time limit (GPU_CHECK_MAX_SECONDS=$max_seconds) ended it" >> "$log"
+    fi
+    echo "   rc $rc, ${seconds} s, $outcome" >&2
+    record_part "$name" "$*" "$rc" "$outcome" "$seconds" "$log"
+}
+
+# record_part NAME COMMAND RC OUTCOME SECONDS LOG: one line of the report's parts.
+record_part() {
+    local name=$1 command=$2 rc=$3 outcome=$4 seconds=$5 log=$6
     local validation="not run"
     if grep -q "^validation: clean" "$log"; then validation="clean"; elif grep -qi "validation:" "$log"; then
         validation="messages"
     fi
-    echo "   rc $rc, ${seconds} s, validation $validation" >&2
-    printf '{"name": %s, "command": %s, "rc": %d, "seconds": %s, "validation": %s, "log": %s, "tail": %s}\n' \
-        "$(json_string "$name")" "$(json_string "$*")" "$rc" "$seconds" "$(json_string "$validation")" \
-        "$(json_string "logs/$name.log")" "$(json_string "$(tail -n 8 "$log")")" >> "$parts_json"
+    printf '{"name": %s, "command": %s, "rc": %d, "outcome": %s, "seconds": %s, "validation": %s, "log": %s, "tail": %s}\n' \
+        "$(json_string "$name")" "$(json_string "$command")" "$rc" "$(json_string "$outcome")" "$seconds" \
+        "$(json_string "$validation")" "$(json_string "logs/$name.log")" "$(json_string "$(tail -n 8 "$log")")" >> "$parts_json"
 }
 
 part devices "$bin" devices
@@ -125,7 +162,11 @@ for t in "${list[@]}"; do
 done
 if [ "${GPU_CHECK_BENCHES:-1}" = 1 ]; then
     # --force: a second check into the same OUT replaces its bench results (as it does the rest).
+    # The paper's Table 1 first (both line kernels, frames per second beside the GTX 580's):
+    # under a time limit, the bench a GPU run needs most.
     # shellcheck disable=SC2086 # the argument strings are word lists
+    part bench-table1 "$bin" bench table1 "${device_args[@]}" --out-dir "$out/bench-table1" --force $table1_args
+    # shellcheck disable=SC2086
     part bench-sync "$bin" bench sync --scene "$scene" --size "${bench_size}x${bench_size}" "${device_args[@]}" \
         --out-dir "$out/bench-sync" --force $sync_args
     # shellcheck disable=SC2086
@@ -134,9 +175,6 @@ if [ "${GPU_CHECK_BENCHES:-1}" = 1 ]; then
     # shellcheck disable=SC2086
     part bench-ipsvi-modes "$bin" bench ipsvi --scene "$scene" --sizes "$bench_size" "${device_args[@]}" \
         --out-dir "$out/bench-ipsvi-modes" --force $modes_args
-    # The paper's Table 1 (frames per second beside its GTX 580 figures), both line kernels.
-    # shellcheck disable=SC2086
-    part bench-table1 "$bin" bench table1 "${device_args[@]}" --out-dir "$out/bench-table1" --force $table1_args
     # shellcheck disable=SC2086
     part bench-lights "$bin" bench lights --scene "$scene" "${device_args[@]}" --out-dir "$out/bench-lights" --force $lights_args
 fi
@@ -149,14 +187,16 @@ device=$(grep -m1 -E '^\s*(\*|0)' "$out/logs/devices.log" 2>/dev/null | sed 's/^
 # the layer it ran with (and any extension left out for it).
 layer=$(grep -m1 '^validation layer:' "$out/logs/devices.log" 2>/dev/null | sed 's/^validation layer: //')
 validated=$(grep -h -m1 '^device: .*validation on' "$out"/logs/compare-*.log 2>/dev/null | head -n 1)
-failed=$(grep -c '"rc": [1-9]' "$parts_json")
+failed=$(grep -c -v '"rc": 0,' "$parts_json")
+cut=$(grep -c -E '"outcome": "(cut|skipped)' "$parts_json")
 {
     printf '{\n  "tool": "tools/gpu_check.sh",\n  "date": %s,\n  "host": %s,\n  "device": %s,\n' \
         "$(json_string "$(date -u +%Y-%m-%dT%H:%M:%SZ)")" "$(json_string "$(uname -srm)")" "$(json_string "$device")"
     printf '  "vulkan": %s,\n  "validation_layer": %s,\n  "validated_device": %s,\n' \
         "$(json_string "$vulkan_from")" "$(json_string "${layer:-unknown}")" "$(json_string "${validated:-none}")"
-    printf '  "sizes": {"compare": %d, "bench": %d},\n  "total_seconds": %s,\n  "failed_parts": %d,\n' \
-        "$size" "$bench_size" "$total" "$failed"
+    printf '  "sizes": {"compare": %d, "bench": %d},\n  "total_seconds": %s,\n  "max_seconds": %s,\n' \
+        "$size" "$bench_size" "$total" "${max_seconds:-null}"
+    printf '  "failed_parts": %d,\n  "cut_or_skipped_parts": %d,\n' "$failed" "$cut"
     printf '  "parts": [\n'
     sed -e 's/^/    /' -e '$!s/$/,/' "$parts_json"
     printf '  ]\n}\n'
@@ -167,16 +207,17 @@ failed=$(grep -c '"rc": [1-9]' "$parts_json")
     echo "- device: ${device:-unknown} (Vulkan loader and layer: $vulkan_from)"
     echo "- validation layer: ${layer:-unknown}; validated runs: ${validated:-none}"
     echo "- host: $(uname -srm); $(date -u +%Y-%m-%dT%H:%M:%SZ)"
-    echo "- comparisons at ${size}x${size}, benches at ${bench_size}; data sets from $SWEEPLAB_DATA; total ${total} s; failed parts: $failed"
+    echo "- comparisons at ${size}x${size}, benches at ${bench_size}; data sets from $SWEEPLAB_DATA; total ${total} s${max_seconds:+ (limit $max_seconds s)}; failed parts: $failed${max_seconds:+ (of them cut or skipped at the limit: $cut)}"
     echo
-    echo "| part | exit | seconds | validation | log |"
-    echo "|---|---|---|---|---|"
+    echo "| part | exit | outcome | seconds | validation | log |"
+    echo "|---|---|---|---|---|---|"
     while IFS= read -r line; do
         name=$(sed -E 's/.*"name": "([^"]*)".*/\1/' <<< "$line")
         rc=$(sed -E 's/.*"rc": ([0-9]+).*/\1/' <<< "$line")
         secs=$(sed -E 's/.*"seconds": ([0-9.]+).*/\1/' <<< "$line")
+        outcome=$(sed -E 's/.*"outcome": "([^"]*)".*/\1/' <<< "$line")
         val=$(sed -E 's/.*"validation": "([^"]*)".*/\1/' <<< "$line")
-        echo "| $name | $rc | $secs | $val | logs/$name.log |"
+        echo "| $name | $rc | $outcome | $secs | $val | logs/$name.log |"
     done < "$parts_json"
     echo
     echo "Errors against the ground truth: compare/*.json; benches: bench-sync/, bench-ipsvi/, bench-ipsvi-modes/, bench-table1/, bench-lights/."
