@@ -28,10 +28,12 @@ if [ -e "${debs[0]}" ]; then
     for f in "${debs[@]}"; do dpkg -x "$f" / || exit 2; done
     ldconfig
 fi
-# A machine whose driver registers its Vulkan ICD outside the loader's search path.
+# A machine whose NVIDIA driver registers its Vulkan ICD outside the loader's search path.
+icd_dirs=(/etc/vulkan/icd.d /usr/local/share/vulkan/icd.d /usr/share/vulkan/icd.d)
 nvidia_icd=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 if [ -z "${VK_DRIVER_FILES:-}${VK_ICD_FILENAMES:-}" ] && [ -f "$nvidia_icd" ] &&
-    ! compgen -G "/usr/share/vulkan/icd.d/*.json" >/dev/null && ! compgen -G "/etc/vulkan/icd.d/*.json" >/dev/null; then
+    # shellcheck disable=SC2086 # the globs are to expand
+    ! grep -qsl nvidia ${icd_dirs[@]/%//*.json}; then
     export VK_DRIVER_FILES=$nvidia_icd
 fi
 
@@ -43,6 +45,7 @@ mkdir -p "$out"
     date -u +%Y-%m-%dT%H:%M:%SZ
     uname -srm
     echo "VK_DRIVER_FILES=${VK_DRIVER_FILES:-}"
+    ls -l "${icd_dirs[@]}" "$(dirname "$nvidia_icd")"
     command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv
 } > "$out/machine.txt" 2>&1
 
