@@ -12,7 +12,8 @@
 #
 # Environment:
 #   GPU_CHECK_STAGE        the staged folder (default .gl)
-#   GPU_CHECK_MAX_SECONDS  gpu_check.sh's own limit (default 540: a call may run 600 s)
+#   GPU_CHECK_MAX_SECONDS  gpu_check.sh's own limit (default 480, its goal: with a machine's start,
+#                          about 10 of a session's 15 device minutes, leaving a short rerun)
 #   GPU_CHECK_*            passed on to gpu_check.sh (tools/gpu_check.sh lists them)
 set -u
 
@@ -49,7 +50,7 @@ mkdir -p "$out"
     command -v nvidia-smi >/dev/null && nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv
 } > "$out/machine.txt" 2>&1
 
-GPU_CHECK_MAX_SECONDS=${GPU_CHECK_MAX_SECONDS:-540} bash "$work/gpu-check/tools/gpu_check.sh" "$out"
+GPU_CHECK_MAX_SECONDS=${GPU_CHECK_MAX_SECONDS:-480} bash "$work/gpu-check/tools/gpu_check.sh" "$out"
 rc=$?
 # Without the caches (ground truths and AO preprocessing: the images are in compare/). A
 # file over 16 MiB does not come back from the device: then without images and traces.
