@@ -134,6 +134,9 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     // The parts' compiled shaders went where the suite's own are, not into a
     // cache of their own inside it.
     assert_eq!(files_in(&nested_cache), nested_before, "the parts kept a shader cache of their own");
+    // The build it ran: the binary's version and commit.
+    let build = format!("sweeplab {} at {}", env!("CARGO_PKG_VERSION"), env!("SWEEPLAB_GIT_COMMIT"));
+    assert_eq!(report["build"], build.as_str(), "{report:#}");
     // The layer's version beside the driver's API version, for every reader of the report.
     let layer = report["validation_layer"].as_str().unwrap_or_default();
     assert!(layer.starts_with("VK_LAYER_KHRONOS_validation 1."), "{report:#}");
@@ -141,6 +144,7 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
     assert!(validated.contains("Vulkan 1.") && validated.contains("validation on (layer 1."), "{report:#}");
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("- validation layer: VK_LAYER_KHRONOS_validation 1."), "{md}");
+    assert!(md.contains(&format!("- build: {build}\n")), "{md}");
     assert!(out.join("compare/ipsvi.json").exists() && out.join("bench-sync").is_dir());
     assert!(out.join("bench-ipsvi-modes/ipsvi.json").exists(), "the error against time per mode");
     // The ground truth is rendered once per model: phong, reference and ao reuse dvr's
@@ -237,6 +241,7 @@ fn a_lent_machine_gets_back_the_parts_before_the_time_limit_and_the_report() {
     let report: serde_json::Value =
         serde_json::from_str(&report).unwrap_or_else(|e| panic!("report.json: {e}\n{report}"));
     assert_eq!(report["max_seconds"], limit, "{report:#}");
+    assert_eq!(report["build"], "unknown", "the fake binary names no version: {report:#}");
     let outcomes: Vec<(String, String)> = report["parts"]
         .as_array()
         .unwrap()

@@ -185,6 +185,8 @@ device=$(grep -m1 -E '^\s*(\*|0)' "$out/logs/devices.log" 2>/dev/null | sed 's/^
 # driver does not know its newest extensions. `sweeplab devices` names the
 # layer; a validated part's first line names the device, its API version and
 # the layer it ran with (and any extension left out for it).
+# The binary's version and commit (`sweeplab --version`).
+build=$("$bin" --version 2>/dev/null | head -n 1)
 layer=$(grep -m1 '^validation layer:' "$out/logs/devices.log" 2>/dev/null | sed 's/^validation layer: //')
 validated=$(grep -h -m1 '^device: .*validation on' "$out"/logs/compare-*.log 2>/dev/null | head -n 1)
 failed=$(grep -c -v '"rc": 0,' "$parts_json")
@@ -192,6 +194,7 @@ cut=$(grep -c -E '"outcome": "(cut|skipped)' "$parts_json")
 {
     printf '{\n  "tool": "tools/gpu_check.sh",\n  "date": %s,\n  "host": %s,\n  "device": %s,\n' \
         "$(json_string "$(date -u +%Y-%m-%dT%H:%M:%SZ)")" "$(json_string "$(uname -srm)")" "$(json_string "$device")"
+    printf '  "build": %s,\n' "$(json_string "${build:-unknown}")"
     printf '  "vulkan": %s,\n  "validation_layer": %s,\n  "validated_device": %s,\n' \
         "$(json_string "$vulkan_from")" "$(json_string "${layer:-unknown}")" "$(json_string "${validated:-none}")"
     printf '  "sizes": {"compare": %d, "bench": %d},\n  "total_seconds": %s,\n  "max_seconds": %s,\n' \
@@ -204,6 +207,7 @@ cut=$(grep -c -E '"outcome": "(cut|skipped)' "$parts_json")
 {
     echo "# GPU check"
     echo
+    echo "- build: ${build:-unknown}"
     echo "- device: ${device:-unknown} (Vulkan loader and layer: $vulkan_from)"
     echo "- validation layer: ${layer:-unknown}; validated runs: ${validated:-none}"
     echo "- host: $(uname -srm); $(date -u +%Y-%m-%dT%H:%M:%SZ)"

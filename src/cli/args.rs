@@ -47,8 +47,12 @@ pub struct OutDirArgs {
     pub force: bool,
 }
 
+/// `sweeplab --version`: the crate's version and the commit of the build (`build.rs`), as bench
+/// headers write them, so that a report that records only the binary's answer names its build.
+const VERSION: &str = concat!(env!("CARGO_PKG_VERSION"), " at ", env!("SWEEPLAB_GIT_COMMIT"));
+
 #[derive(Parser, Debug)]
-#[command(name = "sweeplab", version, about = "Volume illumination with explicit Vulkan synchronization")]
+#[command(name = "sweeplab", version = VERSION, about = "Volume illumination with explicit Vulkan synchronization")]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
