@@ -35,6 +35,7 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
             &[LineKernel::Serial, LineKernel::Segmented],
             &[SegmentCount::DEVICE, "16".parse().unwrap()],
         ),
+        errors: true,
     };
     let folder = OutFolder::prepare(OutTarget::Named { folder: &out("table1"), force: true }).unwrap();
     let table = table1_bench::run(&ctx, &plan, RunInfo::collect(&ctx), &folder, 4096).unwrap();
@@ -56,6 +57,13 @@ fn table1_gives_a_row_per_size_kernel_and_line_width_with_its_rounds_recorded() 
         assert!((per_line - r.get_f64("gpu_ms").unwrap() * 1e3 / lines).abs() <= 1e-9 * per_line, "{r:?}");
         // The segmented kernel's view-stops pass, once a frame: its chain beside the line's.
         assert_eq!(r.get_f64("view_stops_chain").is_some_and(|c| c > 0.0), kernel != "serial", "{r:?}");
+        // The error against the size's ground truth, and over the serial kernel's at this line
+        // width: the same image but for the summation order, within the goal's 2 %.
+        let rmse = r.get_f64("rmse").unwrap();
+        assert!(rmse.is_finite() && rmse > 0.0 && r.get_f64("reference_gpu_ms").unwrap() > 0.0, "{r:?}");
+        let serial = &table.rows[i / 9 * 9 + i % 3];
+        assert_eq!(r.get_f64("rmse_over_serial"), Some(rmse / serial.get_f64("rmse").unwrap()), "{r:?}");
+        assert!((r.get_f64("rmse_over_serial").unwrap() - 1.0).abs() < 0.02, "{r:?}");
     }
     // Each row against the fastest kernel at its size and line width: one of
     // the three, named alike in its rows, its own ratio 1, the others' above.

@@ -168,7 +168,8 @@ fn the_gpu_check_runs_every_part_on_lavapipe_and_records_a_failing_one() {
             && markdown.contains("engine.vti 8x8 lw=4 segmented x16, texels x4:")
             && markdown.contains("(the paper has no figure at this size and line width for CT Engine")
             && markdown.contains("; the fastest kernel here (lowest median)")
-            && markdown.contains("x the time of "),
+            && markdown.contains("x the time of ")
+            && markdown.contains("x the serial kernel's"),
         "{markdown}"
     );
 

@@ -249,6 +249,11 @@ pub struct BenchTable1Args {
     /// texel (default: an eighth of S), e.g. 32,128,128/8. Comma-separated.
     #[arg(long, value_delimiter = ',', default_value = "0")]
     pub segments: Vec<SegmentCount>,
+    /// Leave out the ground truth (IPSVI's model, rendered once per data set
+    /// and size on the device) and the rows' RMSE against it: on a CPU device
+    /// it costs minutes at 256 and above.
+    #[arg(long)]
+    pub no_errors: bool,
 }
 
 #[derive(Args, Debug)]

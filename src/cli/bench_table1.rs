@@ -10,5 +10,6 @@ pub fn run(args: &BenchTable1Args) -> anyhow::Result<ExitCode> {
     let interleaved = session::interleaved(args.repeat, &args.rounds)?;
     let mut plan = Table1Plan::paper(args.sizes.clone(), interleaved, args.set.clone()).only(&args.data_sets)?;
     plan.kernels = Table1Plan::kernels_at(&args.kernels, &args.segments);
+    plan.errors = !args.no_errors;
     experiment_runner::run(&Table1Experiment { plan }, &args.out, &args.gpu)
 }

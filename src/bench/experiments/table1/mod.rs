@@ -3,7 +3,8 @@
 //! width and line kernel are measured side by side ([`Interleaved`]), so the
 //! frame rate of each, its ratio to line width 1 and the segmented kernel's
 //! ratio to the serial one (paired round by round) see the same rounds of a
-//! shared machine.
+//! shared machine; and each one's RMSE against the ground truth of IPSVI's
+//! model, rendered once per size on the device, beside the serial kernel's.
 
 mod experiment;
 pub mod paper;
@@ -14,13 +15,16 @@ use crate::bench::experiments::table1::paper::{PaperColumn, CT_ENGINE, CT_GIRAFF
 use crate::bench::{
     ipsvi_frame, BenchRow, BenchTable, Estimate, ExperimentError, Interleaved, OutFolder, Progress, RunInfo, Sample,
 };
-use crate::render::GpuScene;
+use crate::linear_image::LinearImage;
+use crate::metrics::compare;
+use crate::render::{GpuScene, LineShape};
 use crate::scene::loaders::data_dir;
+use crate::scene::OpticalModel;
 use crate::techniques::ipsvi::cache_plane::AUTO_CACHE_MIN;
 use crate::techniques::ipsvi::line_kernel::LineKernel;
 use crate::techniques::ipsvi::renderer::IpsviRenderer;
 use crate::techniques::ipsvi::{IpsviSettings, SyncStrategy};
-use crate::techniques::scene_for_volume_file;
+use crate::techniques::{render, scene_for_volume_file, Technique};
 use crate::vk::{Context, Profiler};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -44,6 +48,9 @@ pub struct Table1Plan {
     /// The line kernels measured (`auto`: the device's), each with its
     /// segments per pixel and texel lanes (the segmented kernel's only).
     pub kernels: Vec<(LineKernel, SegmentCount)>,
+    /// The ground truth of IPSVI's model (ii) per data set and size, and each
+    /// configuration's RMSE against it (on a CPU device minutes at 256 and up).
+    pub errors: bool,
 }
 
 /// The segmented kernel's split as `--segments` names it: `S` (segments per
@@ -79,7 +86,8 @@ impl Table1Plan {
     /// The paper's three data sets, from the data folder.
     pub fn paper(sizes: Vec<u32>, interleaved: Interleaved, set: Vec<String>) -> Table1Plan {
         let data_sets = PAPER_PAIRS.iter().map(|(file, paper)| (data_dir().join(file), *paper)).collect();
-        Table1Plan { sizes, interleaved, set, data_sets, kernels: vec![(LineKernel::Auto, SegmentCount::DEVICE)] }
+        let kernels = vec![(LineKernel::Auto, SegmentCount::DEVICE)];
+        Table1Plan { sizes, interleaved, set, data_sets, kernels, errors: true }
     }
 
     /// `kernels`, the segmented one at each of `segments` (the others once).
@@ -157,7 +165,10 @@ struct SizeMeasurement {
     fastest: Vec<usize>,
     over_fastest: Vec<Option<Estimate>>,
     /// The kernel's label (`serial`, `segmented x32`) and its frame's shape.
-    kernels: Vec<(String, Option<crate::render::LineShape>)>,
+    kernels: Vec<(String, Option<LineShape>)>,
+    /// The last frame's RMSE against the ground truth, and the ground truth's GPU ms.
+    rmse: Vec<Option<f64>>,
+    reference_ms: Option<f64>,
 }
 
 /// Every data set of `plan` at every size, the rows saved in `out_folder`
@@ -176,8 +187,10 @@ pub fn run(
     let mut progress = Progress::weighted(step_weights(plan));
     for (path, paper) in &plan.data_sets {
         let file = path.file_name().map_or_else(|| path.display().to_string(), |f| f.to_string_lossy().into_owned());
-        let scene = scene_for_volume_file(path, &plan.set)
+        let mut scene = scene_for_volume_file(path, &plan.set)
             .map_err(|e| ExperimentError::Invalid(format!("loading {}: {e}", path.display())))?;
+        // IPSVI's model, whatever the data set's scene names (as `compare` does).
+        scene.reference.model = OpticalModel::EmissiveScattering;
         let mut base = IpsviSettings { piecewise: true, ..scene.settings.get::<IpsviSettings>().into_owned() };
         // The cache the H200 record's Table 1 ran at, unless `--set` names one.
         if base.cache_size == 0 {
@@ -187,6 +200,12 @@ pub fn run(
         let mut measured = BTreeMap::new();
         let n = LINE_WIDTHS.len();
         for &size in &plan.sizes {
+            let truth = if plan.errors {
+                let reference = render(&gpu, Technique::Reference, size, size, &mut profiler)?;
+                Some((reference.image, reference.profile.gpu_ms_total))
+            } else {
+                None
+            };
             let mut renderers = plan
                 .kernels
                 .iter()
@@ -201,7 +220,7 @@ pub fn run(
             );
             let timings = plan.interleaved.measure(&mut progress, &label, renderers.len(), |c, _| {
                 ipsvi_frame(ctx, &mut renderers[c], &mut profiler, SyncStrategy::BarrierGlobal)
-                    .map(|s| Sample { ms: s.ms, output: s.output.frame.shape })
+                    .map(|s| Sample { ms: s.ms, output: (s.output.frame.shape, s.output.frame.image) })
                     .map_err(ExperimentError::from)
             })?;
             let gpu_ms = timings.iter().map(|t| (t.median(), t.estimate())).collect();
@@ -210,9 +229,20 @@ pub fn run(
             let medians: Vec<f64> = timings.iter().map(|t| t.median()).collect();
             let fastest: Vec<usize> = (0..timings.len()).map(|c| fastest_at_line_width(&medians, n, c % n)).collect();
             let over_fastest = timings.iter().enumerate().map(|(c, t)| t.paired_ratio(&timings[fastest[c]])).collect();
-            let kernels = renderers.iter().zip(&timings).map(|(r, t)| (r.kernel().label(), t.last.clone())).collect();
-            measured
-                .insert(size, SizeMeasurement { gpu_ms, over_lw1, over_first_kernel, fastest, over_fastest, kernels });
+            let kernels = renderers.iter().zip(&timings).map(|(r, t)| (r.kernel().label(), t.last.0.clone())).collect();
+            let rmse = timings.iter().map(|t| rmse_against(&t.last.1, truth.as_ref())).collect::<Result<_, _>>()?;
+            let reference_ms = truth.as_ref().map(|t| t.1);
+            let m = SizeMeasurement {
+                gpu_ms,
+                over_lw1,
+                over_first_kernel,
+                fastest,
+                over_fastest,
+                kernels,
+                rmse,
+                reference_ms,
+            };
+            measured.insert(size, m);
         }
         for &size in &plan.sizes {
             for k in 0..plan.kernels.len() {
@@ -227,6 +257,12 @@ pub fn run(
     }
     progress.finish();
     Ok(table)
+}
+
+/// A frame's RMSE against the ground truth, where there is one.
+fn rmse_against(image: &LinearImage, truth: Option<&(LinearImage, f64)>) -> Result<Option<f64>, ExperimentError> {
+    let Some((truth, _)) = truth else { return Ok(None) };
+    Ok(Some(compare(image, truth)?.rmse))
 }
 
 /// The row of configuration `i` (kernel `i / 3`, line width `LINE_WIDTHS[i %
@@ -281,6 +317,16 @@ fn row(
         row.set("fps_over_half_size", ours / fps(half, i));
         if let (Some(at), Some(at_half)) = (paper_fps(size, lw), paper_fps(half, lw)) {
             row.set("paper_fps_over_half_size", at / at_half);
+        }
+    }
+    if let Some(rmse) = m.rmse[i] {
+        row.set("rmse", rmse).set("reference_model", "emissive-scattering");
+        row.set("reference_gpu_ms", m.reference_ms.unwrap_or(f64::NAN));
+        // The serial kernel's at this line width: the segmented kernel's goal is within 2 % of it.
+        let serial =
+            (i % LINE_WIDTHS.len()..m.rmse.len()).step_by(LINE_WIDTHS.len()).find(|&c| m.kernels[c].0 == "serial");
+        if let Some(serial_rmse) = serial.and_then(|c| m.rmse[c]).filter(|&r| r > 0.0) {
+            row.set("rmse_over_serial", rmse / serial_rmse);
         }
     }
     if let Some(shape) = &m.kernels[i].1 {
@@ -342,8 +388,15 @@ fn summary_line(r: &BenchRow) -> String {
         }
         _ => String::new(),
     };
+    let error = match (r.get_f64("rmse"), r.get_f64("rmse_over_serial")) {
+        (Some(rmse), Some(over)) if r.text("line_kernel") != "serial" => {
+            format!("; RMSE {rmse:.4}, {over:.3}x the serial kernel's")
+        }
+        (Some(rmse), _) => format!("; RMSE {rmse:.4}"),
+        _ => String::new(),
+    };
     format!(
-        "{} {}x{} lw={} {}: {:.2} fps{interval} ({paper}){against_fastest}",
+        "{} {}x{} lw={} {}: {:.2} fps{interval} ({paper}){against_fastest}{error}",
         r.text("data_set"),
         r.text("width"),
         r.text("width"),
@@ -400,6 +453,20 @@ mod tests {
             "{small}"
         );
         assert!(!small.contains("NaN"), "{small}");
+    }
+
+    #[test]
+    fn a_row_names_its_error_and_the_segmented_kernels_against_the_serial_ones() {
+        let line = |kernel: &str| {
+            let mut row = BenchRow::new();
+            row.set("data_set", "engine.vti").set("paper_data_set", CT_ENGINE.data_set).set("width", 256);
+            row.set("line_width", 1).set("line_kernel", kernel).set("fps", 4.0).set("rmse", 0.01234);
+            row.set("rmse_over_serial", if kernel == "serial" { 1.0 } else { 1.0004 });
+            summary_line(&row)
+        };
+        assert!(line("serial").ends_with("256x256x256); RMSE 0.0123"), "{}", line("serial"));
+        let segmented = line("segmented x32");
+        assert!(segmented.ends_with("256x256x256); RMSE 0.0123, 1.000x the serial kernel's"), "{segmented}");
     }
 
     #[test]
