@@ -180,13 +180,13 @@ if [ "${GPU_CHECK_BENCHES:-1}" = 1 ]; then
 fi
 
 total=$(awk -v a="$started_all" -v b="$(date +%s.%N)" 'BEGIN{printf "%.1f", b - a}')
+# The binary's version and commit (`sweeplab --version`).
+build=$("$bin" --version 2>/dev/null | head -n 1)
 device=$(grep -m1 -E '^\s*(\*|0)' "$out/logs/devices.log" 2>/dev/null | sed 's/^[ *]*//')
 # The layer's version beside the driver's API version: a layer older than the
 # driver does not know its newest extensions. `sweeplab devices` names the
 # layer; a validated part's first line names the device, its API version and
 # the layer it ran with (and any extension left out for it).
-# The binary's version and commit (`sweeplab --version`).
-build=$("$bin" --version 2>/dev/null | head -n 1)
 layer=$(grep -m1 '^validation layer:' "$out/logs/devices.log" 2>/dev/null | sed 's/^validation layer: //')
 validated=$(grep -h -m1 '^device: .*validation on' "$out"/logs/compare-*.log 2>/dev/null | head -n 1)
 failed=$(grep -c -v '"rc": 0,' "$parts_json")
