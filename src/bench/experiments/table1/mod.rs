@@ -319,9 +319,9 @@ fn row(
             row.set("paper_fps_over_half_size", at / at_half);
         }
     }
-    if let Some(rmse) = m.rmse[i] {
+    if let (Some(rmse), Some(reference_ms)) = (m.rmse[i], m.reference_ms) {
         row.set("rmse", rmse).set("reference_model", "emissive-scattering");
-        row.set("reference_gpu_ms", m.reference_ms.unwrap_or(f64::NAN));
+        row.set("reference_gpu_ms", reference_ms);
         // The serial kernel's at this line width: the segmented kernel's goal is within 2 % of it.
         let serial =
             (i % LINE_WIDTHS.len()..m.rmse.len()).step_by(LINE_WIDTHS.len()).find(|&c| m.kernels[c].0 == "serial");
